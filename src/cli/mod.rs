@@ -1,0 +1,118 @@
+//! Command-line parsing, dispatch, exit codes and diagnostics.
+
+mod demo;
+mod fmt;
+mod kinematics;
+mod output;
+
+use std::io::{self, Read};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, anyhow};
+use biscara::kinematics::Robot;
+use clap::{Parser, Subcommand};
+
+/// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
+/// vertical prismatic axis and a rotary axis about Z.
+///
+/// Lengths are millimetres and angles degrees on the command line and in every file.
+#[derive(Debug, Parser)]
+#[command(name = "biscara", version, propagate_version = true, max_term_width = 100)]
+pub(crate) struct Cli {
+    /// The robot description (robot.json) to use instead of the built-in robot; `-` reads
+    /// standard input. `biscara robot` prints a template.
+    #[arg(long, global = true, value_name = "FILE", help = "Robot description file (robot.json)")]
+    robot: Option<PathBuf>,
+
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    Ik(kinematics::IkArgs),
+    Fk(kinematics::FkArgs),
+    Robot(kinematics::RobotArgs),
+    Demo(demo::DemoArgs),
+}
+
+/// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
+/// failed check, 2 wrong usage.
+pub(crate) fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => {
+            let _ = err.print();
+            return ExitCode::from(u8::try_from(err.exit_code()).unwrap_or(2));
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        Err(err) => {
+            #[allow(clippy::print_stderr)]
+            {
+                eprintln!("biscara: error: {err:#}");
+            }
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    let robot = load_robot(cli.robot.as_deref())?;
+    match cli.command {
+        Command::Ik(args) => kinematics::ik(&robot, &args),
+        Command::Fk(args) => kinematics::fk(&robot, &args),
+        Command::Robot(args) => kinematics::robot(&robot, &args),
+        Command::Demo(args) => demo::demo(&robot, &args),
+    }
+}
+
+/// The robot in force: the built-in one, or `path` read and validated.
+fn load_robot(path: Option<&Path>) -> anyhow::Result<Robot> {
+    let Some(path) = path else {
+        return Ok(Robot::default());
+    };
+    let text = read_text(path)?;
+    Robot::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
+}
+
+/// Reads a whole text file (or standard input for `-`).
+fn read_text(path: &Path) -> anyhow::Result<String> {
+    let mut bytes = Vec::new();
+    if path == Path::new("-") {
+        io::stdin().read_to_end(&mut bytes).context("cannot read standard input")?;
+    } else {
+        bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    }
+    String::from_utf8(bytes).map_err(|err| {
+        let valid = &err.as_bytes()[..err.utf8_error().valid_up_to()];
+        let line = valid.iter().filter(|&&byte| byte == b'\n').count() + 1;
+        anyhow!("{}:{line}: the file is not UTF-8 text", display_path(path))
+    })
+}
+
+/// How a path is named in messages: `<stdin>` for `-`.
+fn display_path(path: &Path) -> String {
+    if path == Path::new("-") { "<stdin>".to_owned() } else { path.display().to_string() }
+}
+
+fn is_broken_pipe(err: &anyhow::Error) -> bool {
+    err.chain().any(|cause| {
+        cause.downcast_ref::<io::Error>().is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    use super::*;
+
+    #[test]
+    fn verify_cli() {
+        Cli::command().debug_assert();
+    }
+}

@@ -1,0 +1,19 @@
+//! biscara: offline programming and simulation of a 4-axis robot with hybrid kinematics — a
+//! five-bar (5R, "BiSCARA") planar parallel mechanism plus a vertical prismatic axis and a rotary
+//! axis about Z.
+//!
+//! This facade re-exports the stage crates, one per step of the pipeline; the `biscara` binary is
+//! a thin command line over them. Stages so far:
+//!
+//! - [`kinematics`]: the robot model (`robot.json`) and exact inverse and forward kinematics.
+//!
+//! ```
+//! use biscara::kinematics::{Kinematics, Pose};
+//!
+//! let model = Kinematics::default();
+//! let ik = model.inverse_checked(&Pose::from_degrees(150.0, 320.0, 10.0, 30.0))?;
+//! println!("{:?}", ik.joints.to_degrees());
+//! # Ok::<(), biscara::kinematics::KinematicsError>(())
+//! ```
+
+pub use biscara_kinematics as kinematics;
