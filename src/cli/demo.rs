@@ -86,7 +86,7 @@ fn write_poses_csv(out: &mut dyn Write, rows: &[DemoRow]) -> anyhow::Result<()> 
     for row in rows {
         let numbers: Vec<String> =
             row.pose.iter().chain(&row.joints).map(|&value| fixed(value, 6)).collect();
-        writeln!(out, "{},{},{:.3e}", row.label, numbers.join(","), row.round_trip_mm)?;
+        writeln!(out, "{},{},{}", row.label, numbers.join(","), fixed(row.round_trip_mm, 9))?;
     }
     Ok(())
 }

@@ -1,0 +1,67 @@
+//! Golden files: `tests/golden/NAME` holds the expected output; `UPDATE_GOLDEN=1` rewrites it.
+//! A missing golden file is written and the test fails, so that it gets reviewed.
+
+use crate::util::{biscara, repo_root, temp_dir};
+
+/// Compares `actual` with the golden file `name`, or rewrites it under `UPDATE_GOLDEN=1`.
+#[track_caller]
+pub fn check_golden(name: &str, actual: &str) {
+    let path = repo_root().join("tests/golden").join(name);
+    let update = std::env::var_os("UPDATE_GOLDEN").is_some_and(|value| value != "0");
+    let expected = std::fs::read_to_string(&path).ok();
+    if update || expected.is_none() {
+        std::fs::create_dir_all(path.parent().expect("golden folder")).expect("create golden dir");
+        std::fs::write(&path, actual).expect("write golden file");
+        assert!(
+            update,
+            "golden file {} was missing and has been written: review it",
+            path.display()
+        );
+        return;
+    }
+    let expected = expected.unwrap_or_default();
+    if expected != actual {
+        let first = expected
+            .lines()
+            .zip(actual.lines())
+            .position(|(e, a)| e != a)
+            .unwrap_or_else(|| expected.lines().count().min(actual.lines().count()));
+        panic!(
+            "output differs from {} at line {} (UPDATE_GOLDEN=1 rewrites it)\n--- expected ---\n{}\n--- actual ---\n{}",
+            path.display(),
+            first + 1,
+            expected.lines().nth(first).unwrap_or("<end of file>"),
+            actual.lines().nth(first).unwrap_or("<end of file>"),
+        );
+    }
+}
+
+/// Every robot in `data/robots/` reads back to itself through `biscara robot`.
+#[test]
+fn robots_in_data_print_as_their_golden_files() {
+    let dir = temp_dir("golden-robots");
+    let mut robots: Vec<_> = std::fs::read_dir(repo_root().join("data/robots"))
+        .expect("data/robots")
+        .map(|entry| entry.expect("entry").path())
+        .collect();
+    robots.sort();
+    assert!(!robots.is_empty());
+    for robot in robots {
+        let name = robot.file_name().and_then(|n| n.to_str()).expect("name").to_owned();
+        let run = biscara(&dir, &["--robot", robot.to_str().expect("path"), "robot"]);
+        run.success();
+        check_golden(&format!("robots/{name}"), &run.stdout);
+    }
+}
+
+/// The demo's files for the bundled example.
+#[test]
+fn demo_writes_its_golden_files() {
+    let dir = temp_dir("golden-demo");
+    let run = biscara(&dir, &["demo", "out"]);
+    run.success();
+    for name in ["poses.csv", "robot.json"] {
+        let written = std::fs::read_to_string(dir.join("out").join(name)).expect("demo output");
+        check_golden(&format!("demo/{name}"), &written);
+    }
+}

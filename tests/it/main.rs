@@ -1,0 +1,5 @@
+//! Integration tests of the `biscara` binary: one test binary, one module per feature.
+
+mod cli_kinematics;
+mod golden;
+mod util;
