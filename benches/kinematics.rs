@@ -1,1 +1,145 @@
-fn main() {}
+//! IK and FK throughput over 1 M random reachable poses, against a hand-written scalar loop of
+//! the same formulas (SPEC §10: IK within 1.5× of it).
+//!
+//! Run: `cargo bench --bench kinematics`. Figures are ns per pose (criterion reports the time of
+//! one pass over 1 M poses; divide by 1e6, or read the "thrpt" line in Melem/s).
+//!
+//! Measured 2026-11-22 on the 2-core development machine (x86_64, rustc 1.95, release profile):
+//! see README "Performance" for the table; the figures there are copied from this benchmark.
+
+#![allow(missing_docs)]
+
+use std::f64::consts::PI;
+use std::hint::black_box;
+
+use biscara::kinematics::{Joints, Kinematics, Pose};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+
+const POSES: usize = 1_000_000;
+
+/// xorshift64*: a tiny deterministic generator, so every run solves the same poses.
+struct Rng(u64);
+
+impl Rng {
+    fn next_unit(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+        bits as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// 1 M poses the default robot can take (reachable, in its modes and limits, off singularities).
+fn reachable_poses(model: &Kinematics) -> Vec<Pose> {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut poses = Vec::with_capacity(POSES);
+    while poses.len() < POSES {
+        let pose = Pose::from_degrees(
+            -400.0 + 800.0 * rng.next_unit(),
+            100.0 + 400.0 * rng.next_unit(),
+            100.0 * rng.next_unit(),
+            -90.0 + 180.0 * rng.next_unit(),
+        );
+        if model.inverse_checked(&pose).is_ok() {
+            poses.push(pose);
+        }
+    }
+    poses
+}
+
+/// The reference: SPEC §1.4's formulas as one plain scalar function, no types, no checks
+/// beyond the reach test. Default robot, working mode "+-".
+#[inline(never)]
+fn reference_ik(x: f64, y: f64, z: f64, phi: f64, psi1_home: f64) -> Option<[f64; 4]> {
+    const L1: f64 = 210.0;
+    const L2: f64 = 270.0;
+    let chain = |bx: f64, sigma: f64| -> Option<(f64, f64, f64)> {
+        let b = x - bx;
+        let a = -y;
+        let r2 = b * b + y * y;
+        let c = (L2 * L2 - L1 * L1 - r2) / (2.0 * L1);
+        let disc = r2 - c * c;
+        if disc < 0.0 {
+            return None;
+        }
+        let root = sigma * disc.sqrt();
+        let (ct, st) = (a * c - b * root, b * c + a * root);
+        let scale = L1 / r2;
+        Some((st.atan2(ct), bx - scale * st, scale * ct))
+    };
+    let (theta1, ex, ey) = chain(100.0, 1.0)?;
+    let (theta2, _, _) = chain(-100.0, -1.0)?;
+    let mut rotation = (y - ey).atan2(x - ex) - psi1_home;
+    if rotation > PI {
+        rotation -= 2.0 * PI;
+    } else if rotation <= -PI {
+        rotation += 2.0 * PI;
+    }
+    Some([theta1, theta2, phi - rotation, 100.0 - z])
+}
+
+fn kinematics(c: &mut Criterion) {
+    let model = Kinematics::default();
+    let poses = reachable_poses(&model);
+    let joints: Vec<Joints> = poses
+        .iter()
+        .map(|pose| model.inverse(pose).map(|ik| ik.joints).unwrap_or_default())
+        .collect();
+    let psi1_home = model.distal_home(biscara::kinematics::Chain::One);
+
+    let mut group = c.benchmark_group("kinematics_1M_poses");
+    group.throughput(Throughput::Elements(POSES as u64));
+    group.sample_size(20);
+    group.bench_function("reference_scalar_ik", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for pose in &poses {
+                let pose = black_box(pose);
+                if let Some(q) = reference_ik(pose.x, pose.y, pose.z, pose.phi, psi1_home) {
+                    sum += q[0] + q[1] + q[2] + q[3];
+                }
+            }
+            sum
+        });
+    });
+    group.bench_function("ik_inverse", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for pose in &poses {
+                if let Ok(ik) = model.inverse(black_box(pose)) {
+                    let q = ik.joints;
+                    sum += q.theta1 + q.theta2 + q.theta3 + q.d4;
+                }
+            }
+            sum
+        });
+    });
+    group.bench_function("ik_inverse_checked", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for pose in &poses {
+                if let Ok(ik) = model.inverse_checked(black_box(pose)) {
+                    let q = ik.joints;
+                    sum += q.theta1 + q.theta2 + q.theta3 + q.d4;
+                }
+            }
+            sum
+        });
+    });
+    group.bench_function("fk_forward", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for q in &joints {
+                if let Ok(fk) = model.forward(black_box(q)) {
+                    sum += fk.pose.x + fk.pose.y + fk.pose.z + fk.pose.phi;
+                }
+            }
+            sum
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, kinematics);
+criterion_main!(benches);
