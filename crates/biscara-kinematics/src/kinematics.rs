@@ -320,7 +320,7 @@ impl Kinematics {
         configuration: &PlanarConfiguration,
     ) -> Result<(), KinematicsError> {
         // angle = atan2(|cross|, |dot|) < margin ⇔ |cross| < tan(margin)·|dot|: test without
-        // atan2 and compute the angles only to report a failure (IK + checks 141 → 100 ns/pose).
+        // atan2 and compute the angles only to report a failure (IK + checks 141 → 108 ns/pose).
         let clear = |a: na::Vector2<f64>, b: na::Vector2<f64>| {
             a.perp(&b).abs() >= self.singularity_margin_tan * a.dot(&b).abs()
         };
