@@ -6,6 +6,8 @@
 //! a thin command line over them. Stages so far:
 //!
 //! - [`kinematics`]: the robot model (`robot.json`) and exact inverse and forward kinematics.
+//! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
+//! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
 //!
 //! ```
 //! use biscara::kinematics::{Kinematics, Pose};
@@ -17,3 +19,5 @@
 //! ```
 
 pub use biscara_kinematics as kinematics;
+pub use biscara_pnp as pnp;
+pub use biscara_post as post;

@@ -1,9 +1,13 @@
 //! Command-line parsing, dispatch, exit codes and diagnostics.
 
+mod clf;
 mod demo;
 mod fmt;
+mod generate;
+mod input;
 mod kinematics;
 mod output;
+mod post;
 
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
@@ -35,6 +39,9 @@ enum Command {
     Fk(kinematics::FkArgs),
     Robot(kinematics::RobotArgs),
     Demo(demo::DemoArgs),
+    Clf(clf::ClfArgs),
+    Post(post::PostArgs),
+    Gen(generate::GenArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -67,6 +74,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fk(args) => kinematics::fk(&robot, &args),
         Command::Robot(args) => kinematics::robot(&robot, &args),
         Command::Demo(args) => demo::demo(&robot, &args),
+        Command::Clf(args) => clf::clf(&robot, &args),
+        Command::Post(args) => post::post(&args),
+        Command::Gen(args) => generate::generate(&robot, &args),
     }
 }
 

@@ -1,0 +1,46 @@
+//! `biscara clf`: points file → CL file.
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use biscara::kinematics::{Kinematics, Robot};
+use biscara::pnp::{WriteClError, write_cl};
+use clap::Args;
+
+use super::display_path;
+use super::input::open_input;
+use super::output::write_output;
+
+/// Turns a pick-and-place points file into an APT-style CL file (SPEC §2, §3).
+///
+/// From home, for each pick/place pair: a rapid above the pick (approach height, with the pick's
+/// rotation), feed down, PICK, dwell, feed up; the same for the place; finally a rapid home, END,
+/// FINI. Every pose and every approach pose is checked with the robot's inverse kinematics
+/// (reach, assembly mode, joint limits, singularity margin): on any problem the command exits with
+/// 1, names the line of the points file and writes nothing.
+#[derive(Debug, Args)]
+#[command(
+    about = "Points file → CL file (pick-and-place program)",
+    after_long_help = "Example:\n  $ biscara clf data/jobs/pick_place.txt -o job.cl\n  \
+                       $ biscara --robot my-robot.json clf pallet.txt > pallet.cl"
+)]
+pub(crate) struct ClfArgs {
+    /// The points file (SPEC §2): home, approach, feed, dwell, then pick/place lines; `-` reads
+    /// standard input.
+    #[arg(value_name = "POINTS", help = "Points file (`-` for standard input)")]
+    points: PathBuf,
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+pub(crate) fn clf(robot: &Robot, args: &ClfArgs) -> anyhow::Result<()> {
+    let model = Kinematics::new(robot)?;
+    let input = open_input(&args.points)?;
+    write_output(args.output.as_deref(), |out| {
+        write_cl(input, &model, out).map_err(|err| match err {
+            WriteClError::Points(err) => anyhow!("{}:{err}", display_path(&args.points)),
+            other => anyhow::Error::from(other),
+        })
+    })
+}

@@ -1,0 +1,84 @@
+//! `biscara post`: CL file → G-code.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+use biscara::post::{PostError, PostOptions, PostSummary, post as post_file};
+use clap::Args;
+
+use super::display_path;
+use super::input::open_input;
+use super::output::write_output;
+
+/// Turns a CL file into G-code that runs unchanged on LinuxCNC (SPEC §3, §4.1).
+///
+/// Reads the CL files `biscara clf` writes and those of 3-axis CAM systems: GOTO with 3, 4 or 6
+/// values (the tool axis must be 0,0,1), FEDRAT in MMPM or IPM (either order), UNITS/INCHES
+/// (converted to mm), CIRCLE + GOTO (→ G2/G3), DELAY (→ G4), PICK (→ M3), PLACE (→ M4), PPRINT
+/// and PARTNO (→ comments), END, FINI, `$` continuations and `$$` comments. Post words with no
+/// meaning for this robot (SPINDL, COOLNT, LOADTL, CUTTER, MULTAX, TLAXIS, …) become comments and
+/// are listed once on stderr. Anything else is an error naming the line, with exit code 1.
+#[derive(Debug, Args)]
+#[command(
+    about = "CL file → G-code for LinuxCNC",
+    after_long_help = "Example:\n  $ biscara post job.cl -o job.ngc\n  \
+                       $ biscara post --line-numbers data/cl/bracket.cl > bracket.ngc"
+)]
+pub(crate) struct PostArgs {
+    /// The CL file; `-` reads standard input.
+    #[arg(value_name = "CL", help = "CL file (`-` for standard input)")]
+    cl: PathBuf,
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Number the blocks N10, N20, …
+    #[arg(long)]
+    line_numbers: bool,
+}
+
+pub(crate) fn post(args: &PostArgs) -> anyhow::Result<()> {
+    let input = open_input(&args.cl)?;
+    let options = PostOptions { line_numbers: args.line_numbers };
+    let mut summary = PostSummary::default();
+    write_output(args.output.as_deref(), |out| {
+        summary = post_file(input, out, options).map_err(|err| post_error(&args.cl, err))?;
+        Ok(())
+    })?;
+    report_ignored(&args.cl, &summary);
+    Ok(())
+}
+
+/// A postprocessor error, prefixed with the CL file's name when it names a line.
+pub(crate) fn post_error(path: &Path, err: PostError) -> anyhow::Error {
+    if err.line().is_some() {
+        anyhow!("{}:{err}", display_path(path))
+    } else {
+        anyhow::Error::from(err)
+    }
+}
+
+/// Lists the ignored post words once on stderr.
+pub(crate) fn report_ignored(path: &Path, summary: &PostSummary) {
+    if summary.ignored.is_empty() {
+        return;
+    }
+    let words: Vec<String> = summary
+        .ignored
+        .iter()
+        .map(|ignored| match ignored.count {
+            1 => format!("{} (line {})", ignored.word, ignored.first_line),
+            count => {
+                format!("{} ({count} times, first on line {})", ignored.word, ignored.first_line)
+            }
+        })
+        .collect();
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "biscara: note: {}: ignored post words with no meaning for this robot (written as \
+             comments): {}",
+            display_path(path),
+            words.join(", ")
+        );
+    }
+}
