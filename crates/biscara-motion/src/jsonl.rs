@@ -1,0 +1,238 @@
+//! Reading and writing the inter-file: one JSON object per line.
+
+use std::io::{self, BufRead, Write};
+
+use crate::{Motion, MotionKind};
+
+/// An inter-file that cannot be read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum InterFileError {
+    /// Occurs when the underlying reader fails (including text that is not UTF-8).
+    #[error("{line}: {source}")]
+    Io {
+        /// 1-based line being read.
+        line: usize,
+        /// The I/O error.
+        source: io::Error,
+    },
+    /// Occurs when a line is not a motion object: bad JSON, an unknown kind or key, a missing
+    /// field, a wrong type.
+    #[error("{line}:{column}: {message}")]
+    Syntax {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column within the line.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a motion holds a number that is not finite, a negative dwell or feed, or zero
+    /// turns.
+    #[error("{line}: {message}")]
+    Invalid {
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Writes one motion as one line of JSON.
+pub fn write_jsonl(out: &mut impl Write, motion: &Motion) -> io::Result<()> {
+    serde_json::to_writer(&mut *out, motion).map_err(io::Error::from)?;
+    out.write_all(b"\n")
+}
+
+/// Reads motions from an inter-file, one per non-blank line, streaming.
+pub fn read_jsonl<R: BufRead>(reader: R) -> JsonlReader<R> {
+    JsonlReader { reader, line: 0, buffer: String::new(), failed: false }
+}
+
+/// The iterator returned by [`read_jsonl`]; stops after the first error.
+#[derive(Debug)]
+pub struct JsonlReader<R> {
+    reader: R,
+    line: usize,
+    buffer: String,
+    failed: bool,
+}
+
+impl<R: BufRead> Iterator for JsonlReader<R> {
+    type Item = Result<Motion, InterFileError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        loop {
+            self.buffer.clear();
+            self.line += 1;
+            let line = self.line;
+            match self.reader.read_line(&mut self.buffer) {
+                Ok(0) => return None,
+                Ok(_) => {}
+                Err(source) => {
+                    self.failed = true;
+                    return Some(Err(InterFileError::Io { line, source }));
+                }
+            }
+            if self.buffer.trim().is_empty() {
+                continue;
+            }
+            let result = parse_line(&self.buffer, line);
+            self.failed = result.is_err();
+            return Some(result);
+        }
+    }
+}
+
+fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
+    let mut motion: Motion = serde_json::from_str(text).map_err(|err| {
+        let message = strip_position(&err.to_string());
+        match err.column() {
+            // Errors found after the whole object was read (a missing or misplaced key).
+            0 => InterFileError::Invalid { line, message },
+            column => InterFileError::Syntax { line, column, message },
+        }
+    })?;
+    let invalid = |message: String| InterFileError::Invalid { line, message };
+    let finite = |values: &[f64]| values.iter().all(|value| value.is_finite());
+    match motion.kind {
+        MotionKind::Rapid { end }
+        | MotionKind::Linear { end, .. }
+        | MotionKind::Arc { end, .. }
+            if !finite(&end) =>
+        {
+            return Err(invalid("\"end\" holds a number that is not finite".to_owned()));
+        }
+        MotionKind::Arc { center, .. } if !finite(&center) => {
+            return Err(invalid("\"center\" holds a number that is not finite".to_owned()));
+        }
+        MotionKind::Arc { turns: 0, .. } => {
+            return Err(invalid("\"turns\" must be at least 1".to_owned()));
+        }
+        MotionKind::Dwell { seconds } if !(seconds.is_finite() && seconds >= 0.0) => {
+            return Err(invalid(format!("\"seconds\" must be a finite number ≥ 0, got {seconds}")));
+        }
+        _ => {}
+    }
+    if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind {
+        if !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0) {
+            return Err(invalid(format!("\"feed\" must be positive, got {}", feed.mm_per_min)));
+        }
+    }
+    if motion.line == 0 {
+        motion.line = line;
+    }
+    Ok(motion)
+}
+
+/// serde_json appends " at line L column C"; the position is reported separately.
+fn strip_position(message: &str) -> String {
+    match message.rfind(" at line ") {
+        Some(index) => message[..index].to_owned(),
+        None => message.to_owned(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Feed, Plane};
+
+    fn round_trip(motion: Motion) -> String {
+        let mut text = Vec::new();
+        write_jsonl(&mut text, &motion).unwrap();
+        let text = String::from_utf8(text).unwrap();
+        let back: Vec<Motion> = read_jsonl(text.as_bytes()).collect::<Result<_, _>>().unwrap();
+        assert_eq!(back, [motion]);
+        text
+    }
+
+    #[test]
+    fn every_kind_has_the_spec_form() {
+        let feed = Feed { mm_per_min: 1200.0, inverse_time: false };
+        let cases = [
+            (
+                MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] },
+                r#"{"line":3,"kind":"rapid","end":[0.0,400.0,100.0,0.0]}"#,
+            ),
+            (
+                MotionKind::Linear {
+                    end: [150.0, 320.0, 10.0, 30.0],
+                    feed: Feed { mm_per_min: 3000.0, inverse_time: false },
+                },
+                r#"{"line":3,"kind":"linear","end":[150.0,320.0,10.0,30.0],"feed":3000.0}"#,
+            ),
+            (
+                MotionKind::Linear {
+                    end: [1.0, 2.0, 3.0, 4.0],
+                    feed: Feed { mm_per_min: 60.0, inverse_time: true },
+                },
+                r#"{"line":3,"kind":"linear","end":[1.0,2.0,3.0,4.0],"feed":60.0,"inverse_time":true}"#,
+            ),
+            (
+                MotionKind::Arc {
+                    end: [1.0, 2.0, 3.0, 4.0],
+                    center: [5.0, 6.0],
+                    plane: Plane::Xy,
+                    clockwise: true,
+                    turns: 1,
+                    feed,
+                },
+                r#"{"line":3,"kind":"arc","end":[1.0,2.0,3.0,4.0],"center":[5.0,6.0],"plane":"xy","clockwise":true,"turns":1,"feed":1200.0}"#,
+            ),
+            (MotionKind::Dwell { seconds: 0.3 }, r#"{"line":3,"kind":"dwell","seconds":0.3}"#),
+            (MotionKind::Pick, r#"{"line":3,"kind":"pick"}"#),
+            (MotionKind::Place, r#"{"line":3,"kind":"place"}"#),
+            (MotionKind::GripperOff, r#"{"line":3,"kind":"gripper_off"}"#),
+            (MotionKind::Pause, r#"{"line":3,"kind":"pause"}"#),
+            (MotionKind::End, r#"{"line":3,"kind":"end"}"#),
+        ];
+        for (kind, expected) in cases {
+            assert_eq!(round_trip(Motion { line: 3, kind }).trim_end(), expected);
+        }
+    }
+
+    #[track_caller]
+    fn check_error(text: &str, expected: &str) {
+        let results: Vec<_> = read_jsonl(text.as_bytes()).collect();
+        let err = results.into_iter().find_map(Result::err).expect("an error");
+        assert_eq!(err.to_string(), expected);
+    }
+
+    #[test]
+    fn bad_lines_are_reported_with_their_position() {
+        check_error(
+            "\n{\"line\":1,\"kind\":\"fly\"}\n",
+            "2:22: unknown variant `fly`, expected one of `rapid`, `linear`, `arc`, `dwell`, `pick`, `place`, `gripper_off`, `pause`, `end`",
+        );
+        check_error("{\"line\":1,\"kind\":\"rapid\"}", "1: missing field `end` for a rapid motion");
+        check_error(
+            "{\"line\":1,\"kind\":\"rapid\",\"end\":[1,2,3]}",
+            "1:38: invalid length 3, expected an array of length 4",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"dwell\",\"seconds\":-1}",
+            "1: \"seconds\" must be a finite number ≥ 0, got -1",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"linear\",\"end\":[0,0,0,0],\"feed\":0}",
+            "1: \"feed\" must be positive, got 0",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"pick\",\"extra\":1}",
+            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`",
+        );
+        check_error("not json", "1:2: expected ident");
+    }
+
+    #[test]
+    fn reading_stops_after_the_first_error() {
+        let text = "{\"line\":1,\"kind\":\"pick\"}\nbad\n{\"line\":3,\"kind\":\"place\"}\n";
+        let results: Vec<_> = read_jsonl(text.as_bytes()).collect();
+        assert_eq!(results.len(), 2);
+        assert!(results[1].is_err());
+    }
+}

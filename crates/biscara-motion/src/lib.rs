@@ -1,0 +1,24 @@
+//! Motions: what a G-code program asks the robot to do, one entry per move or event, in program
+//! order — and their file form, the inter-file of SPEC §5 (JSON Lines).
+//!
+//! The G-code interpreter produces [`Motion`]s, the interpolator consumes them; this crate is the
+//! contract between the two and knows neither G-code nor kinematics. Positions are absolute, in
+//! the robot's base frame, millimetres and degrees, as `[x, y, z, c]`.
+//!
+//! ```
+//! use biscara_motion::{Motion, MotionKind, read_jsonl, write_jsonl};
+//!
+//! let motion = Motion { line: 3, kind: MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] } };
+//! let mut text = Vec::new();
+//! write_jsonl(&mut text, &motion)?;
+//! assert_eq!(text, b"{\"line\":3,\"kind\":\"rapid\",\"end\":[0.0,400.0,100.0,0.0]}\n");
+//! let back: Vec<Motion> = read_jsonl(&text[..]).collect::<Result<_, _>>()?;
+//! assert_eq!(back, [motion]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod jsonl;
+mod motion;
+
+pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
+pub use motion::{Feed, Motion, MotionKind, Plane};

@@ -1,0 +1,287 @@
+//! The motion types.
+
+use serde::{Deserialize, Serialize};
+
+/// One entry of a program: a move or an event, with the 1-based line of the block that made it.
+///
+/// Its file form is one flat JSON object (SPEC §5); see [`crate::write_jsonl`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(into = "Record", try_from = "Record")]
+pub struct Motion {
+    /// 1-based line of the G-code file (or inter-file entry) this motion comes from.
+    pub line: usize,
+    /// What to do.
+    pub kind: MotionKind,
+}
+
+/// The plane of an arc, with its axes in LinuxCNC's canonical order `(first, second)` and the
+/// normal `first × second`: `xy` → (X, Y) about +Z, `xz` → (Z, X) about +Y, `yz` → (Y, Z) about +X.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Plane {
+    /// G17: the XY plane; centre `[x, y]`; helical along Z.
+    Xy,
+    /// G18: the XZ plane; centre `[z, x]`; helical along Y.
+    Xz,
+    /// G19: the YZ plane; centre `[y, z]`; helical along X.
+    Yz,
+}
+
+impl Plane {
+    /// Indices into `[x, y, z]` of the plane's first axis, second axis and normal axis.
+    pub fn axes(self) -> [usize; 3] {
+        match self {
+            Plane::Xy => [0, 1, 2],
+            Plane::Xz => [2, 0, 1],
+            Plane::Yz => [1, 2, 0],
+        }
+    }
+}
+
+/// A feed rate, always in mm/min along the XYZ path (degrees/min of C for a move with no XYZ
+/// length, LinuxCNC's rule).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Feed {
+    /// Millimetres (or degrees) per minute.
+    pub mm_per_min: f64,
+    /// Whether the program gave it in G93 inverse-time mode (converted to the equivalent mm/min).
+    pub inverse_time: bool,
+}
+
+/// What one motion does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MotionKind {
+    /// G0: move to `end` at the rapid limits.
+    Rapid {
+        /// End pose `[x, y, z, c]`, mm and degrees.
+        end: [f64; 4],
+    },
+    /// G1: straight move to `end` at `feed`.
+    Linear {
+        /// End pose `[x, y, z, c]`, mm and degrees.
+        end: [f64; 4],
+        /// Feed rate.
+        feed: Feed,
+    },
+    /// G2/G3: circular or helical move to `end` about `center` in `plane`.
+    Arc {
+        /// End pose `[x, y, z, c]`, mm and degrees.
+        end: [f64; 4],
+        /// Centre in the plane's axes (see [`Plane`]), mm.
+        center: [f64; 2],
+        /// The plane.
+        plane: Plane,
+        /// G2 (true) or G3 (false): clockwise seen from the plane's positive normal.
+        clockwise: bool,
+        /// The P word: 1 ends at the first pass through `end`, each more adds a full turn.
+        turns: u32,
+        /// Feed rate.
+        feed: Feed,
+    },
+    /// G4: hold the pose.
+    Dwell {
+        /// Seconds.
+        seconds: f64,
+    },
+    /// M3: close the gripper (grip).
+    Pick,
+    /// M4: open the gripper (release).
+    Place,
+    /// M5: gripper off.
+    GripperOff,
+    /// M0, M1 or M60: a program pause.
+    Pause,
+    /// M2 or M30: end of program.
+    End,
+}
+
+impl MotionKind {
+    /// The end pose of a move; `None` for events.
+    pub fn end(&self) -> Option<[f64; 4]> {
+        match *self {
+            MotionKind::Rapid { end }
+            | MotionKind::Linear { end, .. }
+            | MotionKind::Arc { end, .. } => Some(end),
+            _ => None,
+        }
+    }
+
+    /// The `kind` string of the file form.
+    pub fn name(&self) -> &'static str {
+        self.tag().name()
+    }
+
+    fn tag(&self) -> Tag {
+        match self {
+            MotionKind::Rapid { .. } => Tag::Rapid,
+            MotionKind::Linear { .. } => Tag::Linear,
+            MotionKind::Arc { .. } => Tag::Arc,
+            MotionKind::Dwell { .. } => Tag::Dwell,
+            MotionKind::Pick => Tag::Pick,
+            MotionKind::Place => Tag::Place,
+            MotionKind::GripperOff => Tag::GripperOff,
+            MotionKind::Pause => Tag::Pause,
+            MotionKind::End => Tag::End,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Tag {
+    Rapid,
+    Linear,
+    Arc,
+    Dwell,
+    Pick,
+    Place,
+    GripperOff,
+    Pause,
+    End,
+}
+
+impl Tag {
+    fn name(self) -> &'static str {
+        match self {
+            Tag::Rapid => "rapid",
+            Tag::Linear => "linear",
+            Tag::Arc => "arc",
+            Tag::Dwell => "dwell",
+            Tag::Pick => "pick",
+            Tag::Place => "place",
+            Tag::GripperOff => "gripper_off",
+            Tag::Pause => "pause",
+            Tag::End => "end",
+        }
+    }
+}
+
+/// The flat file form of a motion: every key any kind may have, in the order they are written.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Record {
+    line: usize,
+    kind: Tag,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    end: Option<[f64; 4]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    center: Option<[f64; 2]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    plane: Option<Plane>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    clockwise: Option<bool>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    turns: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    feed: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    inverse_time: Option<bool>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    seconds: Option<f64>,
+}
+
+impl From<Motion> for Record {
+    fn from(motion: Motion) -> Record {
+        let mut record = Record {
+            line: motion.line,
+            kind: motion.kind.tag(),
+            end: motion.kind.end(),
+            center: None,
+            plane: None,
+            clockwise: None,
+            turns: None,
+            feed: None,
+            inverse_time: None,
+            seconds: None,
+        };
+        match motion.kind {
+            MotionKind::Linear { feed, .. } => record.set_feed(feed),
+            MotionKind::Arc { center, plane, clockwise, turns, feed, .. } => {
+                record.center = Some(center);
+                record.plane = Some(plane);
+                record.clockwise = Some(clockwise);
+                record.turns = Some(turns);
+                record.set_feed(feed);
+            }
+            MotionKind::Dwell { seconds } => record.seconds = Some(seconds),
+            _ => {}
+        }
+        record
+    }
+}
+
+impl Record {
+    fn set_feed(&mut self, feed: Feed) {
+        self.feed = Some(feed.mm_per_min);
+        self.inverse_time = feed.inverse_time.then_some(true);
+    }
+}
+
+impl TryFrom<Record> for Motion {
+    type Error = String;
+
+    fn try_from(record: Record) -> Result<Motion, String> {
+        let kind_name = record.kind.name();
+        let missing = |key: &str| format!("missing field `{key}` for a {kind_name} motion");
+        let mut used = vec!["line", "kind"];
+        let mut take = |key: &'static str| used.push(key);
+        let kind = match record.kind {
+            Tag::Rapid => {
+                take("end");
+                MotionKind::Rapid { end: record.end.ok_or_else(|| missing("end"))? }
+            }
+            Tag::Linear => {
+                take("end");
+                take("feed");
+                take("inverse_time");
+                MotionKind::Linear {
+                    end: record.end.ok_or_else(|| missing("end"))?,
+                    feed: Feed {
+                        mm_per_min: record.feed.ok_or_else(|| missing("feed"))?,
+                        inverse_time: record.inverse_time.unwrap_or(false),
+                    },
+                }
+            }
+            Tag::Arc => {
+                for key in ["end", "center", "plane", "clockwise", "turns", "feed", "inverse_time"]
+                {
+                    take(key);
+                }
+                MotionKind::Arc {
+                    end: record.end.ok_or_else(|| missing("end"))?,
+                    center: record.center.ok_or_else(|| missing("center"))?,
+                    plane: record.plane.ok_or_else(|| missing("plane"))?,
+                    clockwise: record.clockwise.ok_or_else(|| missing("clockwise"))?,
+                    turns: record.turns.unwrap_or(1),
+                    feed: Feed {
+                        mm_per_min: record.feed.ok_or_else(|| missing("feed"))?,
+                        inverse_time: record.inverse_time.unwrap_or(false),
+                    },
+                }
+            }
+            Tag::Dwell => {
+                take("seconds");
+                MotionKind::Dwell { seconds: record.seconds.ok_or_else(|| missing("seconds"))? }
+            }
+            Tag::Pick => MotionKind::Pick,
+            Tag::Place => MotionKind::Place,
+            Tag::GripperOff => MotionKind::GripperOff,
+            Tag::Pause => MotionKind::Pause,
+            Tag::End => MotionKind::End,
+        };
+        let present = [
+            ("end", record.end.is_some()),
+            ("center", record.center.is_some()),
+            ("plane", record.plane.is_some()),
+            ("clockwise", record.clockwise.is_some()),
+            ("turns", record.turns.is_some()),
+            ("feed", record.feed.is_some()),
+            ("inverse_time", record.inverse_time.is_some()),
+            ("seconds", record.seconds.is_some()),
+        ];
+        if let Some((key, _)) = present.iter().find(|(key, here)| *here && !used.contains(key)) {
+            return Err(format!("field `{key}` does not belong to a {kind_name} motion"));
+        }
+        Ok(Motion { line: record.line, kind })
+    }
+}
