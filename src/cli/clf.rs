@@ -27,7 +27,7 @@ use super::output::write_output;
 pub(crate) struct ClfArgs {
     /// The points file (SPEC §2): home, approach, feed, dwell, then pick/place lines; `-` reads
     /// standard input.
-    #[arg(value_name = "POINTS", help = "Points file (`-` for standard input)")]
+    #[arg(value_name = "POINTS")]
     points: PathBuf,
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]

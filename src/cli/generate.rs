@@ -3,16 +3,17 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, anyhow, bail};
+use anyhow::{Context, anyhow};
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::pnp::ClProgram;
 use biscara::post::{PostOptions, Postprocessor, write_statement};
-use clap::Args;
+use clap::error::ErrorKind;
+use clap::{Args, CommandFactory};
 
-use super::display_path;
 use super::input::open_input;
 use super::output::write_output;
 use super::post::post_error;
+use super::{Cli, display_path};
 
 /// Turns a pick-and-place points file straight into G-code: `biscara clf` and `biscara post` in
 /// one pass, with the same checks and the same output.
@@ -27,7 +28,7 @@ use super::post::post_error;
 )]
 pub(crate) struct GenArgs {
     /// The points file (SPEC §2); `-` reads standard input.
-    #[arg(value_name = "POINTS", help = "Points file (`-` for standard input)")]
+    #[arg(value_name = "POINTS")]
     points: PathBuf,
     /// Write the G-code to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
@@ -45,7 +46,8 @@ pub(crate) fn generate(robot: &Robot, args: &GenArgs) -> anyhow::Result<()> {
     if args.clf.as_deref().is_some_and(|path| path == Path::new("-"))
         && is_stdout(args.output.as_deref())
     {
-        bail!("--clf - and the G-code cannot both go to standard output: give -o FILE");
+        let message = "--clf - and the G-code cannot both go to standard output: give -o FILE";
+        Cli::command().error(ErrorKind::ArgumentConflict, message).exit();
     }
     let model = Kinematics::new(robot)?;
     let input = open_input(&args.points)?;

@@ -26,7 +26,7 @@ use super::output::write_output;
 )]
 pub(crate) struct PostArgs {
     /// The CL file; `-` reads standard input.
-    #[arg(value_name = "CL", help = "CL file (`-` for standard input)")]
+    #[arg(value_name = "CL")]
     cl: PathBuf,
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]

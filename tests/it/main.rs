@@ -2,4 +2,5 @@
 
 mod cli_kinematics;
 mod golden;
+mod programming;
 mod util;

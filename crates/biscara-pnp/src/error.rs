@@ -3,6 +3,7 @@
 use std::io;
 
 use biscara_kinematics::KinematicsError;
+use biscara_post::compact;
 use biscara_post::lines::{LineError, MAX_LINE_BYTES};
 
 /// A points-file failure. Every variant names the 1-based line it is about, and its message
@@ -69,8 +70,9 @@ pub enum PointsError {
         /// The text (shortened when long).
         text: String,
     },
-    /// Occurs when a setting is out of its range (a non-positive feed, a negative dwell).
-    #[error("{line}: `{keyword}` {value} is out of range: {reason}")]
+    /// Occurs when a value is out of its range: a non-positive feed, a negative dwell, a
+    /// coordinate beyond ±1e6.
+    #[error("{line}: `{keyword}` {} is out of range: {reason}", compact(*value))]
     OutOfRange {
         /// The line.
         line: usize,
@@ -122,7 +124,7 @@ pub enum PointsError {
     /// unreachable, beyond a type-2 singularity, outside the joint limits or near a singularity.
     #[error(
         "{line}: {what} (x, y, z, c) = ({}, {}, {}, {}) is unreachable: {reason}",
-        pose[0], pose[1], pose[2], pose[3]
+        compact(pose[0]), compact(pose[1]), compact(pose[2]), compact(pose[3])
     )]
     Unreachable {
         /// The line.

@@ -132,7 +132,15 @@ fn parse_line<'a>(
     };
     let values = values.map(|text| number(line, text)).collect::<Result<Vec<f64>, _>>()?;
     let pose = || match values[..] {
-        [x, y, z, c] => Ok(Point { x, y, z, c }),
+        [x, y, z, c] => match [x, y, z, c].into_iter().find(|value| value.abs() > 1e6) {
+            Some(value) => Err(PointsError::OutOfRange {
+                line,
+                keyword,
+                value,
+                reason: "coordinates must lie within ±1e6 (mm, degrees)",
+            }),
+            None => Ok(Point { x, y, z, c }),
+        },
         _ => Err(PointsError::WrongCount {
             line,
             keyword,

@@ -365,6 +365,13 @@ fn require_slash<'a>(
 /// Parses one number of statement `word`: finite and within ±[`MAX_VALUE`].
 fn number(line: usize, word: &'static str, text: &str) -> Result<f64, PostError> {
     let text = text.trim();
+    if text.is_empty() {
+        return Err(PostError::Syntax {
+            line,
+            word,
+            message: "a value is missing (two commas in a row, or a comma at the end)".to_owned(),
+        });
+    }
     let value: f64 =
         text.parse().map_err(|_| PostError::NotANumber { line, word, text: shorten(text) })?;
     if !value.is_finite() {

@@ -91,7 +91,7 @@ pub enum PostError {
     },
     /// Occurs when a value is finite but outside what makes sense: a length beyond ±1e6, a
     /// non-positive feed, a negative delay.
-    #[error("{line}: {word}: {value} is out of range: {reason}")]
+    #[error("{line}: {word}: {} is out of range: {reason}", compact(*value))]
     OutOfRange {
         /// The line.
         line: usize,
@@ -243,4 +243,14 @@ pub(crate) fn shorten(text: &str) -> String {
     let mut chars = text.chars();
     let head: String = chars.by_ref().take(40).collect();
     if chars.next().is_some() { format!("{head}…") } else { head }
+}
+
+/// `value` as written by a person: plain for ordinary magnitudes, `1e300` for huge or tiny ones.
+pub fn compact(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude != 0.0 && !(1e-4..1e7).contains(&magnitude) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
 }

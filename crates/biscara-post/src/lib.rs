@@ -35,5 +35,5 @@ pub use cl::{
     Circle, ClReader, Feed, FeedUnit, Goto, MAX_VALUE, POST_WORDS, Record, Statement, Units,
     parse_statement, write_statement,
 };
-pub use error::PostError;
+pub use error::{PostError, compact};
 pub use post::{IgnoredWord, PostOptions, PostSummary, Postprocessor, post};
