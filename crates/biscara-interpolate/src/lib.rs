@@ -1,0 +1,1 @@
+//! Cartesian interpolation (work in progress: see the motion issue).

@@ -1,0 +1,1 @@
+//! Joint trajectories (work in progress: see the motion issue).
