@@ -2,5 +2,6 @@
 
 mod cli_kinematics;
 mod golden;
+mod linuxcnc;
 mod programming;
 mod util;

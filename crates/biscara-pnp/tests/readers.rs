@@ -1,0 +1,81 @@
+//! Property tests: no input makes the points reader or the CL generator panic, every error names
+//! a line of the input, and a program is written only for a valid job.
+
+use biscara_kinematics::Kinematics;
+use biscara_pnp::{PointsReader, WriteClError, write_cl};
+use proptest::prelude::*;
+
+/// Text that looks like a points file: keywords, numbers of every kind, separators and comments.
+fn points_like() -> impl Strategy<Value = String> {
+    let word = prop::sample::select(vec![
+        "home", "HOME", "approach", "feed", "dwell", "pick", "place", "Pick", "move", "#", " ",
+        "\t", ",", "\n", "\n", "\n", "NaN", "inf", "1e999", "1e300", "-0", "0", "10", "150",
+        "-150", "320", "300", "0.3", "50", "100", "-45", "30",
+    ]);
+    let number = any::<f64>().prop_map(|value| value.to_string());
+    prop::collection::vec(prop_oneof![4 => word.prop_map(str::to_owned), 1 => number], 0..80)
+        .prop_map(|parts| parts.join(" "))
+}
+
+fn check_no_panic(model: &Kinematics, bytes: &[u8]) -> Result<(), TestCaseError> {
+    let lines = bytes.iter().filter(|&&byte| byte == b'\n').count() + 1;
+    for record in PointsReader::new(bytes) {
+        if let Err(err) = record {
+            prop_assert!((1..=lines).contains(&err.line()), "{err}");
+        }
+    }
+    let mut out = Vec::new();
+    match write_cl(bytes, model, &mut out) {
+        Ok(()) => {
+            let text = String::from_utf8(out).expect("CL is text");
+            prop_assert!(
+                text.starts_with("PARTNO/PICK AND PLACE\n") && text.ends_with("END\nFINI\n")
+            );
+        }
+        Err(WriteClError::Points(err)) => {
+            prop_assert!((1..=lines).contains(&err.line()), "{err}");
+            let prefix = format!("{}: ", err.line());
+            prop_assert!(err.to_string().starts_with(&prefix), "{err}");
+        }
+        Err(err) => return Err(TestCaseError::fail(format!("writing to a Vec failed: {err}"))),
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
+        check_no_panic(&Kinematics::default(), &bytes)?;
+    }
+
+    #[test]
+    fn arbitrary_text_never_panics(text in "\\PC{0,200}") {
+        check_no_panic(&Kinematics::default(), text.as_bytes())?;
+    }
+
+    #[test]
+    fn points_like_text_never_panics(text in points_like()) {
+        check_no_panic(&Kinematics::default(), text.as_bytes())?;
+    }
+
+    /// Any pick/place pair in a reachable box gives a program with one PICK and one PLACE.
+    #[test]
+    fn reachable_pairs_always_give_a_program(
+        pick in (-150.0..150.0f64, 280.0..380.0f64, 0.0..40.0f64, -90.0..90.0f64),
+        place in (-150.0..150.0f64, 280.0..380.0f64, 0.0..40.0f64, -90.0..90.0f64),
+    ) {
+        let text = format!(
+            "pick {} {} {} {}\nplace {} {} {} {}\n",
+            pick.0, pick.1, pick.2, pick.3, place.0, place.1, place.2, place.3
+        );
+        let mut out = Vec::new();
+        write_cl(text.as_bytes(), &Kinematics::default(), &mut out).map_err(|err| {
+            TestCaseError::fail(format!("{err} for {text}"))
+        })?;
+        let cl = String::from_utf8(out).expect("text");
+        prop_assert_eq!(cl.matches("\nPICK\n").count(), 1);
+        prop_assert_eq!(cl.matches("\nPLACE\n").count(), 1);
+    }
+}
