@@ -155,7 +155,7 @@ pub enum PostError {
     /// Occurs when an arc's start and end points are not on one circle about its centre.
     #[error(
         "{line}: the arc's end point is {end_mm:.4} mm from the centre but its start point is \
-         {start_mm:.4} mm (CIRCLE radius {radius_mm:.4} mm): they must agree within 0.002 mm"
+         {start_mm:.4} mm (CIRCLE radius {radius_mm:.4} mm): they must agree within 0.01 mm"
     )]
     ArcRadius {
         /// The line of the GOTO ending the arc.

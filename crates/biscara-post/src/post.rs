@@ -9,8 +9,12 @@ use crate::fmt::fixed;
 /// Millimetres per inch.
 const MM_PER_INCH: f64 = 25.4;
 
-/// How far an arc's end may lie off the circle through its start, millimetres.
-const ARC_TOLERANCE_MM: f64 = 0.002;
+/// How far an arc's end may lie off the circle through its start, millimetres: CAM files round
+/// to 4 decimals of an inch (0.0025 mm); LinuxCNC itself accepts somewhat more.
+const ARC_TOLERANCE_MM: f64 = 0.01;
+
+/// The longest comment text written: LinuxCNC refuses blocks longer than 255 characters.
+const MAX_COMMENT_CHARS: usize = 200;
 
 /// How far a tool axis may be from (0, 0, 1) and still count as vertical.
 const AXIS_TOLERANCE: f64 = 1e-6;
@@ -132,7 +136,10 @@ impl<W: Write> Postprocessor<W> {
         if let Some(arc) = self.arc {
             if !matches!(
                 statement,
-                Statement::Goto(_) | Statement::Pprint(_) | Statement::PostWord { .. }
+                Statement::Goto(_)
+                    | Statement::Feed(_)
+                    | Statement::Pprint(_)
+                    | Statement::PostWord { .. }
             ) {
                 return Err(PostError::CircleWithoutGoto {
                     line: arc.line,
@@ -333,10 +340,13 @@ impl<W: Write> Postprocessor<W> {
 const AXIS_LETTERS: [char; 4] = ['X', 'Y', 'Z', 'C'];
 
 /// Comment text LinuxCNC reads as a plain comment: no nested parentheses, printable ASCII only,
-/// and no leading `MSG,`/`DEBUG,`/`PRINT,`/`LOG…`/`PROBE…`/`ABORT,` (which LinuxCNC would act on).
+/// at most 200 characters (longer text is cut and ends in `...`), and no leading
+/// `MSG,`/`DEBUG,`/`PRINT,`/`LOG…`/`PROBE…`/`ABORT,` (which LinuxCNC would act on).
 fn comment_text(text: &str) -> String {
-    let clean: String = text
+    let cut = text.chars().count() > MAX_COMMENT_CHARS;
+    let mut clean: String = text
         .chars()
+        .take(if cut { MAX_COMMENT_CHARS - 3 } else { MAX_COMMENT_CHARS })
         .map(|ch| match ch {
             '(' => '[',
             ')' => ']',
@@ -344,6 +354,9 @@ fn comment_text(text: &str) -> String {
             _ => '?',
         })
         .collect();
+    if cut {
+        clean.push_str("...");
+    }
     let upper = clean.trim_start().to_ascii_uppercase();
     let active = ["MSG", "DEBUG", "PRINT", "LOG", "PROBE", "ABORT"];
     if active.iter().any(|word| upper.starts_with(word)) { format!("- {clean}") } else { clean }
@@ -423,6 +436,24 @@ mod tests {
         assert_eq!(
             summary.ignored,
             vec![IgnoredWord { word: "SPINDL".to_owned(), first_line: 2, count: 2 }]
+        );
+    }
+
+    #[test]
+    fn long_comments_are_cut_to_fit_a_linuxcnc_block() {
+        let mut out = Vec::new();
+        let cl = format!("PPRINT/{}\nFINI\n", "é".repeat(300));
+        post(cl.as_bytes(), &mut out, PostOptions::default()).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let comment = text.lines().nth(1).unwrap();
+        assert_eq!(comment, format!("({}...)", "?".repeat(197)));
+    }
+
+    #[test]
+    fn feeds_may_come_between_circle_and_goto() {
+        check(
+            "RAPID\nGOTO/1,0,0\nCIRCLE/0,0,0,0,0,1,1\nFEDRAT/60\nGOTO/0,1,0\nFINI",
+            "%\nG21 G17 G90 G94\nG0 X1.000 Y0.000 Z0.000\nG3 X0.000 Y1.000 I-1.000 J0.000 F60.0\nM2\n%\n",
         );
     }
 
