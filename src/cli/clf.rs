@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::kinematics::{Kinematics, Robot};
-use biscara::pnp::{WriteClError, write_cl};
+use biscara::pnp::write_cl;
 use clap::Args;
 
 use super::display_path;
@@ -38,9 +38,9 @@ pub(crate) fn clf(robot: &Robot, args: &ClfArgs) -> anyhow::Result<()> {
     let model = Kinematics::new(robot)?;
     let input = open_input(&args.points)?;
     write_output(args.output.as_deref(), |out| {
-        write_cl(input, &model, out).map_err(|err| match err {
-            WriteClError::Points(err) => anyhow!("{}:{err}", display_path(&args.points)),
-            other => anyhow::Error::from(other),
+        write_cl(input, &model, out).map_err(|err| match err.line() {
+            Some(_) => anyhow!("{}:{err}", display_path(&args.points)),
+            None => anyhow::Error::from(err),
         })
     })
 }

@@ -6,9 +6,9 @@ use biscara_kinematics::KinematicsError;
 use biscara_post::compact;
 use biscara_post::lines::{LineError, MAX_LINE_BYTES};
 
-/// A points-file failure. Every variant names the 1-based line it is about, and its message
-/// starts with `LINE: ` so that a caller only prefixes the file name (`points.txt:7: …`).
-/// Lengths are millimetres, angles degrees.
+/// A points-file failure. Every variant but [`PointsError::Write`] names the 1-based line it is
+/// about, and its message starts with `LINE: ` so that a caller only prefixes the file name
+/// (`points.txt:7: …`). Lengths are millimetres, angles degrees.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum PointsError {
@@ -150,12 +150,15 @@ pub enum PointsError {
         /// The line of the pick.
         line: usize,
     },
+    /// Occurs when the CL text cannot be written ([`crate::write_cl`]).
+    #[error("cannot write the CL file")]
+    Write(#[source] io::Error),
 }
 
 impl PointsError {
-    /// The 1-based line of the points file the error is about.
-    pub fn line(&self) -> usize {
-        match *self {
+    /// The 1-based line of the points file the error is about; `None` for a write error.
+    pub fn line(&self) -> Option<usize> {
+        Some(match *self {
             PointsError::Read { line, .. }
             | PointsError::NotText { line }
             | PointsError::LineTooLong { line }
@@ -171,7 +174,8 @@ impl PointsError {
             | PointsError::Unreachable { line, .. }
             | PointsError::NoPairs { line }
             | PointsError::UnpairedPick { line } => line,
-        }
+            PointsError::Write(_) => return None,
+        })
     }
 
     pub(crate) fn from_line_error(line: usize, error: LineError) -> PointsError {

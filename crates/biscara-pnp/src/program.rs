@@ -240,35 +240,23 @@ impl<R: BufRead> Iterator for ClProgram<'_, R> {
     }
 }
 
-/// An error of [`write_cl`]: in the points, or writing the CL text.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum WriteClError {
-    /// Occurs when the points file is wrong.
-    #[error(transparent)]
-    Points(#[from] PointsError),
-    /// Occurs when the CL text cannot be written.
-    #[error("cannot write the CL file")]
-    Write(#[source] std::io::Error),
-}
-
 /// Reads the points file `input` and writes its CL program to `out`, streaming (`biscara clf`).
 pub fn write_cl(
     input: impl BufRead,
     model: &Kinematics,
     mut out: impl Write,
-) -> Result<(), WriteClError> {
+) -> Result<(), PointsError> {
     for statement in ClProgram::new(input, model) {
-        write_statement(&mut out, &statement?).map_err(WriteClError::Write)?;
+        write_statement(&mut out, &statement?).map_err(PointsError::Write)?;
     }
-    out.flush().map_err(WriteClError::Write)
+    out.flush().map_err(PointsError::Write)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn cl(points: &str) -> Result<String, WriteClError> {
+    fn cl(points: &str) -> Result<String, PointsError> {
         let mut out = Vec::new();
         write_cl(points.as_bytes(), &Kinematics::default(), &mut out)?;
         Ok(String::from_utf8(out).unwrap())
