@@ -1,0 +1,294 @@
+//! The geometry of one move: where the tool is at each value of the path parameter s ∈ [0, 1].
+
+use std::f64::consts::TAU;
+
+use biscara_motion::Plane;
+
+/// One move's geometry, from `start` to `end` (`[x, y, z, c]`, mm and degrees), traversed as the
+/// path parameter `s` runs from 0 to 1. C moves in proportion to `s` (SPEC §6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    start: [f64; 4],
+    end: [f64; 4],
+    shape: Shape,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Shape {
+    Line,
+    /// A circle (or spiral, when the end radius differs slightly from the start radius, as
+    /// LinuxCNC tolerates) in the plane's axes, with the normal axis moving linearly (helix).
+    Arc {
+        axes: [usize; 3],
+        center: [f64; 2],
+        start_radius: f64,
+        end_radius: f64,
+        start_angle: f64,
+        sweep: f64,
+    },
+}
+
+/// Gap below which an arc's start and end angles count as equal (a full circle).
+const FULL_CIRCLE_EPSILON: f64 = 1e-12;
+
+impl Segment {
+    /// A straight move.
+    pub fn line(start: [f64; 4], end: [f64; 4]) -> Segment {
+        Segment { start, end, shape: Shape::Line }
+    }
+
+    /// A circular or helical move about `center` (in the plane's axes, see [`Plane`]):
+    /// clockwise seen from the plane's normal when `clockwise`, with `turns` ≥ 1 passes (1 ends
+    /// at the first arrival at `end`; a start equal to the end is a full circle).
+    pub fn arc(
+        start: [f64; 4],
+        end: [f64; 4],
+        center: [f64; 2],
+        plane: Plane,
+        clockwise: bool,
+        turns: u32,
+    ) -> Segment {
+        let axes = plane.axes();
+        let offset = |point: [f64; 4]| [point[axes[0]] - center[0], point[axes[1]] - center[1]];
+        let (from, to) = (offset(start), offset(end));
+        let start_angle = from[1].atan2(from[0]);
+        let end_angle = to[1].atan2(to[0]);
+        let gap = if clockwise { start_angle - end_angle } else { end_angle - start_angle };
+        let mut sweep = gap.rem_euclid(TAU);
+        if sweep < FULL_CIRCLE_EPSILON || TAU - sweep < FULL_CIRCLE_EPSILON && same_point(from, to)
+        {
+            sweep = TAU;
+        }
+        sweep += TAU * f64::from(turns.max(1) - 1);
+        if clockwise {
+            sweep = -sweep;
+        }
+        Segment {
+            start,
+            end,
+            shape: Shape::Arc {
+                axes,
+                center,
+                start_radius: from[0].hypot(from[1]),
+                end_radius: to[0].hypot(to[1]),
+                start_angle,
+                sweep,
+            },
+        }
+    }
+
+    /// The start pose.
+    pub fn start(&self) -> [f64; 4] {
+        self.start
+    }
+
+    /// The end pose.
+    pub fn end(&self) -> [f64; 4] {
+        self.end
+    }
+
+    /// Length of the XYZ path, mm (for an arc whose radius changes, the mean radius is used).
+    pub fn length(&self) -> f64 {
+        match self.shape {
+            Shape::Line => {
+                let [dx, dy, dz, _] = self.delta();
+                (dx * dx + dy * dy + dz * dz).sqrt()
+            }
+            Shape::Arc { axes, start_radius, end_radius, sweep, .. } => {
+                let around = 0.5 * (start_radius + end_radius) * sweep.abs();
+                around.hypot(self.delta()[axes[2]])
+            }
+        }
+    }
+
+    /// Rotation of C over the move, degrees (signed).
+    pub fn rotation(&self) -> f64 {
+        self.end[3] - self.start[3]
+    }
+
+    /// The pose at path parameter `s` (exactly `end` at `s = 1`).
+    pub fn point(&self, s: f64) -> [f64; 4] {
+        if s >= 1.0 {
+            return self.end;
+        }
+        let delta = self.delta();
+        let mut point = [0.0; 4];
+        for axis in 0..4 {
+            point[axis] = self.start[axis] + s * delta[axis];
+        }
+        if let Shape::Arc { axes, center, start_radius, end_radius, start_angle, sweep } =
+            self.shape
+        {
+            let radius = start_radius + s * (end_radius - start_radius);
+            let (sin, cos) = (start_angle + s * sweep).sin_cos();
+            point[axes[0]] = center[0] + radius * cos;
+            point[axes[1]] = center[1] + radius * sin;
+        }
+        point
+    }
+
+    /// `d pose / ds` at path parameter `s` (mm and degrees per unit of s).
+    pub fn derivative(&self, s: f64) -> [f64; 4] {
+        let mut derivative = self.delta();
+        if let Shape::Arc { axes, start_radius, end_radius, start_angle, sweep, .. } = self.shape {
+            let radius = start_radius + s * (end_radius - start_radius);
+            let radius_rate = end_radius - start_radius;
+            let (sin, cos) = (start_angle + s * sweep).sin_cos();
+            derivative[axes[0]] = radius_rate * cos - radius * sweep * sin;
+            derivative[axes[1]] = radius_rate * sin + radius * sweep * cos;
+        }
+        derivative
+    }
+
+    /// The distance from `point`'s XYZ to this move's XYZ path, mm (for tests and checks).
+    pub fn distance_to(&self, point: [f64; 3]) -> f64 {
+        match self.shape {
+            Shape::Line => {
+                let start = [self.start[0], self.start[1], self.start[2]];
+                let [dx, dy, dz, _] = self.delta();
+                let direction = [dx, dy, dz];
+                let length2: f64 = direction.iter().map(|d| d * d).sum();
+                let along = if length2 == 0.0 {
+                    0.0
+                } else {
+                    (0..3).map(|i| (point[i] - start[i]) * direction[i]).sum::<f64>() / length2
+                };
+                let along = along.clamp(0.0, 1.0);
+                (0..3)
+                    .map(|i| (point[i] - start[i] - along * direction[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            }
+            Shape::Arc { .. } => {
+                // The nearest point of a helix has no closed form; search s finely, then refine.
+                let distance = |s: f64| {
+                    let p = self.point(s);
+                    (0..3).map(|i| (point[i] - p[i]).powi(2)).sum::<f64>().sqrt()
+                };
+                let steps = 2000;
+                let mut best = (0.0, distance(0.0));
+                for k in 1..=steps {
+                    let s = f64::from(k) / f64::from(steps);
+                    let d = distance(s);
+                    if d < best.1 {
+                        best = (s, d);
+                    }
+                }
+                let (mut low, mut high) =
+                    ((best.0 - 1.0 / 2000.0).max(0.0), (best.0 + 1.0 / 2000.0).min(1.0));
+                for _ in 0..100 {
+                    let (a, b) = (low + (high - low) / 3.0, high - (high - low) / 3.0);
+                    if distance(a) < distance(b) {
+                        high = b;
+                    } else {
+                        low = a;
+                    }
+                }
+                distance(0.5 * (low + high)).min(best.1)
+            }
+        }
+    }
+
+    fn delta(&self) -> [f64; 4] {
+        [
+            self.end[0] - self.start[0],
+            self.end[1] - self.start[1],
+            self.end[2] - self.start[2],
+            self.end[3] - self.start[3],
+        ]
+    }
+}
+
+fn same_point(a: [f64; 2], b: [f64; 2]) -> bool {
+    (a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+
+    #[test]
+    fn quarter_circles_in_both_directions() {
+        let start = [10.0, 0.0, 0.0, 0.0];
+        let end = [0.0, 10.0, 0.0, 90.0];
+        let ccw = Segment::arc(start, end, [0.0, 0.0], Plane::Xy, false, 1);
+        assert_relative_eq!(ccw.length(), 10.0 * std::f64::consts::FRAC_PI_2, epsilon = 1e-12);
+        let middle = ccw.point(0.5);
+        assert_relative_eq!(middle[0], 10.0 * 0.5f64.sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(middle[1], 10.0 * 0.5f64.sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(middle[3], 45.0);
+        let cw = Segment::arc(start, end, [0.0, 0.0], Plane::Xy, true, 1);
+        assert_relative_eq!(cw.length(), 10.0 * 1.5 * std::f64::consts::PI, epsilon = 1e-12);
+        assert_relative_eq!(cw.point(1.0 / 3.0)[1], -10.0, epsilon = 1e-12);
+        assert_eq!(cw.point(1.0), end);
+    }
+
+    #[test]
+    fn full_circle_with_turns_and_helix() {
+        let start = [10.0, 0.0, 0.0, 0.0];
+        let end = [10.0, 0.0, 6.0, 0.0];
+        let helix = Segment::arc(start, end, [0.0, 0.0], Plane::Xy, false, 2);
+        let around = 2.0 * TAU * 10.0;
+        assert_relative_eq!(helix.length(), around.hypot(6.0), epsilon = 1e-9);
+        let quarter = helix.point(0.125);
+        assert_relative_eq!(quarter[0], 0.0, epsilon = 1e-9);
+        assert_relative_eq!(quarter[1], 10.0, epsilon = 1e-9);
+        assert_relative_eq!(quarter[2], 0.75, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn other_planes_use_their_canonical_axes() {
+        // XZ plane: centre [z, x]; G3 is counter-clockwise about +Y, from +Z toward +X.
+        let start = [0.0, 5.0, 10.0, 0.0];
+        let end = [10.0, 5.0, 0.0, 0.0];
+        let arc = Segment::arc(start, end, [0.0, 0.0], Plane::Xz, false, 1);
+        assert_relative_eq!(arc.length(), 10.0 * std::f64::consts::FRAC_PI_2, epsilon = 1e-12);
+        let middle = arc.point(0.5);
+        assert_relative_eq!(middle[0], 10.0 * 0.5f64.sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(middle[2], 10.0 * 0.5f64.sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(middle[1], 5.0);
+    }
+
+    #[test]
+    fn derivative_matches_finite_differences() {
+        let arc = Segment::arc(
+            [10.0, 0.0, 0.0, 0.0],
+            [0.0, 10.5, 4.0, 30.0],
+            [0.0, 0.0],
+            Plane::Xy,
+            true,
+            1,
+        );
+        let h = 1e-6;
+        for s in [0.1, 0.5, 0.9] {
+            let (after, before) = (arc.point(s + h), arc.point(s - h));
+            let derivative = arc.derivative(s);
+            for axis in 0..4 {
+                assert_relative_eq!(
+                    derivative[axis],
+                    (after[axis] - before[axis]) / (2.0 * h),
+                    epsilon = 1e-4
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn distance_to_the_path() {
+        let line = Segment::line([0.0, 0.0, 0.0, 0.0], [10.0, 0.0, 0.0, 0.0]);
+        assert_relative_eq!(line.distance_to([5.0, 3.0, 0.0]), 3.0);
+        assert_relative_eq!(line.distance_to([-4.0, 3.0, 0.0]), 5.0);
+        let arc = Segment::arc(
+            [10.0, 0.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0, 0.0],
+            [0.0, 0.0],
+            Plane::Xy,
+            false,
+            1,
+        );
+        assert_relative_eq!(arc.distance_to([0.0, 12.0, 0.0]), 2.0, epsilon = 1e-9);
+        assert!(arc.distance_to(arc.point(0.37)[..3].try_into().unwrap()) < 1e-9);
+    }
+}

@@ -1,0 +1,272 @@
+//! SPEC §6: end points hit exactly, durations in whole steps, speeds never above the programmed
+//! ones, the paper's constant profile, the trapezoid, dwells, grip time and events.
+
+use std::convert::Infallible;
+
+use approx::assert_relative_eq;
+use biscara_interpolate::{
+    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, NoSpeedLimit, Profile,
+    RateLimit, Segment, SlowDown, SpeedLimit,
+};
+use biscara_motion::{Feed, Motion, MotionKind, Plane};
+use proptest::prelude::*;
+
+use crate::strategies::program;
+
+const START: [f64; 4] = [0.0, 400.0, 50.0, 0.0];
+
+fn config(profile: Profile, dt: f64) -> InterpolationConfig {
+    InterpolationConfig {
+        dt,
+        profile,
+        start: START,
+        limits: CartesianLimits {
+            rapid_velocity: 500.0,
+            rapid_rotation: 360.0,
+            acceleration: 5000.0,
+            rotation_acceleration: 7200.0,
+        },
+        grip_time: 0.0,
+    }
+}
+
+fn run(motions: &[Motion], config: InterpolationConfig) -> (Vec<CartesianSample>, Vec<SlowDown>) {
+    let mut slow = Vec::new();
+    let samples = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config,
+        NoSpeedLimit,
+        |s: &SlowDown| slow.push(*s),
+    )
+    .collect::<Result<Vec<_>, _>>()
+    .expect("interpolation");
+    (samples, slow)
+}
+
+fn feed(mm_per_min: f64) -> Feed {
+    Feed { mm_per_min, inverse_time: false }
+}
+
+fn linear(line: usize, end: [f64; 4], mm_per_min: f64) -> Motion {
+    Motion { line, kind: MotionKind::Linear { end, feed: feed(mm_per_min) } }
+}
+
+#[test]
+fn constant_profile_is_the_papers() {
+    // 30 mm at 1800 mm/min = 30 mm/s: 1 s, 1000 steps of exactly 0.03 mm.
+    let motions = [linear(1, [30.0, 400.0, 50.0, 0.0], 1800.0)];
+    let (samples, _) = run(&motions, config(Profile::Constant, 0.001));
+    assert_eq!(samples.len(), 1001);
+    assert_eq!(samples[0].t, 0.0);
+    assert_eq!(samples[0].pose, START);
+    for pair in samples.windows(2) {
+        assert_relative_eq!(pair[1].pose[0] - pair[0].pose[0], 0.03, epsilon = 1e-9);
+        assert_relative_eq!(pair[1].t - pair[0].t, 0.001, epsilon = 1e-12);
+    }
+    assert_eq!(samples[1000].pose, [30.0, 400.0, 50.0, 0.0]);
+    assert_relative_eq!(samples[1000].t, 1.0, epsilon = 1e-12);
+}
+
+#[test]
+fn durations_round_up_to_whole_steps_and_speed_drops() {
+    // 10 mm at 600 mm/min = 1 s; with dt = 0.3 s that is 4 steps (1.2 s).
+    let motions = [linear(1, [10.0, 400.0, 50.0, 0.0], 600.0)];
+    let (samples, _) = run(&motions, config(Profile::Constant, 0.3));
+    assert_eq!(samples.len(), 5);
+    assert_relative_eq!(samples[4].t, 1.2, epsilon = 1e-12);
+    assert_relative_eq!(samples[1].pose[0], 2.5, epsilon = 1e-12);
+}
+
+#[test]
+fn rapids_use_the_rapid_limits() {
+    // 250 mm at 500 mm/s = 0.5 s; a C turn of 270° at 360°/s = 0.75 s wins.
+    let motions = [
+        Motion { line: 1, kind: MotionKind::Rapid { end: [250.0, 400.0, 50.0, 0.0] } },
+        Motion { line: 2, kind: MotionKind::Rapid { end: [250.0, 400.0, 50.0, 270.0] } },
+    ];
+    let (samples, slow) = run(&motions, config(Profile::Constant, 0.001));
+    assert_eq!(samples.len(), 1 + 500 + 750);
+    assert!(slow.is_empty(), "rapids are not slowed, they define their speed");
+}
+
+#[test]
+fn rotation_only_feed_is_degrees_per_minute() {
+    // LinuxCNC: G1 C90 F600 turns at 600°/min = 10°/s: 9 s.
+    let motions = [linear(1, [0.0, 400.0, 50.0, 90.0], 600.0)];
+    let (samples, _) = run(&motions, config(Profile::Constant, 0.01));
+    assert_eq!(samples.len(), 901);
+}
+
+#[test]
+fn fast_rotation_is_capped_and_reported_except_in_the_constant_profile() {
+    // 10 mm at 6000 mm/min (0.1 s) while C turns 180°: 500 °/s would exceed rapid_rotation.
+    let motions = [linear(7, [10.0, 400.0, 50.0, 180.0], 6000.0)];
+    let (samples, slow) = run(&motions, config(Profile::Trapezoid, 0.001));
+    assert_eq!(slow.len(), 1);
+    assert_eq!(slow[0].line, 7);
+    assert_eq!(slow[0].cause, "C rotation");
+    for pair in samples.windows(2) {
+        let rate = (pair[1].pose[3] - pair[0].pose[3]) / 0.001;
+        assert!(rate <= 360.0 + 1e-6, "C at {rate} °/s");
+    }
+    let (_, slow) = run(&motions, config(Profile::Constant, 0.001));
+    assert!(slow.is_empty());
+}
+
+#[test]
+fn trapezoid_starts_and_stops_at_rest_and_respects_speed_and_acceleration() {
+    let motions = [
+        linear(1, [100.0, 400.0, 50.0, 0.0], 6000.0),
+        linear(2, [100.0, 300.0, 50.0, 0.0], 3000.0),
+    ];
+    let dt = 0.001;
+    let (samples, _) = run(&motions, config(Profile::Trapezoid, dt));
+    let speeds: Vec<f64> = samples
+        .windows(2)
+        .map(|p| {
+            let d: f64 = (0..3).map(|i| (p[1].pose[i] - p[0].pose[i]).powi(2)).sum();
+            d.sqrt() / dt
+        })
+        .collect();
+    assert!(speeds[0] < 5000.0 * dt * 1.01, "first step from rest: {}", speeds[0]);
+    assert!(speeds.iter().all(|&v| v <= 100.0 + 1e-6), "never above 6000 mm/min");
+    for pair in speeds.windows(2) {
+        assert!((pair[1] - pair[0]).abs() / dt <= 5000.0 * 1.01, "acceleration within the limit");
+    }
+    let corner =
+        samples.iter().position(|s| s.pose == [100.0, 400.0, 50.0, 0.0]).expect("corner hit");
+    assert_eq!(samples[corner].line, 1);
+    assert_eq!(samples[corner + 1].line, 2);
+}
+
+#[test]
+fn arcs_follow_the_circle() {
+    let motions = [
+        linear(1, [50.0, 400.0, 50.0, 0.0], 6000.0),
+        Motion {
+            line: 2,
+            kind: MotionKind::Arc {
+                end: [0.0, 450.0, 60.0, 0.0],
+                center: [0.0, 400.0],
+                plane: Plane::Xy,
+                clockwise: false,
+                turns: 1,
+                feed: feed(1200.0),
+            },
+        },
+    ];
+    let (samples, _) = run(&motions, config(Profile::Trapezoid, 0.001));
+    let arc = Segment::arc(
+        [50.0, 400.0, 50.0, 0.0],
+        [0.0, 450.0, 60.0, 0.0],
+        [0.0, 400.0],
+        Plane::Xy,
+        false,
+        1,
+    );
+    for sample in samples.iter().filter(|s| s.line == 2) {
+        let radius = sample.pose[0].hypot(sample.pose[1] - 400.0);
+        assert_relative_eq!(radius, 50.0, epsilon = 1e-9);
+        assert!(arc.distance_to([sample.pose[0], sample.pose[1], sample.pose[2]]) < 1e-6);
+    }
+    assert_eq!(samples.last().expect("samples").pose, [0.0, 450.0, 60.0, 0.0]);
+}
+
+#[test]
+fn dwell_grip_time_and_gripper_events() {
+    let motions = [
+        Motion { line: 1, kind: MotionKind::Pick },
+        Motion { line: 2, kind: MotionKind::Dwell { seconds: 0.3 } },
+        linear(3, [1.0, 400.0, 50.0, 0.0], 60.0),
+        Motion { line: 4, kind: MotionKind::Place },
+        Motion { line: 5, kind: MotionKind::Pause },
+        Motion { line: 6, kind: MotionKind::End },
+        linear(7, [99.0, 400.0, 50.0, 0.0], 60.0),
+    ];
+    let mut settings = config(Profile::Constant, 0.1);
+    settings.grip_time = 0.25;
+    let (samples, _) = run(&motions, settings);
+    // start + pick 3 (0.25 s → 3 steps) + dwell 3 + move 10 + place 3; nothing after M2.
+    assert_eq!(samples.len(), 1 + 3 + 3 + 10 + 3);
+    assert!(!samples[0].gripper);
+    assert!(samples[1..17].iter().all(|s| s.gripper));
+    assert!(samples[17..].iter().all(|s| !s.gripper));
+    assert_eq!(samples.last().expect("samples").pose, [1.0, 400.0, 50.0, 0.0]);
+    // Without grip time, events take no time.
+    let (samples, _) = run(&motions, config(Profile::Constant, 0.1));
+    assert_eq!(samples.len(), 1 + 3 + 10);
+}
+
+#[test]
+fn a_speed_limit_slows_a_move_and_is_reported() {
+    struct HalfSpeed;
+    impl SpeedLimit for HalfSpeed {
+        fn max_rate(&mut self, _segment: &Segment) -> Option<RateLimit> {
+            Some(RateLimit { rate: 0.5, cause: "theta2" })
+        }
+    }
+    let motions = [linear(3, [10.0, 400.0, 50.0, 0.0], 1200.0)]; // 0.5 s at 1 /s... → 2 s at 0.5/s
+    let mut slow = Vec::new();
+    let samples: Vec<_> = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config(Profile::Trapezoid, 0.01),
+        HalfSpeed,
+        |s: &SlowDown| slow.push(*s),
+    )
+    .collect::<Result<_, _>>()
+    .expect("interpolation");
+    assert_eq!(slow.len(), 1);
+    assert_eq!((slow[0].line, slow[0].cause), (3, "theta2"));
+    assert!(samples.last().expect("samples").t >= 2.0);
+}
+
+#[test]
+fn input_errors_and_bad_feeds_stop_the_stream() {
+    let motions = [linear(1, [10.0, 400.0, 50.0, 0.0], 0.0)];
+    let results: Vec<_> = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config(Profile::Trapezoid, 0.01),
+        NoSpeedLimit,
+        |_: &SlowDown| {},
+    )
+    .collect();
+    assert_eq!(results.len(), 2);
+    let err = results[1].as_ref().expect_err("zero feed");
+    assert_eq!(err.to_string(), "line 1: the feed 0 mm/min is not positive");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// SPEC §6/§11: every programmed end point is hit exactly by a sample, times are whole steps,
+    /// and no step moves faster than the programmed speed allows.
+    #[test]
+    fn every_end_point_is_hit(motions in program(12), trapezoid in any::<bool>()) {
+        let profile = if trapezoid { Profile::Trapezoid } else { Profile::Constant };
+        let dt = 0.002;
+        let (samples, _) = run(&motions, config(profile, dt));
+        for (index, sample) in samples.iter().enumerate() {
+            prop_assert!((sample.t - index as f64 * dt).abs() < 1e-9);
+        }
+        let mut cursor = 0;
+        for motion in &motions {
+            let Some(end) = motion.kind.end() else { continue };
+            let found = samples[cursor..].iter().position(|s| s.pose == end && s.line == motion.line);
+            prop_assert!(found.is_some() || samples[cursor].pose == end, "end of line {} not hit", motion.line);
+            if let Some(offset) = found {
+                cursor += offset;
+            }
+        }
+        for pair in samples.windows(2) {
+            let Some(motion) = motions.iter().find(|m| m.line == pair[1].line) else { continue };
+            let step: f64 = (0..3).map(|i| (pair[1].pose[i] - pair[0].pose[i]).powi(2)).sum::<f64>().sqrt();
+            let limit = match motion.kind {
+                MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } => feed.mm_per_min / 60.0,
+                MotionKind::Rapid { .. } => 500.0,
+                _ => 0.0,
+            };
+            // A chord is never longer than the arc it cuts, so this bounds arcs too.
+            prop_assert!(step <= limit * dt * (1.0 + 1e-6) + 1e-9, "line {}: {} mm in one step", motion.line, step);
+        }
+    }
+}

@@ -1,0 +1,4 @@
+//! Integration tests of the interpolator.
+
+mod interpolation;
+mod strategies;
