@@ -5,17 +5,7 @@ use biscara_kinematics::Kinematics;
 use biscara_pnp::{PointsReader, write_cl};
 use proptest::prelude::*;
 
-/// Text that looks like a points file: keywords, numbers of every kind, separators and comments.
-fn points_like() -> impl Strategy<Value = String> {
-    let word = prop::sample::select(vec![
-        "home", "HOME", "approach", "feed", "dwell", "pick", "place", "Pick", "move", "#", " ",
-        "\t", ",", "\n", "\n", "\n", "NaN", "inf", "1e999", "1e300", "-0", "0", "10", "150",
-        "-150", "320", "300", "0.3", "50", "100", "-45", "30",
-    ]);
-    let number = any::<f64>().prop_map(|value| value.to_string());
-    prop::collection::vec(prop_oneof![4 => word.prop_map(str::to_owned), 1 => number], 0..80)
-        .prop_map(|parts| parts.join(" "))
-}
+use crate::strategies::points_like;
 
 fn check_no_panic(model: &Kinematics, bytes: &[u8]) -> Result<(), TestCaseError> {
     let lines = bytes.iter().filter(|&&byte| byte == b'\n').count() + 1;
