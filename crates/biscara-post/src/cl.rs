@@ -8,10 +8,12 @@ use crate::lines::{LineReader, MAX_LINE_BYTES};
 
 /// Post words that mean nothing to this robot: [`ClReader`] passes them on as
 /// [`Statement::PostWord`], and the postprocessor writes them as comments and lists them.
+///
+/// Words that change the path (CYCLE, CUTCOM, FROM, MSYS, …) are not among them: they are errors.
 pub const POST_WORDS: &[&str] = &[
     "AUXFUN", "CLRSRF", "COOLNT", "CUTTER", "DISPLY", "INSERT", "INTOL", "LINTOL", "LOADTL",
-    "MACHIN", "MULTAX", "OPSKIP", "OPSTOP", "OUTTOL", "PLABEL", "PREFUN", "SELCTL", "SEQNO",
-    "SPINDL", "TITLES", "TLAXIS", "TOLER", "TOOLNO",
+    "MACHIN", "MULTAX", "OPSKIP", "OPSTOP", "OUTTOL", "PAINT", "PLABEL", "PREFUN", "SELCTL",
+    "SEQNO", "SPINDL", "TITLES", "TLAXIS", "TLDATA", "TOLER", "TOOLNO",
 ];
 
 /// The largest magnitude a CL number may have (mm or inches): beyond it a value is a mistake.
