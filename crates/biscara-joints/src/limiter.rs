@@ -1,0 +1,69 @@
+//! Slowing moves down so that no joint exceeds its velocity limit (SPEC §6, §7).
+
+use biscara_interpolate::{RateLimit, Segment, SpeedLimit};
+use biscara_kinematics::{Joint, Kinematics, Pose, Robot};
+
+/// Probes per millimetre of XYZ path and per degree of C when bounding a move's joint rates.
+const PROBES_PER_MM: f64 = 1.0;
+const PROBES_PER_DEGREE: f64 = 1.0;
+/// Bounds on the number of probes of one move.
+const MIN_PROBES: f64 = 16.0;
+const MAX_PROBES: f64 = 4096.0;
+/// The rate found at the probes is lowered by this factor, for the peaks between probes.
+const PROBE_SAFETY: f64 = 0.98;
+
+/// A [`SpeedLimit`] from the robot's `joint_max_velocity`: the largest path rate at which no joint
+/// exceeds its limit, found by evaluating the joint rates `dq/ds = J⁻¹ · dx/ds` along the move
+/// (at least one probe per mm of path and per degree of C).
+///
+/// Probes where IK fails are skipped: the joint-trajectory stage reports those poses.
+#[derive(Debug, Clone, Copy)]
+pub struct JointSpeedLimit {
+    model: Kinematics,
+    /// θ limits in rad/s, d4 in mm/s.
+    max_velocity: [f64; 4],
+}
+
+impl JointSpeedLimit {
+    /// The limiter for `robot` (whose kinematics `model` is).
+    pub fn new(model: Kinematics, robot: &Robot) -> JointSpeedLimit {
+        let [t1, t2, t3, d4] = robot.joint_max_velocity.to_array();
+        JointSpeedLimit {
+            model,
+            max_velocity: [t1.to_radians(), t2.to_radians(), t3.to_radians(), d4],
+        }
+    }
+}
+
+impl SpeedLimit for JointSpeedLimit {
+    fn max_rate(&mut self, segment: &Segment) -> Option<RateLimit> {
+        let probes = (segment.length() * PROBES_PER_MM
+            + segment.rotation().abs() * PROBES_PER_DEGREE)
+            .clamp(MIN_PROBES, MAX_PROBES) as u32;
+        let mut best: Option<RateLimit> = None;
+        for k in 0..=probes {
+            let s = f64::from(k) / f64::from(probes);
+            let [x, y, z, c] = segment.point(s);
+            let Ok(solution) = self.model.inverse(&Pose::from_degrees(x, y, z, c)) else {
+                continue;
+            };
+            let [dx, dy, dz, dc] = segment.derivative(s);
+            let Some(rates) =
+                self.model.joint_velocity(&solution.configuration, [dx, dy, dz, dc.to_radians()])
+            else {
+                continue;
+            };
+            for joint in Joint::ALL {
+                let per_s = rates.get(joint).abs();
+                if per_s == 0.0 {
+                    continue;
+                }
+                let rate = PROBE_SAFETY * self.max_velocity[joint as usize] / per_s;
+                if best.is_none_or(|best| rate < best.rate) {
+                    best = Some(RateLimit { rate, cause: joint.name() });
+                }
+            }
+        }
+        best
+    }
+}

@@ -1,0 +1,3 @@
+//! Integration tests of the joint-trajectory builder.
+
+mod trajectory;
