@@ -6,6 +6,10 @@
 //! a thin command line over them. Stages so far:
 //!
 //! - [`kinematics`]: the robot model (`robot.json`) and exact inverse and forward kinematics.
+//! - [`motion`]: the motions of a program and their file form, the inter-file.
+//! - [`interpolate`]: Cartesian samples at a fixed time step, and the path CSV.
+//! - [`joints`]: joint trajectories from Cartesian samples, and the joint CSV.
+//! - [`diff`]: numeric comparison of outputs within a tolerance (golden-file checks).
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
 //! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
 //!
@@ -18,6 +22,10 @@
 //! # Ok::<(), biscara::kinematics::KinematicsError>(())
 //! ```
 
+pub use biscara_diff as diff;
+pub use biscara_interpolate as interpolate;
+pub use biscara_joints as joints;
 pub use biscara_kinematics as kinematics;
+pub use biscara_motion as motion;
 pub use biscara_pnp as pnp;
 pub use biscara_post as post;

@@ -2,12 +2,15 @@
 
 mod clf;
 mod demo;
+mod diff;
 mod fmt;
 mod generate;
 mod input;
 mod kinematics;
 mod output;
 mod post;
+mod progress;
+mod trajectory;
 
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
@@ -42,6 +45,9 @@ enum Command {
     Clf(clf::ClfArgs),
     Post(post::PostArgs),
     Gen(generate::GenArgs),
+    Interpolate(trajectory::InterpolateArgs),
+    Joints(trajectory::JointsArgs),
+    Diff(diff::DiffArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -77,6 +83,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Clf(args) => clf::clf(&robot, &args),
         Command::Post(args) => post::post(&args),
         Command::Gen(args) => generate::generate(&robot, &args),
+        Command::Interpolate(args) => trajectory::interpolate(&robot, &args),
+        Command::Joints(args) => trajectory::joints(&robot, &args),
+        Command::Diff(args) => diff::diff(&args),
     }
 }
 

@@ -3,5 +3,6 @@
 mod cli_kinematics;
 mod golden;
 mod linuxcnc;
+mod motion_cli;
 mod programming;
 mod util;
