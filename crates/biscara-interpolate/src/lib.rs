@@ -45,7 +45,7 @@ mod segment;
 pub use biscara_motion::Motion;
 
 pub use csv::{
-    MAX_DECIMALS, PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, push_fixed,
+    FLUSH_AT, MAX_DECIMALS, PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, push_fixed,
     read_path_csv,
 };
 pub use interpolator::{

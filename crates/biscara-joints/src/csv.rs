@@ -2,7 +2,7 @@
 
 use std::io::{self, Write};
 
-use biscara_interpolate::push_fixed;
+use biscara_interpolate::{FLUSH_AT, push_fixed};
 
 use crate::JointSample;
 
@@ -48,11 +48,13 @@ impl JointCsvFormat {
     }
 }
 
-/// Writes joint samples as CSV, one buffered row at a time.
+/// Writes joint samples as CSV; rows reach the output in chunks of [`FLUSH_AT`] bytes and at
+/// [`JointCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct JointCsvWriter<W: Write> {
     out: W,
     format: JointCsvFormat,
+    /// Rows not yet handed to `out`.
     row: Vec<u8>,
 }
 
@@ -60,7 +62,7 @@ impl<W: Write> JointCsvWriter<W> {
     /// A writer in `format`; writes the header at once.
     pub fn new(mut out: W, format: JointCsvFormat) -> io::Result<Self> {
         writeln!(out, "{}", format.header())?;
-        Ok(JointCsvWriter { out, format, row: Vec::with_capacity(256) })
+        Ok(JointCsvWriter { out, format, row: Vec::with_capacity(FLUSH_AT + 512) })
     }
 
     /// Writes one sample.
@@ -71,7 +73,6 @@ impl<W: Write> JointCsvWriter<W> {
             AngleUnit::Degrees => 180.0 / std::f64::consts::PI,
         };
         let scales = [scale, scale, scale, 1.0];
-        self.row.clear();
         push_fixed(&mut self.row, sample.t, decimals);
         let push_all = |row: &mut Vec<u8>, values: [f64; 4]| {
             for (value, scale) in values.into_iter().zip(scales) {
@@ -85,11 +86,16 @@ impl<W: Write> JointCsvWriter<W> {
             push_all(&mut self.row, sample.acceleration);
         }
         self.row.push(b'\n');
-        self.out.write_all(&self.row)
+        if self.row.len() >= FLUSH_AT {
+            self.out.write_all(&self.row)?;
+            self.row.clear();
+        }
+        Ok(())
     }
 
-    /// Flushes and returns the underlying writer.
+    /// Writes the rows still buffered, flushes and returns the underlying writer.
     pub fn finish(mut self) -> io::Result<W> {
+        self.out.write_all(&self.row)?;
         self.out.flush()?;
         Ok(self.out)
     }
