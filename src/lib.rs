@@ -12,6 +12,7 @@
 //! - [`diff`]: numeric comparison of outputs within a tolerance (golden-file checks).
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
 //! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
+//! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
 //!
 //! ```
 //! use biscara::kinematics::{Kinematics, Pose};
@@ -23,6 +24,7 @@
 //! ```
 
 pub use biscara_diff as diff;
+pub use biscara_gcode as gcode;
 pub use biscara_interpolate as interpolate;
 pub use biscara_joints as joints;
 pub use biscara_kinematics as kinematics;

@@ -6,6 +6,7 @@ mod diff;
 mod fmt;
 mod generate;
 mod input;
+mod interpret;
 mod kinematics;
 mod output;
 mod post;
@@ -45,6 +46,7 @@ enum Command {
     Clf(clf::ClfArgs),
     Post(post::PostArgs),
     Gen(generate::GenArgs),
+    Interpret(interpret::InterpretArgs),
     Interpolate(trajectory::InterpolateArgs),
     Joints(trajectory::JointsArgs),
     Diff(diff::DiffArgs),
@@ -83,6 +85,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Clf(args) => clf::clf(&robot, &args),
         Command::Post(args) => post::post(&args),
         Command::Gen(args) => generate::generate(&robot, &args),
+        Command::Interpret(args) => interpret::interpret(&robot, &args),
         Command::Interpolate(args) => trajectory::interpolate(&robot, &args),
         Command::Joints(args) => trajectory::joints(&robot, &args),
         Command::Diff(args) => diff::diff(&args),

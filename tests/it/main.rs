@@ -1,8 +1,11 @@
 //! Integration tests of the `biscara` binary: one test binary, one module per feature.
 
 mod cli_kinematics;
+mod conformance;
 mod golden;
+mod interpret;
 mod linuxcnc;
 mod motion_cli;
 mod programming;
+mod rs274;
 mod util;

@@ -1,0 +1,1178 @@
+//! Executing blocks: LinuxCNC's modal state, order of execution, offsets, arcs and feeds.
+//!
+//! The state is kept as LinuxCNC keeps it — positions and offsets in the program's current
+//! length units, so that its tolerances apply exactly — and every motion is converted to
+//! absolute millimetres in the robot's base frame when it is emitted.
+
+use std::collections::VecDeque;
+use std::io::BufRead;
+
+use biscara_motion::{Feed, Motion, MotionKind, Plane};
+
+use crate::error::{GcodeError, Location};
+use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, compact};
+use crate::params::{
+    COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
+    coordinate_system_base,
+};
+use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+
+const MM_PER_INCH: f64 = 25.4;
+/// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
+const RADIUS_TOLERANCE_INCH: f64 = 0.00005;
+/// LinuxCNC's default `CENTER_ARC_RADIUS_TOLERANCE_INCH` (2 · 0.001 · √2).
+const CENTER_ARC_RADIUS_TOLERANCE_INCH: f64 = 2.0 * 0.001 * std::f64::consts::SQRT_2;
+/// LinuxCNC's default `CENTER_ARC_RADIUS_TOLERANCE_MM` (2 · 0.01 · √2).
+const CENTER_ARC_RADIUS_TOLERANCE_MM: f64 = 2.0 * 0.01 * std::f64::consts::SQRT_2;
+/// LinuxCNC's `SPIRAL_RELATIVE_TOLERANCE`.
+const SPIRAL_RELATIVE_TOLERANCE: f64 = 0.001;
+/// LinuxCNC's `TINY` (for R-format arcs).
+const TINY: f64 = 1e-12;
+/// The largest position accepted, mm or degrees.
+const MAX_COORDINATE: f64 = 1e6;
+/// The axis letters, in our axis order x y z c.
+const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
+
+/// How to start interpreting a program.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Config {
+    /// The pose the robot is in before the first line, `[x, y, z, c]` in millimetres and
+    /// degrees, base frame; also where G28 and G30 go until G28.1 or G30.1 set them.
+    pub home: [f64; 4],
+    /// The G54 offset in force before the first line, `[x, y, z, c]` (mm, degrees): shifts the
+    /// whole program (`--origin`).
+    pub origin: [f64; 4],
+    /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
+    /// default, as in LinuxCNC.
+    pub block_delete: bool,
+}
+
+impl Default for Config {
+    fn default() -> Config {
+        Config { home: [0.0; 4], origin: [0.0; 4], block_delete: false }
+    }
+}
+
+/// Interprets the G-code read from `reader`: an iterator of motions in program order, which
+/// stops after the first error. Memory does not grow with the program's length.
+pub fn interpret<R: BufRead>(reader: R, config: &Config) -> Interpreter<R> {
+    Interpreter::new(reader, config)
+}
+
+/// The iterator returned by [`interpret`].
+#[derive(Debug)]
+pub struct Interpreter<R> {
+    lines: LineReader<R>,
+    compact: Compact,
+    block: Block,
+    state: State,
+    queue: VecDeque<Motion>,
+    block_delete: bool,
+    percent: Percent,
+    finished: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Percent {
+    /// Before the first line.
+    Unknown,
+    /// The program started with `%`: it ends at the next `%`.
+    Open,
+    /// The program did not start with `%`: it ends with M2 or M30.
+    Absent,
+}
+
+/// LinuxCNC's modal state and position, in the program's current length units.
+#[derive(Debug)]
+struct State {
+    metric: bool,
+    incremental: bool,
+    ijk_absolute: bool,
+    plane: Plane,
+    inverse_time: bool,
+    /// The F number in force (program units per minute).
+    feed_rate: f64,
+    /// The feed rate in force as the machine holds it: mm/min, converted when it was set.
+    feed_mm: f64,
+    /// 0, 10, 20, 30 for G0–G3; `None` after G80 and at the start.
+    motion: Option<u16>,
+    current: [f64; 4],
+    origin: [f64; 4],
+    axis_offset: [f64; 4],
+    system: usize,
+    params: Params,
+    line: usize,
+    speed: f64,
+    tool: f64,
+    selected_tool: f64,
+    spindle: u16,
+    mist: bool,
+    flood: bool,
+}
+
+impl State {
+    fn new(config: &Config) -> State {
+        let mut params = Params::new();
+        for axis in 0..4 {
+            params.set(G28_HOME + axis_slot(axis), config.home[axis]);
+            params.set(G30_HOME + axis_slot(axis), config.home[axis]);
+            params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
+        }
+        params.set(COORDINATE_SYSTEM, 1.0);
+        let current = std::array::from_fn(|axis| config.home[axis] - config.origin[axis]);
+        let mut state = State {
+            metric: true,
+            incremental: false,
+            ijk_absolute: false,
+            plane: Plane::Xy,
+            inverse_time: false,
+            feed_rate: 0.0,
+            feed_mm: 0.0,
+            motion: None,
+            current,
+            origin: config.origin,
+            axis_offset: [0.0; 4],
+            system: 1,
+            params,
+            line: 0,
+            speed: 0.0,
+            tool: 0.0,
+            selected_tool: 0.0,
+            spindle: 5,
+            mist: false,
+            flood: false,
+        };
+        state.publish_position();
+        state
+    }
+
+    /// Millimetres per program unit.
+    fn factor(&self) -> f64 {
+        if self.metric { 1.0 } else { MM_PER_INCH }
+    }
+
+    /// Program units → mm for `axis` (C is in degrees whatever the units).
+    fn to_mm(&self, axis: usize, value: f64) -> f64 {
+        if axis == 3 { value } else { value * self.factor() }
+    }
+
+    fn mm_to_program(&self, axis: usize, value: f64) -> f64 {
+        if axis == 3 { value } else { value / self.factor() }
+    }
+
+    /// A position in the current coordinate system → absolute mm and degrees.
+    fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
+        std::array::from_fn(|axis| {
+            self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
+        })
+    }
+
+    /// Parameters 5420–5428: the current position.
+    fn publish_position(&mut self) {
+        for axis in 0..4 {
+            self.params.set(5420 + axis_slot(axis), self.current[axis]);
+        }
+    }
+}
+
+impl Predefined for State {
+    fn predefined(&self, name: &[u8]) -> Option<f64> {
+        let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
+        let machine = |axis: usize| self.current[axis] + self.origin[axis] + self.axis_offset[axis];
+        Some(match name {
+            b"_x" => self.current[0],
+            b"_y" => self.current[1],
+            b"_z" => self.current[2],
+            b"_c" => self.current[3],
+            b"_a" | b"_b" | b"_u" | b"_v" | b"_w" => 0.0,
+            b"_abs_x" => machine(0),
+            b"_abs_y" => machine(1),
+            b"_abs_z" => machine(2),
+            b"_abs_c" => machine(3),
+            b"_abs_a" | b"_abs_b" | b"_abs_u" | b"_abs_v" | b"_abs_w" => 0.0,
+            b"_metric" => flag(self.metric),
+            b"_imperial" => flag(!self.metric),
+            b"_absolute" => flag(!self.incremental),
+            b"_incremental" => flag(self.incremental),
+            b"_inverse_time" => flag(self.inverse_time),
+            b"_units_per_minute" => flag(!self.inverse_time),
+            b"_units_per_rev" => 0.0,
+            b"_ijk_absolute_mode" => flag(self.ijk_absolute),
+            b"_coord_system" => match self.system {
+                7..=9 => 590.0 + (self.system - 6) as f64,
+                n => 530.0 + 10.0 * n as f64,
+            },
+            b"_plane" => match self.plane {
+                Plane::Xy => 170.0,
+                Plane::Xz => 180.0,
+                Plane::Yz => 190.0,
+            },
+            b"_motion_mode" => self.motion.map_or(800.0, f64::from),
+            b"_ccomp" => 400.0,
+            b"_feed" => self.feed_rate,
+            b"_rpm" => self.speed,
+            b"_current_tool" => self.tool,
+            b"_selected_tool" => self.selected_tool,
+            b"_current_pocket" | b"_selected_pocket" | b"_tool_offset" => 0.0,
+            b"_spindle_on" => flag(self.spindle != 5),
+            b"_spindle_cw" => flag(self.spindle == 3),
+            b"_mist" => flag(self.mist),
+            b"_flood" => flag(self.flood),
+            b"_line" => self.line as f64,
+            b"_lathe_diameter_mode" => 0.0,
+            b"_lathe_radius_mode" => 1.0,
+            b"_spindle_rpm_mode" => 1.0,
+            b"_spindle_css_mode" => 0.0,
+            b"_speed_override" | b"_feed_override" | b"_adaptive_feed" | b"_feed_hold" => 0.0,
+            b"_value" | b"_value_returned" | b"_call_level" | b"_remap_level" | b"_task" => 0.0,
+            b"_vmajor" => 2.0,
+            b"_vminor" => 9.0,
+            _ => return None,
+        })
+    }
+}
+
+impl<R: BufRead> Interpreter<R> {
+    fn new(reader: R, config: &Config) -> Interpreter<R> {
+        Interpreter {
+            lines: LineReader::new(reader),
+            compact: Compact::default(),
+            block: Block::default(),
+            state: State::new(config),
+            queue: VecDeque::with_capacity(8),
+            block_delete: config.block_delete,
+            percent: Percent::Unknown,
+            finished: false,
+        }
+    }
+
+    fn location(&self, start: usize, end: usize) -> Location {
+        let raw = &self.lines.line;
+        let shown = &raw[..raw.len().min(MAX_LINE + 1)];
+        let text: String = String::from_utf8_lossy(shown)
+            .chars()
+            .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
+            .collect();
+        Location { line: self.lines.number, column: start + 1, span: (start, end), text }
+    }
+
+    fn error(&self, fault: Fault) -> GcodeError {
+        let at = self.location(fault.start, fault.end);
+        match fault.kind {
+            FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
+            FaultKind::Invalid => GcodeError::Invalid { at, message: fault.message },
+            FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
+            FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
+        }
+    }
+
+    /// Reads and executes lines until a motion is queued, the program ends, or an error.
+    fn step(&mut self) -> Result<(), GcodeError> {
+        loop {
+            let more = self
+                .lines
+                .next_line()
+                .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
+            if !more {
+                self.finished = true;
+                return Err(match self.percent {
+                    Percent::Open => {
+                        GcodeError::NoClosingPercent { line: self.lines.number.max(1) }
+                    }
+                    _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
+                });
+            }
+            if self.lines.too_long {
+                return Err(GcodeError::LineTooLong {
+                    at: self.location(MAX_LINE, MAX_LINE + 1),
+                    max: MAX_LINE,
+                });
+            }
+            let trimmed = self.lines.line.trim_ascii();
+            if self.percent == Percent::Unknown {
+                if trimmed.first() == Some(&b'%') {
+                    self.percent = Percent::Open;
+                    continue;
+                }
+                self.percent = Percent::Absent;
+            } else if self.percent == Percent::Open && trimmed == b"%" {
+                self.finished = true;
+                return Ok(());
+            }
+            self.state.line = self.lines.number;
+            compact(&self.lines.line, &mut self.compact).map_err(|fault| self.error(fault))?;
+            if self.compact.bytes.is_empty() {
+                continue;
+            }
+            if self.block_delete && self.compact.bytes[0] == b'/' {
+                continue;
+            }
+            let raw_len = self.lines.line.len();
+            let result = {
+                let mut reader =
+                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+                reader.read_block(&mut self.block)
+            };
+            result.map_err(|fault| self.error(fault))?;
+            self.execute().map_err(|fault| self.error(fault))?;
+            if !self.queue.is_empty() || self.finished {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Raw column range of the block's compact range `start..end`.
+    fn span(&self, start: usize, end: usize) -> (usize, usize) {
+        let raw_len = self.lines.line.len();
+        let first = self.compact.column(start, raw_len);
+        let last = if end > start { self.compact.column(end - 1, raw_len) + 1 } else { first };
+        (first, last.max(first + 1))
+    }
+
+    fn fault_at(&self, start: usize, end: usize, message: impl Into<String>) -> Fault {
+        let (first, last) = self.span(start, end);
+        Fault::invalid(first, last, message)
+    }
+
+    fn word_fault(&self, word: Word, message: impl Into<String>) -> Fault {
+        self.fault_at(word.at, word.end, message)
+    }
+
+    fn code_fault(&self, code: Code, message: impl Into<String>) -> Fault {
+        self.fault_at(code.at, code.end, message)
+    }
+
+    fn emit(&mut self, kind: MotionKind) {
+        self.queue.push_back(Motion { line: self.state.line, kind });
+    }
+
+    /// Executes the block just read, in LinuxCNC's order of execution.
+    fn execute(&mut self) -> Result<(), Fault> {
+        let block = &self.block;
+        if block.empty {
+            return Ok(());
+        }
+        self.check_support()?;
+        let g = self.block.g;
+        let m = self.block.m;
+        let motion_code = g[1];
+        let group0 = g[0];
+        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
+        // check_g_codes / check_other_codes
+        if let (Some(zero), Some(_)) = (group0, motion_code) {
+            if uses_axes(zero.code) {
+                return Err(
+                    self.code_fault(zero, "Cannot use two g codes that both use axis values")
+                );
+            }
+        }
+        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code));
+        let modal_motion = match motion_code {
+            Some(code) => Some(code.code),
+            None => self.state.motion,
+        };
+        if axis_words && !group0_uses_axes {
+            if motion_code.is_some_and(|code| code.code == 800) {
+                let word = self.first_axis_word().unwrap_or(Word { value: 0.0, at: 0, end: 1 });
+                return Err(self.word_fault(word, "Cannot use axis values with g80"));
+            }
+            if modal_motion.is_none() {
+                let word = self.first_axis_word().unwrap_or(Word { value: 0.0, at: 0, end: 1 });
+                return Err(
+                    self.word_fault(word, "Cannot use axis values without a g code that uses them")
+                );
+            }
+        }
+        let motion_to_be = match motion_code {
+            Some(code) if code.code != 800 => Some(code.code),
+            Some(_) => None,
+            None if axis_words && !group0_uses_axes => self.state.motion,
+            None => None,
+        };
+        self.check_other_words(motion_to_be)?;
+        if let Some(zero) = group0.filter(|zero| zero.code == 530) {
+            if !matches!(motion_to_be, Some(0 | 10)) {
+                return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
+            }
+            let incremental = match g[3] {
+                Some(code) => code.code == 910,
+                None => self.state.incremental,
+            };
+            if incremental {
+                return Err(self.code_fault(zero, "Cannot use g53 incremental"));
+            }
+        }
+
+        // Parameter settings take effect after the whole line is read.
+        for index in 0..self.block.numbered.len() {
+            let (number, value) = self.block.numbered[index];
+            self.state.params.set(number, value);
+        }
+        for index in 0..self.block.named.len() {
+            let (start, end, value) = self.block.named[index];
+            self.state.params.set_named(&self.compact.bytes[start..end], value);
+        }
+
+        // 3. feed mode
+        if let Some(code) = g[5] {
+            if code.code == 930 {
+                self.state.inverse_time = true;
+            } else {
+                self.state.inverse_time = false;
+                self.state.feed_rate = 0.0;
+                self.state.feed_mm = 0.0;
+            }
+        }
+        // 4. feed rate
+        if let Some(f) = self.block.word(b'f') {
+            if f.value < 0.0 {
+                return Err(self.word_fault(f, "Negative F word found"));
+            }
+            if !self.state.inverse_time {
+                self.state.feed_rate = f.value;
+                self.state.feed_mm = f.value * self.state.factor();
+            }
+        }
+        // 5, 6. spindle speed, tool selection: no effect on motion.
+        if let Some(s) = self.block.word(b's') {
+            if s.value < 0.0 {
+                return Err(self.word_fault(s, "Negative spindle speed used"));
+            }
+            self.state.speed = s.value;
+        }
+        if let Some(t) = self.block.word(b't') {
+            if t.value < 0.0 {
+                return Err(self.word_fault(t, "Negative tool id used"));
+            }
+            self.state.selected_tool = t.value;
+        }
+        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)
+        if m[6].is_some() {
+            self.state.tool = self.state.selected_tool;
+            self.state.spindle = 5;
+            self.emit(MotionKind::GripperOff);
+        }
+        // 9. spindle: the gripper
+        if let Some(code) = m[7] {
+            self.state.spindle = code.code;
+            self.emit(match code.code {
+                3 => MotionKind::Pick,
+                4 => MotionKind::Place,
+                _ => MotionKind::GripperOff,
+            });
+        }
+        // 11. coolant
+        if let Some(code) = m[8] {
+            match code.code {
+                7 => self.state.mist = true,
+                8 => self.state.flood = true,
+                _ => (self.state.mist, self.state.flood) = (false, false),
+            }
+        }
+        // 14. dwell
+        if let Some(code) = group0.filter(|zero| zero.code == 40) {
+            match self.block.word(b'p') {
+                Some(p) if p.value >= 0.0 => self.emit(MotionKind::Dwell { seconds: p.value }),
+                _ => return Err(self.code_fault(code, "Dwell time missing with g4")),
+            }
+        }
+        // 15. plane
+        if let Some(code) = g[2] {
+            self.state.plane = match code.code {
+                170 => Plane::Xy,
+                180 => Plane::Xz,
+                _ => Plane::Yz,
+            };
+        }
+        // 16. length units
+        if let Some(code) = g[6] {
+            self.set_units(code.code == 210);
+        }
+        // 19. coordinate system
+        if let Some(code) = g[12] {
+            let system = match code.code {
+                540 => 1,
+                550 => 2,
+                560 => 3,
+                570 => 4,
+                580 => 5,
+                590 => 6,
+                591 => 7,
+                592 => 8,
+                _ => 9,
+            };
+            self.select_system(system);
+        }
+        // 21. distance modes
+        if let Some(code) = g[3] {
+            self.state.incremental = code.code == 910;
+        }
+        if let Some(code) = g[4] {
+            self.state.ijk_absolute = code.code == 901;
+        }
+        // 23. G10, G28, G30, G92 family
+        if let Some(zero) = group0 {
+            match zero.code {
+                100 => self.set_coordinate_data(zero)?,
+                280 | 300 => self.go_home(zero)?,
+                281 | 301 => {
+                    let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
+                    for axis in 0..4 {
+                        let machine = self.state.current[axis]
+                            + self.state.origin[axis]
+                            + self.state.axis_offset[axis];
+                        let value = self.state.to_mm(axis, machine);
+                        self.state.params.set(base + axis_slot(axis), value);
+                    }
+                }
+                920 => self.set_axis_offsets(zero)?,
+                921 | 922 => {
+                    self.apply_axis_offsets([0.0; 4]);
+                    if zero.code == 921 {
+                        for slot in 0..10 {
+                            self.state.params.set(G92_ENABLED + slot, 0.0);
+                        }
+                    }
+                }
+                923 => {
+                    let offsets = std::array::from_fn(|axis| {
+                        let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
+                        self.state.mm_to_program(axis, value)
+                    });
+                    self.apply_axis_offsets(offsets);
+                }
+                _ => {}
+            }
+        }
+        // 24. motion
+        if let Some(code) = motion_code {
+            self.state.motion = if code.code == 800 { None } else { Some(code.code) };
+        }
+        if let Some(motion) = motion_to_be {
+            let g53 = group0.is_some_and(|zero| zero.code == 530);
+            match motion {
+                0 | 10 => self.straight(motion, g53)?,
+                _ => self.arc(motion == 20)?,
+            }
+        }
+        self.check_range()?;
+        // 25. stop
+        if let Some(code) = m[4] {
+            match code.code {
+                2 | 30 => {
+                    self.emit(MotionKind::End);
+                    self.finished = true;
+                }
+                _ => self.emit(MotionKind::Pause),
+            }
+        }
+        self.state.publish_position();
+        Ok(())
+    }
+
+    /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
+    /// 240-digit number), rather than passing them on.
+    fn check_range(&self) -> Result<(), Fault> {
+        for motion in &self.queue {
+            let mut values = [0.0; 6];
+            let mut count = 0;
+            if let Some(end) = motion.kind.end() {
+                values[..4].copy_from_slice(&end);
+                count = 4;
+            }
+            if let MotionKind::Arc { center, .. } = motion.kind {
+                values[4..].copy_from_slice(&center);
+                count = 6;
+            }
+            if let Some(value) = values[..count].iter().find(|value| value.abs() > MAX_COORDINATE) {
+                let word = self.first_axis_word().map_or((0, 1), |word| (word.at, word.end));
+                return Err(self.fault_at(
+                    word.0,
+                    word.1,
+                    format!(
+                        "{value:e} is out of range: positions must lie within ±{MAX_COORDINATE:e} \
+                         mm (or degrees)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn first_axis_word(&self) -> Option<Word> {
+        AXES.iter().filter_map(|&letter| self.block.word(letter)).min_by_key(|word| word.at)
+    }
+
+    /// Refuses codes and words this interpreter does not implement.
+    fn check_support(&self) -> Result<(), Fault> {
+        for code in self.block.g.iter().flatten() {
+            if let Some((_, Support::No(note))) = g_group(code.code) {
+                let name = if code.code % 10 == 0 {
+                    format!("G{}", code.code / 10)
+                } else {
+                    format!("G{}.{}", code.code / 10, code.code % 10)
+                };
+                let (first, last) = self.span(code.at, code.end);
+                return Err(Fault::not_supported(first, last, name, note));
+            }
+        }
+        for code in self.block.m.iter().flatten() {
+            if let Some((_, Support::No(note))) = m_group(code.code) {
+                let (first, last) = self.span(code.at, code.end);
+                return Err(Fault::not_supported(first, last, format!("M{}", code.code), note));
+            }
+        }
+        Ok(())
+    }
+
+    /// LinuxCNC's checks of words no code in the block uses.
+    fn check_other_words(&self, motion: Option<u16>) -> Result<(), Fault> {
+        let block = &self.block;
+        let group0 = block.g[0].map(|code| code.code);
+        let arc = matches!(motion, Some(20 | 30));
+        let g10 = group0 == Some(100);
+        let checks: [(u8, bool, &str); 8] = [
+            (
+                b'd',
+                false,
+                "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+            ),
+            (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
+            (b'h', false, "H word with no G43 or G76 to use it"),
+            (
+                b'i',
+                arc || g10,
+                "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
+            ),
+            (b'j', arc || g10, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
+            (b'k', arc, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
+            (
+                b'l',
+                g10,
+                "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
+                 or NURBS code",
+            ),
+            (b'r', arc || g10, "R word with no g code that uses it"),
+        ];
+        for (letter, used, message) in checks {
+            if let Some(word) = block.word(letter) {
+                if !used {
+                    return Err(self.word_fault(word, message));
+                }
+            }
+        }
+        if let Some(p) = block.word(b'p') {
+            let used = arc || matches!(group0, Some(40 | 100)) || block.g[13].is_some();
+            if !used {
+                return Err(self.word_fault(
+                    p,
+                    "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 \
+                     M53 M62 M63 M64 M65 M66 M98 or user M code to use it",
+                ));
+            }
+        }
+        if let Some(q) = block.word(b'q') {
+            if block.g[13].is_none() && !g10 {
+                return Err(self.word_fault(
+                    q,
+                    "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
+                     that uses it",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn set_units(&mut self, metric: bool) {
+        if self.state.metric == metric {
+            return;
+        }
+        let scale = if metric { MM_PER_INCH } else { 1.0 / MM_PER_INCH };
+        for axis in 0..3 {
+            self.state.current[axis] *= scale;
+            self.state.origin[axis] *= scale;
+            self.state.axis_offset[axis] *= scale;
+        }
+        self.state.metric = metric;
+    }
+
+    fn select_system(&mut self, system: usize) {
+        let base = coordinate_system_base(system);
+        for axis in 0..4 {
+            let origin =
+                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
+            self.state.current[axis] += self.state.origin[axis] - origin;
+            self.state.origin[axis] = origin;
+        }
+        self.state.system = system;
+        self.state.params.set(COORDINATE_SYSTEM, system as f64);
+    }
+
+    /// G10 L2 and L20.
+    fn set_coordinate_data(&mut self, code: Code) -> Result<(), Fault> {
+        let Some(l) = self.block.word(b'l') else {
+            return Err(
+                self.code_fault(code, "Line with G10 does not have L0, L1, L10, L11, L2, or L20")
+            );
+        };
+        let l_value = l.value as i64;
+        match l_value {
+            2 | 20 => {}
+            0 | 1 | 10 | 11 => {
+                let (first, last) = self.span(code.at, l.end.max(code.end));
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    format!("G10 L{l_value}"),
+                    "tool table",
+                ));
+            }
+            _ => {
+                return Err(
+                    self.word_fault(l, "Line with G10 does not have L0, L1, L10, L11, L2, or L20")
+                );
+            }
+        }
+        let system = match self.block.word(b'p') {
+            Some(p) if (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0 => p.value as usize,
+            _ => {
+                return Err(self
+                    .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));
+            }
+        };
+        if let Some(r) = self.block.word(b'r') {
+            let (first, last) = self.span(r.at, r.end);
+            return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
+        }
+        let system = if system == 0 { self.state.system } else { system };
+        let base = coordinate_system_base(system);
+        for (axis, &letter) in AXES.iter().enumerate() {
+            let Some(word) = self.block.word(letter) else { continue };
+            let origin = if l_value == 2 {
+                word.value
+            } else {
+                self.state.current[axis] + self.state.origin[axis] - word.value
+            };
+            let value = self.state.to_mm(axis, origin);
+            self.state.params.set(base + axis_slot(axis), value);
+        }
+        if system == self.state.system {
+            self.select_system(system);
+        }
+        Ok(())
+    }
+
+    /// G92: offsets that make the current point have the given coordinates.
+    fn set_axis_offsets(&mut self, code: Code) -> Result<(), Fault> {
+        if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
+            return Err(self.code_fault(code, "All axes missing with g52 or g92"));
+        }
+        let mut offsets = self.state.axis_offset;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                offsets[axis] =
+                    self.state.current[axis] + self.state.axis_offset[axis] - word.value;
+            }
+        }
+        self.apply_axis_offsets(offsets);
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            let value = self.state.to_mm(axis, offset);
+            self.state.params.set(G92_OFFSET + axis_slot(axis), value);
+        }
+        self.state.params.set(G92_ENABLED, 1.0);
+        Ok(())
+    }
+
+    fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            self.state.current[axis] += self.state.axis_offset[axis] - offset;
+            self.state.axis_offset[axis] = offset;
+        }
+    }
+
+    /// End point of a move (`find_ends`).
+    fn find_ends(&self, g53: bool) -> [f64; 4] {
+        std::array::from_fn(|axis| {
+            let word = self.block.word(AXES[axis]).map(|word| word.value);
+            let current = self.state.current[axis];
+            match word {
+                None => current,
+                Some(value) if g53 => {
+                    value - self.state.origin[axis] - self.state.axis_offset[axis]
+                }
+                Some(value) if self.state.incremental => current + value,
+                Some(value) => value,
+            }
+        })
+    }
+
+    /// G28 and G30: through the intermediate point to the stored position.
+    fn go_home(&mut self, code: Code) -> Result<(), Fault> {
+        let intermediate = self.find_ends(false);
+        self.move_to(intermediate, None);
+        let base = if code.code == 280 { G28_HOME } else { G30_HOME };
+        let any = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        let mut end = intermediate;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if any && self.block.word(letter).is_none() {
+                continue;
+            }
+            let machine =
+                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
+            end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+        }
+        self.move_to(end, None);
+        Ok(())
+    }
+
+    /// Emits a rapid (`feed` = None) or linear move and makes `end` the current point.
+    fn move_to(&mut self, end: [f64; 4], feed: Option<Feed>) {
+        let absolute = self.state.absolute(end);
+        self.emit(match feed {
+            None => MotionKind::Rapid { end: absolute },
+            Some(feed) => MotionKind::Linear { end: absolute, feed },
+        });
+        self.state.current = end;
+    }
+
+    fn straight(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
+        let end = self.find_ends(g53);
+        if motion == 0 {
+            self.move_to(end, None);
+            return Ok(());
+        }
+        let feed = if self.state.inverse_time {
+            let Some(f) = self.block.word(b'f') else {
+                let code = self.block.g[1].map_or((0, 1), |code| (code.at, code.end));
+                return Err(self.fault_at(
+                    code.0,
+                    code.1,
+                    "F word missing with inverse time g1 move",
+                ));
+            };
+            let length = straight_length(self.state.current, end);
+            let rate = (length * f.value).max(0.1);
+            Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
+        } else {
+            if self.state.feed_rate == 0.0 {
+                let code = self.block.g[1].map_or_else(
+                    || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
+                    |code| (code.at, code.end),
+                );
+                return Err(self.fault_at(
+                    code.0,
+                    code.1,
+                    "Cannot do g1 with zero feed rate: program a feed rate with an F word (mm/min, \
+                     or in/min under G20) before or on this line",
+                ));
+            }
+            Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
+        };
+        self.move_to(end, Some(feed));
+        Ok(())
+    }
+
+    /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
+    fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
+        let code_at = self.block.g[1].map_or_else(
+            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
+            |code| (code.at, code.end),
+        );
+        let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
+        let word = |letter: u8| self.block.word(letter);
+        let (i, j, k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
+        let ijk = i.is_some() || j.is_some() || k.is_some();
+        if r.is_none() && !ijk {
+            return Err(fail(
+                self,
+                "R i j k words all missing for arc: give the centre with I J K (offsets from the \
+                 start) or the radius with R"
+                    .into(),
+            ));
+        }
+        if r.is_some() && ijk {
+            return Err(fail(self, "Mixed radius ijk format for arc".into()));
+        }
+        let f = self.block.word(b'f');
+        if self.state.inverse_time {
+            if f.is_none() {
+                return Err(fail(self, "F word missing with inverse time arc move".into()));
+            }
+        } else if self.state.feed_rate == 0.0 {
+            return Err(fail(
+                self,
+                "Cannot make arc with zero feed rate: program a feed rate with an F word".into(),
+            ));
+        }
+        let plane = self.state.plane;
+        let [first, second, normal] = plane.axes();
+        let letters = [b'i', b'j', b'k'];
+        let offsets = [i, j, k];
+        let mut offset1 = 0.0;
+        let mut offset2 = 0.0;
+        if ijk {
+            let forbidden = letters[normal];
+            if let Some(word) = offsets[normal] {
+                let name = match plane {
+                    Plane::Xy => "K word given for arc in xy plane",
+                    Plane::Xz => "J word given for arc in xz plane",
+                    Plane::Yz => "I word given for arc in yz plane",
+                };
+                let _ = forbidden;
+                return Err(self.word_fault(word, name));
+            }
+            for (value, axis) in [(&mut offset1, first), (&mut offset2, second)] {
+                match offsets[axis] {
+                    Some(word) => *value = word.value,
+                    None if self.state.ijk_absolute => {
+                        return Err(fail(
+                            self,
+                            format!(
+                                "{} word missing in absolute center arc",
+                                char::from(letters[axis]).to_ascii_uppercase()
+                            ),
+                        ));
+                    }
+                    None => *value = 0.0,
+                }
+            }
+        } else {
+            let has = |axis: usize| self.block.word(AXES[axis]).is_some();
+            if !has(first) && !has(second) {
+                let message = match plane {
+                    Plane::Xy => "X and y words missing for arc in xy plane",
+                    Plane::Xz => "X and z words missing for arc in xz plane",
+                    Plane::Yz => "Y and z words missing for arc in yz plane",
+                };
+                return Err(fail(self, message.into()));
+            }
+        }
+        let turns = match self.block.word(b'p') {
+            None => 1,
+            Some(p) => {
+                let rounded = p.value.round();
+                if (p.value - rounded).abs() > 0.0001 {
+                    return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
+                }
+                if rounded < 1.0 {
+                    return Err(self.word_fault(p, "P value should be 1 or greater with G2 or G3"));
+                }
+                if rounded > 1e6 {
+                    return Err(
+                        self.word_fault(p, "P value is too large (more than 1000000 turns)")
+                    );
+                }
+                rounded as u32
+            }
+        };
+        let end = self.find_ends(false);
+        let current = self.state.current;
+        let (c1, c2) = (current[first], current[second]);
+        let (e1, e2) = (end[first], end[second]);
+        let inch = !self.state.metric;
+        let radius_tolerance =
+            if inch { RADIUS_TOLERANCE_INCH } else { RADIUS_TOLERANCE_INCH * MM_PER_INCH };
+        let names = [
+            char::from(AXES[first]).to_ascii_uppercase(),
+            char::from(AXES[second]).to_ascii_uppercase(),
+        ];
+        let (center1, center2) = if let Some(r) = r {
+            if e1 == c1 && e2 == c2 {
+                return Err(fail(self, "Current point same as end point of arc".into()));
+            }
+            let radius = r.value;
+            let abs_radius = radius.abs();
+            let mid1 = (e1 + c1) / 2.0;
+            let mid2 = (e2 + c2) / 2.0;
+            let mut half_length = (mid1 - e1).hypot(mid2 - e2);
+            if half_length - abs_radius > radius_tolerance {
+                return Err(fail(
+                    self,
+                    format!(
+                        "Arc radius too small to reach end point: R{abs_radius} cannot span the \
+                         {:.4} between start and end",
+                        2.0 * half_length
+                    ),
+                ));
+            }
+            if half_length / abs_radius > 1.0 - TINY {
+                half_length = abs_radius;
+            }
+            let base = (e2 - c2).atan2(e1 - c1);
+            let theta = if (clockwise && radius > 0.0) || (!clockwise && radius < 0.0) {
+                base - std::f64::consts::FRAC_PI_2
+            } else {
+                base + std::f64::consts::FRAC_PI_2
+            };
+            let turn2 = (half_length / abs_radius).asin();
+            let offset = abs_radius * turn2.cos();
+            (mid1 + offset * theta.cos(), mid2 + offset * theta.sin())
+        } else {
+            let (center1, center2) = if self.state.ijk_absolute {
+                (offset1, offset2)
+            } else {
+                (c1 + offset1, c2 + offset2)
+            };
+            let radius = (center1 - c1).hypot(center2 - c2);
+            let radius2 = (center1 - e1).hypot(center2 - e2);
+            let describe = || {
+                format!(
+                    "start=({a}{c1:.4},{b}{c2:.4}) center=({a}{center1:.4},{b}{center2:.4}) \
+                     end=({a}{e1:.4},{b}{e2:.4}) r1={radius:.4} r2={radius2:.4}",
+                    a = names[0],
+                    b = names[1],
+                )
+            };
+            if radius < radius_tolerance || radius2 < radius_tolerance {
+                return Err(fail(self, format!("Zero-radius arc: {}", describe())));
+            }
+            let abs_err = (radius - radius2).abs();
+            let rel_err = abs_err / radius.max(radius2);
+            let spiral = if inch {
+                CENTER_ARC_RADIUS_TOLERANCE_INCH
+            } else {
+                CENTER_ARC_RADIUS_TOLERANCE_MM
+            };
+            if abs_err > spiral && rel_err > SPIRAL_RELATIVE_TOLERANCE {
+                return Err(fail(
+                    self,
+                    format!(
+                        "Radius to end of arc differs from radius to start: {} abs_err={} \
+                         rel_err={:.4}% (LinuxCNC allows {:.4} {} or 0.1%)",
+                        describe(),
+                        format_g4(abs_err),
+                        rel_err * 100.0,
+                        spiral,
+                        if inch { "in" } else { "mm" },
+                    ),
+                ));
+            }
+            (center1, center2)
+        };
+        let feed = if self.state.inverse_time {
+            let f = f.map_or(0.0, |word| word.value);
+            let turn = if clockwise { -(turns as i64) } else { turns as i64 };
+            let length = arc_length(
+                [c1, c2, current[normal]],
+                [center1, center2],
+                turn,
+                [e1, e2, end[normal]],
+            );
+            let rate = (length * f).max(0.1);
+            Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
+        } else {
+            Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
+        };
+        let mut center_position = self.state.current;
+        center_position[first] = center1;
+        center_position[second] = center2;
+        let center_absolute = self.state.absolute(center_position);
+        let absolute = self.state.absolute(end);
+        self.emit(MotionKind::Arc {
+            end: absolute,
+            center: [center_absolute[first], center_absolute[second]],
+            plane,
+            clockwise,
+            turns,
+            feed,
+        });
+        self.state.current = end;
+        Ok(())
+    }
+}
+
+/// LinuxCNC's `find_straight_length` for X Y Z C: the XYZ length, or the C length for a move
+/// with no XYZ motion.
+fn straight_length(from: [f64; 4], to: [f64; 4]) -> f64 {
+    let linear = (0..3).any(|axis| from[axis] != to[axis]) || from[3] == to[3];
+    if linear {
+        ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2) + (to[2] - from[2]).powi(2)).sqrt()
+    } else {
+        (to[3] - from[3]).abs()
+    }
+}
+
+/// LinuxCNC's `find_arc_length` (with `find_turn`): `turn` is negative for clockwise.
+fn arc_length(start: [f64; 3], center: [f64; 2], turn: i64, end: [f64; 3]) -> f64 {
+    use std::f64::consts::PI;
+    let radius = (center[0] - start[0]).hypot(center[1] - start[1]);
+    let mut alpha = (start[1] - center[1]).atan2(start[0] - center[0]);
+    let mut beta = (end[1] - center[1]).atan2(end[0] - center[0]);
+    let theta = if turn > 0 {
+        if beta <= alpha {
+            beta += 2.0 * PI;
+        }
+        (beta - alpha) + ((turn - 1) as f64 * 2.0 * PI)
+    } else {
+        if alpha <= beta {
+            alpha += 2.0 * PI;
+        }
+        (beta - alpha) + ((turn + 1) as f64 * 2.0 * PI)
+    };
+    if end[2] == start[2] {
+        radius * theta.abs()
+    } else {
+        (radius * theta).hypot(end[2] - start[2])
+    }
+}
+
+/// C's `%.4g`, roughly: four significant digits, trailing zeros dropped.
+fn format_g4(value: f64) -> String {
+    if value == 0.0 {
+        return "0".to_owned();
+    }
+    let exponent = value.abs().log10().floor() as i32;
+    if !(-5..4).contains(&exponent) {
+        return format!("{value:.3e}");
+    }
+    let decimals = (3 - exponent).max(0) as usize;
+    let text = format!("{value:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
+}
+
+impl<R: BufRead> Iterator for Interpreter<R> {
+    type Item = Result<Motion, GcodeError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if let Some(motion) = self.queue.pop_front() {
+                return Some(Ok(motion));
+            }
+            if self.finished {
+                return None;
+            }
+            if let Err(err) = self.step() {
+                self.finished = true;
+                self.queue.clear();
+                return Some(Err(err));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn g4_formats_like_c() {
+        assert_eq!(format_g4(0.03), "0.03");
+        assert_eq!(format_g4(1.0), "1");
+        assert_eq!(format_g4(0.123456), "0.1235");
+    }
+
+    #[test]
+    fn arc_lengths_follow_the_turns() {
+        let quarter = arc_length([1.0, 0.0, 0.0], [0.0, 0.0], 1, [0.0, 1.0, 0.0]);
+        assert!((quarter - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let three_quarters = arc_length([1.0, 0.0, 0.0], [0.0, 0.0], -1, [0.0, 1.0, 0.0]);
+        assert!((three_quarters - 3.0 * std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let full = arc_length([1.0, 0.0, 0.0], [0.0, 0.0], 2, [1.0, 0.0, 0.0]);
+        assert!((full - 4.0 * std::f64::consts::PI).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,39 @@
+//! LinuxCNC's RS274/NGC G-code for a robot with the axes X Y Z C, interpreted into
+//! [`Motion`](biscara_motion::Motion)s: the paper's `gcodeInterpreter`, made a real
+//! interpreter (SPEC §4.2).
+//!
+//! It reads programs exactly as LinuxCNC's interpreter reads them — words and blocks, modal
+//! groups and their checks, the order of execution within a block, numbered and named
+//! parameters, expressions with LinuxCNC's operators, precedence and functions, arcs in the
+//! I J K and R forms with LinuxCNC's tolerances, G20 inches, the G54–G59.3, G92 and G53
+//! offsets, G28/G30, G93 inverse time — and emits every move as absolute millimetres and
+//! degrees in the robot's base frame. It streams: the interpreter is an iterator over an
+//! [`std::io::BufRead`] that holds one line at a time.
+//!
+//! It deliberately does not: know the robot (no kinematics; the home pose is a plain number),
+//! print, or guess. O-word control flow, cutter compensation, canned cycles, threading and the
+//! other codes outside SPEC §4.2's tiers 1 and 2 are refused with "… is not supported yet",
+//! never interpreted wrongly; A, B, U, V and W words are errors.
+//!
+//! ```
+//! use biscara_gcode::{Config, interpret};
+//! use biscara_motion::MotionKind;
+//!
+//! let program = "G21 G90\nG0 X10 Y20\nG1 X20 F600\nG2 X30 Y30 I5 J5\nM2\n";
+//! let config = Config { home: [0.0, 400.0, 100.0, 0.0], ..Config::default() };
+//! let motions: Vec<_> = interpret(program.as_bytes(), &config).collect::<Result<_, _>>()?;
+//! assert_eq!(motions[0].kind, MotionKind::Rapid { end: [10.0, 20.0, 100.0, 0.0] });
+//! assert_eq!(motions.last().map(|motion| motion.kind), Some(MotionKind::End));
+//! # Ok::<(), biscara_gcode::GcodeError>(())
+//! ```
+
+#![warn(missing_docs)]
+
+mod error;
+mod interpreter;
+mod lexer;
+mod params;
+mod parser;
+
+pub use error::{GcodeError, Location};
+pub use interpreter::{Config, Interpreter, interpret};

@@ -1,0 +1,69 @@
+//! Parameters: numbered (`#1` … `#5601`) and named (`#<name>` local, `#<_name>` global).
+
+use std::collections::HashMap;
+
+/// LinuxCNC's `RS274NGC_MAX_PARAMETERS`: numbered parameters are `1..MAX_PARAMETERS`.
+pub(crate) const MAX_PARAMETERS: usize = 5602;
+
+/// First parameter of G28's stored position (x y z a b c u v w follow).
+pub(crate) const G28_HOME: usize = 5161;
+/// First parameter of G30's stored position.
+pub(crate) const G30_HOME: usize = 5181;
+/// G92 offsets applied (1) or not (0).
+pub(crate) const G92_ENABLED: usize = 5210;
+/// First parameter of the G92 offsets.
+pub(crate) const G92_OFFSET: usize = 5211;
+/// The active coordinate system, 1 (G54) … 9 (G59.3).
+pub(crate) const COORDINATE_SYSTEM: usize = 5220;
+
+/// First parameter of coordinate system `system` (1 = G54 … 9 = G59.3); x at +0, c at +5, the
+/// rotation R at +9.
+pub(crate) fn coordinate_system_base(system: usize) -> usize {
+    5221 + 20 * (system - 1)
+}
+
+/// Index within a block of 9 axis parameters (x y z a b c u v w) of our axis `axis` (0 = x,
+/// 1 = y, 2 = z, 3 = c).
+pub(crate) fn axis_slot(axis: usize) -> usize {
+    [0, 1, 2, 5][axis]
+}
+
+/// All parameter values.
+#[derive(Debug)]
+pub(crate) struct Params {
+    numbered: Box<[f64]>,
+    named: HashMap<Vec<u8>, f64>,
+}
+
+impl Params {
+    pub(crate) fn new() -> Params {
+        Params { numbered: vec![0.0; MAX_PARAMETERS].into_boxed_slice(), named: HashMap::new() }
+    }
+
+    /// Numbered parameter `index` (checked by the caller to lie in `1..MAX_PARAMETERS`).
+    pub(crate) fn get(&self, index: usize) -> f64 {
+        self.numbered.get(index).copied().unwrap_or(0.0)
+    }
+
+    /// Sets numbered parameter `index`.
+    pub(crate) fn set(&mut self, index: usize, value: f64) {
+        if let Some(slot) = self.numbered.get_mut(index) {
+            *slot = value;
+        }
+    }
+
+    /// A named parameter set by the program, if it was.
+    pub(crate) fn named(&self, name: &[u8]) -> Option<f64> {
+        self.named.get(name).copied()
+    }
+
+    /// Sets a named parameter (allocates only the first time a name is set).
+    pub(crate) fn set_named(&mut self, name: &[u8], value: f64) {
+        match self.named.get_mut(name) {
+            Some(slot) => *slot = value,
+            None => {
+                self.named.insert(name.to_vec(), value);
+            }
+        }
+    }
+}

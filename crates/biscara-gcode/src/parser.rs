@@ -1,0 +1,766 @@
+//! Blocks: the words of one line, with parameters and expressions evaluated as LinuxCNC reads
+//! them (`read_items`, `read_real_value`, `read_real_expression`).
+
+use crate::lexer::{Compact, Fault};
+use crate::params::{MAX_PARAMETERS, Params};
+
+/// Number of G modal groups (LinuxCNC numbers them 0 … 15).
+pub(crate) const G_GROUPS: usize = 16;
+/// Number of M modal groups (LinuxCNC numbers them 0 … 10).
+pub(crate) const M_GROUPS: usize = 11;
+/// LinuxCNC's `MAX_EMS`.
+const MAX_M_CODES: usize = 4;
+
+/// Whether a code is implemented here.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Support {
+    /// Implemented (or accepted as the no-op it is for this robot).
+    Yes,
+    /// Part of LinuxCNC's language, refused with "… is not supported yet".
+    No(&'static str),
+}
+
+/// The modal group of G code `code` (ten times the number: G59.3 = 593) and whether it is
+/// implemented; `None` for a code LinuxCNC does not know.
+pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
+    use Support::{No, Yes};
+    let cycle = No("canned cycle");
+    Some(match code {
+        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => (0, Yes),
+        520 => (0, No("local offset G52")),
+        0 | 10 | 20 | 30 | 800 => (1, Yes),
+        50..=53 => (1, No("spline")),
+        330 | 331 | 760 => (1, No("threading")),
+        382..=385 => (1, No("probing")),
+        730 | 740 | 810..=890 => (1, cycle),
+        700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, No("lathe cycle")),
+        170 | 180 | 190 => (2, Yes),
+        171 | 181 | 191 => (2, No("UVW plane")),
+        900 | 910 => (3, Yes),
+        901 | 911 => (4, Yes),
+        930 | 940 => (5, Yes),
+        950 => (5, No("feed per revolution")),
+        200 | 210 => (6, Yes),
+        400 => (7, Yes),
+        410 | 420 | 411 | 421 => (7, No("cutter radius compensation")),
+        490 => (8, Yes),
+        430..=432 => (8, No("tool length offset")),
+        980 | 990 => (10, Yes),
+        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => (12, Yes),
+        610 | 611 | 640 => (13, Yes),
+        970 => (14, Yes),
+        960 => (14, No("constant surface speed")),
+        80 => (15, Yes),
+        70 => (15, No("lathe diameter mode")),
+        _ => return None,
+    })
+}
+
+/// The modal group of M code `code` and whether it is implemented; `None` when unknown.
+pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
+    use Support::{No, Yes};
+    Some(match code {
+        0 | 1 | 2 | 30 | 60 => (4, Yes),
+        6 => (6, Yes),
+        61 => (6, No("set current tool")),
+        3..=5 => (7, Yes),
+        19 => (7, No("spindle orientation")),
+        7..=9 => (8, Yes),
+        48..=53 => (9, No("override control")),
+        62..=68 => (5, No("digital/analog output")),
+        70..=73 => (4, No("modal state save/restore")),
+        _ => return None,
+    })
+}
+
+/// One word: its value and where it is (compact indices of its letter and its end).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Word {
+    pub value: f64,
+    pub at: usize,
+    pub end: usize,
+}
+
+/// One G or M code of a block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Code {
+    /// Ten times the number for G (G92.1 = 921), the number for M.
+    pub code: u16,
+    pub at: usize,
+    pub end: usize,
+}
+
+/// A parsed block. Reused from line to line (no allocation once warm).
+#[derive(Debug, Default)]
+pub(crate) struct Block {
+    /// Words by letter (`a` = 0); G, M, N and O are not stored here.
+    pub letters: [Option<Word>; 26],
+    pub g: [Option<Code>; G_GROUPS],
+    pub m: [Option<Code>; M_GROUPS],
+    pub m_count: usize,
+    /// `#n=value` settings, in order, applied after the line is read.
+    pub numbered: Vec<(usize, f64)>,
+    /// `#<name>=value` settings: the name's compact range and the value.
+    pub named: Vec<(usize, usize, f64)>,
+    /// Whether the line holds nothing but (perhaps) a line number, a comment or `/`.
+    pub empty: bool,
+}
+
+impl Block {
+    pub(crate) fn clear(&mut self) {
+        self.letters = [None; 26];
+        self.g = [None; G_GROUPS];
+        self.m = [None; M_GROUPS];
+        self.m_count = 0;
+        self.numbered.clear();
+        self.named.clear();
+        self.empty = true;
+    }
+
+    /// The word for `letter` (lower case).
+    pub(crate) fn word(&self, letter: u8) -> Option<Word> {
+        self.letters[usize::from(letter - b'a')]
+    }
+}
+
+/// What the reader needs to know of the interpreter: LinuxCNC's predefined read-only named
+/// parameters (`#<_x>`, `#<_metric>`, …).
+pub(crate) trait Predefined {
+    /// The value of predefined parameter `name` (without `#<` `>`, lower case, with its `_`).
+    fn predefined(&self, name: &[u8]) -> Option<f64>;
+}
+
+/// Binary operators with LinuxCNC's precedence.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Op {
+    RightBracket,
+    And,
+    Or,
+    Xor,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+    Plus,
+    Minus,
+    Times,
+    Divide,
+    Modulo,
+    Power,
+}
+
+impl Op {
+    fn precedence(self) -> u8 {
+        match self {
+            Op::RightBracket => 1,
+            Op::And | Op::Or | Op::Xor => 2,
+            Op::Eq | Op::Ne | Op::Gt | Op::Ge | Op::Lt | Op::Le => 3,
+            Op::Plus | Op::Minus => 4,
+            Op::Times | Op::Divide | Op::Modulo => 5,
+            Op::Power => 6,
+        }
+    }
+}
+
+/// LinuxCNC's `TOLERANCE_EQUAL` for EQ and NE.
+const TOLERANCE_EQUAL: f64 = 0.0001;
+
+/// Reads one line's compact bytes into a block.
+pub(crate) struct Reader<'a> {
+    bytes: &'a [u8],
+    compact: &'a Compact,
+    raw_len: usize,
+    params: &'a Params,
+    predefined: &'a dyn Predefined,
+    pos: usize,
+}
+
+impl<'a> Reader<'a> {
+    pub(crate) fn new(
+        compact: &'a Compact,
+        raw_len: usize,
+        params: &'a Params,
+        predefined: &'a dyn Predefined,
+    ) -> Reader<'a> {
+        Reader { bytes: &compact.bytes, compact, raw_len, params, predefined, pos: 0 }
+    }
+
+    /// Raw column range of compact range `start..end`.
+    pub(crate) fn span(&self, start: usize, end: usize) -> (usize, usize) {
+        let first = self.compact.column(start, self.raw_len);
+        let last = if end > start { self.compact.column(end - 1, self.raw_len) + 1 } else { first };
+        (first, last.max(first + 1))
+    }
+
+    fn syntax(&self, start: usize, end: usize, message: impl Into<String>) -> Fault {
+        let (first, last) = self.span(start, end);
+        Fault::syntax(first, last, message)
+    }
+
+    fn invalid(&self, start: usize, end: usize, message: impl Into<String>) -> Fault {
+        let (first, last) = self.span(start, end);
+        Fault::invalid(first, last, message)
+    }
+
+    fn peek(&self) -> u8 {
+        self.bytes.get(self.pos).copied().unwrap_or(0)
+    }
+
+    fn peek_at(&self, offset: usize) -> u8 {
+        self.bytes.get(self.pos + offset).copied().unwrap_or(0)
+    }
+
+    /// Reads the whole line into `block` (`read_items`).
+    pub(crate) fn read_block(&mut self, block: &mut Block) -> Result<(), Fault> {
+        block.clear();
+        if self.peek() == b'/' {
+            self.pos += 1;
+        }
+        if self.peek() == b'n' {
+            let start = self.pos;
+            self.pos += 1;
+            let number = self.read_number()?;
+            if number < 0.0 {
+                return Err(self.syntax(start, self.pos, "Negative line number (N word)"));
+            }
+        }
+        while self.pos < self.bytes.len() {
+            self.read_item(block)?;
+        }
+        Ok(())
+    }
+
+    fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
+        let start = self.pos;
+        let letter = self.peek();
+        match letter {
+            b'(' => {
+                self.pos += 1;
+                return Ok(());
+            }
+            b'#' => {
+                block.empty = false;
+                return self.read_setting(block);
+            }
+            b'o' => {
+                let (first, last) = self.span(start, self.bytes.len());
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    "O-word",
+                    "subroutines and control flow: o-sub, o-if, o-while, o-repeat",
+                ));
+            }
+            b'@' | b'^' => {
+                let (first, last) = self.span(start, start + 1);
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    format!("the {} word", char::from(letter)),
+                    "polar coordinates",
+                ));
+            }
+            b'a' | b'b' | b'u' | b'v' | b'w' => {
+                let (first, _) = self.span(start, start + 1);
+                let mut end = start + 1;
+                while end < self.bytes.len() && !self.bytes[end].is_ascii_lowercase() {
+                    end += 1;
+                }
+                let (_, last) = self.span(start, end);
+                return Err(Fault {
+                    start: first,
+                    end: last,
+                    kind: crate::lexer::FaultKind::ForeignAxis(
+                        char::from(letter).to_ascii_uppercase(),
+                    ),
+                    message: String::new(),
+                });
+            }
+            b'g' => {
+                block.empty = false;
+                self.pos += 1;
+                return self.read_g(block, start);
+            }
+            b'm' => {
+                block.empty = false;
+                self.pos += 1;
+                return self.read_m(block, start);
+            }
+            b'c' | b'd' | b'e' | b'f' | b'h' | b'i' | b'j' | b'k' | b'l' | b'p' | b'q' | b'r'
+            | b's' | b't' | b'x' | b'y' | b'z' => {}
+            _ => {
+                let shown = if letter.is_ascii_graphic() {
+                    format!("'{}'", char::from(letter))
+                } else {
+                    format!("byte 0x{letter:02x}")
+                };
+                return Err(self.syntax(start, start + 1, format!("Bad character {shown} used")));
+            }
+        }
+        block.empty = false;
+        let slot = usize::from(letter - b'a');
+        if block.letters[slot].is_some() {
+            return Err(self.syntax(
+                start,
+                start + 1,
+                format!("Multiple {} words on one line", char::from(letter)),
+            ));
+        }
+        self.pos += 1;
+        let value = match letter {
+            b'l' | b't' | b'd' | b'h' => self.read_integer_value()? as f64,
+            _ => self.read_real_value()?,
+        };
+        block.letters[slot] = Some(Word { value, at: start, end: self.pos });
+        Ok(())
+    }
+
+    fn read_g(&mut self, block: &mut Block, start: usize) -> Result<(), Fault> {
+        let value = self.read_real_value()? * 10.0;
+        let end = self.pos;
+        let mut code = value.floor();
+        if value - code > 0.999 {
+            code = value.ceil();
+        } else if value - code > 0.001 {
+            return Err(self.syntax(start, end, "G code out of range"));
+        }
+        if code > 999.0 {
+            return Err(self.syntax(start, end, "G code out of range"));
+        }
+        if code < 0.0 {
+            return Err(self.syntax(start, end, "Negative g code used"));
+        }
+        let code = code as u16;
+        let Some((group, _)) = g_group(code) else {
+            return Err(self.syntax(start, end, "Unknown g code used"));
+        };
+        if block.g[group].is_some() {
+            return Err(self.syntax(start, end, "Two g codes used from same modal group"));
+        }
+        block.g[group] = Some(Code { code, at: start, end });
+        Ok(())
+    }
+
+    fn read_m(&mut self, block: &mut Block, start: usize) -> Result<(), Fault> {
+        let value = self.read_integer_value()?;
+        let end = self.pos;
+        if value < 0 {
+            return Err(self.syntax(start, end, "Negative m code used"));
+        }
+        if value > 199 {
+            return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
+        }
+        let code = value as u16;
+        let Some((group, _)) = m_group(code) else {
+            return Err(self.syntax(start, end, format!("Unknown m code used: M{value}")));
+        };
+        if block.m[group].is_some() {
+            return Err(self.syntax(start, end, "Two m codes used from same modal group"));
+        }
+        block.m_count += 1;
+        if block.m_count > MAX_M_CODES {
+            return Err(self.syntax(start, end, "Too many m codes on line"));
+        }
+        block.m[group] = Some(Code { code, at: start, end });
+        Ok(())
+    }
+
+    /// `#index=value` or `#<name>=value` (`read_parameter_setting`).
+    fn read_setting(&mut self, block: &mut Block) -> Result<(), Fault> {
+        let start = self.pos;
+        self.pos += 1;
+        if self.peek() == b'<' {
+            let (name_start, name_end) = self.read_name()?;
+            let name = &self.bytes[name_start..name_end];
+            if name.first() == Some(&b'_') && self.predefined.predefined(name).is_some() {
+                return Err(self.syntax(
+                    start,
+                    self.pos,
+                    format!(
+                        "Cannot assign to read-only parameter #<{}>",
+                        String::from_utf8_lossy(name)
+                    ),
+                ));
+            }
+            self.expect_equals(start)?;
+            let value = self.read_real_value()?;
+            block.named.push((name_start, name_end, value));
+        } else {
+            let index = self.read_integer_value()?;
+            let index = self.check_index(index, start)?;
+            self.expect_equals(start)?;
+            let value = self.read_real_value()?;
+            block.numbered.push((index, value));
+        }
+        Ok(())
+    }
+
+    fn expect_equals(&mut self, start: usize) -> Result<(), Fault> {
+        if self.peek() != b'=' {
+            return Err(self.syntax(
+                start,
+                self.pos + 1,
+                "Equal sign missing in parameter setting",
+            ));
+        }
+        self.pos += 1;
+        Ok(())
+    }
+
+    fn check_index(&self, index: i64, start: usize) -> Result<usize, Fault> {
+        if index < 1 || index >= MAX_PARAMETERS as i64 {
+            return Err(self.syntax(start, self.pos, "Parameter number out of range"));
+        }
+        Ok(index as usize)
+    }
+
+    /// `<name>` after a `#`: returns the compact range of the name.
+    fn read_name(&mut self) -> Result<(usize, usize), Fault> {
+        let open = self.pos;
+        self.pos += 1;
+        let start = self.pos;
+        while self.pos < self.bytes.len() && self.bytes[self.pos] != b'>' {
+            if self.bytes[self.pos] == b'(' {
+                break;
+            }
+            self.pos += 1;
+        }
+        if self.peek() != b'>' {
+            return Err(self.syntax(open, self.pos, "Named parameter not terminated"));
+        }
+        let end = self.pos;
+        self.pos += 1;
+        if end == start {
+            return Err(self.syntax(open, self.pos, "Named parameter has no name"));
+        }
+        Ok((start, end))
+    }
+
+    /// A real value (`read_real_value`): a number, a parameter, an expression, a unary
+    /// function, or a sign before one of those.
+    pub(crate) fn read_real_value(&mut self) -> Result<f64, Fault> {
+        let start = self.pos;
+        let c = self.peek();
+        let next = self.peek_at(1);
+        let value = match c {
+            0 => {
+                return Err(self.syntax(start, start, "No characters found in reading real value"));
+            }
+            b'(' => {
+                return Err(self.syntax(start, start + 1, "Comment found where a value should be"));
+            }
+            b'[' => self.read_expression()?,
+            b'#' => self.read_parameter()?,
+            b'+' if next != 0 && !next.is_ascii_digit() && next != b'.' => {
+                self.pos += 1;
+                self.read_real_value()?
+            }
+            b'-' if next != 0 && !next.is_ascii_digit() && next != b'.' => {
+                self.pos += 1;
+                -self.read_real_value()?
+            }
+            b'a'..=b'z' => self.read_unary()?,
+            _ => self.read_number()?,
+        };
+        if !value.is_finite() {
+            return Err(self.invalid(start, self.pos, "the value is not a finite number"));
+        }
+        Ok(value)
+    }
+
+    /// An integer value (`read_integer_value`): a real value within 0.0001 of an integer.
+    fn read_integer_value(&mut self) -> Result<i64, Fault> {
+        let start = self.pos;
+        let value = self.read_real_value()?;
+        let mut integer = value.floor();
+        if value - integer > 0.9999 {
+            integer = value.ceil();
+        } else if value - integer > 0.0001 {
+            return Err(self.syntax(start, self.pos, "Non integer value for integer"));
+        }
+        if integer.abs() > 1e15 {
+            return Err(self.invalid(start, self.pos, "the value is too large for an integer"));
+        }
+        Ok(integer as i64)
+    }
+
+    /// A literal number: optional sign, digits and one decimal point (no exponent: `e` is a
+    /// word letter).
+    fn read_number(&mut self) -> Result<f64, Fault> {
+        let start = self.pos;
+        if matches!(self.peek(), b'+' | b'-') {
+            self.pos += 1;
+        }
+        while matches!(self.peek(), b'0'..=b'9' | b'.') {
+            self.pos += 1;
+        }
+        let text = &self.bytes[start..self.pos];
+        let text = std::str::from_utf8(text).unwrap_or("");
+        let digits = text.bytes().filter(u8::is_ascii_digit).count();
+        let dots = text.bytes().filter(|&b| b == b'.').count();
+        if digits == 0 {
+            return Err(self.syntax(
+                start,
+                self.pos + 1,
+                format!("bad number format (conversion failed) parsing '{text}'"),
+            ));
+        }
+        if dots > 1 {
+            return Err(self.syntax(
+                start,
+                self.pos,
+                format!("bad number format (trailing characters) parsing '{text}'"),
+            ));
+        }
+        let value: f64 = text.parse().map_err(|_| {
+            self.syntax(start, self.pos, format!("bad number format parsing '{text}'"))
+        })?;
+        if !value.is_finite() {
+            return Err(self.invalid(start, self.pos, format!("{text} is not a finite number")));
+        }
+        Ok(value)
+    }
+
+    /// `#n`, `##n`, `#[expr]`, `#<name>`.
+    fn read_parameter(&mut self) -> Result<f64, Fault> {
+        let start = self.pos;
+        self.pos += 1;
+        if self.peek() == b'<' {
+            let (name_start, name_end) = self.read_name()?;
+            let name = &self.bytes[name_start..name_end];
+            return self.named_value(name).ok_or_else(|| {
+                self.invalid(
+                    start,
+                    self.pos,
+                    format!("Named parameter #<{}> not defined", String::from_utf8_lossy(name)),
+                )
+            });
+        }
+        let index = self.read_integer_value()?;
+        let index = self.check_index(index, start)?;
+        Ok(self.params.get(index))
+    }
+
+    fn named_value(&self, name: &[u8]) -> Option<f64> {
+        if name.first() == Some(&b'_') {
+            if let Some(value) = self.predefined.predefined(name) {
+                return Some(value);
+            }
+        }
+        self.params.named(name)
+    }
+
+    /// A unary function: `abs[…]`, `atan[…]/[…]`, `exists[#<name>]`, ….
+    fn read_unary(&mut self) -> Result<f64, Fault> {
+        let start = self.pos;
+        while self.peek().is_ascii_lowercase() {
+            self.pos += 1;
+        }
+        let name = &self.bytes[start..self.pos];
+        const NAMES: [&[u8]; 14] = [
+            b"abs", b"acos", b"asin", b"atan", b"cos", b"exists", b"exp", b"fix", b"fup", b"ln",
+            b"round", b"sin", b"sqrt", b"tan",
+        ];
+        if !NAMES.contains(&name) {
+            return Err(self.syntax(
+                start,
+                self.pos,
+                format!("Unknown word starting with {}", char::from(self.bytes[start])),
+            ));
+        }
+        let name_end = self.pos;
+        if self.peek() != b'[' {
+            return Err(self.syntax(
+                start,
+                self.pos + 1,
+                "Left bracket missing after unary operation name",
+            ));
+        }
+        if name == b"exists" {
+            self.pos += 1;
+            if self.peek() != b'#' || self.peek_at(1) != b'<' {
+                return Err(self.syntax(start, self.pos + 1, "EXISTS takes a named parameter"));
+            }
+            self.pos += 1;
+            let (name_start, end) = self.read_name()?;
+            let exists = self.named_value(&self.bytes[name_start..end]).is_some();
+            if self.peek() != b']' {
+                return Err(self.syntax(start, self.pos + 1, "Unclosed expression"));
+            }
+            self.pos += 1;
+            return Ok(if exists { 1.0 } else { 0.0 });
+        }
+        let argument = self.read_expression()?;
+        let fail = |message: &str| self.invalid(start, name_end, message);
+        let value = match name {
+            b"abs" => argument.abs(),
+            b"acos" => {
+                if !(-1.0..=1.0).contains(&argument) {
+                    return Err(fail("Argument to acos out of range"));
+                }
+                argument.acos().to_degrees()
+            }
+            b"asin" => {
+                if !(-1.0..=1.0).contains(&argument) {
+                    return Err(fail("Argument to asin out of range"));
+                }
+                argument.asin().to_degrees()
+            }
+            b"atan" => {
+                if self.peek() != b'/' {
+                    return Err(self.syntax(
+                        start,
+                        self.pos + 1,
+                        "Slash missing after first atan argument",
+                    ));
+                }
+                self.pos += 1;
+                if self.peek() != b'[' {
+                    return Err(self.syntax(
+                        start,
+                        self.pos + 1,
+                        "Left bracket missing after slash with atan",
+                    ));
+                }
+                let x = self.read_expression()?;
+                argument.atan2(x).to_degrees()
+            }
+            b"cos" => argument.to_radians().cos(),
+            b"exp" => argument.exp(),
+            b"fix" => argument.floor(),
+            b"fup" => argument.ceil(),
+            b"ln" => {
+                if argument <= 0.0 {
+                    return Err(fail("Zero or negative argument to ln"));
+                }
+                argument.ln()
+            }
+            b"round" => (argument + 0.5_f64.copysign(argument)).trunc(),
+            b"sin" => argument.to_radians().sin(),
+            b"sqrt" => {
+                if argument < 0.0 {
+                    return Err(fail("Negative argument to sqrt"));
+                }
+                argument.sqrt()
+            }
+            _ => argument.to_radians().tan(),
+        };
+        Ok(value)
+    }
+
+    /// `[ … ]` with LinuxCNC's precedence climbing (`read_real_expression`).
+    fn read_expression(&mut self) -> Result<f64, Fault> {
+        let start = self.pos;
+        self.pos += 1;
+        let mut values = [0.0f64; 8];
+        let mut ops = [Op::RightBracket; 8];
+        let mut op_at = [0usize; 8];
+        values[0] = self.read_real_value()?;
+        op_at[0] = self.pos;
+        ops[0] = self.read_operation(start)?;
+        let mut index = 1;
+        while ops[index - 1] != Op::RightBracket {
+            values[index] = self.read_real_value()?;
+            op_at[index] = self.pos;
+            ops[index] = self.read_operation(start)?;
+            if ops[index].precedence() > ops[index - 1].precedence() {
+                index += 1;
+                continue;
+            }
+            loop {
+                let left = values[index - 1];
+                values[index - 1] =
+                    self.binary(left, ops[index - 1], values[index], op_at[index - 1])?;
+                ops[index - 1] = ops[index];
+                op_at[index - 1] = op_at[index];
+                if index > 1 && ops[index - 1].precedence() <= ops[index - 2].precedence() {
+                    index -= 1;
+                } else {
+                    break;
+                }
+            }
+        }
+        Ok(values[0])
+    }
+
+    fn read_operation(&mut self, open: usize) -> Result<Op, Fault> {
+        let start = self.pos;
+        let c = self.peek();
+        let next = self.peek_at(1);
+        let next2 = self.peek_at(2);
+        let (op, length) = match c {
+            0 => return Err(self.syntax(open, self.pos, "Unclosed expression")),
+            b']' => (Op::RightBracket, 1),
+            b'+' => (Op::Plus, 1),
+            b'-' => (Op::Minus, 1),
+            b'/' => (Op::Divide, 1),
+            b'*' if next == b'*' => (Op::Power, 2),
+            b'*' => (Op::Times, 1),
+            b'a' if next == b'n' && next2 == b'd' => (Op::And, 3),
+            b'm' if next == b'o' && next2 == b'd' => (Op::Modulo, 3),
+            b'x' if next == b'o' && next2 == b'r' => (Op::Xor, 3),
+            b'o' if next == b'r' => (Op::Or, 2),
+            b'e' if next == b'q' => (Op::Eq, 2),
+            b'n' if next == b'e' => (Op::Ne, 2),
+            b'g' if next == b't' => (Op::Gt, 2),
+            b'g' if next == b'e' => (Op::Ge, 2),
+            b'l' if next == b't' => (Op::Lt, 2),
+            b'l' if next == b'e' => (Op::Le, 2),
+            b'a'..=b'z' => {
+                return Err(self.syntax(
+                    start,
+                    start + 1,
+                    format!("Unknown operation name starting with {}", char::from(c)),
+                ));
+            }
+            _ => return Err(self.syntax(start, start + 1, "Unknown operation")),
+        };
+        self.pos += length;
+        Ok(op)
+    }
+
+    fn binary(&self, left: f64, op: Op, right: f64, at: usize) -> Result<f64, Fault> {
+        let fail = |message: &str| self.invalid(at, at + 1, message);
+        let truth = |condition: bool| if condition { 1.0 } else { 0.0 };
+        let value = match op {
+            Op::RightBracket => right,
+            Op::And => truth(left != 0.0 && right != 0.0),
+            Op::Or => truth(left != 0.0 || right != 0.0),
+            Op::Xor => truth((left != 0.0) != (right != 0.0)),
+            Op::Eq => truth((left - right).abs() < TOLERANCE_EQUAL),
+            Op::Ne => truth((left - right).abs() >= TOLERANCE_EQUAL),
+            Op::Gt => truth(left > right),
+            Op::Ge => truth(left >= right),
+            Op::Lt => truth(left < right),
+            Op::Le => truth(left <= right),
+            Op::Plus => left + right,
+            Op::Minus => left - right,
+            Op::Times => left * right,
+            Op::Divide => {
+                if right == 0.0 {
+                    return Err(fail("Attempt to divide by zero"));
+                }
+                left / right
+            }
+            Op::Modulo => {
+                if right == 0.0 {
+                    return Err(fail("Attempt to divide by zero"));
+                }
+                let value = left % right;
+                if value < 0.0 { value + right.abs() } else { value }
+            }
+            Op::Power => {
+                if left < 0.0 && right.floor() != right {
+                    return Err(fail("Attempt to raise negative to non integer power"));
+                }
+                left.powf(right)
+            }
+        };
+        if !value.is_finite() {
+            return Err(fail("the result is not a finite number"));
+        }
+        Ok(value)
+    }
+}

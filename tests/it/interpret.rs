@@ -1,0 +1,179 @@
+//! `biscara interpret`: golden inter-files for the programs in `data/programs/`, the pipeline
+//! from `gen`, `--origin`, standard input, bad input (exit 1, a `FILE:LINE:COL` message with the
+//! line and a caret, no output file, no panic), and the help text.
+
+use std::path::Path;
+
+use crate::golden::check_golden;
+use crate::util::{Run, biscara, biscara_with_input, repo_root, temp_dir};
+
+fn path_arg(path: &Path) -> &str {
+    path.to_str().expect("UTF-8 path")
+}
+
+#[test]
+fn programs_in_data_match_their_golden_inter_files() {
+    let dir = temp_dir("interpret-golden");
+    let mut programs: Vec<_> = std::fs::read_dir(repo_root().join("data/programs"))
+        .expect("data/programs")
+        .map(|entry| entry.expect("entry").path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ngc"))
+        .collect();
+    programs.sort();
+    assert!(!programs.is_empty());
+    for program in programs {
+        let name = program.file_stem().and_then(|s| s.to_str()).expect("name").to_owned();
+        let run = biscara(&dir, &["interpret", path_arg(&program), "-o", "out.jsonl"]);
+        assert_eq!(run.success().stdout, "", "{run}");
+        let written = std::fs::read_to_string(dir.join("out.jsonl")).expect("output");
+        check_golden(&format!("interpret/{name}.jsonl"), &written);
+    }
+}
+
+#[test]
+fn generated_programs_interpret_from_standard_input() {
+    let dir = temp_dir("interpret-gen");
+    let job = repo_root().join("data/jobs/pick_place.txt");
+    let gcode = biscara(&dir, &["gen", path_arg(&job)]);
+    let run =
+        biscara_with_input(&dir, &["interpret", "-"], Some(gcode.success().stdout.as_bytes()));
+    let lines: Vec<&str> = run.success().stdout.lines().collect();
+    // The SPEC §4.1 program: first a rapid to the job's home pose, last the end.
+    assert_eq!(lines[0], r#"{"line":4,"kind":"rapid","end":[0.0,400.0,100.0,0.0]}"#, "{run}");
+    assert!(lines.contains(&r#"{"line":7,"kind":"pick"}"#), "{run}");
+    assert!(lines.contains(&r#"{"line":8,"kind":"dwell","seconds":0.3}"#), "{run}");
+    assert_eq!(lines.last().copied(), Some(r#"{"line":26,"kind":"end"}"#), "{run}");
+}
+
+#[test]
+fn the_program_starts_at_the_robots_home_pose_and_origin_shifts_it() {
+    let dir = temp_dir("interpret-origin");
+    let program = b"G28\nG91 G1 X10 F100\nG90 G0 X0 Y0 Z0 C0\nM2\n";
+    let run = biscara_with_input(&dir, &["interpret", "-"], Some(program));
+    let lines: Vec<&str> = run.success().stdout.lines().collect();
+    // G28 with no G28.1 goes to the home pose: first through the intermediate point (here the
+    // current point, the home pose itself), then home.
+    assert_eq!(lines[0], r#"{"line":1,"kind":"rapid","end":[0.0,460.798724079689,100.0,0.0]}"#);
+    assert_eq!(
+        lines[2],
+        r#"{"line":2,"kind":"linear","end":[10.0,460.798724079689,100.0,0.0],"feed":100.0}"#
+    );
+    assert_eq!(lines[3], r#"{"line":3,"kind":"rapid","end":[0.0,0.0,0.0,0.0]}"#);
+    let shifted =
+        biscara_with_input(&dir, &["interpret", "--origin", "-5,350,20,90", "-"], Some(program));
+    let lines: Vec<&str> = shifted.success().stdout.lines().collect();
+    assert_eq!(lines[3], r#"{"line":3,"kind":"rapid","end":[-5.0,350.0,20.0,90.0]}"#);
+    biscara(&dir, &["interpret", "--origin", "1,2,3", "-"])
+        .expect_code(2)
+        .stderr_has("expected four numbers X,Y,Z,C");
+    biscara(&dir, &["interpret", "--origin", "1,2,NaN,4", "-"])
+        .expect_code(2)
+        .stderr_has("`NaN` is not a finite number");
+}
+
+/// Runs `biscara interpret job.ngc -o out.jsonl` on `content`: exit 1, `message` on stderr, no
+/// output file, no temporary file, no panic.
+#[track_caller]
+fn check_rejected(content: &[u8], message: &str) -> Run {
+    let dir = temp_dir("interpret-bad");
+    std::fs::write(dir.join("job.ngc"), content).expect("write");
+    let run = biscara(&dir, &["interpret", "job.ngc", "-o", "out.jsonl"]);
+    run.expect_code(1).stderr_has(message);
+    assert!(!run.stderr.contains("panicked"), "{run}");
+    let left: Vec<_> =
+        std::fs::read_dir(&dir).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("job.ngc")], "no output file\n{run}");
+    run
+}
+
+#[test]
+fn errors_name_file_line_and_column_and_show_a_caret() {
+    let run = check_rejected(
+        b"G21\nG1 X10 F100\nG2 X20 Y0\nM2\n",
+        "job.ngc:3:1: R i j k words all missing for arc",
+    );
+    assert!(run.stderr.contains("\n    G2 X20 Y0\n    ^^\n"), "{run}");
+    let run =
+        check_rejected(b"G0 X1\nG0 X[1 + 2 / 0]\nM2\n", "job.ngc:2:12: Attempt to divide by zero");
+    assert!(run.stderr.contains("\n    G0 X[1 + 2 / 0]\n               ^\n"), "{run}");
+}
+
+#[test]
+fn bad_programs_get_a_clear_error_and_no_output() {
+    let cases: Vec<(Vec<u8>, &str)> = vec![
+        (b"".to_vec(), "job.ngc:1:1: File ended with no percent sign or program end"),
+        (b"G0 X1\n".to_vec(), "job.ngc:1:1: File ended with no percent sign or program end"),
+        (b"G0 X1 (open\nM2\n".to_vec(), "job.ngc:1:7: Unclosed comment found"),
+        (b"G0 G1 X2\nM2\n".to_vec(), "job.ngc:1:4: Two g codes used from same modal group"),
+        (b"G1 X0 Y0 F10\nG2 X10 Y0\nM2\n".to_vec(), "job.ngc:2:1: R i j k words all missing"),
+        (
+            b"G1 F100\nG2 X10.03 Y0 I5\nM2\n".to_vec(),
+            "job.ngc:2:1: Radius to end of arc differs from radius to start",
+        ),
+        (b"G0 X\nM2\n".to_vec(), "job.ngc:1:5: No characters found in reading real value"),
+        (
+            b"G0 X1e999\nM2\n".to_vec(),
+            "job.ngc:1:6: E word with no G70, G76, M66, M67 or M68 to use it",
+        ),
+        (b"G0 A1\nM2\n".to_vec(), "job.ngc:1:4: A axis word: this robot has the axes X Y Z C only"),
+        (b"G0 X1 B2\nM2\n".to_vec(), "job.ngc:1:7: B axis word"),
+        (b"G0 U1\nM2\n".to_vec(), "job.ngc:1:4: U axis word"),
+        (b"G0 V1\nM2\n".to_vec(), "V axis word"),
+        (b"G0 W1\nM2\n".to_vec(), "W axis word"),
+        (b"G0 X[1/0]\nM2\n".to_vec(), "job.ngc:1:7: Attempt to divide by zero"),
+        (b"G7.5\nM2\n".to_vec(), "job.ngc:1:1: Unknown g code used"),
+        (b"M123\nM2\n".to_vec(), "job.ngc:1:1: Unknown m code used: M123"),
+        (b"G1 X1\nM2\n".to_vec(), "job.ngc:1:1: Cannot do g1 with zero feed rate"),
+        (b"G0 X1 NaN\nM2\n".to_vec(), "job.ngc:1:7: Bad character 'n' used"),
+        (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word starting with i"),
+        (
+            format!("G0 X1{}\nM2\n", "0".repeat(240)).into_bytes(),
+            "job.ngc:1:4: 1e240 is out of range: positions must lie within ±1e6 mm",
+        ),
+        (b"G0 X[10**400]\nM2\n".to_vec(), "job.ngc:1:8: the result is not a finite number"),
+        (b"G0 X1 \x00\nM2\n".to_vec(), "job.ngc:1:7: Bad character byte 0x00 used"),
+        (b"G0 X1\n\xff\xfe\x00\x01\nM2\n".to_vec(), "job.ngc:2:1: Bad character byte 0xff used"),
+        (b"\x7fELF\x02\x01\x01\x00".to_vec(), "job.ngc:1:1: Bad character byte 0x7f used"),
+        (b"G0 X1 Q2\nM2\n".to_vec(), "job.ngc:1:7: Q word with no"),
+        (b"G41 G1 X1 F10\nM2\n".to_vec(), "job.ngc:1:1: G41 is not supported yet"),
+        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: G81 is not supported yet (canned cycle)"),
+        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is not supported yet (threading)"),
+        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is not supported yet"),
+        (b"o100 sub\nM2\n".to_vec(), "job.ngc:1:1: O-word is not supported yet"),
+        (
+            format!("G0 X1 ({})\nM2\n", "x".repeat(10 * 1024 * 1024)).into_bytes(),
+            "job.ngc:1:253: Command too long",
+        ),
+    ];
+    for (content, message) in &cases {
+        check_rejected(content, message);
+    }
+    let binary: Vec<u8> = (0..=255u8).cycle().take(2000).collect();
+    check_rejected(&binary, "job.ngc:1:1: Bad character byte 0x00 used");
+}
+
+#[test]
+fn a_failed_run_keeps_the_earlier_good_file() {
+    let dir = temp_dir("interpret-keep");
+    std::fs::write(dir.join("good.ngc"), "G0 X1\nM2\n").expect("write");
+    std::fs::write(dir.join("bad.ngc"), "G0 X1\nG1 X2\nM2\n").expect("write");
+    biscara(&dir, &["interpret", "good.ngc", "-o", "out.jsonl"]).success();
+    let good = std::fs::read_to_string(dir.join("out.jsonl")).expect("read");
+    biscara(&dir, &["interpret", "bad.ngc", "-o", "out.jsonl"])
+        .expect_code(1)
+        .stderr_has("bad.ngc:2:1: Cannot do g1 with zero feed rate");
+    assert_eq!(std::fs::read_to_string(dir.join("out.jsonl")).expect("read"), good);
+    biscara(&dir, &["interpret", "missing.ngc"])
+        .expect_code(1)
+        .stderr_has("cannot read missing.ngc");
+    biscara(&dir, &["interpret"]).expect_code(2);
+}
+
+#[test]
+fn interpret_help_text_is_pinned() {
+    let dir = temp_dir("interpret-help");
+    let run = biscara(&dir, &["interpret", "--help"]);
+    run.success();
+    assert!(run.stdout.contains("Example:"), "{run}");
+    check_golden("help/interpret.txt", &run.stdout);
+}

@@ -1,0 +1,204 @@
+//! LinuxCNC's standalone interpreter `rs274` (Debian's `linuxcnc-uspace`), run on a G-code file
+//! and its canonical-machining output read back as motions in absolute millimetres — the
+//! reference that `interpret` is compared with.
+//!
+//! Invocation: `rs274 -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no prompts). It writes one
+//! canonical command a line (`STRAIGHT_FEED(x, y, z, a, b, c)`, `ARC_FEED(…)`, …) to OUTPUT,
+//! positions in program units relative to the active offsets, 4 decimals; errors go to stderr
+//! (the message, then the offending line) with exit code 1. rs274 starts at 0,0,0 with the G28
+//! and G30 positions at 0.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+
+use biscara::motion::{Feed, Motion, MotionKind, Plane};
+
+/// Where `rs274` is looked for.
+pub const RS274: &str = "/usr/bin/rs274";
+
+/// Whether `rs274` is installed. When it is not, a test prints why it skips — and fails under
+/// `CI=true`, where `.ci/run` installs it.
+pub fn available(test: &str) -> bool {
+    if Path::new(RS274).exists() {
+        return true;
+    }
+    let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+    assert!(!ci, "{test}: {RS274} is missing under CI=true (apt-get install linuxcnc-uspace)");
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("{test}: skipped: {RS274} not installed (apt-get install linuxcnc-uspace)");
+    }
+    false
+}
+
+/// What rs274 made of a program.
+#[derive(Debug)]
+pub enum Outcome {
+    /// The motions, absolute mm and degrees (line numbers are 0: rs274 does not print them).
+    Motions(Vec<Motion>),
+    /// rs274 refused the program: its message (first line of the error) and the motions it
+    /// made before.
+    Error {
+        /// The message.
+        message: String,
+        /// The motions before the error.
+        #[allow(dead_code)]
+        before: Vec<Motion>,
+    },
+}
+
+/// Runs rs274 on `program` in `dir`.
+///
+/// rs274 instances running at the same time can die of SIGBUS (they share memory), so runs from
+/// this module take a lock, and a run killed by a signal is retried.
+pub fn run(program: &Path, dir: &Path) -> Outcome {
+    static LOCK: Mutex<()> = Mutex::new(());
+    let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let output = dir.join("rs274.out");
+    let mut attempt = 0;
+    let run = loop {
+        let _ = std::fs::remove_file(&output);
+        let run = Command::new(RS274)
+            .arg("-g")
+            .arg(program)
+            .arg(&output)
+            .current_dir(dir)
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .output()
+            .expect("run rs274");
+        attempt += 1;
+        if run.status.code().is_some() || attempt == 20 {
+            break run;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    let canon = std::fs::read_to_string(&output).unwrap_or_default();
+    let motions = parse(&canon);
+    if run.status.success() {
+        return Outcome::Motions(motions);
+    }
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    let message = stderr
+        .lines()
+        .find(|line| !line.trim().is_empty() && line.trim() != "executing")
+        .map(str::to_owned)
+        .unwrap_or_else(|| format!("(no message; {}; stderr {stderr:?})", run.status));
+    Outcome::Error { message, before: motions }
+}
+
+/// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).
+fn numbers(arguments: &str) -> Vec<f64> {
+    arguments.split([',', ' ']).filter_map(|part| part.trim().parse::<f64>().ok()).collect()
+}
+
+/// Reads rs274's canonical commands into motions, applying the offsets and units as LinuxCNC's
+/// canon does (offsets and feeds converted to mm when they are set).
+pub fn parse(canon: &str) -> Vec<Motion> {
+    let mut motions = Vec::new();
+    let mut factor = 1.0;
+    let mut g5x = [0.0; 4];
+    let mut g92 = [0.0; 4];
+    let mut plane = Plane::Xy;
+    let mut feed = 0.0;
+    let lines: Vec<&str> = canon
+        .lines()
+        .map(|line| {
+            // `   12 N..... CALL(…)` or `   12 N30    CALL(…)`
+            let rest = line.trim_start();
+            let rest = rest.split_once(' ').map_or(rest, |(_, rest)| rest).trim_start();
+            let rest = rest.split_once(' ').map_or(rest, |(_, rest)| rest);
+            rest.trim()
+        })
+        .collect();
+    let push = |motions: &mut Vec<Motion>, kind| motions.push(Motion { line: 0, kind });
+    for (index, line) in lines.iter().enumerate() {
+        let (name, arguments) = match line.find('(') {
+            Some(open) => (&line[..open], line[open + 1..].trim_end_matches(')')),
+            None => (*line, ""),
+        };
+        let values = numbers(arguments);
+        let pose = |v: &[f64]| -> [f64; 4] {
+            [
+                v[0] * factor + g5x[0] + g92[0],
+                v[1] * factor + g5x[1] + g92[1],
+                v[2] * factor + g5x[2] + g92[2],
+                v[5] + g5x[3] + g92[3],
+            ]
+        };
+        match name {
+            "USE_LENGTH_UNITS" => {
+                factor = if arguments.contains("INCHES") { 25.4 } else { 1.0 };
+            }
+            "SET_G5X_OFFSET" => {
+                g5x = [values[1] * factor, values[2] * factor, values[3] * factor, values[6]];
+            }
+            "SET_G92_OFFSET" => {
+                g92 = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
+            }
+            "SELECT_PLANE" => {
+                plane = if arguments.ends_with("XZ") {
+                    Plane::Xz
+                } else if arguments.ends_with("YZ") {
+                    Plane::Yz
+                } else {
+                    Plane::Xy
+                };
+            }
+            "SET_FEED_RATE" => feed = values[0] * factor,
+            "STRAIGHT_TRAVERSE" => push(&mut motions, MotionKind::Rapid { end: pose(&values) }),
+            "STRAIGHT_FEED" => push(
+                &mut motions,
+                MotionKind::Linear {
+                    end: pose(&values),
+                    feed: Feed { mm_per_min: feed, inverse_time: false },
+                },
+            ),
+            "ARC_FEED" => {
+                // first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c
+                let [first, second, normal] = plane.axes();
+                let mut program = [0.0; 6];
+                program[first] = values[0];
+                program[second] = values[1];
+                program[normal] = values[5];
+                program[5] = values[8];
+                let end = pose(&program);
+                let offsets = [g5x[0] + g92[0], g5x[1] + g92[1], g5x[2] + g92[2]];
+                let center =
+                    [values[2] * factor + offsets[first], values[3] * factor + offsets[second]];
+                let rotation = values[4];
+                push(
+                    &mut motions,
+                    MotionKind::Arc {
+                        end,
+                        center,
+                        plane,
+                        clockwise: rotation < 0.0,
+                        turns: rotation.abs() as u32,
+                        feed: Feed { mm_per_min: feed, inverse_time: false },
+                    },
+                );
+            }
+            "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }),
+            "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick),
+            "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place),
+            "STOP_SPINDLE_TURNING" => {
+                // M2/M30 reset the spindle (then SET_SPINDLE_MODE): not a programmed M5.
+                let reset =
+                    lines.get(index + 1).is_some_and(|next| next.starts_with("SET_SPINDLE_MODE"));
+                if !reset {
+                    push(&mut motions, MotionKind::GripperOff);
+                }
+            }
+            "PROGRAM_STOP" | "OPTIONAL_PROGRAM_STOP" => push(&mut motions, MotionKind::Pause),
+            "PROGRAM_END" => {
+                push(&mut motions, MotionKind::End);
+                break;
+            }
+            _ => {}
+        }
+    }
+    motions
+}
