@@ -1,0 +1,96 @@
+//! Features through the library: the home pose, the origin, G28, units, errors and their
+//! locations. (Conformance with LinuxCNC itself is tested against `rs274` in the `biscara`
+//! package's tests, on `tests/conformance/`.)
+
+use biscara_gcode::{Config, GcodeError, interpret};
+use biscara_motion::{Feed, MotionKind, Plane};
+
+const HOME: [f64; 4] = [0.0, 460.8, 100.0, 0.0];
+
+/// The motions of `program` started at [`HOME`] with `origin`.
+#[track_caller]
+fn motions(program: &str, origin: [f64; 4]) -> Vec<(usize, MotionKind)> {
+    let config = Config { home: HOME, origin, ..Config::default() };
+    interpret(program.as_bytes(), &config)
+        .map(|result| result.map(|motion| (motion.line, motion.kind)))
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|err| panic!("{err}"))
+}
+
+/// The error of `program`, as `LINE:COL: message`.
+#[track_caller]
+fn error(program: &str) -> GcodeError {
+    interpret(program.as_bytes(), &Config::default())
+        .find_map(Result::err)
+        .unwrap_or_else(|| panic!("no error for {program:?}"))
+}
+
+fn feed(mm_per_min: f64) -> Feed {
+    Feed { mm_per_min, inverse_time: false }
+}
+
+#[test]
+fn the_program_starts_at_home_and_g28_returns_there() {
+    let got = motions("G91 G0 X10\nG90 G28\nM2\n", [0.0; 4]);
+    assert_eq!(got[0], (1, MotionKind::Rapid { end: [10.0, 460.8, 100.0, 0.0] }));
+    // G28: the intermediate point (here: where it is), then home.
+    assert_eq!(got[1], (2, MotionKind::Rapid { end: [10.0, 460.8, 100.0, 0.0] }));
+    assert_eq!(got[2], (2, MotionKind::Rapid { end: HOME }));
+    assert_eq!(got[3], (3, MotionKind::End));
+}
+
+#[test]
+fn the_origin_is_a_g54_offset_before_the_first_line() {
+    let origin = [5.0, 300.0, 20.0, 90.0];
+    let got = motions("G0 X0 Y0 Z0 C0\nG55 G0 X0\nG54 G1 X1 F100\nG53 G0 X0\nM2\n", origin);
+    assert_eq!(got[0].1, MotionKind::Rapid { end: [5.0, 300.0, 20.0, 90.0] });
+    assert_eq!(got[1].1, MotionKind::Rapid { end: [0.0, 300.0, 20.0, 90.0] });
+    assert_eq!(got[2].1, MotionKind::Linear { end: [6.0, 300.0, 20.0, 90.0], feed: feed(100.0) });
+    assert_eq!(got[3].1, MotionKind::Rapid { end: [0.0, 300.0, 20.0, 90.0] });
+}
+
+#[test]
+fn inches_become_millimetres_and_arcs_keep_their_centres() {
+    let got = motions("G20 G0 X1 Y10 Z1\nG2 X2 Y11 I0 J1 F10\nG18 G3 X1 Z2 R1\nM2\n", [0.0; 4]);
+    assert_eq!(got[0].1, MotionKind::Rapid { end: [25.4, 254.0, 25.4, 0.0] });
+    let MotionKind::Arc { end, center, plane, clockwise, turns, feed: f } = got[1].1 else {
+        panic!("{got:?}")
+    };
+    assert!((end[0] - 50.8).abs() < 1e-9 && (end[1] - 279.4).abs() < 1e-9);
+    assert!((center[0] - 25.4).abs() < 1e-9 && (center[1] - 279.4).abs() < 1e-9);
+    assert_eq!((plane, clockwise, turns), (Plane::Xy, true, 1));
+    assert!((f.mm_per_min - 254.0).abs() < 1e-9);
+    let MotionKind::Arc { plane, clockwise, .. } = got[2].1 else { panic!("{got:?}") };
+    assert_eq!((plane, clockwise), (Plane::Xz, false));
+}
+
+#[test]
+fn inverse_time_feeds_become_mm_per_minute() {
+    // 30 mm at F2 (half a minute) = 60 mm/min; a C-only move: the feed is in deg/min.
+    let got = motions("G0 X0 Y0 Z0\nG93 G1 X30 F2\nG1 C90 F4\nM2\n", [0.0; 4]);
+    let inverse = |mm_per_min| Feed { mm_per_min, inverse_time: true };
+    assert_eq!(got[1].1, MotionKind::Linear { end: [30.0, 0.0, 0.0, 0.0], feed: inverse(60.0) });
+    assert_eq!(got[2].1, MotionKind::Linear { end: [30.0, 0.0, 0.0, 90.0], feed: inverse(360.0) });
+}
+
+#[test]
+fn gripper_events_come_in_linuxcncs_order_within_a_block() {
+    let got = motions("M3 G4 P0.5 G0 X1 M0\nM2\n", [0.0; 4]);
+    let kinds: Vec<&str> = got.iter().map(|(_, kind)| kind.name()).collect();
+    assert_eq!(kinds, ["pick", "dwell", "rapid", "pause", "end"]);
+}
+
+#[test]
+fn errors_point_at_the_word() {
+    let err = error("G1 F100\nG1 X1 Y[2 + SQRT[-4]]\nM2\n");
+    assert_eq!(err.to_string(), "2:13: Negative argument to sqrt");
+    let location = err.location().expect("a location");
+    assert_eq!(location.snippet(), "G1 X1 Y[2 + SQRT[-4]]\n            ^^^^");
+    let err = error("G0 X1\n  G0 Z2 A3\nM2\n");
+    assert_eq!(err.to_string(), "2:9: A axis word: this robot has the axes X Y Z C only");
+    assert!(matches!(err, GcodeError::ForeignAxis { letter: 'A', .. }));
+    let err = error("G0 X1\nG83 X1 Z-1 R1 Q1 F10\nM2\n");
+    assert_eq!(err.to_string(), "2:1: G83 is not supported yet (canned cycle)");
+    let err = error("o10 if [1]\nM2\n");
+    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+}
