@@ -77,19 +77,37 @@ pub(crate) fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     let robot = load_robot(cli.robot.as_deref())?;
-    match cli.command {
-        Command::Ik(args) => kinematics::ik(&robot, &args),
-        Command::Fk(args) => kinematics::fk(&robot, &args),
-        Command::Robot(args) => kinematics::robot(&robot, &args),
-        Command::Demo(args) => demo::demo(&robot, &args),
-        Command::Clf(args) => clf::clf(&robot, &args),
+    dispatch(&robot, cli.command)
+}
+
+/// Runs one subcommand with the robot already in force.
+fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Ik(args) => kinematics::ik(robot, &args),
+        Command::Fk(args) => kinematics::fk(robot, &args),
+        Command::Robot(args) => kinematics::robot(robot, &args),
+        Command::Demo(args) => demo::demo(robot, &args),
+        Command::Clf(args) => clf::clf(robot, &args),
         Command::Post(args) => post::post(&args),
-        Command::Gen(args) => generate::generate(&robot, &args),
-        Command::Interpret(args) => interpret::interpret(&robot, &args),
-        Command::Interpolate(args) => trajectory::interpolate(&robot, &args),
-        Command::Joints(args) => trajectory::joints(&robot, &args),
+        Command::Gen(args) => generate::generate(robot, &args),
+        Command::Interpret(args) => interpret::interpret(robot, &args),
+        Command::Interpolate(args) => trajectory::interpolate(robot, &args),
+        Command::Joints(args) => trajectory::joints(robot, &args),
         Command::Diff(args) => diff::diff(&args),
     }
+}
+
+/// Runs `biscara ARGS…` in this process with `robot` in force, as if typed on the command line:
+/// the demo chains the pipeline's commands this way, so it runs exactly what users run.
+fn run_command<I, T>(robot: &Robot, args: I) -> anyhow::Result<()>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let args = std::iter::once(std::ffi::OsString::from("biscara"))
+        .chain(args.into_iter().map(Into::into));
+    let cli = Cli::try_parse_from(args)?;
+    dispatch(robot, cli.command)
 }
 
 /// The robot in force: the built-in one, or `path` read and validated.

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use anyhow::anyhow;
+use biscara::gcode::{Config as GcodeConfig, interpret as interpret_gcode};
 use biscara::interpolate::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
     PathCsvWriter, Profile, SlowDown, read_path_csv,
@@ -17,6 +18,7 @@ use biscara::motion::{Motion, read_jsonl};
 use clap::{Args, ValueEnum};
 
 use super::display_path;
+use super::interpret::{gcode_error, parse_pose};
 use super::output::write_output;
 use super::progress::open_with_progress;
 
@@ -61,6 +63,16 @@ pub(crate) struct SamplingArgs {
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
     grip_time: f64,
+    /// Shift a G-code program by X,Y,Z,C (mm, mm, mm, degrees): the G54 offset in force before
+    /// its first line, as `biscara interpret --origin`.
+    #[arg(
+        long,
+        value_name = "X,Y,Z,C",
+        allow_hyphen_values = true,
+        value_parser = parse_pose,
+        help = "G54 offset before the first line of a G-code program"
+    )]
+    origin: Option<[f64; 4]>,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
@@ -166,17 +178,30 @@ type Motions = Box<dyn Iterator<Item = anyhow::Result<Motion>>>;
 type Samples = Box<dyn Iterator<Item = anyhow::Result<CartesianSample>>>;
 
 /// The motions of a program file.
-fn motions(path: &Path, kind: InputKind, _robot: &Robot) -> anyhow::Result<Motions> {
+fn motions(
+    path: &Path,
+    kind: InputKind,
+    robot: &Robot,
+    origin: [f64; 4],
+) -> anyhow::Result<Motions> {
     let name = display_path(path);
     let input = open_with_progress(path)?;
     match kind {
         InputKind::Jsonl => Ok(Box::new(
             read_jsonl(input).map(move |result| result.map_err(|err| anyhow!("{name}:{err}"))),
         )),
-        InputKind::Gcode => Err(anyhow!(
-            "{name}: reading G-code needs the interpreter, which is not part of this build yet; \
-             give an inter-file (--from jsonl)"
-        )),
+        InputKind::Gcode => {
+            let config = GcodeConfig {
+                home: Kinematics::new(robot)?.home().to_degrees(),
+                origin,
+                ..GcodeConfig::default()
+            };
+            let path = path.to_owned();
+            Ok(Box::new(
+                interpret_gcode(input, &config)
+                    .map(move |result| result.map_err(|err| gcode_error(&path, &err))),
+            ))
+        }
         InputKind::Path => Err(anyhow!("{name}: a path CSV holds samples, not motions")),
     }
 }
@@ -242,7 +267,9 @@ fn samples(
         grip_time: sampling.grip_time,
     };
     let limit = JointSpeedLimit::new(model, robot);
-    let interpolator = Interpolator::new(motions(path, kind, robot)?, config, limit, on_slow);
+    let origin = sampling.origin.unwrap_or([0.0; 4]);
+    let interpolator =
+        Interpolator::new(motions(path, kind, robot, origin)?, config, limit, on_slow);
     Ok(Box::new(interpolator.map(move |result| {
         result.map_err(|err| match err {
             InterpolateError::Input(err) => err,

@@ -149,11 +149,16 @@ fn canonical_motions(output: &str) -> Vec<Canon> {
 }
 
 /// Runs rs274 on `program`; `None` when rs274 is not installed.
+///
+/// rs274 creates, truncates and maps `$HOME/.tool.mmap` (its tool table), so two runs sharing a
+/// HOME can kill each other with SIGBUS; each run here gets the program's own folder as HOME.
 fn rs274(program: &Path) -> Option<std::process::Output> {
+    let folder = program.parent().expect("folder");
     let spawned = Command::new("rs274")
         .arg("-g")
         .arg(program)
-        .current_dir(program.parent().expect("folder"))
+        .current_dir(folder)
+        .env("HOME", folder)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

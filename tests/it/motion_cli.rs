@@ -198,3 +198,121 @@ fn help_texts_are_pinned() {
         check_golden(&format!("help/{command}.txt"), &run.stdout);
     }
 }
+
+/// Writes `program` as `name` in `dir` and runs `joints` on it, expecting failure at `line`.
+#[track_caller]
+fn check_fails_at(dir: &std::path::Path, name: &str, program: &str, line: usize, reason: &str) {
+    std::fs::write(dir.join(name), program).expect("write");
+    biscara(dir, &["joints", name, "-o", "traj.csv"])
+        .expect_code(1)
+        .stderr_has(&format!("{name}:{line}: at t = "))
+        .stderr_has(reason);
+    assert!(!dir.join("traj.csv").exists());
+}
+
+#[test]
+fn gcode_programs_that_leave_the_workspace_fail_at_their_line() {
+    let dir = temp_dir("gcode-failures");
+    let start = "G21 G90 G94\nG0 X0 Y400 Z50 C0\n";
+    check_fails_at(
+        &dir,
+        "type2.ngc",
+        &format!("{start}(down through the base line)\nG1 Y60 F3000\nM2\n"),
+        4,
+        "type-2 singularity",
+    );
+    check_fails_at(&dir, "limit.ngc", &format!("{start}G1 Z80 F3000\nG1 Z120\nM2\n"), 4, "d4 = ");
+    check_fails_at(
+        &dir,
+        "reach.ngc",
+        &format!("{start}G1 X0 Y700 F3000\nM2\n"),
+        3,
+        "singularity of chain",
+    );
+    check_fails_at(
+        &dir,
+        "theta3.ngc",
+        &format!("{start}G1 C170 F20000\nG1 C220\nM2\n"),
+        4,
+        "theta3 = ",
+    );
+}
+
+#[test]
+fn gcode_fast_rotation_is_slowed_and_says_so() {
+    let dir = temp_dir("gcode-slowed");
+    std::fs::write(dir.join("spin.ngc"), "G21 G90 G94\nG0 X0 Y400 Z50\nG1 X10 C180 F6000\nM2\n")
+        .expect("write");
+    biscara(&dir, &["joints", "spin.ngc"])
+        .success()
+        .stderr_has("spin.ngc:3: slowed to")
+        .stderr_has("C rotation");
+}
+
+#[test]
+fn origin_shifts_a_gcode_program() {
+    let dir = temp_dir("origin");
+    std::fs::write(dir.join("part.ngc"), "G21 G90 G94\nG0 X0 Y0 Z0 C0\nG1 X10 F600\nM2\n")
+        .expect("write");
+    // Without an origin the part zero is the base frame's origin: not reachable.
+    biscara(&dir, &["joints", "part.ngc"]).expect_code(1);
+    let run = biscara(&dir, &["interpolate", "part.ngc", "--origin", "-20,380,30,0"]);
+    run.success();
+    let last = run.stdout.lines().last().expect("rows");
+    assert_eq!(
+        last,
+        format!("{},-10.000000,380.000000,30.000000,0.000000", last.split(',').next().expect("t"))
+    );
+}
+
+/// Golden path and joint CSVs (every 10th row at 10 ms) of every G-code program in `data/`, of
+/// the G-code `gen` makes from every job and of the G-code `post` makes from every CL file.
+#[test]
+fn data_programs_have_golden_paths_and_trajectories() {
+    let dir = temp_dir("data-golden");
+    let root = crate::util::repo_root();
+    let mut programs: Vec<(String, std::path::PathBuf)> = Vec::new();
+    for entry in std::fs::read_dir(root.join("data/programs")).expect("data/programs") {
+        let path = entry.expect("entry").path();
+        let name = path.file_stem().and_then(|s| s.to_str()).expect("name").to_owned();
+        programs.push((name, path));
+    }
+    for entry in std::fs::read_dir(root.join("data/jobs")).expect("data/jobs") {
+        let path = entry.expect("entry").path();
+        let name = path.file_stem().and_then(|s| s.to_str()).expect("name").to_owned();
+        let gcode = dir.join(format!("{name}.ngc"));
+        biscara(&dir, &["gen", path.to_str().expect("path"), "-o", gcode.to_str().expect("path")])
+            .success();
+        programs.push((format!("job_{name}"), gcode));
+    }
+    // CAM CL files put their zero on the part: placed in the workspace with --origin.
+    for entry in std::fs::read_dir(root.join("data/cl")).expect("data/cl") {
+        let path = entry.expect("entry").path();
+        let name = path.file_stem().and_then(|s| s.to_str()).expect("name").to_owned();
+        let gcode = dir.join(format!("cl_{name}.ngc"));
+        biscara(&dir, &["post", path.to_str().expect("path"), "-o", gcode.to_str().expect("path")])
+            .success();
+        programs.push((format!("cl_{name}"), gcode));
+    }
+    programs.sort();
+    assert!(programs.len() >= 5, "{programs:?}");
+    for (name, path) in programs {
+        let program = path.to_str().expect("path");
+        let origin = if name.starts_with("cl_") { "-50,300,30,0" } else { "0,0,0,0" };
+        let path_csv = biscara(&dir, &["interpolate", program, "--dt", "0.01", "--origin", origin]);
+        path_csv.success();
+        let joints = biscara(
+            &dir,
+            &["joints", program, "--dt", "0.01", "--derivatives", "--origin", origin],
+        );
+        joints.success();
+        check_golden(
+            &format!("motion/{name}.path.every-10th-row.csv"),
+            &crate::golden::decimate(&path_csv.stdout, 10),
+        );
+        check_golden(
+            &format!("motion/{name}.traj.every-10th-row.csv"),
+            &crate::golden::decimate(&joints.stdout, 10),
+        );
+    }
+}
