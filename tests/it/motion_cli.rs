@@ -298,7 +298,15 @@ fn data_programs_have_golden_paths_and_trajectories() {
     assert!(programs.len() >= 5, "{programs:?}");
     for (name, path) in programs {
         let program = path.to_str().expect("path");
-        let origin = if name.starts_with("cl_") { "-50,300,30,0" } else { "0,0,0,0" };
+        // A program whose zero is on the part says where to place it: `--origin X,Y,Z,C` in a
+        // comment; CL files from CAM are placed at one common spot.
+        let text = std::fs::read_to_string(&path).expect("read program");
+        let origin = match text.split("--origin ").nth(1) {
+            Some(rest) => rest.split([' ', ')']).next().expect("origin").to_owned(),
+            None if name.starts_with("cl_") => "-50,300,30,0".to_owned(),
+            None => "0,0,0,0".to_owned(),
+        };
+        let origin = origin.as_str();
         let path_csv = biscara(&dir, &["interpolate", program, "--dt", "0.01", "--origin", origin]);
         path_csv.success();
         let joints = biscara(
