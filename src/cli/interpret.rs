@@ -1,5 +1,6 @@
 //! `biscara interpret`: G-code → inter-file (JSON Lines).
 
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
@@ -75,11 +76,15 @@ pub(crate) fn interpret(robot: &Robot, args: &InterpretArgs) -> anyhow::Result<(
     let home = Kinematics::new(robot)?.home().to_degrees();
     let config = Config { home, origin: args.origin.unwrap_or([0.0; 4]), ..Config::default() };
     let input = open_input(&args.program)?;
-    write_output(args.output.as_deref(), |mut out| {
+    write_output(args.output.as_deref(), |out| {
+        // serde_json writes a motion in many small pieces: gather them in a buffer of a
+        // concrete type rather than through `dyn Write`.
+        let mut out = BufWriter::with_capacity(64 * 1024, out);
         for motion in interpret_gcode(input, &config) {
             let motion = motion.map_err(|err| gcode_error(&args.program, &err))?;
             write_jsonl(&mut out, &motion)?;
         }
+        out.flush()?;
         Ok(())
     })
 }

@@ -301,10 +301,10 @@ impl<R: BufRead> Interpreter<R> {
             }
             self.state.line = self.lines.number;
             compact(&self.lines.line, &mut self.compact).map_err(|fault| self.error(fault))?;
-            if self.compact.bytes.is_empty() {
+            if self.compact.bytes().is_empty() {
                 continue;
             }
-            if self.block_delete && self.compact.bytes[0] == b'/' {
+            if self.block_delete && self.compact.bytes()[0] == b'/' {
                 continue;
             }
             let raw_len = self.lines.line.len();
@@ -411,7 +411,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         for index in 0..self.block.named.len() {
             let (start, end, value) = self.block.named[index];
-            self.state.params.set_named(&self.compact.bytes[start..end], value);
+            self.state.params.set_named(&self.compact.bytes()[start..end], value);
         }
 
         // 3. feed mode
@@ -427,7 +427,7 @@ impl<R: BufRead> Interpreter<R> {
         // 4. feed rate
         if let Some(f) = self.block.word(b'f') {
             if f.value < 0.0 {
-                return Err(self.word_fault(f, "Negative F word found"));
+                return Err(self.word_fault(f, "Negative f word used"));
             }
             if !self.state.inverse_time {
                 self.state.feed_rate = f.value;
@@ -443,7 +443,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(t) = self.block.word(b't') {
             if t.value < 0.0 {
-                return Err(self.word_fault(t, "Negative tool id used"));
+                return Err(self.word_fault(t, "Negative tool id (tool not found)"));
             }
             self.state.selected_tool = t.value;
         }

@@ -115,59 +115,65 @@ impl<R: BufRead> LineReader<R> {
     }
 }
 
-/// The significant characters of one line.
-#[derive(Debug, Default)]
+/// The significant characters of one line (at most [`MAX_LINE`] of them: fixed arrays, no
+/// allocation, no capacity checks).
+#[derive(Debug)]
 pub(crate) struct Compact {
-    /// Lower-case characters outside comments, without spaces and tabs; a comment is one `(`.
-    pub bytes: Vec<u8>,
-    /// For each byte of `bytes`, its 0-based byte offset in the raw line.
-    pub columns: Vec<u32>,
-    /// Whether the line holds a `(MSG,…)`, `(DEBUG,…)` or other comment (kept for nothing but
-    /// completeness: comments have no effect on motion).
-    pub comments: usize,
+    bytes: [u8; MAX_LINE + 4],
+    /// For each byte of `bytes`, its 0-based byte offset in the raw line (< 256).
+    columns: [u8; MAX_LINE + 4],
+    len: usize,
+}
+
+impl Default for Compact {
+    fn default() -> Compact {
+        Compact { bytes: [0; MAX_LINE + 4], columns: [0; MAX_LINE + 4], len: 0 }
+    }
 }
 
 impl Compact {
-    /// The raw offset of compact index `index` (the line's end for `index == len`).
+    /// Lower-case characters outside comments, without spaces and tabs; a comment is one `(`.
+    pub(crate) fn bytes(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+
+    /// The raw offset of compact index `index` (the line's end for `index >= len`).
     pub(crate) fn column(&self, index: usize, raw_len: usize) -> usize {
-        match self.columns.get(index) {
-            Some(&column) => column as usize,
-            None => raw_len,
+        if index < self.len { usize::from(self.columns[index]) } else { raw_len }
+    }
+
+    fn push(&mut self, byte: u8, column: usize) {
+        // `compact` is only given lines of at most MAX_LINE bytes.
+        if self.len < self.bytes.len() {
+            self.bytes[self.len] = byte;
+            self.columns[self.len] = column.min(255) as u8;
+            self.len += 1;
         }
     }
 }
 
-/// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`).
+/// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`);
+/// `raw` holds at most [`MAX_LINE`] bytes.
 pub(crate) fn compact(raw: &[u8], out: &mut Compact) -> Result<(), Fault> {
-    out.bytes.clear();
-    out.columns.clear();
-    out.comments = 0;
+    out.len = 0;
     let mut comment_start: Option<usize> = None;
     for (index, &byte) in raw.iter().enumerate() {
         if let Some(start) = comment_start {
             match byte {
                 b')' => comment_start = None,
-                b'(' => {
-                    return Err(Fault::syntax(start, index + 1, "Nested comment found"));
-                }
+                b'(' => return Err(Fault::syntax(start, index + 1, "Nested comment found")),
                 _ => {}
             }
-            let _ = start;
             continue;
         }
         match byte {
             b' ' | b'\t' => {}
             b'(' => {
                 comment_start = Some(index);
-                out.comments += 1;
-                out.bytes.push(b'(');
-                out.columns.push(index as u32);
+                out.push(b'(', index);
             }
             b';' => break,
-            _ => {
-                out.bytes.push(byte.to_ascii_lowercase());
-                out.columns.push(index as u32);
-            }
+            _ => out.push(byte.to_ascii_lowercase(), index),
         }
     }
     if let Some(start) = comment_start {
@@ -183,7 +189,8 @@ mod tests {
     fn squeeze(raw: &str) -> Result<(String, Vec<u32>), String> {
         let mut out = Compact::default();
         compact(raw.as_bytes(), &mut out).map_err(|fault| fault.message)?;
-        Ok((String::from_utf8(out.bytes).unwrap(), out.columns))
+        let columns = (0..out.bytes().len()).map(|i| out.column(i, raw.len()) as u32).collect();
+        Ok((String::from_utf8(out.bytes().to_vec()).unwrap(), columns))
     }
 
     #[test]

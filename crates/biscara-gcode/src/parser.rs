@@ -164,6 +164,43 @@ impl Op {
     }
 }
 
+/// `[+-]digits[.digits]` with at most 15 digits, converted exactly: the digits as an integer
+/// (exact below 2^53) divided by a power of ten (exact up to 10^22) is correctly rounded, as
+/// `str::parse` would give. `None` for anything else (which takes the general path).
+fn fast_decimal(text: &[u8]) -> Option<f64> {
+    const POWERS: [f64; 16] =
+        [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15];
+    let (negative, body) = match text.first()? {
+        b'-' => (true, &text[1..]),
+        b'+' => (false, &text[1..]),
+        _ => (false, text),
+    };
+    let mut mantissa: u64 = 0;
+    let mut digits = 0usize;
+    let mut decimals: Option<usize> = None;
+    for &byte in body {
+        match byte {
+            b'0'..=b'9' => {
+                if digits == 15 {
+                    return None;
+                }
+                mantissa = mantissa * 10 + u64::from(byte - b'0');
+                digits += 1;
+                if let Some(count) = decimals.as_mut() {
+                    *count += 1;
+                }
+            }
+            b'.' if decimals.is_none() => decimals = Some(0),
+            _ => return None,
+        }
+    }
+    if digits == 0 {
+        return None;
+    }
+    let value = mantissa as f64 / POWERS[decimals.unwrap_or(0)];
+    Some(if negative { -value } else { value })
+}
+
 /// LinuxCNC's `TOLERANCE_EQUAL` for EQ and NE.
 const TOLERANCE_EQUAL: f64 = 0.0001;
 
@@ -184,7 +221,7 @@ impl<'a> Reader<'a> {
         params: &'a Params,
         predefined: &'a dyn Predefined,
     ) -> Reader<'a> {
-        Reader { bytes: &compact.bytes, compact, raw_len, params, predefined, pos: 0 }
+        Reader { bytes: compact.bytes(), compact, raw_len, params, predefined, pos: 0 }
     }
 
     /// Raw column range of compact range `start..end`.
@@ -497,6 +534,9 @@ impl<'a> Reader<'a> {
             self.pos += 1;
         }
         let text = &self.bytes[start..self.pos];
+        if let Some(value) = fast_decimal(text) {
+            return Ok(value);
+        }
         let text = std::str::from_utf8(text).unwrap_or("");
         let digits = text.bytes().filter(u8::is_ascii_digit).count();
         let dots = text.bytes().filter(|&b| b == b'.').count();
@@ -762,5 +802,33 @@ impl<'a> Reader<'a> {
             return Err(fail("the result is not a finite number"));
         }
         Ok(value)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::fast_decimal;
+
+    #[test]
+    fn fast_decimals_are_the_parsed_values() {
+        for text in ["0", "-0", "5.", ".5", "+1.25", "-0004.250", "123456789012345", "0.1", "9.99"]
+        {
+            let parsed: f64 = text.parse().unwrap();
+            assert_eq!(fast_decimal(text.as_bytes()), Some(parsed), "{text}");
+        }
+        for text in ["", ".", "-", "1.2.3", "1234567890123456", "1e5", "+-1"] {
+            assert_eq!(fast_decimal(text.as_bytes()), None, "{text}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn fast_decimals_round_correctly(int in 0u64..10_000_000, frac in 0u64..100_000_000, sign: bool) {
+            let text = format!("{}{int}.{frac:08}", if sign { "-" } else { "" });
+            let parsed: f64 = text.parse().unwrap();
+            prop_assert_eq!(fast_decimal(text.as_bytes()), Some(parsed));
+        }
     }
 }
