@@ -13,6 +13,7 @@
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
 //! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
 //! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
+//! - [`view`]: the HTML viewer and the MuJoCo model of a trajectory (`biscara view`, `mjcf`).
 //!
 //! ```
 //! use biscara::kinematics::{Kinematics, Pose};
@@ -31,3 +32,4 @@ pub use biscara_kinematics as kinematics;
 pub use biscara_motion as motion;
 pub use biscara_pnp as pnp;
 pub use biscara_post as post;
+pub use biscara_view as view;
