@@ -21,71 +21,113 @@ const DIGIT_PAIRS: &[u8; 200] = b"\
 6061626364656667686970717273747576777879\
 8081828384858687888990919293949596979899";
 
+/// Powers of ten as integers, for splitting a scaled value into integer part and fraction.
+const INTEGER_POWERS_OF_TEN: [u64; MAX_DECIMALS + 1] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+    10_000_000_000,
+    100_000_000_000,
+    1_000_000_000_000,
+];
+
 /// Appends `value` with exactly `decimals` decimals (at most [`MAX_DECIMALS`]), never a
 /// negative zero.
 ///
-/// Scales to an integer and writes its digits two at a time into a stack buffer, which is several
-/// times faster than `format!` (the CSV writers' hot spot: 40 % of `joints` before, 18 % after)
-/// and agrees with it except, rarely, in the last digit of a value that lies within rounding noise
-/// of a tie. Values too large to scale exactly fall back to `format!`.
+/// The CSV writers' hot spot (40 % of `joints` with `format!`-like code). It scales to an integer,
+/// writes the digits two at a time, right to left, into a stack array whose length is known in
+/// advance, and appends the whole array with one fixed-size copy before trimming it: no division
+/// per digit and no variable-length `memcpy` call per number (12.6 → 7.0 instructions per sample
+/// byte under callgrind). It agrees with `format!` except, rarely, in the last digit of a value
+/// within rounding noise of a tie. Values too large to scale exactly fall back to `format!`.
 pub fn push_fixed(buffer: &mut Vec<u8>, value: f64, decimals: usize) {
-    let decimals = decimals.min(MAX_DECIMALS);
-    let scaled = value * POWERS_OF_TEN[decimals];
+    // One instance per number of decimals, so that the divisions by 10^decimals are by
+    // constants (a multiplication) rather than a 64-bit `div`.
+    match decimals {
+        0 => push_fixed_with::<0>(buffer, value),
+        1 => push_fixed_with::<1>(buffer, value),
+        2 => push_fixed_with::<2>(buffer, value),
+        3 => push_fixed_with::<3>(buffer, value),
+        4 => push_fixed_with::<4>(buffer, value),
+        5 => push_fixed_with::<5>(buffer, value),
+        6 => push_fixed_with::<6>(buffer, value),
+        7 => push_fixed_with::<7>(buffer, value),
+        8 => push_fixed_with::<8>(buffer, value),
+        9 => push_fixed_with::<9>(buffer, value),
+        10 => push_fixed_with::<10>(buffer, value),
+        11 => push_fixed_with::<11>(buffer, value),
+        _ => push_fixed_with::<12>(buffer, value),
+    }
+}
+
+/// [`push_fixed`] with `DECIMALS` ≤ [`MAX_DECIMALS`] decimals.
+#[inline]
+fn push_fixed_with<const DECIMALS: usize>(buffer: &mut Vec<u8>, value: f64) {
+    let scaled = value * POWERS_OF_TEN[DECIMALS];
     if scaled.is_nan() || scaled.abs() >= 4.0e15 {
-        let text = format!("{value:.decimals$}");
+        let text = format!("{value:.DECIMALS$}");
         let negative_zero =
             text.starts_with('-') && text[1..].bytes().all(|byte| byte == b'0' || byte == b'.');
         buffer.extend_from_slice(&text.as_bytes()[usize::from(negative_zero)..]);
         return;
     }
-    // Round half away from zero, as `f64::round`, by truncating `|x| + 0.5`: the cast is one
-    // instruction where `round` is a library call on baseline x86-64 (5 % of `joints`).
-    let mut magnitude = (scaled.abs() + 0.5) as u64;
+    // Round half away from zero, as `f64::round`, by truncating `|x| + 0.5`; through i64, whose
+    // conversion is one instruction where `round` and the u64 conversion are several.
+    let magnitude = (scaled.abs() + 0.5) as i64 as u64;
     let negative = scaled < 0.0 && magnitude != 0;
-    // Digits are written backwards from the end: fraction, point, integer part, sign.
+    let unit = INTEGER_POWERS_OF_TEN[DECIMALS];
+    let (mut integer, mut fraction) = (magnitude / unit, magnitude % unit);
+    let integer_digits =
+        1 + INTEGER_POWERS_OF_TEN[1..].iter().take_while(|&&power| integer >= power).count();
+    let length =
+        usize::from(negative) + integer_digits + if DECIMALS > 0 { DECIMALS + 1 } else { 0 };
+    // < 4e15 has at most 16 integer digits: 1 + 16 + 1 + 12 = 30 bytes fit in 32.
     let mut digits = [0u8; 32];
-    let mut at = digits.len();
-    let mut written = 0;
-    while written + 2 <= decimals {
-        let pair = (magnitude % 100) as usize * 2;
-        magnitude /= 100;
+    let mut at = length;
+    let mut left = DECIMALS;
+    while left >= 2 {
+        let pair = (fraction % 100) as usize * 2;
+        fraction /= 100;
         at -= 2;
         digits[at..at + 2].copy_from_slice(&DIGIT_PAIRS[pair..pair + 2]);
-        written += 2;
+        left -= 2;
     }
-    if written < decimals {
+    if left == 1 {
         at -= 1;
-        digits[at] = b'0' + (magnitude % 10) as u8;
-        magnitude /= 10;
+        digits[at] = b'0' + (fraction % 10) as u8;
     }
-    if decimals > 0 {
+    if DECIMALS > 0 {
         at -= 1;
         digits[at] = b'.';
     }
-    loop {
-        if magnitude >= 10 {
-            let pair = (magnitude % 100) as usize * 2;
-            magnitude /= 100;
-            at -= 2;
-            digits[at..at + 2].copy_from_slice(&DIGIT_PAIRS[pair..pair + 2]);
-            if magnitude == 0 {
-                // A pair such as "07" at the front: drop its leading zero.
-                if digits[at] == b'0' {
-                    at += 1;
-                }
-                break;
-            }
-        } else {
-            at -= 1;
-            digits[at] = b'0' + magnitude as u8;
-            break;
-        }
+    while integer >= 100 {
+        let pair = (integer % 100) as usize * 2;
+        integer /= 100;
+        at -= 2;
+        digits[at..at + 2].copy_from_slice(&DIGIT_PAIRS[pair..pair + 2]);
+    }
+    if integer >= 10 {
+        let pair = integer as usize * 2;
+        at -= 2;
+        digits[at..at + 2].copy_from_slice(&DIGIT_PAIRS[pair..pair + 2]);
+    } else {
+        at -= 1;
+        digits[at] = b'0' + integer as u8;
     }
     if negative {
         at -= 1;
         digits[at] = b'-';
     }
-    buffer.extend_from_slice(&digits[at..]);
+    debug_assert_eq!(at, 0, "the length was counted right");
+    buffer.extend_from_slice(&digits);
+    buffer.truncate(buffer.len() - (digits.len() - length));
 }
 
 /// Rows are gathered in the writer's own buffer and handed to the output in chunks of about this
