@@ -26,6 +26,19 @@ fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
     interpret(BufReader::new(file), &Config::default()).collect()
 }
 
+/// Our motions for `path` before the first error, and the outcome.
+fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
+    let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
+    let mut motions = Vec::new();
+    for result in interpret(BufReader::new(file), &Config::default()) {
+        match result {
+            Ok(motion) => motions.push(motion),
+            Err(err) => return (motions, Err(err)),
+        }
+    }
+    (motions.clone(), Ok(motions))
+}
+
 /// The first difference between our motions and rs274's, if any.
 fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
     let unit = if inches { 25.4 } else { 1.0 };
@@ -104,15 +117,30 @@ enum Verdict {
 /// Runs both on `path`: `Ok(verdict)` or the difference.
 fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let theirs = rs274::run(path, dir);
-    let ours = ours(path);
+    let (before, ours) = ours_with_partial(path);
     match (ours, theirs) {
         (Ok(ours), Outcome::Motions(theirs)) => {
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
-        (Err(err), Outcome::Error { .. }) => {
-            let _ = err;
+        (Err(err), Outcome::Error { message, before: theirs }) => {
+            // The same motions up to the block that fails (rs274 may have emitted part of it),
+            // and LinuxCNC's message within ours.
+            let common = before.len().min(theirs.len());
+            compare(&before, &theirs[..common], uses_inches(path))?;
+            if theirs.len() > before.len() + 3 || before.len() > theirs.len() {
+                return Err(format!(
+                    "both refuse, ours after {} motions, rs274 after {}: {err} / {message}",
+                    before.len(),
+                    theirs.len()
+                ));
+            }
+            if !message.is_empty() && !err.to_string().contains(message.as_str()) {
+                return Err(format!(
+                    "both refuse, differently:\n  ours:  {err}\n  rs274: {message}"
+                ));
+            }
             Ok(Verdict::BothRefuse)
         }
         (Ok(_), Outcome::Error { message, .. }) => {
@@ -267,4 +295,139 @@ fn linuxcnc_examples_match_or_are_refused() {
     }
     assert!(!programs.is_empty(), "no example programs found in {EXAMPLE_FOLDERS:?}");
     assert!(differ.is_empty(), "{} examples differ:\n{}", differ.len(), differ.join("\n"));
+}
+
+/// A tiny deterministic generator (xorshift64*), so every run checks the same programs.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+
+    fn coordinate(&mut self) -> String {
+        let value = self.below(4001) as f64 / 100.0 - 20.0;
+        format!("{value:.2}")
+    }
+
+    fn pick<'a>(&mut self, choices: &[&'a str]) -> &'a str {
+        choices[self.below(choices.len() as u64) as usize]
+    }
+}
+
+/// A random program of the supported language: modes, offsets, moves (some arcs will not
+/// close: both interpreters must then refuse them alike).
+fn random_program(rng: &mut Rng) -> String {
+    let mut text = String::from("G0 X0 Y0 Z0 C0\nF500\n");
+    for _ in 0..(5 + rng.below(25)) {
+        let axis = |rng: &mut Rng| {
+            let letter = rng.pick(&["X", "Y", "Z", "C"]);
+            format!("{letter}{}", rng.coordinate())
+        };
+        let two_axes = |rng: &mut Rng| {
+            let pair = rng.pick(&["XY", "XZ", "XC", "YZ", "YC", "ZC"]).as_bytes();
+            let (a, b) = (char::from(pair[0]), char::from(pair[1]));
+            format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
+        };
+        let line = match rng.below(20) {
+            0 => rng
+                .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
+                .to_owned(),
+            1 => format!("G0 {}", two_axes(rng)),
+            2 | 3 => format!("G1 {} F{}", two_axes(rng), 100 + rng.below(900)),
+            4 | 5 => {
+                // A closed arc: from the current point through the centre at `a` along the
+                // plane's first axis to the far side (or back round with P turns), helical
+                // sometimes; relative or absolute centre.
+                let a = 1 + rng.below(20);
+                let code = rng.pick(&["G2", "G3"]);
+                let turns = if rng.below(4) == 0 {
+                    format!(" P{}", 1 + rng.below(3))
+                } else {
+                    String::new()
+                };
+                let (plane, first, second, i, j, normal) = match rng.below(3) {
+                    0 => ("G17", "X", "Y", "I", "J", "Z"),
+                    1 => ("G18", "Z", "X", "K", "I", "Y"),
+                    _ => ("G19", "Y", "Z", "J", "K", "X"),
+                };
+                let helix = match rng.below(3) {
+                    0 => format!(" {normal}{}", rng.coordinate()),
+                    1 => format!(" C{}", rng.coordinate()),
+                    _ => String::new(),
+                };
+                let (f, g) = (first.to_ascii_lowercase(), second.to_ascii_lowercase());
+                let end = match rng.below(3) {
+                    0 => format!("{first}[#<_{f}> + {}] {second}#<_{g}>", 2 * a),
+                    1 => format!("{first}#<_{f}> {second}#<_{g}>"),
+                    _ => format!("{first}[#<_{f}> + {a}] {second}[#<_{g}> + {a}]"),
+                };
+                let centre = if rng.below(3) == 0 {
+                    format!("G90.1 {i}[#<_{f}> + {a}] {j}#<_{g}>")
+                } else {
+                    format!("G91.1 {i}{a} {j}0")
+                };
+                let feed = 1 + rng.below(50);
+                format!("G90 {plane} {code} {end} {centre}{turns}{helix} F{feed}")
+            }
+            6 => {
+                let code = rng.pick(&["G2", "G3"]);
+                let sign = rng.pick(&["", "-"]);
+                let d = 1 + rng.below(20);
+                let r = d as f64 / 2.0 + rng.below(10) as f64;
+                format!("G90 G17 {code} X[#<_x> + {d}] Y[#<_y> - 1] R{sign}{r} F20")
+            }
+            7 => format!("G92 {}", axis(rng)),
+            8 => rng.pick(&["G92.1", "G92.2", "G92.3"]).to_owned(),
+            9 => format!("G10 L{} P{} {}", rng.pick(&["2", "20"]), rng.below(10), axis(rng)),
+            10 => rng.pick(&["G54", "G55", "G56", "G59.3", "G53 G0 X1", "G53 G1 Y2"]).to_owned(),
+            11 => rng.pick(&["G28", "G28.1", "G30", "G30.1", "G28 Z1", "G30 X2 C4"]).to_owned(),
+            12 => format!("G93 G1 {} F{}", axis(rng), 1 + rng.below(20)),
+            13 => "G94 F300".to_owned(),
+            14 => rng.pick(&["M3", "M4", "M5", "G4 P0.25", "M0", "M1", "M6 T2"]).to_owned(),
+            15 => format!("#{}=[{} * {}]", 1 + rng.below(5), rng.coordinate(), rng.coordinate()),
+            16 => "G1 X[#1 + #2] Y[#3 / 2] Z[#4 MOD 7] F[100 + #5]".to_owned(),
+            17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
+            _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
+        };
+        text.push_str(&line);
+        text.push('\n');
+    }
+    text.push_str("M2\n");
+    text
+}
+
+#[test]
+fn random_programs_conform() {
+    if !rs274::available("random_programs_conform") {
+        return;
+    }
+    let dir = temp_dir("conformance-random");
+    let mut rng = Rng(0x0005_eed0_fb15_ca7a);
+    let mut failures = Vec::new();
+    let (mut accepted, mut refused) = (0, 0);
+    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..count {
+        let program = random_program(&mut rng);
+        let path = dir.join(format!("random{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        match check(&path, &dir) {
+            Ok(Verdict::Match) => accepted += 1,
+            Ok(Verdict::BothRefuse) => refused += 1,
+            Ok(other) => failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("random programs: {accepted} match, {refused} refused by both");
+    }
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
