@@ -2,7 +2,8 @@
 //! and its canonical-machining output read back as motions in absolute millimetres — the
 //! reference that `interpret` is compared with.
 //!
-//! Invocation: `rs274 -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no prompts). It writes one
+//! Invocation: `HOME=DIR rs274 -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no prompts; a HOME
+//! of its own because rs274 maps `$HOME/.tool.mmap`). It writes one
 //! canonical command a line (`STRAIGHT_FEED(x, y, z, a, b, c)`, `ARC_FEED(…)`, …) to OUTPUT,
 //! positions in program units relative to the active offsets, 4 decimals; errors go to stderr
 //! (the message, then the offending line) with exit code 1. rs274 starts at 0,0,0 with the G28
@@ -50,8 +51,9 @@ pub enum Outcome {
 
 /// Runs rs274 on `program` in `dir`.
 ///
-/// rs274 instances running at the same time can die of SIGBUS (they share memory), so runs from
-/// this module take a lock, and a run killed by a signal is retried.
+/// rs274 creates, truncates and maps `$HOME/.tool.mmap`, so runs sharing a HOME can kill each
+/// other with SIGBUS: each run gets `dir` as its HOME, runs from this module take a lock, and a
+/// run killed by a signal anyway is retried.
 pub fn run(program: &Path, dir: &Path) -> Outcome {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
@@ -64,6 +66,7 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
             .arg(program)
             .arg(&output)
             .current_dir(dir)
+            .env("HOME", dir)
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())

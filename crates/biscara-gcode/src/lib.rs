@@ -15,6 +15,19 @@
 //! other codes outside SPEC §4.2's tiers 1 and 2 are refused with "… is not supported yet",
 //! never interpreted wrongly; A, B, U, V and W words are errors.
 //!
+//! Where it differs from LinuxCNC, on purpose:
+//! - A, B, U, V, W words are errors (LinuxCNC machines may have those axes; this robot has not).
+//! - Parameters hold millimetres: G28.1/G30.1, G10 and G92 store mm in 5161–5390, where
+//!   LinuxCNC stores its configured user unit (the standalone `rs274` uses inches).
+//! - A value that is not finite (`[10**400]`) and a position beyond ±1e6 mm are errors.
+//! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
+//! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
+//!   `PROGRAM_END`); M2 and M30 do.
+//!
+//! Like LinuxCNC, it refuses a file that ends without M2, M30 or a closing `%` (a truncated
+//! file), lines longer than 252 characters ("Command too long"), and emits a zero-length move
+//! for a motion block without axis words (`G1 F100`) and the intermediate point of G28/G30.
+//!
 //! ```
 //! use biscara_gcode::{Config, interpret};
 //! use biscara_motion::MotionKind;
