@@ -65,6 +65,8 @@ pub(crate) fn demo(robot: &Robot, args: &DemoArgs) -> anyhow::Result<()> {
         "joint trajectory with velocities and accelerations (biscara joints)",
     ));
 
+    written.extend(super::view::demo_pictures(robot, dir)?);
+
     let summary = summarize(&trajectory)?;
     print_summary(&summary, &written);
     Ok(())

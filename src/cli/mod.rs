@@ -8,10 +8,12 @@ mod generate;
 mod input;
 mod interpret;
 mod kinematics;
+mod mjcf;
 mod output;
 mod post;
 mod progress;
 mod trajectory;
+mod view;
 
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
@@ -50,6 +52,7 @@ enum Command {
     Interpolate(trajectory::InterpolateArgs),
     Joints(trajectory::JointsArgs),
     Diff(diff::DiffArgs),
+    Mjcf(mjcf::MjcfArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -94,6 +97,7 @@ fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
         Command::Interpolate(args) => trajectory::interpolate(robot, &args),
         Command::Joints(args) => trajectory::joints(robot, &args),
         Command::Diff(args) => diff::diff(&args),
+        Command::Mjcf(args) => mjcf::mjcf(robot, &args),
     }
 }
 

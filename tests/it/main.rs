@@ -6,6 +6,8 @@ mod golden;
 mod interpret;
 mod linuxcnc;
 mod motion_cli;
+mod mujoco;
 mod programming;
 mod rs274;
 mod util;
+mod view_cli;

@@ -1,8 +1,10 @@
 //! The joint CSV (SPEC §7).
 
-use std::io::{self, Write};
+use std::io::{self, BufRead, Write};
 
 use biscara_interpolate::{FLUSH_AT, push_fixed};
+
+use biscara_kinematics::Joints;
 
 use crate::JointSample;
 
@@ -98,5 +100,256 @@ impl<W: Write> JointCsvWriter<W> {
         self.out.write_all(&self.row)?;
         self.out.flush()?;
         Ok(self.out)
+    }
+}
+
+/// One row of a joint CSV read back: radians and millimetres whatever the file's angle unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointCsvRow {
+    /// Time, s.
+    pub t: f64,
+    /// 1-based line of the row in the CSV file.
+    pub line: usize,
+    /// Joint positions (radians, mm).
+    pub joints: Joints,
+    /// Joint velocities (rad/s, mm/s) when the file has derivative columns.
+    pub velocity: Option<[f64; 4]>,
+}
+
+/// A joint CSV that cannot be read; `Display` starts with `LINE:COL: `.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum JointCsvError {
+    /// Occurs when the underlying reader fails (including text that is not UTF-8).
+    #[error("{line}:1: {source}")]
+    Io {
+        /// 1-based line being read.
+        line: usize,
+        /// The I/O error.
+        source: io::Error,
+    },
+    /// Occurs when the file is empty or its first line is not a joint CSV header.
+    #[error(
+        "1:1: expected a joint CSV header `t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm` (or `_deg`, \
+         optionally with derivative columns), found `{found}`"
+    )]
+    Header {
+        /// The first line as found (shortened).
+        found: String,
+    },
+    /// Occurs when a row has the wrong number of fields or a field that is not a finite number,
+    /// or time does not increase.
+    #[error("{line}:{column}: {message}")]
+    Row {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column where the offending field starts.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Reads a joint CSV written by `biscara joints` (any angle unit, with or without derivatives),
+/// streaming; rows come back in radians and millimetres.
+pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
+    JointCsvReader {
+        reader,
+        line: 0,
+        buffer: String::new(),
+        format: None,
+        previous_t: f64::NEG_INFINITY,
+        failed: false,
+    }
+}
+
+/// The iterator returned by [`read_joint_csv`]; stops after the first error.
+#[derive(Debug)]
+pub struct JointCsvReader<R> {
+    reader: R,
+    line: usize,
+    buffer: String,
+    format: Option<JointCsvFormat>,
+    previous_t: f64,
+    failed: bool,
+}
+
+impl<R: BufRead> JointCsvReader<R> {
+    fn read_line(&mut self) -> Result<bool, JointCsvError> {
+        self.buffer.clear();
+        self.line += 1;
+        match self.reader.read_line(&mut self.buffer) {
+            Ok(read) => Ok(read > 0),
+            Err(source) => Err(JointCsvError::Io { line: self.line, source }),
+        }
+    }
+
+    fn header(&mut self) -> Result<JointCsvFormat, JointCsvError> {
+        let found =
+            if self.read_line()? { self.buffer.trim_end().to_owned() } else { String::new() };
+        for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
+            for derivatives in [false, true] {
+                let format = JointCsvFormat { angle_unit, derivatives, precision: 0 };
+                if found == format.header() {
+                    return Ok(format);
+                }
+            }
+        }
+        Err(JointCsvError::Header { found: found.chars().take(80).collect() })
+    }
+
+    fn row(&mut self, format: JointCsvFormat) -> Result<JointCsvRow, JointCsvError> {
+        let line = self.line;
+        let columns = if format.derivatives { 13 } else { 5 };
+        let text = self.buffer.trim_end_matches(['\n', '\r']);
+        let mut values = [0.0; 13];
+        let mut count = 0;
+        let mut column = 1;
+        let error = |column, message| JointCsvError::Row { line, column, message };
+        for field in text.split(',') {
+            if count == columns {
+                return Err(error(column, format!("expected {columns} fields, found more")));
+            }
+            let shown: String = field.chars().take(40).collect();
+            let value: f64 = field
+                .trim()
+                .parse()
+                .map_err(|_| error(column, format!("`{shown}` is not a number")))?;
+            if !value.is_finite() {
+                return Err(error(column, format!("`{shown}` is not a finite number")));
+            }
+            values[count] = value;
+            count += 1;
+            column += field.len() + 1;
+        }
+        if count < columns {
+            return Err(error(text.len() + 1, format!("expected {columns} fields, found {count}")));
+        }
+        if values[0] <= self.previous_t {
+            return Err(error(1, format!("time {} does not increase", values[0])));
+        }
+        self.previous_t = values[0];
+        let scale = match format.angle_unit {
+            AngleUnit::Radians => 1.0,
+            AngleUnit::Degrees => std::f64::consts::PI / 180.0,
+        };
+        let joints = Joints {
+            theta1: values[1] * scale,
+            theta2: values[2] * scale,
+            theta3: values[3] * scale,
+            d4: values[4],
+        };
+        let velocity = format
+            .derivatives
+            .then(|| [values[5] * scale, values[6] * scale, values[7] * scale, values[8]]);
+        Ok(JointCsvRow { t: values[0], line, joints, velocity })
+    }
+}
+
+impl<R: BufRead> Iterator for JointCsvReader<R> {
+    type Item = Result<JointCsvRow, JointCsvError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        let result = (|| {
+            let format = match self.format {
+                Some(format) => format,
+                None => {
+                    let format = self.header()?;
+                    self.format = Some(format);
+                    format
+                }
+            };
+            loop {
+                if !self.read_line()? {
+                    return Ok(None);
+                }
+                if !self.buffer.trim().is_empty() {
+                    return self.row(format).map(Some);
+                }
+            }
+        })();
+        match result {
+            Ok(Some(row)) => Some(Ok(row)),
+            Ok(None) => None,
+            Err(err) => {
+                self.failed = true;
+                Some(Err(err))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(text: &[u8]) -> Result<Vec<JointCsvRow>, String> {
+        read_joint_csv(text).collect::<Result<_, _>>().map_err(|err| err.to_string())
+    }
+
+    fn sample(t: f64, degrees: [f64; 4]) -> JointSample {
+        JointSample {
+            t,
+            line: 3,
+            pose: [0.0; 4],
+            joints: Joints::from_degrees(degrees[0], degrees[1], degrees[2], degrees[3]),
+            velocity: [0.5, -0.25, 1.0, 20.0],
+            acceleration: [0.0; 4],
+            gripper: false,
+        }
+    }
+
+    #[test]
+    fn what_the_writer_writes_reads_back_in_both_units() {
+        for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
+            for derivatives in [false, true] {
+                let format = JointCsvFormat { angle_unit, derivatives, precision: 9 };
+                let mut writer = JointCsvWriter::new(Vec::new(), format).unwrap();
+                let samples = [sample(0.0, [10.0, -20.0, 30.0, 40.0]), sample(0.5, [0.0; 4])];
+                for s in &samples {
+                    writer.write(s).unwrap();
+                }
+                let text = writer.finish().unwrap();
+                let rows = read(&text).unwrap();
+                assert_eq!(rows.len(), 2);
+                assert_eq!(rows[0].line, 2);
+                assert_eq!(rows[1].t, 0.5);
+                let got = rows[0].joints.to_array();
+                for (got, want) in got.iter().zip(samples[0].joints.to_array()) {
+                    assert!((got - want).abs() < 1e-8, "{angle_unit:?}: {got} vs {want}");
+                }
+                match rows[0].velocity {
+                    Some(velocity) => {
+                        assert!(derivatives);
+                        assert!((velocity[1] + 0.25).abs() < 1e-8 && velocity[3] == 20.0);
+                    }
+                    None => assert!(!derivatives),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input_names_line_and_column() {
+        let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n";
+        let cases: [(Vec<u8>, &str); 7] = [
+            (b"".to_vec(), "1:1: expected a joint CSV header"),
+            (b"\x00\xff\xfe garbage".to_vec(), "1:1: "),
+            (b"t_s,x_mm,y_mm,z_mm,c_deg\n0,0,0,0,0\n".to_vec(), "1:1: expected a joint CSV header"),
+            (format!("{header}0,0,0,0\n").into_bytes(), "2:8: expected 5 fields, found 4"),
+            (format!("{header}0,0,0,0,0,1\n").into_bytes(), "2:11: expected 5 fields, found more"),
+            (format!("{header}0,0,NaN,0,0\n").into_bytes(), "2:5: `NaN` is not a finite number"),
+            (
+                format!("{header}0,0,0,0,0\n0,1,1,1,1\n").into_bytes(),
+                "3:1: time 0 does not increase",
+            ),
+        ];
+        for (input, expected) in cases {
+            let message = read(&input).unwrap_err();
+            assert!(message.starts_with(expected), "{message:?} should start with {expected:?}");
+        }
     }
 }

@@ -26,6 +26,9 @@ mod trajectory;
 
 pub use biscara_interpolate::CartesianSample;
 
-pub use csv::{AngleUnit, JointCsvFormat, JointCsvWriter};
+pub use csv::{
+    AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
+    read_joint_csv,
+};
 pub use limiter::JointSpeedLimit;
 pub use trajectory::{JointSample, JointTrajectory, JointsError};

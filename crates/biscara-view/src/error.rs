@@ -1,0 +1,34 @@
+//! The errors of this crate.
+
+use std::io;
+
+/// What can go wrong while building a picture or a model.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ViewError {
+    /// Occurs when a scene file is not valid JSON, has unknown keys or impossible boxes; the
+    /// message starts with `LINE:COL: `.
+    #[error("{line}:{column}: {message}")]
+    Scene {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a trajectory row's joints do not assemble (the distal links cannot meet).
+    #[error("at t = {t:.3} s the joints do not assemble: {source}")]
+    Assembly {
+        /// Time of the row, s.
+        t: f64,
+        /// Why forward kinematics failed.
+        source: biscara_kinematics::KinematicsError,
+    },
+    /// Occurs when the trajectory has no rows.
+    #[error("the trajectory has no rows")]
+    EmptyTrajectory,
+    /// Occurs when writing the output fails.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}

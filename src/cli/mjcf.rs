@@ -1,0 +1,97 @@
+//! `biscara mjcf`: the MuJoCo model of the robot, and the companion file that plays a trajectory.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+use biscara::joints::read_joint_csv;
+use biscara::kinematics::Robot;
+use biscara::view::{MjcfOptions, QposWriter, Scene, write_mjcf};
+use clap::Args;
+
+use super::input::open_input;
+use super::output::write_output;
+use super::{display_path, read_text};
+
+/// Writes a MuJoCo model (MJCF) of the robot (SPEC §8.3).
+///
+/// The two chains are bodies with hinge joints, the loop is closed by an equality `connect` at
+/// the platform point, and chain 1's distal link carries the Z slide and the rotary joint. Joints
+/// and position actuators `theta1`, `theta2`, `theta3`, `d4` (radians, metres; control ranges from
+/// the robot's joint limits), passive hinges `elbow1`, `elbow2`, the site `tool`; the base frame is
+/// the world frame and qpos0 the assembled home pose. Link sizes come from robot.json `geometry`;
+/// scene boxes become static geoms.
+///
+/// With --traj, the joint trajectory is written beside the model as `NAME.traj.csv` (for
+/// `-o robot.xml`: `robot.traj.csv`): every row's six joints in MuJoCo's units, the elbows from
+/// forward kinematics, and the tool pose FK gives; the model names it in the custom text
+/// `biscara_trajectory`. Open the model with `python -m mujoco.viewer --mjcf robot.xml`.
+#[derive(Debug, Args)]
+#[command(
+    about = "MuJoCo model of the robot (MJCF), optionally with a trajectory to play",
+    after_long_help = "Example:\n  $ biscara mjcf -o robot.xml\n  \
+                       $ biscara mjcf -o robot.xml --traj traj.csv --scene scene.json\n  \
+                       $ python -m mujoco.viewer --mjcf robot.xml"
+)]
+pub(crate) struct MjcfArgs {
+    /// Write to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// A joint CSV (from `biscara joints`) to write beside the model as NAME.traj.csv.
+    #[arg(
+        long,
+        value_name = "TRAJ",
+        requires = "output",
+        help = "Joint trajectory to play (needs -o)"
+    )]
+    traj: Option<PathBuf>,
+    /// A scene file: `{"boxes":[{"name":…,"min":[x,y,z],"max":[x,y,z]}]}` (mm).
+    #[arg(long, value_name = "FILE", help = "Scene boxes to add as static geoms")]
+    scene: Option<PathBuf>,
+}
+
+/// The scene in `path`, or an empty one.
+pub(crate) fn load_scene(path: Option<&Path>) -> anyhow::Result<Scene> {
+    let Some(path) = path else {
+        return Ok(Scene::default());
+    };
+    let text = read_text(path)?;
+    Scene::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
+}
+
+/// The companion trajectory file of the model `output`: `robot.xml` → `robot.traj.csv`.
+fn companion_path(output: &Path) -> PathBuf {
+    let stem = output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    output.with_file_name(format!("{stem}.traj.csv"))
+}
+
+pub(crate) fn mjcf(robot: &Robot, args: &MjcfArgs) -> anyhow::Result<()> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let mut options = MjcfOptions::default();
+    if let (Some(traj), Some(output)) = (&args.traj, &args.output) {
+        let companion = companion_path(output);
+        write_companion(robot, traj, &companion)?;
+        options.trajectory_file =
+            companion.file_name().map(|name| name.to_string_lossy().into_owned());
+    }
+    write_output(args.output.as_deref(), |out| Ok(write_mjcf(out, robot, &scene, &options)?))
+}
+
+/// Reads the joint CSV `traj` and writes the companion file `companion`.
+fn write_companion(robot: &Robot, traj: &Path, companion: &Path) -> anyhow::Result<()> {
+    let name = display_path(traj);
+    let input = open_input(traj)?;
+    write_output(Some(companion), |out| {
+        let mut writer = QposWriter::new(out, robot)?;
+        let mut rows = 0usize;
+        for row in read_joint_csv(input) {
+            let row = row.map_err(|err| anyhow!("{name}:{err}"))?;
+            writer.write(&row).map_err(|err| anyhow!("{name}:{}: {err}", row.line))?;
+            rows += 1;
+        }
+        if rows == 0 {
+            return Err(anyhow!("{name}: the trajectory has no rows"));
+        }
+        writer.finish()?;
+        Ok(())
+    })
+}
