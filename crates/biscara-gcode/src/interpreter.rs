@@ -663,7 +663,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(p) = block.word(b'p') {
-            let used = arc || matches!(group0, Some(40 | 100)) || block.g[13].is_some();
+            let g64 = block.g[13].is_some_and(|code| code.code == 640);
+            let used = arc || matches!(group0, Some(40 | 100)) || g64;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -673,7 +674,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(q) = block.word(b'q') {
-            if block.g[13].is_none() && !g10 {
+            if !block.g[13].is_some_and(|code| code.code == 640) && !g10 {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
