@@ -674,7 +674,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(q) = block.word(b'q') {
-            if !block.g[13].is_some_and(|code| code.code == 640) && !g10 {
+            let g64 = block.g[13].is_some_and(|code| code.code == 640);
+            if !g64 && !g10 {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
