@@ -3,8 +3,47 @@
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use anyhow::Context;
+
+/// Temporary files being written right now, removed by the interrupt handler.
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Exit code after SIGINT, SIGTERM or SIGHUP: 128 + SIGINT, as shells report an interrupt.
+const INTERRUPTED: i32 = 130;
+
+/// Installs, once, the handler of SIGINT, SIGTERM and SIGHUP: it removes the temporary files of
+/// outputs being written (so an interrupted run leaves neither a partial file nor a temporary one,
+/// and an earlier good file untouched) and exits with 130. Runs that write no file keep the
+/// default behaviour.
+fn remove_temporaries_on_interrupt() {
+    static INSTALLED: std::sync::Once = std::sync::Once::new();
+    // Without the handler an interrupt would still leave the target untouched, only a stray
+    // temporary file: not worth failing the run for.
+    INSTALLED.call_once(|| {
+        let _ = ctrlc::set_handler(remove_temporaries_and_exit);
+    });
+}
+
+fn remove_temporaries_and_exit() {
+    {
+        let temporaries = TEMPORARIES.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        for path in temporaries.iter() {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+    std::process::exit(INTERRUPTED);
+}
+
+fn register(path: &Path) {
+    remove_temporaries_on_interrupt();
+    TEMPORARIES.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).push(path.to_owned());
+}
+
+fn unregister(path: &Path) {
+    TEMPORARIES.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).retain(|p| p != path);
+}
 
 /// Writes through `write` to `path`, or to standard output when `path` is `None` or `-`.
 ///
@@ -34,6 +73,7 @@ fn write_file_atomically(
     write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     let temporary = temporary_path(path);
+    register(&temporary);
     let result = (|| {
         let file = File::create(&temporary)
             .with_context(|| format!("cannot create {}", temporary.display()))?;
@@ -47,6 +87,7 @@ fn write_file_atomically(
     if result.is_err() {
         let _ = std::fs::remove_file(&temporary);
     }
+    unregister(&temporary);
     result
 }
 

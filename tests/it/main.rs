@@ -8,6 +8,7 @@ mod linuxcnc;
 mod motion_cli;
 mod mujoco;
 mod programming;
+mod robustness;
 mod rs274;
 mod util;
 mod view_cli;

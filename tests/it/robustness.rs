@@ -1,0 +1,82 @@
+//! Outputs are atomic even when the run is interrupted, and a closed pipe is not an error.
+
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::util::temp_dir;
+
+/// A program long enough to keep `joints` busy for seconds: zig-zag moves, 1 mm each.
+fn long_program(lines: usize) -> String {
+    let mut text = String::from("G21 G90 G94\nG0 X-100 Y300 Z50 C0\n");
+    for i in 0..lines {
+        let (col, row) = (i % 200, (i / 200) % 100);
+        let x = if row % 2 == 0 { -100.0 + col as f64 } else { 99.0 - col as f64 };
+        text.push_str(&format!("G1 X{x:.3} Y{:.3} F6000\n", 300.0 + row as f64));
+    }
+    text.push_str("M2\n");
+    text
+}
+
+#[test]
+fn sigint_during_a_long_run_leaves_no_temporary_file_and_the_old_output() {
+    let dir = temp_dir("sigint");
+    std::fs::write(dir.join("long.ngc"), long_program(300_000)).expect("write program");
+    std::fs::write(dir.join("traj.csv"), "the earlier good file\n").expect("write");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(["joints", "long.ngc", "-o", "traj.csv"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("spawn biscara");
+    let temporary = |dir: &std::path::Path| {
+        std::fs::read_dir(dir)
+            .expect("dir")
+            .filter_map(Result::ok)
+            .any(|entry| entry.file_name().to_string_lossy().starts_with(".traj.csv.tmp"))
+    };
+    let start = Instant::now();
+    while !temporary(&dir) {
+        assert!(start.elapsed() < Duration::from_secs(30), "no temporary file appeared");
+        assert!(
+            child.try_wait().expect("poll").is_none(),
+            "joints ended before it was interrupted"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let status =
+        Command::new("kill").args(["-INT", &child.id().to_string()]).status().expect("kill");
+    assert!(status.success());
+    let status = child.wait().expect("wait");
+    assert_eq!(status.code(), Some(130), "interrupted runs exit with 130");
+    assert!(!temporary(&dir), "the temporary file was left behind");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("traj.csv")).expect("read"),
+        "the earlier good file\n"
+    );
+}
+
+#[test]
+fn a_closed_pipe_ends_the_run_quietly_with_success() {
+    let dir = temp_dir("broken-pipe");
+    std::fs::write(dir.join("long.ngc"), long_program(20_000)).expect("write program");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(["joints", "long.ngc"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn biscara");
+    // Read one line, then close the pipe, as `biscara joints … | head -1` does.
+    let mut stdout = child.stdout.take().expect("stdout");
+    let mut first = [0u8; 64];
+    let read = std::io::Read::read(&mut stdout, &mut first).expect("read");
+    assert!(read > 0);
+    drop(stdout);
+    let output = child.wait_with_output().expect("wait");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "stderr: {stderr}");
+    assert!(!stderr.contains("error"), "a broken pipe is not reported: {stderr}");
+}
