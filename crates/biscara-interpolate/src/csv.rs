@@ -241,7 +241,7 @@ impl<R: BufRead> PathCsvReader<R> {
     fn read_line(&mut self) -> Result<bool, PathCsvError> {
         self.buffer.clear();
         self.line += 1;
-        match self.reader.read_line(&mut self.buffer) {
+        match biscara_motion::read_bounded_line(&mut self.reader, &mut self.buffer) {
             Ok(read) => Ok(read > 0),
             Err(source) => Err(PathCsvError::Io { line: self.line, source }),
         }

@@ -69,7 +69,7 @@ impl<R: BufRead> Iterator for JsonlReader<R> {
             self.buffer.clear();
             self.line += 1;
             let line = self.line;
-            match self.reader.read_line(&mut self.buffer) {
+            match crate::read_bounded_line(&mut self.reader, &mut self.buffer) {
                 Ok(0) => return None,
                 Ok(_) => {}
                 Err(source) => {
