@@ -212,6 +212,10 @@ pub(crate) struct Reader<'a> {
     params: &'a Params,
     predefined: &'a dyn Predefined,
     pos: usize,
+    /// Names assigned earlier on this line (compact ranges): LinuxCNC creates a named parameter,
+    /// holding 0, as soon as it reads its assignment, so that it reads as 0 later on the line.
+    created: [(u8, u8); 64],
+    created_count: usize,
 }
 
 impl<'a> Reader<'a> {
@@ -221,7 +225,16 @@ impl<'a> Reader<'a> {
         params: &'a Params,
         predefined: &'a dyn Predefined,
     ) -> Reader<'a> {
-        Reader { bytes: compact.bytes(), compact, raw_len, params, predefined, pos: 0 }
+        Reader {
+            bytes: compact.bytes(),
+            compact,
+            raw_len,
+            params,
+            predefined,
+            pos: 0,
+            created: [(0, 0); 64],
+            created_count: 0,
+        }
     }
 
     /// Raw column range of compact range `start..end`.
@@ -421,6 +434,10 @@ impl<'a> Reader<'a> {
                     ),
                 ));
             }
+            if self.created_count < self.created.len() {
+                self.created[self.created_count] = (name_start as u8, name_end as u8);
+                self.created_count += 1;
+            }
             self.expect_equals(start)?;
             let value = self.read_real_value()?;
             block.named.push((name_start, name_end, value));
@@ -589,7 +606,13 @@ impl<'a> Reader<'a> {
                 return Some(value);
             }
         }
-        self.params.named(name)
+        self.params.named(name).or_else(|| {
+            let created = &self.created[..self.created_count];
+            created
+                .iter()
+                .any(|&(start, end)| &self.bytes[usize::from(start)..usize::from(end)] == name)
+                .then_some(0.0)
+        })
     }
 
     /// A unary function: `abs[…]`, `atan[…]/[…]`, `exists[#<name>]`, ….

@@ -94,3 +94,61 @@ fn errors_point_at_the_word() {
     let err = error("o10 if [1]\nM2\n");
     assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
 }
+
+/// The value of expression `expression`, read back as the X of a rapid.
+#[track_caller]
+fn value(expression: &str) -> f64 {
+    let program = format!("#1=2 #<r>=3\nG0 X{expression}\nM2\n");
+    match motions(&program, [0.0; 4])[0].1 {
+        MotionKind::Rapid { end } => end[0],
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn expressions_follow_linuxcncs_precedence_and_functions() {
+    let cases: [(&str, f64); 24] = [
+        ("[1+2*3]", 7.0),
+        ("[2**3**2]", 64.0), // left to right, as LinuxCNC
+        ("[-2**2]", 4.0),    // unary minus binds to the number
+        ("[1-2-3]", -4.0),
+        ("[10/4/5]", 0.5),
+        ("[7 MOD 3]", 1.0),
+        ("[-7 MOD 3]", 2.0), // the result takes the divisor's sign
+        ("[1 EQ 1.00002]", 1.0),
+        ("[1 EQ 1.0002]", 0.0),
+        ("[1+2*3 LT 7]", 0.0),
+        ("[3 GT 2 AND 0]", 0.0),
+        ("[0 OR 2]", 1.0),
+        ("[1 XOR 1]", 0.0),
+        ("[ROUND[-2.5]]", -3.0),
+        ("[FIX[-2.5]]", -3.0),
+        ("[FUP[-2.5]]", -2.0),
+        ("[ATAN[1]/[-1]]", 135.0),
+        ("[SQRT[[3**2]+[4**2]]]", 5.0),
+        ("[ABS[-#1]]", 2.0),
+        ("#[#1-1]", 2.0),
+        ("[#<r>*2]", 6.0),
+        ("[EXISTS[#<r>]+EXISTS[#<nope>]]", 1.0),
+        ("-[1+1]", -2.0),
+        ("[s i n[90]]", 1.0),
+    ];
+    for (expression, expected) in cases {
+        let got = value(expression);
+        assert!((got - expected).abs() < 1e-12, "{expression} = {got}, expected {expected}");
+    }
+}
+
+#[test]
+fn assignments_take_effect_after_the_line() {
+    let got = motions(
+        "#1=2 #1=3 G0 X#1\nG0 X#1\n#<a>=1 #<a>=[#<a>+1] G0 Y#<a>\nG0 Y#<a>\nM2\n",
+        [0.0; 4],
+    );
+    let xs: Vec<f64> = got.iter().filter_map(|(_, kind)| kind.end()).map(|end| end[0]).collect();
+    let ys: Vec<f64> = got.iter().filter_map(|(_, kind)| kind.end()).map(|end| end[1]).collect();
+    assert_eq!(xs, [0.0, 3.0, 3.0, 3.0]);
+    // LinuxCNC creates #<a> (= 0) when it reads the assignment: the second assignment reads 0,
+    // and Y#<a> on the same line reads 0 too.
+    assert_eq!(ys[2..], [0.0, 1.0][..]);
+}
