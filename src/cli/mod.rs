@@ -53,6 +53,7 @@ enum Command {
     Joints(trajectory::JointsArgs),
     Diff(diff::DiffArgs),
     Mjcf(mjcf::MjcfArgs),
+    View(view::ViewArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -98,6 +99,7 @@ fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
         Command::Joints(args) => trajectory::joints(robot, &args),
         Command::Diff(args) => diff::diff(&args),
         Command::Mjcf(args) => mjcf::mjcf(robot, &args),
+        Command::View(args) => view::view(robot, &args),
     }
 }
 

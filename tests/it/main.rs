@@ -1,5 +1,6 @@
 //! Integration tests of the `biscara` binary: one test binary, one module per feature.
 
+mod browser;
 mod cli_kinematics;
 mod conformance;
 mod golden;

@@ -25,15 +25,20 @@ fn bad_trajectories_name_file_line_and_column_and_write_nothing() {
         ),
     ];
     for (name, input, expected) in cases {
-        let dir = temp_dir(&format!("view-bad-{name}"));
-        std::fs::write(dir.join("traj.csv"), &input).expect("write input");
-        let run = biscara(&dir, &["mjcf", "-o", "robot.xml", "--traj", "traj.csv"]);
-        run.expect_code(1).stderr_has(expected);
-        let left: Vec<_> = std::fs::read_dir(&dir)
-            .expect("read dir")
-            .map(|entry| entry.expect("entry").file_name().to_string_lossy().into_owned())
-            .collect();
-        assert_eq!(left, ["traj.csv"], "{name}: files left behind\n{run}");
+        for command in [
+            &["mjcf", "-o", "robot.xml", "--traj", "traj.csv"][..],
+            &["view", "traj.csv", "-o", "view.html"][..],
+        ] {
+            let dir = temp_dir(&format!("view-bad-{name}"));
+            std::fs::write(dir.join("traj.csv"), &input).expect("write input");
+            let run = biscara(&dir, command);
+            run.expect_code(1).stderr_has(expected);
+            let left: Vec<_> = std::fs::read_dir(&dir)
+                .expect("read dir")
+                .map(|entry| entry.expect("entry").file_name().to_string_lossy().into_owned())
+                .collect();
+            assert_eq!(left, ["traj.csv"], "{name}: files left behind\n{run}");
+        }
     }
 }
 
@@ -59,7 +64,7 @@ fn mjcf_writes_the_model_and_reads_scenes() {
 }
 
 /// The subcommands of issue 7 whose help is pinned in tests/golden/help/.
-const PINNED_HELP: &[&str] = &["mjcf"];
+const PINNED_HELP: &[&str] = &["mjcf", "view"];
 
 #[test]
 fn view_and_mjcf_help_texts_are_pinned() {
@@ -70,4 +75,37 @@ fn view_and_mjcf_help_texts_are_pinned() {
         assert!(run.stdout.contains("Example:"), "{run}");
         crate::golden::check_golden(&format!("help/{command}.txt"), &run.stdout);
     }
+}
+
+#[test]
+fn view_writes_one_self_contained_page_with_the_program() {
+    let dir = temp_dir("view-page");
+    biscara(&dir, &["demo", "out"]).success();
+    std::fs::write(
+        dir.join("scene.json"),
+        r#"{"boxes":[{"name":"pallet","min":[100,250,0],"max":[200,350,10]}]}"#,
+    )
+    .expect("write scene");
+    let run = biscara(
+        &dir,
+        &["view", "out/traj.csv", "--program", "out/job.ngc", "--scene", "scene.json"],
+    );
+    run.success();
+    let page = &run.stdout;
+    assert!(page.starts_with("<!DOCTYPE html>"), "{}", &page[..100.min(page.len())]);
+    // Nothing from the network or other files: no URLs, no src/href attributes.
+    for needle in ["http:", "https:", " src=", " href=", "@import", "url("] {
+        assert!(!page.contains(needle), "the page refers to something outside: {needle}");
+    }
+    assert!(page.contains("\"name\":\"pallet\""), "scene");
+    assert!(page.contains("G1 Z10.000 F3000.0"), "the G-code text of the feed moves");
+    // Two picks and two places of the demo job.
+    let events = page.split("\"events\":[").nth(1).and_then(|rest| rest.split("]]").next());
+    let events = events.expect("events");
+    assert_eq!(events.matches(",1,").count(), 2, "{events}");
+    assert_eq!(events.matches(",0,").count(), 2, "{events}");
+    // Without a program the page still works: no path, no lines.
+    let bare = biscara(&dir, &["view", "out/traj.csv"]);
+    bare.success();
+    assert!(bare.stdout.contains("\"path\":[],\"lines\":[]"));
 }

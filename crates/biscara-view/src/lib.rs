@@ -19,9 +19,11 @@
 //! ```
 
 mod error;
+mod html;
 mod mjcf;
 mod scene;
 
 pub use error::ViewError;
+pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
 pub use scene::{Scene, SceneBox};

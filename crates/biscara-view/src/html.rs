@@ -1,0 +1,413 @@
+//! The self-contained HTML viewer (`biscara view`, SPEC §8.3).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Write;
+
+use biscara_joints::JointCsvRow;
+use biscara_kinematics::{Kinematics, Robot};
+
+use crate::{Scene, ViewError};
+
+/// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data.
+const TEMPLATE: &str = include_str!("viewer.html");
+const DATA_MARKER: &str = "/*BISCARA_DATA*/";
+
+/// Limits on what the page holds, so that an hour-long program stays a few megabytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewerOptions {
+    /// Title shown at the top of the page.
+    pub title: String,
+    /// Most robot frames kept (each about 90 bytes); beyond it every other frame is dropped.
+    pub max_frames: usize,
+    /// Most points of the programmed path kept.
+    pub max_path_points: usize,
+    /// Most program-line changes kept (for the G-code line shown while playing).
+    pub max_line_changes: usize,
+    /// Most pick/place events kept.
+    pub max_events: usize,
+}
+
+impl Default for ViewerOptions {
+    fn default() -> Self {
+        ViewerOptions {
+            title: "biscara view".to_owned(),
+            max_frames: 40_000,
+            max_path_points: 20_000,
+            max_line_changes: 20_000,
+            max_events: 5_000,
+        }
+    }
+}
+
+/// Keeps every `stride`-th item pushed; when full, drops every other kept item and doubles the
+/// stride, so memory stays bounded however many items arrive. The last item is kept aside.
+#[derive(Debug, Clone)]
+struct Decimator<T> {
+    kept: Vec<T>,
+    last: Option<T>,
+    stride: usize,
+    seen: usize,
+    capacity: usize,
+}
+
+impl<T: Clone> Decimator<T> {
+    fn new(capacity: usize) -> Self {
+        Decimator { kept: Vec::new(), last: None, stride: 1, seen: 0, capacity: capacity.max(2) }
+    }
+
+    fn push(&mut self, item: T) {
+        if self.seen % self.stride == 0 {
+            if self.kept.len() >= self.capacity {
+                let mut index = 0;
+                self.kept.retain(|_| {
+                    index += 1;
+                    index % 2 == 1
+                });
+                self.stride *= 2;
+            }
+            if self.seen % self.stride == 0 {
+                self.kept.push(item.clone());
+            }
+        }
+        self.last = Some(item);
+        self.seen += 1;
+    }
+
+    /// The kept items and the last one (when it was not kept already).
+    fn items(&self) -> impl Iterator<Item = &T> {
+        let last_kept = self.seen > 0 && (self.seen - 1) % self.stride == 0;
+        self.kept.iter().chain(self.last.iter().filter(move |_| !last_kept))
+    }
+}
+
+/// One robot frame: time, joints and the points the pictures need (mm, degrees).
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    t: f64,
+    /// θ1, θ2, θ3 in degrees, d4 in mm.
+    joints: [f64; 4],
+    /// Elbow 1 x, y, elbow 2 x, y.
+    elbows: [f64; 4],
+    /// Tool x, y, z, c.
+    tool: [f64; 4],
+}
+
+/// A pick or a place: time, kind, where.
+#[derive(Debug, Clone, Copy)]
+struct Event {
+    t: f64,
+    pick: bool,
+    at: [f64; 3],
+}
+
+/// Gathers a joint trajectory, the programmed path and a scene, and writes the viewer page.
+///
+/// Push the trajectory's rows with [`Viewer::push_row`], optionally the program's Cartesian
+/// samples with [`Viewer::push_path_sample`] (they give the programmed path, the pick/place events
+/// and the program line at each moment) and the text of program lines with
+/// [`Viewer::set_line_text`], then [`Viewer::write_html`]. Memory stays bounded: frames, path
+/// points and line changes are decimated as they arrive.
+#[derive(Debug)]
+pub struct Viewer {
+    robot: Robot,
+    model: Kinematics,
+    scene: Scene,
+    options: ViewerOptions,
+    frames: Decimator<Frame>,
+    path: Decimator<[f64; 4]>,
+    lines: Decimator<(f64, usize)>,
+    current_line: Option<usize>,
+    events: Vec<Event>,
+    gripper: bool,
+    line_text: BTreeMap<usize, String>,
+    time_step: Option<f64>,
+    previous_t: Option<f64>,
+}
+
+impl Viewer {
+    /// A viewer of `robot` in `scene`.
+    pub fn new(robot: &Robot, scene: Scene, options: ViewerOptions) -> Result<Viewer, ViewError> {
+        let model = Kinematics::new(robot).map_err(|err| {
+            ViewError::Io(std::io::Error::new(std::io::ErrorKind::InvalidInput, err.to_string()))
+        })?;
+        Ok(Viewer {
+            robot: robot.clone(),
+            model,
+            scene,
+            frames: Decimator::new(options.max_frames),
+            path: Decimator::new(options.max_path_points),
+            lines: Decimator::new(options.max_line_changes),
+            options,
+            current_line: None,
+            events: Vec::new(),
+            gripper: false,
+            line_text: BTreeMap::new(),
+            time_step: None,
+            previous_t: None,
+        })
+    }
+
+    /// Adds one trajectory row; fails when its joints do not assemble.
+    pub fn push_row(&mut self, row: &JointCsvRow) -> Result<(), ViewError> {
+        let fk = self
+            .model
+            .forward(&row.joints)
+            .map_err(|source| ViewError::Assembly { t: row.t, source })?;
+        if self.time_step.is_none() {
+            self.time_step = self.previous_t.map(|previous| row.t - previous);
+        }
+        self.previous_t = Some(row.t);
+        let [t1, t2, t3, d4] = row.joints.to_degrees();
+        let elbows = fk.configuration.elbows;
+        self.frames.push(Frame {
+            t: row.t,
+            joints: [t1, t2, t3, d4],
+            elbows: [elbows[0].x, elbows[0].y, elbows[1].x, elbows[1].y],
+            tool: fk.pose.to_degrees(),
+        });
+        Ok(())
+    }
+
+    /// The time step of the trajectory (the first two rows' difference), s.
+    pub fn time_step(&self) -> Option<f64> {
+        self.time_step
+    }
+
+    /// The time of the last row pushed, s.
+    pub fn duration(&self) -> Option<f64> {
+        self.previous_t
+    }
+
+    /// Adds one sample of the programmed path: time (s), pose `[x, y, z, c]` (mm, degrees), the
+    /// program line it belongs to and whether the gripper is closed.
+    pub fn push_path_sample(&mut self, t: f64, pose: [f64; 4], line: usize, gripper: bool) {
+        self.path.push(pose);
+        if self.current_line != Some(line) {
+            self.current_line = Some(line);
+            self.lines.push((t, line));
+        }
+        if gripper != self.gripper && self.events.len() < self.options.max_events {
+            self.events.push(Event { t, pick: gripper, at: [pose[0], pose[1], pose[2]] });
+        }
+        self.gripper = gripper;
+    }
+
+    /// The program lines the page refers to (those of the kept line changes), ascending.
+    pub fn referenced_lines(&self) -> Vec<usize> {
+        let mut lines: Vec<usize> =
+            self.lines.items().map(|&(_, line)| line).filter(|&line| line > 0).collect();
+        lines.sort_unstable();
+        lines.dedup();
+        lines
+    }
+
+    /// The text of one program line (shortened to 100 characters on the page).
+    pub fn set_line_text(&mut self, line: usize, text: &str) {
+        let text: String = text.trim_end().chars().take(100).collect();
+        self.line_text.insert(line, text);
+    }
+
+    /// Writes the page: one HTML file with the data and the JavaScript inside.
+    pub fn write_html(&self, out: &mut dyn Write) -> Result<(), ViewError> {
+        if self.frames.seen == 0 {
+            return Err(ViewError::EmptyTrajectory);
+        }
+        let data = self.data_json();
+        let (head, tail) = TEMPLATE.split_once(DATA_MARKER).unwrap_or((TEMPLATE, ""));
+        out.write_all(head.as_bytes())?;
+        out.write_all(data.as_bytes())?;
+        out.write_all(tail.as_bytes())?;
+        Ok(())
+    }
+
+    /// The page's data as one JSON object (numbers with fixed decimals, `<` escaped so the text
+    /// cannot close the script element).
+    fn data_json(&self) -> String {
+        let mut json = String::with_capacity(self.frames.kept.len() * 100 + 4096);
+        let robot = &self.robot;
+        let bases = self.model.bases();
+        let _ = write!(
+            json,
+            "{{\"title\":{},\"robot\":{{\"name\":{},\"l1\":{},\"l2\":{},\"bases\":[[{},{}],[{},{}]],\
+             \"lp\":{},\"link_width\":{},\"link_height\":{},\"gripper_radius\":{},\
+             \"gripper_length\":{},\"limits\":{}}},",
+            string(&self.options.title),
+            string(&robot.name),
+            robot.links.l1,
+            robot.links.l2,
+            bases[0].x,
+            bases[0].y,
+            bases[1].x,
+            bases[1].y,
+            robot.lp,
+            robot.geometry.link_width,
+            robot.geometry.link_height,
+            robot.geometry.gripper_radius,
+            robot.geometry.gripper_length,
+            serde_json::to_string(&robot.joint_limits.to_array()).unwrap_or_default(),
+        );
+        let frames: Vec<&Frame> = self.frames.items().collect();
+        json.push_str("\"frames\":{\"t\":[");
+        push_numbers(&mut json, frames.iter().map(|f| f.t), 4);
+        json.push_str("],\"q\":[");
+        push_numbers(&mut json, frames.iter().flat_map(|f| f.joints), 3);
+        json.push_str("],\"e\":[");
+        push_numbers(&mut json, frames.iter().flat_map(|f| f.elbows), 2);
+        json.push_str("],\"p\":[");
+        push_numbers(&mut json, frames.iter().flat_map(|f| f.tool), 2);
+        let _ = write!(
+            json,
+            "],\"stride\":{},\"rows\":{},\"dt\":{}}},",
+            self.frames.stride,
+            self.frames.seen,
+            self.time_step.unwrap_or(0.0)
+        );
+        json.push_str("\"path\":[");
+        push_numbers(&mut json, self.path.items().flat_map(|p| [p[0], p[1], p[2]]), 2);
+        json.push_str("],\"lines\":[");
+        push_numbers(&mut json, self.lines.items().flat_map(|&(t, line)| [t, line as f64]), 4);
+        json.push_str("],\"line_text\":{");
+        for (index, (line, text)) in self.line_text.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let _ = write!(json, "\"{line}\":{}", string(text));
+        }
+        json.push_str("},\"events\":[");
+        for (index, event) in self.events.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let _ = write!(
+                json,
+                "[{:.4},{},{:.2},{:.2},{:.2}]",
+                event.t,
+                u8::from(event.pick),
+                event.at[0],
+                event.at[1],
+                event.at[2]
+            );
+        }
+        json.push_str("],\"scene\":[");
+        for (index, scene_box) in self.scene.boxes.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let _ = write!(
+                json,
+                "{{\"name\":{},\"min\":[{},{},{}],\"max\":[{},{},{}]}}",
+                string(&scene_box.name),
+                scene_box.min[0],
+                scene_box.min[1],
+                scene_box.min[2],
+                scene_box.max[0],
+                scene_box.max[1],
+                scene_box.max[2]
+            );
+        }
+        json.push_str("]}");
+        json
+    }
+}
+
+/// A JSON string that is also safe inside a `<script>` element.
+fn string(text: &str) -> String {
+    serde_json::to_string(text).unwrap_or_default().replace('<', "\\u003c").replace('>', "\\u003e")
+}
+
+/// Appends numbers separated by commas with `decimals` decimals (no negative zero).
+fn push_numbers(json: &mut String, values: impl Iterator<Item = f64>, decimals: usize) {
+    let mut first = true;
+    for value in values {
+        if !first {
+            json.push(',');
+        }
+        first = false;
+        let text = format!("{value:.decimals$}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        match text {
+            "-0" | "" | "-" => json.push('0'),
+            text => json.push_str(text),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use biscara_kinematics::Joints;
+
+    use super::*;
+
+    fn row(t: f64, theta1_deg: f64) -> JointCsvRow {
+        JointCsvRow {
+            t,
+            line: 2,
+            joints: Joints::from_degrees(theta1_deg, 0.0, 0.0, 10.0),
+            velocity: None,
+        }
+    }
+
+    #[test]
+    fn decimation_keeps_a_bounded_uniform_subset_and_the_last_item() {
+        let mut decimator = Decimator::new(8);
+        for item in 0..100 {
+            decimator.push(item);
+        }
+        let items: Vec<i32> = decimator.items().copied().collect();
+        assert!(items.len() <= 9, "{items:?}");
+        assert_eq!(items[0], 0);
+        assert_eq!(*items.last().unwrap(), 99);
+        let step = items[1] - items[0];
+        assert!(items[..items.len() - 1].windows(2).all(|w| w[1] - w[0] == step), "{items:?}");
+    }
+
+    #[test]
+    fn the_page_holds_frames_path_events_and_no_raw_angle_brackets_in_data() {
+        let mut viewer = Viewer::new(
+            &Robot::default(),
+            Scene {
+                boxes: vec![crate::SceneBox {
+                    name: "</script>".to_owned(),
+                    min: [0.0; 3],
+                    max: [1.0; 3],
+                }],
+            },
+            ViewerOptions::default(),
+        )
+        .unwrap();
+        for step in 0..5 {
+            viewer.push_row(&row(f64::from(step) * 0.5, f64::from(step))).unwrap();
+            viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
+        }
+        viewer.set_line_text(7, "G1 Z10 (pick)");
+        assert_eq!(viewer.referenced_lines(), [7]);
+        assert_eq!(viewer.time_step(), Some(0.5));
+        let mut page = Vec::new();
+        viewer.write_html(&mut page).unwrap();
+        let page = String::from_utf8(page).unwrap();
+        assert!(page.starts_with("<!DOCTYPE html>"));
+        assert!(!page.contains(DATA_MARKER));
+        assert!(page.contains("\"t\":[0,0.5,1,1.5,2]"), "frames");
+        assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
+        assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
+        assert_eq!(page.matches("</script>").count(), 2, "the scene name must not end a script");
+        assert!(!page.contains("http://") && !page.contains("https://"), "no network");
+    }
+
+    #[test]
+    fn an_hour_at_one_millisecond_stays_small() {
+        let options = ViewerOptions::default();
+        let mut viewer = Viewer::new(&Robot::default(), Scene::default(), options).unwrap();
+        let rows = 3_600_000;
+        for step in 0..rows {
+            let t = f64::from(step) * 0.001;
+            let angle = 30.0 * (t * 0.7).sin();
+            viewer.push_row(&row(t, angle)).unwrap();
+            viewer.push_path_sample(t, [angle, 400.0, 50.0, 0.0], 10 + step as usize / 500, false);
+        }
+        let mut page = Vec::new();
+        viewer.write_html(&mut page).unwrap();
+        assert!(page.len() < 10_000_000, "{} bytes", page.len());
+    }
+}
