@@ -745,7 +745,14 @@ impl<'a> Reader<'a> {
                 }
             }
         }
-        Ok(values[0])
+        let value = values[0];
+        if value.is_nan() {
+            return Err(self.invalid(start, self.pos, "Calculation resulted in 'not a number'"));
+        }
+        if value.is_infinite() {
+            return Err(self.invalid(start, self.pos, "Calculation resulted in 'infinity'"));
+        }
+        Ok(value)
     }
 
     fn read_operation(&mut self, open: usize) -> Result<Op, Fault> {
@@ -808,9 +815,7 @@ impl<'a> Reader<'a> {
                 left / right
             }
             Op::Modulo => {
-                if right == 0.0 {
-                    return Err(fail("Attempt to divide by zero"));
-                }
+                // fmod; by zero it is NaN, refused at the end of the expression, as LinuxCNC
                 let value = left % right;
                 if value < 0.0 { value + right.abs() } else { value }
             }
@@ -821,9 +826,6 @@ impl<'a> Reader<'a> {
                 left.powf(right)
             }
         };
-        if !value.is_finite() {
-            return Err(fail("the result is not a finite number"));
-        }
         Ok(value)
     }
 }
