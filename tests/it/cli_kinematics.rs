@@ -130,7 +130,7 @@ fn bad_robot_files_name_the_file_line_and_key() {
             "joint_limits.theta1: the range [90, -90] is empty",
         ),
         ("mode.json", r#"{"working_mode": "+"}"#, "working_mode: unknown working mode `+`"),
-        ("empty.json", "", "empty.json:1:0: .: EOF while parsing"),
+        ("empty.json", "", "empty.json:1: EOF while parsing"),
         ("binary.json", "\u{0}\u{1}\u{2}", "binary.json:1:1"),
         ("trailing.json", "{} {}", "trailing characters"),
     ];

@@ -1,5 +1,6 @@
 //! Integration tests of the `biscara` binary: one test binary, one module per feature.
 
+mod bad_input;
 mod browser;
 mod cli_kinematics;
 mod conformance;

@@ -278,14 +278,14 @@ impl<R: BufRead> PathCsvReader<R> {
                 column,
                 message: format!(
                     "`{}` is not a number",
-                    field.chars().take(40).collect::<String>()
+                    field.chars().take(40).collect::<String>().escape_debug()
                 ),
             })?;
             if !value.is_finite() {
                 return Err(PathCsvError::Row {
                     line,
                     column,
-                    message: format!("`{field}` is not a finite number"),
+                    message: format!("`{}` is not a finite number", field.escape_debug()),
                 });
             }
             values[count] = value;

@@ -196,7 +196,7 @@ impl Default for Geometry {
 pub enum RobotError {
     /// Occurs when the text is not JSON, a value has the wrong type, a key is unknown or repeated,
     /// or a mode string is not one of the allowed ones.
-    #[error("{line}:{column}: {key}: {message}")]
+    #[error("{}{}{message}", position_prefix(*.line, *.column), key_prefix(key))]
     Syntax {
         /// 1-based line of the error.
         line: usize,
@@ -220,6 +220,16 @@ pub enum RobotError {
         /// What is wrong and what would be right.
         message: String,
     },
+}
+
+/// `LINE:COL: `, or `LINE: ` when serde_json knows no column (an error at the very end).
+fn position_prefix(line: usize, column: usize) -> String {
+    if column == 0 { format!("{line}: ") } else { format!("{line}:{column}: ") }
+}
+
+/// `key: `, or nothing for an error about the document as a whole (`.` or `?`).
+fn key_prefix(key: &str) -> String {
+    if key == "." || key == "?" || key.is_empty() { String::new() } else { format!("{key}: ") }
 }
 
 fn location_prefix(line: Option<usize>, column: Option<usize>) -> String {
@@ -249,6 +259,20 @@ impl Robot {
             key,
             message: strip_serde_position(&inner.to_string()),
         };
+        // A JSON array would deserialise as the struct's fields in order: only an object is a
+        // robot file.
+        let first = text.trim_start().chars().next();
+        if first.is_some_and(|first| first != '{') {
+            let offset = text.len() - text.trim_start().len();
+            let line = text[..offset].matches('\n').count() + 1;
+            let column = offset - text[..offset].rfind('\n').map_or(0, |newline| newline + 1) + 1;
+            return Err(RobotError::Syntax {
+                line,
+                column,
+                key: ".".to_owned(),
+                message: "a robot file is one JSON object: `{ \"links\": …, … }`".to_owned(),
+            });
+        }
         let mut deserializer = serde_json::Deserializer::from_str(text);
         let robot: Robot = serde_path_to_error::deserialize(&mut deserializer)
             .map_err(|err| syntax(err.path().to_string(), err.into_inner()))?;
@@ -415,7 +439,8 @@ mod tests {
         let err = Robot::from_json(json).expect_err("robot file must be rejected");
         assert_eq!(err.key(), key, "{err}");
         let text = err.to_string();
-        assert!(text.contains(key), "message does not name the key: {text}");
+        // Errors about the document as a whole (key ".") name no key.
+        assert!(key == "." || text.contains(key), "message does not name the key: {text}");
         assert!(text.contains(message_part), "message {text:?} lacks {message_part:?}");
     }
 
@@ -441,6 +466,7 @@ mod tests {
         assert!(err.to_string().contains("unknown field `l3`"), "{err}");
         assert!(err.to_string().starts_with("2:"), "{err}");
         check_rejected(r#"{"lenghts": {}}"#, "lenghts", "unknown field `lenghts`");
+        check_rejected("[210, 270]", ".", "a robot file is one JSON object");
     }
 
     #[test]

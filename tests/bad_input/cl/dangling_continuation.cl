@@ -1,0 +1,2 @@
+PARTNO/X
+GOTO/0,400,$
