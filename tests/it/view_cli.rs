@@ -8,7 +8,12 @@ const HEADER: &str = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n";
 /// Bad trajectories for both commands: message prefix, exit 1, no output file.
 #[test]
 fn bad_trajectories_name_file_line_and_column_and_write_nothing() {
-    let cases: [(&str, Vec<u8>, &str); 6] = [
+    let cases: [(&str, Vec<u8>, &str); 7] = [
+        (
+            "huge",
+            format!("{HEADER}0,{}", "9".repeat(200_000)).into_bytes(),
+            "traj.csv:2:1: the line is longer than 65536 bytes",
+        ),
         ("empty", Vec::new(), "traj.csv:1:1: expected a joint CSV header"),
         ("binary", b"\x00\x01\xff\xfe\x80garbage\n".to_vec(), "traj.csv:1:1: "),
         ("header", b"t,a,b\n0,0,0\n".to_vec(), "traj.csv:1:1: expected a joint CSV header"),

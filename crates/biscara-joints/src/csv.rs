@@ -151,7 +151,8 @@ pub enum JointCsvError {
 }
 
 /// Reads a joint CSV written by `biscara joints` (any angle unit, with or without derivatives),
-/// streaming; rows come back in radians and millimetres.
+/// streaming; rows come back in radians and millimetres. Lines longer than
+/// [`biscara_motion::MAX_LINE_BYTES`] are refused.
 pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
     JointCsvReader {
         reader,
@@ -178,7 +179,7 @@ impl<R: BufRead> JointCsvReader<R> {
     fn read_line(&mut self) -> Result<bool, JointCsvError> {
         self.buffer.clear();
         self.line += 1;
-        match self.reader.read_line(&mut self.buffer) {
+        match biscara_motion::read_bounded_line(&mut self.reader, &mut self.buffer) {
             Ok(read) => Ok(read > 0),
             Err(source) => Err(JointCsvError::Io { line: self.line, source }),
         }
@@ -335,7 +336,9 @@ mod tests {
     #[test]
     fn bad_input_names_line_and_column() {
         let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n";
-        let cases: [(Vec<u8>, &str); 7] = [
+        let long = format!("{header}0,{}\n", "1".repeat(100_000)).into_bytes();
+        let cases: [(Vec<u8>, &str); 8] = [
+            (long, "2:1: the line is longer than 65536 bytes"),
             (b"".to_vec(), "1:1: expected a joint CSV header"),
             (b"\x00\xff\xfe garbage".to_vec(), "1:1: "),
             (b"t_s,x_mm,y_mm,z_mm,c_deg\n0,0,0,0,0\n".to_vec(), "1:1: expected a joint CSV header"),
