@@ -142,6 +142,10 @@ pub fn write_mjcf(
             "    <texture name=\"grid\" type=\"2d\" builtin=\"checker\" rgb1=\"0.9 0.9 0.9\" rgb2=\"0.8 0.8 0.8\" width=\"256\" height=\"256\"/>"
         )?;
         writeln!(x, "    <material name=\"floor\" texture=\"grid\" texrepeat=\"10 10\"/>")?;
+        writeln!(
+            x,
+            "    <texture name=\"sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\"0.93 0.95 0.98\" rgb2=\"0.75 0.8 0.88\" width=\"32\" height=\"512\"/>"
+        )?;
         writeln!(x, "  </asset>")?;
         writeln!(x, "  <worldbody>")?;
         writeln!(x, "    <light pos=\"0 0.3 1.5\" dir=\"0 0 -1\"/>")?;
