@@ -109,6 +109,16 @@ fn view_writes_one_self_contained_page_with_the_program() {
     let events = events.expect("events");
     assert_eq!(events.matches(",1,").count(), 2, "{events}");
     assert_eq!(events.matches(",0,").count(), 2, "{events}");
+    // The inter-file gives the same lines and events as the G-code it came from.
+    let from_jsonl = biscara(
+        &dir,
+        &["view", "out/traj.csv", "--program", "out/job.jsonl", "--scene", "scene.json"],
+    );
+    from_jsonl.success();
+    let lines = |page: &str| {
+        page.split("\"lines\":[").nth(1).map(|s| s[..s.find(']').unwrap_or(0)].to_owned())
+    };
+    assert_eq!(lines(&from_jsonl.stdout), lines(page));
     // Without a program the page still works: no path, no lines.
     let bare = biscara(&dir, &["view", "out/traj.csv"]);
     bare.success();

@@ -25,6 +25,9 @@ pub enum ViewError {
         /// Why forward kinematics failed.
         source: biscara_kinematics::KinematicsError,
     },
+    /// Occurs when the robot description is impossible (see [`biscara_kinematics::Robot::validate`]).
+    #[error(transparent)]
+    Robot(#[from] biscara_kinematics::RobotError),
     /// Occurs when the trajectory has no rows.
     #[error("the trajectory has no rows")]
     EmptyTrajectory,

@@ -1,7 +1,7 @@
 //! The MuJoCo model (MJCF) of a robot, and the companion file that plays a trajectory on it.
 
 use std::fmt::Write as _;
-use std::io::{self, Write};
+use std::io::Write;
 
 use biscara_joints::JointCsvRow;
 use biscara_kinematics::{Chain, Joints, Kinematics, Robot};
@@ -89,9 +89,7 @@ pub fn write_mjcf(
     scene: &Scene,
     options: &MjcfOptions,
 ) -> Result<(), ViewError> {
-    let model = Kinematics::new(robot).map_err(|err| {
-        ViewError::Io(io::Error::new(io::ErrorKind::InvalidInput, err.to_string()))
-    })?;
+    let model = Kinematics::new(robot)?;
     let geometry = &robot.geometry;
     let (l1, l2) = (m(robot.links.l1), m(robot.links.l2));
     let height = m(geometry.link_height);
@@ -102,7 +100,6 @@ pub fn write_mjcf(
     let psi = [model.distal_home(Chain::One), model.distal_home(Chain::Two)];
     let bases = model.bases();
     let column_length = height - m(geometry.gripper_length);
-    let options_ = options;
     let mut x = String::new();
     // Writing to a String cannot fail.
     let _ = (|| -> std::fmt::Result {
@@ -114,20 +111,16 @@ pub fn write_mjcf(
         writeln!(
             x,
             "  <option timestep=\"{}\" integrator=\"implicitfast\" gravity=\"0 0 -9.81\"/>",
-            options_.timestep
+            options.timestep
         )?;
         writeln!(x, "  <visual><global offwidth=\"1280\" offheight=\"960\"/></visual>")?;
-        if let Some(file) = &options_.trajectory_file {
+        if let Some(file) = &options.trajectory_file {
             writeln!(x, "  <custom>")?;
             writeln!(x, "    <text name=\"biscara_trajectory\" data=\"{}\"/>", escape(file))?;
             writeln!(x, "  </custom>")?;
         }
         writeln!(x, "  <default>")?;
-        writeln!(
-            x,
-            "    <geom contype=\"0\" conaffinity=\"0\" density=\"{}\"/>",
-            options_.density
-        )?;
+        writeln!(x, "    <geom contype=\"0\" conaffinity=\"0\" density=\"{}\"/>", options.density)?;
         writeln!(x, "    <joint axis=\"0 0 1\"/>")?;
         writeln!(x, "  </default>")?;
         writeln!(x, "  <asset>")?;
@@ -190,7 +183,7 @@ pub fn write_mjcf(
                 x,
                 "      <joint name=\"{joint}\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
                 rad(range),
-                options_.armature_rotary
+                options.armature_rotary
             )?;
             writeln!(
                 x,
@@ -233,7 +226,7 @@ pub fn write_mjcf(
                 writeln!(
                     x,
                     "            <joint name=\"d4\" type=\"slide\" axis=\"0 0 -1\" range=\"{d4_range}\" armature=\"{}\"/>",
-                    options_.armature_slide
+                    options.armature_slide
                 )?;
                 writeln!(
                     x,
@@ -247,7 +240,7 @@ pub fn write_mjcf(
                     x,
                     "              <joint name=\"theta3\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
                     rad(limits.theta3),
-                    options_.armature_rotary
+                    options.armature_rotary
                 )?;
                 let gripper_radius = m(geometry.gripper_radius);
                 let gripper_length = m(geometry.gripper_length);
@@ -281,13 +274,13 @@ pub fn write_mjcf(
         writeln!(
             x,
             "    <connect name=\"platform\" body1=\"distal2\" body2=\"distal1\" anchor=\"{l2} 0 0\" solref=\"{} 1\"/>",
-            4.0 * options_.timestep
+            4.0 * options.timestep
         )?;
         writeln!(x, "  </equality>")?;
         writeln!(x, "  <actuator>")?;
         // Each servo: kp = ω²·I, kv = 2·ω·I (critically damped) for the inertia it moves.
-        let omega = options_.servo_frequency;
-        let inertia = actuated_inertia(robot, options_);
+        let omega = options.servo_frequency;
+        let inertia = actuated_inertia(robot, options);
         let joints = [
             ("theta1", rad(limits.theta1)),
             ("theta2", rad(limits.theta2)),
@@ -343,9 +336,7 @@ pub struct QposWriter<W: Write> {
 impl<W: Write> QposWriter<W> {
     /// A writer for `robot`'s model; writes the header at once.
     pub fn new(mut out: W, robot: &Robot) -> Result<Self, ViewError> {
-        let model = Kinematics::new(robot).map_err(|err| {
-            ViewError::Io(io::Error::new(io::ErrorKind::InvalidInput, err.to_string()))
-        })?;
+        let model = Kinematics::new(robot)?;
         writeln!(out, "{QPOS_HEADER}")?;
         Ok(QposWriter { out, model, row: String::new() })
     }
