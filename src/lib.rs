@@ -11,6 +11,8 @@
 //! - [`joints`]: joint trajectories from Cartesian samples, and the joint CSV.
 //! - [`diff`]: numeric comparison of outputs within a tolerance (golden-file checks).
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
+//! - [`robot`]: the virtual robot: body poses, scenes, collisions, `check`, the workspace and
+//!   its rectangle, placing programs (`--fit`) and plots.
 //! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
 //! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
 //! - [`view`]: the HTML viewer and the MuJoCo model of a trajectory (`biscara view`, `mjcf`).
@@ -32,4 +34,5 @@ pub use biscara_kinematics as kinematics;
 pub use biscara_motion as motion;
 pub use biscara_pnp as pnp;
 pub use biscara_post as post;
+pub use biscara_robot as robot;
 pub use biscara_view as view;

@@ -1,2 +1,55 @@
 //! The virtual robot of SPEC §8: the BiSCARA's whole body at every sample, the scene around it,
 //! and the checks a program must pass before it reaches the real robot.
+//!
+//! - [`VirtualRobot`] and [`Body`]: base joints, proximal and distal links, elbows, platform,
+//!   Z column and gripper of one pose, from forward kinematics (or an IK configuration), with
+//!   the dimensions of `robot.json`'s `geometry`.
+//! - [`Scene`]: the boxes around the robot (`{"boxes":[{"name":…,"min":[x,y,z],"max":[x,y,z]}]}`),
+//!   read with errors that name line, column and key.
+//! - [`self_collisions`] and [`scene_collisions`]: links as capsules `link_width` wide at
+//!   `link_height`, gripper and Z column as vertical cylinders.
+//! - [`Checker`]: every sample of a program checked for every problem of SPEC §8.1 without
+//!   stopping, grouped into [`Problem`]s with their time spans, and a [`Summary`].
+//! - [`Workspace`]: the reachable XY grid of SPEC §8.2, its area and the largest axis-aligned
+//!   [`Rectangle`] inside it; [`Bounds`] and [`fit`]: a program's XY extent (arcs included) and
+//!   the offset that centres it in that rectangle.
+//! - [`draw_top_view`], [`draw_joints`], [`draw_workspace`]: pictures as SVG or PNG bytes
+//!   (plotters; DejaVu Sans embedded for PNG text).
+//!
+//! It is sans-IO: it takes samples, motions and bytes, and returns values; it never prints
+//! or opens files. It knows nothing of G-code text.
+//!
+//! ```
+//! use biscara_interpolate::CartesianSample;
+//! use biscara_kinematics::Robot;
+//! use biscara_robot::{Checker, Scene};
+//!
+//! let mut checker = Checker::new(&Robot::default(), Scene::new())?;
+//! for step in 0..=100 {
+//!     let t = f64::from(step) * 0.01;
+//!     checker.push(&CartesianSample { t, pose: [t * 10.0, 400.0, 50.0, 0.0], line: 1, gripper: false });
+//! }
+//! let report = checker.finish();
+//! assert!(report.ok());
+//! assert!((report.summary.path_length_mm - 10.0).abs() < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod body;
+mod check;
+mod collision;
+mod error;
+mod fit;
+mod geometry;
+mod plot;
+mod scene;
+mod workspace;
+
+pub use body::{Body, Cylinder, Link, LinkName, VirtualRobot};
+pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary};
+pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
+pub use error::VirtualRobotError;
+pub use fit::{Bounds, Fit, fit, shift_motion};
+pub use plot::{ImageFormat, JointCurves, TopView, draw_joints, draw_top_view, draw_workspace};
+pub use scene::{Scene, SceneBox};
+pub use workspace::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, Workspace, reachable};

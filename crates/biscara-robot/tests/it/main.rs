@@ -1,1 +1,4 @@
 //! Integration tests of the virtual robot.
+
+mod checker;
+mod workspace;

@@ -1,0 +1,567 @@
+//! `check`: a program's samples run on the virtual robot, every problem collected and grouped.
+
+use std::fmt;
+
+use biscara_interpolate::CartesianSample;
+use biscara_kinematics::{
+    Joint, Joints, Kinematics, KinematicsError, Pose, Robot, Shortfall, Theta3Unwrapper,
+};
+
+use crate::collision::{scene_collisions, self_collisions};
+use crate::{Scene, VirtualRobot, VirtualRobotError};
+
+/// The kinds of problem of SPEC §8.1, in the order reports list them at equal times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ProblemKind {
+    /// A pose no configuration of the robot reaches (or only beyond a type-2 singularity).
+    Unreachable,
+    /// A joint outside its position limits.
+    JointLimit,
+    /// A joint faster than `joint_max_velocity`.
+    VelocityLimit,
+    /// A joint accelerating harder than `joint_max_acceleration`.
+    AccelerationLimit,
+    /// A pose within `singularity_margin` of a type-1 or type-2 singularity.
+    Singularity,
+    /// Two links closer than `link_width`, or the distal links folded onto each other.
+    SelfCollision,
+    /// A part of the body inside a box of the scene.
+    SceneCollision,
+}
+
+impl ProblemKind {
+    /// The `kind` string of `check --json` (SPEC §9).
+    pub fn name(self) -> &'static str {
+        match self {
+            ProblemKind::Unreachable => "unreachable",
+            ProblemKind::JointLimit => "joint_limit",
+            ProblemKind::VelocityLimit => "velocity_limit",
+            ProblemKind::AccelerationLimit => "acceleration_limit",
+            ProblemKind::Singularity => "singularity",
+            ProblemKind::SelfCollision => "self_collision",
+            ProblemKind::SceneCollision => "scene_collision",
+        }
+    }
+
+    fn is_derivative(self) -> bool {
+        matches!(self, ProblemKind::VelocityLimit | ProblemKind::AccelerationLimit)
+    }
+}
+
+impl fmt::Display for ProblemKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One problem: a run of consecutive samples with the same kind of problem on the same subject
+/// (joint, chain, link pair, part and box), reported once with its time span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    /// What kind of problem.
+    pub kind: ProblemKind,
+    /// What it concerns: `theta1`, `chain 1`, `proximal link 1 and distal link 2`,
+    /// `gripper in pallet`, ….
+    pub subject: String,
+    /// 1-based program line of the first sample with the problem.
+    pub line: usize,
+    /// Program line of the last sample with the problem.
+    pub line_end: usize,
+    /// Time of the first sample with the problem, s.
+    pub t_start: f64,
+    /// Time of the last sample with the problem, s.
+    pub t_end: f64,
+    /// Number of samples with the problem.
+    pub samples: u64,
+    /// The pose `[x, y, z, c]` (mm, degrees) at the first sample.
+    pub pose: [f64; 4],
+    /// Time of the worst sample, s.
+    pub t_worst: f64,
+    /// Program line of the worst sample.
+    pub line_worst: usize,
+    /// The pose at the worst sample.
+    pub pose_worst: [f64; 4],
+    /// What is wrong at the worst sample, with its numbers.
+    pub detail: String,
+}
+
+impl Problem {
+    /// A one-line description: the worst sample's detail and the time span.
+    pub fn message(&self) -> String {
+        if self.samples == 1 {
+            format!("{} at t = {:.3} s", self.detail, self.t_start)
+        } else {
+            format!(
+                "{} (worst at t = {:.3} s, line {}); {} samples from t = {:.3} to {:.3} s",
+                self.detail, self.t_worst, self.line_worst, self.samples, self.t_start, self.t_end
+            )
+        }
+    }
+}
+
+/// The largest magnitude of a joint's velocity or acceleration over the program.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Peak {
+    /// The magnitude: degrees/s (or /s²) for θ, mm/s (or /s²) for d4.
+    pub value: f64,
+    /// The robot's limit, same unit.
+    pub limit: f64,
+    /// Program line where it occurs.
+    pub line: usize,
+    /// Time where it occurs, s.
+    pub t: f64,
+}
+
+/// The smallest singularity angle met along the program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SingularityDistance {
+    /// The angle of SPEC §1.2, degrees (0 at the singularity).
+    pub angle_deg: f64,
+    /// Which singularity (`type-2 singularity`, `type-1 singularity of chain 1`).
+    pub kind: String,
+    /// Program line where it occurs.
+    pub line: usize,
+    /// Time where it occurs, s.
+    pub t: f64,
+}
+
+/// Figures of the whole program.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Summary {
+    /// Number of samples.
+    pub samples: u64,
+    /// Time of the last sample, s.
+    pub duration_s: f64,
+    /// Length of the XYZ path (sum of the distances between samples), mm.
+    pub path_length_mm: f64,
+    /// Peak joint velocities, `[theta1, theta2, theta3, d4]` (central differences).
+    pub peak_velocity: [Peak; 4],
+    /// Peak joint accelerations, `[theta1, theta2, theta3, d4]` (central differences).
+    pub peak_acceleration: [Peak; 4],
+    /// The smallest singularity angle over the reachable samples; `None` when none was.
+    pub min_singularity: Option<SingularityDistance>,
+}
+
+/// What `check` found: the problems in time order and the summary.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Report {
+    /// Every problem, ordered by start time (then kind and subject).
+    pub problems: Vec<Problem>,
+    /// Figures of the whole program.
+    pub summary: Summary,
+}
+
+impl Report {
+    /// Whether the program is clean.
+    pub fn ok(&self) -> bool {
+        self.problems.is_empty()
+    }
+}
+
+struct Finding {
+    kind: ProblemKind,
+    subject: String,
+    /// How bad, in the finding's own measure (larger is worse).
+    severity: f64,
+    detail: String,
+}
+
+#[derive(Clone, Copy)]
+struct SampleInfo {
+    index: u64,
+    t: f64,
+    line: usize,
+    pose: [f64; 4],
+}
+
+struct Open {
+    problem: Problem,
+    severity: f64,
+    last_index: u64,
+}
+
+#[derive(Clone, Copy)]
+struct Solved {
+    info: SampleInfo,
+    q: [f64; 4],
+}
+
+/// Runs samples on the virtual robot and collects every problem (SPEC §8.1), without stopping at
+/// the first: unreachable poses, joint position, velocity and acceleration limits, near-singular
+/// poses, self-collisions and collisions with the scene. Consecutive samples with the same
+/// problem on the same subject become one [`Problem`] with its time span.
+///
+/// Feed the samples in order with [`Checker::push`], then call [`Checker::finish`]. Memory holds
+/// three samples and the open problems, not the trajectory.
+///
+/// Velocities and accelerations are central finite differences of the joint positions over
+/// three consecutive reachable samples, as in the joint CSV; they are reported on the line of
+/// the later sample (the same motion, except at a corner, where the difference measures the
+/// start of the next motion).
+pub struct Checker {
+    robot: VirtualRobot,
+    scene: Scene,
+    theta3: Theta3Unwrapper,
+    /// Velocity and acceleration limits, radians or mm per second (squared).
+    max_velocity: [f64; 4],
+    max_acceleration: [f64; 4],
+    /// The same in user units, for reports.
+    max_velocity_user: [f64; 4],
+    max_acceleration_user: [f64; 4],
+    window: [Option<Solved>; 2],
+    open: Vec<Open>,
+    closed: Vec<Problem>,
+    summary: Summary,
+    previous_pose: Option<[f64; 4]>,
+    count: u64,
+}
+
+fn user_unit(joint: Joint, value: f64) -> f64 {
+    if joint.is_revolute() { value.to_degrees() } else { value }
+}
+
+fn unit(joint: Joint) -> &'static str {
+    if joint.is_revolute() { "°" } else { " mm" }
+}
+
+impl Checker {
+    /// A checker for `robot` in `scene`.
+    pub fn new(robot: &Robot, scene: Scene) -> Result<Checker, VirtualRobotError> {
+        let to_internal = |values: [f64; 4]| {
+            let mut values = values;
+            for value in &mut values[..3] {
+                *value = value.to_radians();
+            }
+            values
+        };
+        let velocity = robot.joint_max_velocity.to_array();
+        let acceleration = robot.joint_max_acceleration.to_array();
+        let mut summary = Summary::default();
+        for j in 0..4 {
+            summary.peak_velocity[j].limit = velocity[j];
+            summary.peak_acceleration[j].limit = acceleration[j];
+        }
+        Ok(Checker {
+            robot: VirtualRobot::new(robot)?,
+            scene,
+            theta3: Theta3Unwrapper::new(),
+            max_velocity: to_internal(velocity),
+            max_acceleration: to_internal(acceleration),
+            max_velocity_user: velocity,
+            max_acceleration_user: acceleration,
+            window: [None, None],
+            open: Vec::new(),
+            closed: Vec::new(),
+            summary,
+            previous_pose: None,
+            count: 0,
+        })
+    }
+
+    fn model(&self) -> &Kinematics {
+        self.robot.model()
+    }
+
+    /// Checks the next sample.
+    pub fn push(&mut self, sample: &CartesianSample) {
+        let info =
+            SampleInfo { index: self.count, t: sample.t, line: sample.line, pose: sample.pose };
+        self.count += 1;
+        self.summary.samples = self.count;
+        self.summary.duration_s = sample.t;
+        if let Some(previous) = self.previous_pose {
+            let d: f64 = (0..3).map(|i| (sample.pose[i] - previous[i]).powi(2)).sum();
+            self.summary.path_length_mm += d.sqrt();
+        }
+        self.previous_pose = Some(sample.pose);
+
+        let mut findings = Vec::new();
+        let solved = self.solve(&info, &mut findings);
+        for finding in findings {
+            self.record(info, finding);
+        }
+        match solved {
+            Some(joints) => {
+                let current = Solved { info, q: joints.to_array() };
+                if let [Some(before), Some(middle)] = self.window {
+                    let mut findings = Vec::new();
+                    self.derivatives(&before, &middle, &current, &mut findings);
+                    // At the last sample of a motion the differences measure the start of
+                    // the next one: report them on its line.
+                    let mut info = middle.info;
+                    info.line = current.info.line;
+                    for finding in findings {
+                        self.record(info, finding);
+                    }
+                }
+                self.window = [self.window[1], Some(current)];
+            }
+            None => self.window = [None, None],
+        }
+        let now = info.index;
+        self.close_where(|open| {
+            let seen = open.last_index;
+            if open.problem.kind.is_derivative() { seen + 1 < now } else { seen < now }
+        });
+    }
+
+    /// Ends the run: the problems in time order and the summary.
+    pub fn finish(mut self) -> Report {
+        self.close_where(|_| true);
+        let mut problems = self.closed;
+        problems.sort_by(|a, b| {
+            a.t_start
+                .total_cmp(&b.t_start)
+                .then(a.kind.cmp(&b.kind))
+                .then_with(|| a.subject.cmp(&b.subject))
+        });
+        Report { problems, summary: self.summary }
+    }
+
+    /// IK, limits, singularity and collisions of one sample; the joints when it is reachable.
+    fn solve(&mut self, info: &SampleInfo, findings: &mut Vec<Finding>) -> Option<Joints> {
+        let [x, y, z, c] = info.pose;
+        let pose = Pose::from_degrees(x, y, z, c);
+        let model = *self.model();
+        let unreachable = |err: &KinematicsError| {
+            let (subject, severity) = match *err {
+                KinematicsError::Unreachable { chain, shortfall_mm, side, .. } => (
+                    format!(
+                        "{chain} {}",
+                        match side {
+                            Shortfall::TooFar => "too far",
+                            Shortfall::TooClose => "too close",
+                        }
+                    ),
+                    shortfall_mm,
+                ),
+                KinematicsError::BeyondType2 { .. } => ("assembly mode".to_owned(), 0.0),
+                _ => ("pose".to_owned(), 0.0),
+            };
+            Finding { kind: ProblemKind::Unreachable, subject, severity, detail: err.to_string() }
+        };
+        let mut solution = match model.inverse(&pose) {
+            Ok(solution) => solution,
+            Err(err) => {
+                findings.push(unreachable(&err));
+                return None;
+            }
+        };
+        if let Err(err) = model.check_assembly(&solution) {
+            findings.push(unreachable(&err));
+            return None;
+        }
+        self.theta3.apply(&mut solution);
+        let joints = solution.joints;
+        for joint in Joint::ALL {
+            let value = joints.get(joint);
+            let [min, max] = model.limits(joint);
+            if !(min..=max).contains(&value) {
+                let excess = user_unit(joint, if value < min { min - value } else { value - max });
+                let [min, max] = [min, max].map(|limit| user_unit(joint, limit));
+                findings.push(Finding {
+                    kind: ProblemKind::JointLimit,
+                    subject: joint.name().to_owned(),
+                    severity: excess,
+                    detail: format!(
+                        "{joint} = {:.3}{u} is outside its limits [{}, {}]{u} by {excess:.3}{u}",
+                        user_unit(joint, value),
+                        round(min),
+                        round(max),
+                        u = unit(joint),
+                    ),
+                });
+            }
+        }
+        let angles = solution.configuration.singularity();
+        let (kind, angle) = angles.nearest();
+        let angle_deg = angle.to_degrees();
+        let closer = self
+            .summary
+            .min_singularity
+            .as_ref()
+            .is_none_or(|nearest| angle_deg < nearest.angle_deg);
+        if closer {
+            self.summary.min_singularity = Some(SingularityDistance {
+                angle_deg,
+                kind: kind.to_string(),
+                line: info.line,
+                t: info.t,
+            });
+        }
+        if let Err(KinematicsError::NearSingular { kind, angle_deg, margin_deg }) =
+            model.check_singularity(&solution.configuration)
+        {
+            findings.push(Finding {
+                kind: ProblemKind::Singularity,
+                subject: kind.to_string(),
+                severity: margin_deg - angle_deg,
+                detail: format!(
+                    "{angle_deg:.3}° from a {kind}, closer than the margin of {margin_deg}°"
+                ),
+            });
+        }
+        let body = self.robot.body_at(solution.configuration, pose.z, pose.phi);
+        let width = body.geometry.link_width;
+        for hit in self_collisions(&body) {
+            findings.push(Finding {
+                kind: ProblemKind::SelfCollision,
+                subject: format!("{} and {}", hit.first, hit.second),
+                severity: width - hit.distance_mm,
+                detail: if (hit.first, hit.second)
+                    == (crate::LinkName::Distal1, crate::LinkName::Distal2)
+                {
+                    format!(
+                        "the distal links fold onto each other: the elbows are {:.3} mm apart, \
+                         closer than the link width {} mm",
+                        hit.distance_mm, width
+                    )
+                } else {
+                    format!(
+                        "{} and {} are {:.3} mm apart, closer than the link width {} mm",
+                        hit.first, hit.second, hit.distance_mm, width
+                    )
+                },
+            });
+        }
+        for hit in scene_collisions(&body, &self.scene) {
+            let name = &self.scene.boxes[hit.box_index].name;
+            findings.push(Finding {
+                kind: ProblemKind::SceneCollision,
+                subject: format!("{} in {name}", hit.part),
+                severity: hit.depth_mm,
+                detail: format!("the {} reaches {:.3} mm into {name}", hit.part, hit.depth_mm),
+            });
+        }
+        Some(joints)
+    }
+
+    /// Velocity and acceleration at `middle` from its neighbours.
+    fn derivatives(
+        &mut self,
+        before: &Solved,
+        middle: &Solved,
+        after: &Solved,
+        findings: &mut Vec<Finding>,
+    ) {
+        let span = after.info.t - before.info.t;
+        let (dt_back, dt_ahead) = (middle.info.t - before.info.t, after.info.t - middle.info.t);
+        if !(span > 0.0 && dt_back > 0.0 && dt_ahead > 0.0) {
+            return;
+        }
+        for (j, joint) in Joint::ALL.into_iter().enumerate() {
+            let velocity = (after.q[j] - before.q[j]) / span;
+            let back = (middle.q[j] - before.q[j]) / dt_back;
+            let ahead = (after.q[j] - middle.q[j]) / dt_ahead;
+            let acceleration = 2.0 * (ahead - back) / span;
+            let checks = [
+                (
+                    velocity,
+                    self.max_velocity[j],
+                    self.max_velocity_user[j],
+                    ProblemKind::VelocityLimit,
+                    "velocity",
+                    "/s",
+                ),
+                (
+                    acceleration,
+                    self.max_acceleration[j],
+                    self.max_acceleration_user[j],
+                    ProblemKind::AccelerationLimit,
+                    "acceleration",
+                    "/s²",
+                ),
+            ];
+            for (value, limit, limit_user, kind, what, per) in checks {
+                let magnitude = user_unit(joint, value.abs());
+                let peak = if kind == ProblemKind::VelocityLimit {
+                    &mut self.summary.peak_velocity[j]
+                } else {
+                    &mut self.summary.peak_acceleration[j]
+                };
+                if magnitude > peak.value {
+                    *peak = Peak {
+                        value: magnitude,
+                        limit: limit_user,
+                        line: after.info.line,
+                        t: middle.info.t,
+                    };
+                }
+                // One part in a million of slack: a move planned exactly at the limit (d4 at
+                // the rapid speed) must not fail by rounding.
+                if value.abs() > limit * (1.0 + LIMIT_TOLERANCE) {
+                    findings.push(Finding {
+                        kind,
+                        subject: joint.name().to_owned(),
+                        severity: magnitude / limit_user,
+                        detail: format!(
+                            "{joint} {what} {magnitude:.3}{u}{per} exceeds its limit {}{u}{per}",
+                            round(limit_user),
+                            u = unit(joint),
+                        ),
+                    });
+                }
+            }
+        }
+    }
+
+    fn record(&mut self, info: SampleInfo, finding: Finding) {
+        let open = self.open.iter_mut().find(|open| {
+            open.problem.kind == finding.kind && open.problem.subject == finding.subject
+        });
+        match open {
+            Some(open) => {
+                let problem = &mut open.problem;
+                problem.t_end = info.t;
+                problem.line_end = info.line;
+                problem.samples += 1;
+                open.last_index = info.index;
+                if finding.severity > open.severity {
+                    open.severity = finding.severity;
+                    problem.t_worst = info.t;
+                    problem.line_worst = info.line;
+                    problem.pose_worst = info.pose;
+                    problem.detail = finding.detail;
+                }
+            }
+            None => self.open.push(Open {
+                problem: Problem {
+                    kind: finding.kind,
+                    subject: finding.subject,
+                    line: info.line,
+                    line_end: info.line,
+                    t_start: info.t,
+                    t_end: info.t,
+                    samples: 1,
+                    pose: info.pose,
+                    t_worst: info.t,
+                    line_worst: info.line,
+                    pose_worst: info.pose,
+                    detail: finding.detail,
+                },
+                severity: finding.severity,
+                last_index: info.index,
+            }),
+        }
+    }
+
+    fn close_where(&mut self, stale: impl Fn(&Open) -> bool) {
+        let mut index = 0;
+        while index < self.open.len() {
+            if stale(&self.open[index]) {
+                let open = self.open.swap_remove(index);
+                self.closed.push(open.problem);
+            } else {
+                index += 1;
+            }
+        }
+    }
+}
+
+/// Relative slack on the velocity and acceleration limits, against rounding.
+const LIMIT_TOLERANCE: f64 = 1e-6;
+
+/// A limit as written in the robot file: without trailing zeros.
+fn round(value: f64) -> f64 {
+    (value * 1e6).round() / 1e6
+}

@@ -1,0 +1,272 @@
+//! The reachable region in the XY plane (SPEC §8.2) and the largest rectangle inside it.
+
+use biscara_kinematics::{Joint, Joints, Kinematics, Pose};
+
+use crate::VirtualRobotError;
+
+/// Smallest grid step accepted, millimetres.
+pub const MIN_STEP_MM: f64 = 0.1;
+/// Largest grid step accepted, millimetres.
+pub const MAX_STEP_MM: f64 = 100.0;
+
+/// Whether the platform point `(x, y)` is reachable: IK in the working mode, in the robot's
+/// assembly mode, θ1 and θ2 inside their limits and outside the singularity margin.
+///
+/// z and c are free: d4 and θ3 are taken at the middle of their ranges (some z and c always
+/// give that), so they never decide.
+pub fn reachable(model: &Kinematics, x: f64, y: f64) -> bool {
+    let Ok(mut solution) = model.inverse(&Pose { x, y, z: 0.0, phi: 0.0 }) else {
+        return false;
+    };
+    let middle = |joint| {
+        let [min, max] = model.limits(joint);
+        0.5 * (min + max)
+    };
+    solution.joints =
+        Joints { theta3: middle(Joint::Theta3), d4: middle(Joint::D4), ..solution.joints };
+    model.check_assembly(&solution).is_ok()
+        && model.check_limits(&solution.joints).is_ok()
+        && model.check_singularity(&solution.configuration).is_ok()
+}
+
+/// The workspace as a grid of points at multiples of `step` in X and Y, each reachable or not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Workspace {
+    step: f64,
+    /// Grid index of the first column and row: point (i, j) is at `((i0 + i)·step, (j0 + j)·step)`.
+    i0: i64,
+    j0: i64,
+    columns: usize,
+    rows: usize,
+    /// Row-major, row 0 at the smallest y.
+    reachable: Vec<bool>,
+}
+
+/// An axis-aligned rectangle of the grid: corners on grid points, every grid point inside it
+/// (edges included) reachable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rectangle {
+    /// The corner with the smallest x and y, millimetres.
+    pub min: [f64; 2],
+    /// The corner with the largest x and y, millimetres.
+    pub max: [f64; 2],
+}
+
+impl Rectangle {
+    /// Width (X), millimetres.
+    pub fn width(&self) -> f64 {
+        self.max[0] - self.min[0]
+    }
+
+    /// Height (Y), millimetres.
+    pub fn height(&self) -> f64 {
+        self.max[1] - self.min[1]
+    }
+
+    /// The centre, millimetres.
+    pub fn center(&self) -> [f64; 2] {
+        [0.5 * (self.min[0] + self.max[0]), 0.5 * (self.min[1] + self.max[1])]
+    }
+}
+
+impl Workspace {
+    /// The workspace of `model` on a grid of `step` millimetres covering everything the chains
+    /// can reach (each chain reaches at most `l1 + l2` from its base joint).
+    pub fn compute(model: &Kinematics, step: f64) -> Result<Workspace, VirtualRobotError> {
+        if !(MIN_STEP_MM..=MAX_STEP_MM).contains(&step) {
+            return Err(VirtualRobotError::Step {
+                step_mm: step,
+                min_mm: MIN_STEP_MM,
+                max_mm: MAX_STEP_MM,
+            });
+        }
+        let reach = model.l1() + model.l2();
+        let [b1, b2] = model.bases();
+        let index = |value: f64, up: bool| {
+            let scaled = value / step;
+            (if up { scaled.ceil() } else { scaled.floor() }) as i64
+        };
+        let (i0, i1) = (index(b2.x.min(b1.x) - reach, false), index(b1.x.max(b2.x) + reach, true));
+        let (j0, j1) = (index(-reach, false), index(reach, true));
+        let columns = usize::try_from(i1 - i0 + 1).unwrap_or(0);
+        let rows = usize::try_from(j1 - j0 + 1).unwrap_or(0);
+        let mut reachable = Vec::with_capacity(columns * rows);
+        for j in 0..rows {
+            let y = (j0 + j as i64) as f64 * step;
+            for i in 0..columns {
+                let x = (i0 + i as i64) as f64 * step;
+                reachable.push(reachable_fast(model, reach, x, y));
+            }
+        }
+        Ok(Workspace { step, i0, j0, columns, rows, reachable })
+    }
+
+    /// The grid step, millimetres.
+    pub fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// Number of grid columns (X) and rows (Y).
+    pub fn size(&self) -> (usize, usize) {
+        (self.columns, self.rows)
+    }
+
+    /// The position of grid point `(i, j)`, millimetres.
+    pub fn point(&self, i: usize, j: usize) -> [f64; 2] {
+        [(self.i0 + i as i64) as f64 * self.step, (self.j0 + j as i64) as f64 * self.step]
+    }
+
+    /// Whether grid point `(i, j)` is reachable (false outside the grid).
+    pub fn is_reachable(&self, i: usize, j: usize) -> bool {
+        i < self.columns && j < self.rows && self.reachable[j * self.columns + i]
+    }
+
+    /// The grid indices of the point at `(x, y)` when it lies on the grid.
+    pub fn index_of(&self, x: f64, y: f64) -> Option<(usize, usize)> {
+        let i = (x / self.step).round() as i64 - self.i0;
+        let j = (y / self.step).round() as i64 - self.j0;
+        let (i, j) = (usize::try_from(i).ok()?, usize::try_from(j).ok()?);
+        (i < self.columns && j < self.rows).then_some((i, j))
+    }
+
+    /// Number of reachable grid points.
+    pub fn count(&self) -> usize {
+        self.reachable.iter().filter(|&&r| r).count()
+    }
+
+    /// The reachable area, mm²: each reachable point stands for one `step × step` cell.
+    pub fn area_mm2(&self) -> f64 {
+        self.count() as f64 * self.step * self.step
+    }
+
+    /// The runs of reachable points of row `j`: `(first column, last column)` inclusive.
+    pub fn runs(&self, j: usize) -> Vec<(usize, usize)> {
+        let mut runs = Vec::new();
+        let mut start = None;
+        for i in 0..=self.columns {
+            match (self.is_reachable(i, j), start) {
+                (true, None) => start = Some(i),
+                (false, Some(first)) => {
+                    runs.push((first, i - 1));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        runs
+    }
+
+    /// The largest axis-aligned rectangle whose corners are grid points and whose grid points
+    /// are all reachable, by area `(columns − 1)·(rows − 1)·step²`: exact on the grid (the
+    /// maximal-rectangle algorithm over row histograms, O(columns·rows)). Ties go to the first
+    /// found (lowest top row, then leftmost). Fails when no two-by-two block is reachable.
+    pub fn largest_rectangle(&self) -> Result<Rectangle, VirtualRobotError> {
+        let (i, j, w, h) = largest_block(&self.reachable, self.columns, self.rows)
+            .ok_or(VirtualRobotError::EmptyWorkspace { step_mm: self.step })?;
+        let min = self.point(i, j);
+        let max = self.point(i + w - 1, j + h - 1);
+        Ok(Rectangle { min, max })
+    }
+}
+
+/// [`reachable`] with a quick rejection of points no chain reaches.
+fn reachable_fast(model: &Kinematics, reach: f64, x: f64, y: f64) -> bool {
+    let [b1, b2] = model.bases();
+    let far = |b: biscara_kinematics::na::Point2<f64>| (x - b.x).hypot(y - b.y) > reach;
+    !far(b1) && !far(b2) && reachable(model, x, y)
+}
+
+/// The block of `true` cells (`i`, `j`, width, height) maximising `(width − 1)·(height − 1)`,
+/// among blocks at least 2 × 2. For each row the heights of the `true` runs ending there form a
+/// histogram; a stack finds, for every bar, the widest span of bars at least as high. Every
+/// maximal block is found that way, and the objective grows with width and height, so the best
+/// block is among them.
+fn largest_block(
+    cells: &[bool],
+    columns: usize,
+    rows: usize,
+) -> Option<(usize, usize, usize, usize)> {
+    let mut heights = vec![0usize; columns];
+    let mut best: Option<(usize, (usize, usize, usize, usize))> = None;
+    let mut stack: Vec<usize> = Vec::with_capacity(columns + 1);
+    for top in 0..rows {
+        for i in 0..columns {
+            heights[i] = if cells[top * columns + i] { heights[i] + 1 } else { 0 };
+        }
+        stack.clear();
+        for i in 0..=columns {
+            let current = if i < columns { heights[i] } else { 0 };
+            while let Some(&last) = stack.last() {
+                if heights[last] < current {
+                    break;
+                }
+                stack.pop();
+                let height = heights[last];
+                let left = stack.last().map_or(0, |&k| k + 1);
+                let width = i - left;
+                if height >= 2 && width >= 2 {
+                    let area = (width - 1) * (height - 1);
+                    if best.is_none_or(|(value, _)| area > value) {
+                        best = Some((area, (left, top + 1 - height, width, height)));
+                    }
+                }
+            }
+            stack.push(i);
+        }
+    }
+    best.map(|(_, block)| block)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The best block by brute force over every block.
+    fn brute_force(cells: &[bool], columns: usize, rows: usize) -> usize {
+        let mut best = 0;
+        for j0 in 0..rows {
+            for i0 in 0..columns {
+                for j1 in j0 + 1..rows {
+                    for i1 in i0 + 1..columns {
+                        let full = (j0..=j1).all(|j| (i0..=i1).all(|i| cells[j * columns + i]));
+                        if full {
+                            best = best.max((i1 - i0) * (j1 - j0));
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn largest_block_matches_brute_force() {
+        let mut seed = 12345u64;
+        for _ in 0..200 {
+            let (columns, rows) = (7, 6);
+            let cells: Vec<bool> = (0..columns * rows)
+                .map(|_| {
+                    seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    (seed >> 33) % 10 < 7
+                })
+                .collect();
+            let expected = brute_force(&cells, columns, rows);
+            let found = largest_block(&cells, columns, rows);
+            match found {
+                None => assert_eq!(expected, 0),
+                Some((i, j, w, h)) => {
+                    assert_eq!((w - 1) * (h - 1), expected);
+                    assert!((j..j + h).all(|r| (i..i + w).all(|c| cells[r * columns + c])));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn home_is_reachable_and_the_base_is_not() {
+        let model = Kinematics::default();
+        assert!(reachable(&model, 0.0, 400.0));
+        assert!(!reachable(&model, 0.0, 0.0));
+        assert!(!reachable(&model, 0.0, 600.0));
+    }
+}
