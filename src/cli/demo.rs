@@ -59,11 +59,21 @@ pub(crate) fn demo(robot: &Robot, args: &DemoArgs) -> anyhow::Result<()> {
         ["interpolate", &text(jsonl.clone()), "--events", "-o", &text(path.clone())],
     )?;
     written.push((path, "Cartesian samples at 1 ms (biscara interpolate)"));
-    run_command(robot, ["joints", &text(jsonl), "--derivatives", "-o", &text(trajectory.clone())])?;
+    run_command(
+        robot,
+        ["joints", &text(jsonl.clone()), "--derivatives", "-o", &text(trajectory.clone())],
+    )?;
     written.push((
         trajectory.clone(),
         "joint trajectory with velocities and accelerations (biscara joints)",
     ));
+    let virtual_robot = super::plot::write_virtual_robot_outputs(dir, robot, &jsonl)?;
+    let what = [
+        "the virtual robot's report (biscara check --json)",
+        "the workspace and its largest rectangle (biscara workspace --svg)",
+        "workspace, path and robot in top view (biscara plot)",
+    ];
+    written.extend(virtual_robot.into_iter().zip(what));
 
     written.extend(super::view::demo_pictures(robot, dir)?);
 

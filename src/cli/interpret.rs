@@ -53,6 +53,11 @@ pub(crate) struct InterpretArgs {
         help = "G54 offset before the first line (mm, mm, mm, degrees)"
     )]
     origin: Option<[f64; 4]>,
+    /// Place the program in the workspace: add to the origin the XY offset that centres the
+    /// program's bounding box in the largest rectangle of `biscara workspace` (reported on
+    /// stderr; a program larger than the rectangle is an error).
+    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    fit: bool,
 }
 
 /// `X,Y,Z,C`: four finite numbers.
@@ -74,7 +79,14 @@ pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
 
 pub(crate) fn interpret(robot: &Robot, args: &InterpretArgs) -> anyhow::Result<()> {
     let home = Kinematics::new(robot)?.home().to_degrees();
-    let config = Config { home, origin: args.origin.unwrap_or([0.0; 4]), ..Config::default() };
+    let (origin, _) = super::fit::placement(
+        &args.program,
+        super::trajectory::InputKind::Gcode,
+        robot,
+        args.origin,
+        args.fit,
+    )?;
+    let config = Config { home, origin, ..Config::default() };
     let input = open_input(&args.program)?;
     write_output(args.output.as_deref(), |out| {
         // serde_json writes a motion in many small pieces: gather them in a buffer of a

@@ -1,8 +1,10 @@
 //! Command-line parsing, dispatch, exit codes and diagnostics.
 
+mod check;
 mod clf;
 mod demo;
 mod diff;
+mod fit;
 mod fmt;
 mod generate;
 mod input;
@@ -10,10 +12,12 @@ mod interpret;
 mod kinematics;
 mod mjcf;
 mod output;
+mod plot;
 mod post;
 mod progress;
 mod trajectory;
 mod view;
+mod workspace;
 
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
@@ -54,6 +58,9 @@ enum Command {
     Diff(diff::DiffArgs),
     Mjcf(mjcf::MjcfArgs),
     View(view::ViewArgs),
+    Check(check::CheckArgs),
+    Workspace(workspace::WorkspaceArgs),
+    Plot(plot::PlotArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -100,6 +107,9 @@ fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
         Command::Diff(args) => diff::diff(&args),
         Command::Mjcf(args) => mjcf::mjcf(robot, &args),
         Command::View(args) => view::view(robot, &args),
+        Command::Check(args) => check::check(robot, &args),
+        Command::Workspace(args) => workspace::workspace(robot, &args),
+        Command::Plot(args) => plot::plot(robot, &args),
     }
 }
 

@@ -15,6 +15,7 @@ use biscara::joints::{
 };
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::{Motion, read_jsonl};
+use biscara::robot::shift_motion;
 use clap::{Args, ValueEnum};
 
 use super::display_path;
@@ -73,6 +74,11 @@ pub(crate) struct SamplingArgs {
         help = "G54 offset before the first line of a G-code program"
     )]
     origin: Option<[f64; 4]>,
+    /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
+    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
+    /// The offset is reported on stderr; a program larger than the rectangle is an error.
+    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    fit: bool,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
@@ -166,7 +172,7 @@ fn parse_duration(text: &str) -> Result<f64, String> {
 }
 
 /// The kind of `path`, from `--from` or its extension.
-fn input_kind(path: &Path, from: Option<InputKind>) -> InputKind {
+pub(crate) fn input_kind(path: &Path, from: Option<InputKind>) -> InputKind {
     from.unwrap_or_else(|| match path.extension().and_then(|e| e.to_str()) {
         Some("jsonl") => InputKind::Jsonl,
         Some("csv") => InputKind::Path,
@@ -178,7 +184,7 @@ type Motions = Box<dyn Iterator<Item = anyhow::Result<Motion>>>;
 type Samples = Box<dyn Iterator<Item = anyhow::Result<CartesianSample>>>;
 
 /// The motions of a program file.
-fn motions(
+pub(crate) fn motions(
     path: &Path,
     kind: InputKind,
     robot: &Robot,
@@ -207,7 +213,7 @@ fn motions(
 }
 
 /// Reports slowed motions on stderr: the first few in full, then a count.
-fn slow_down_reporter(name: String) -> (impl FnMut(&SlowDown), Rc<Cell<usize>>) {
+pub(crate) fn slow_down_reporter(name: String) -> (impl FnMut(&SlowDown), Rc<Cell<usize>>) {
     const SHOWN: usize = 20;
     let count = Rc::new(Cell::new(0));
     let seen = Rc::clone(&count);
@@ -229,14 +235,14 @@ fn slow_down_reporter(name: String) -> (impl FnMut(&SlowDown), Rc<Cell<usize>>) 
 }
 
 #[allow(clippy::print_stderr)]
-fn report_slow_total(count: usize) {
+pub(crate) fn report_slow_total(count: usize) {
     if count > 20 {
         eprintln!("biscara: note: {count} motions slowed in all");
     }
 }
 
 /// The Cartesian samples of a program: read from a path CSV, or interpolated from its motions.
-fn samples(
+pub(crate) fn samples(
     path: &Path,
     kind: InputKind,
     sampling: &SamplingArgs,
@@ -246,6 +252,9 @@ fn samples(
 ) -> anyhow::Result<Samples> {
     let name = display_path(path);
     if kind == InputKind::Path {
+        if sampling.fit {
+            return Err(anyhow!("{name}: --fit places a program, not a path CSV"));
+        }
         let input = open_with_progress(path)?;
         return Ok(Box::new(
             read_path_csv(input).map(move |result| result.map_err(|err| anyhow!("{name}:{err}"))),
@@ -267,9 +276,13 @@ fn samples(
         grip_time: sampling.grip_time,
     };
     let limit = JointSpeedLimit::new(model, robot);
-    let origin = sampling.origin.unwrap_or([0.0; 4]);
-    let interpolator =
-        Interpolator::new(motions(path, kind, robot, origin)?, config, limit, on_slow);
+    let (origin, shift) = super::fit::placement(path, kind, robot, sampling.origin, sampling.fit)?;
+    let mut motions = motions(path, kind, robot, origin)?;
+    if let Some(offset) = shift {
+        let [x, y, ..] = config.start;
+        motions = Box::new(motions.map(move |m| m.map(|m| shift_motion(m, offset, [x, y]))));
+    }
+    let interpolator = Interpolator::new(motions, config, limit, on_slow);
     Ok(Box::new(interpolator.map(move |result| {
         result.map_err(|err| match err {
             InterpolateError::Input(err) => err,

@@ -14,3 +14,4 @@ mod robustness;
 mod rs274;
 mod util;
 mod view_cli;
+mod virtual_robot;
