@@ -202,9 +202,10 @@ fn write_text(out: &mut dyn std::io::Write, name: &str, report: &Report) -> anyh
     writeln!(out, "summary:")?;
     writeln!(
         out,
-        "  duration {} s ({} samples), path length {} mm",
+        "  duration {} s ({} sample{}), path length {} mm",
         fixed(summary.duration_s, 3),
         summary.samples,
+        if summary.samples == 1 { "" } else { "s" },
         fixed(summary.path_length_mm, 3)
     )?;
     for (what, peaks, per) in [

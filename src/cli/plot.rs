@@ -98,6 +98,19 @@ struct Drawn {
     q: Vec<[f64; 4]>,
 }
 
+/// Most points a picture keeps of the path and of the joint curves: past it every other point is
+/// dropped and the spacing doubled, so memory stays bounded however long the program is.
+const MAX_POINTS: usize = 20_000;
+
+/// Keeps every other element (the first, the third, …).
+fn thin<T>(points: &mut Vec<T>) {
+    let mut keep = false;
+    points.retain(|_| {
+        keep = !keep;
+        keep
+    });
+}
+
 /// Runs the program's samples through IK, keeping what the pictures need.
 fn trace(
     robot: &Robot,
@@ -115,21 +128,30 @@ fn trace(
     wanted.sort_by(f64::total_cmp);
     let mut next_time = 0;
     let mut last_t = 0.0;
+    // Path points at least 0.5 mm apart and joint points 5 ms apart: plenty for a picture.
+    let (mut path_spacing, mut time_spacing) = (0.5, 0.005);
     for sample in samples(program, kind, sampling, robot, model, on_slow)? {
         let sample = sample?;
         last_t = sample.t;
         let [x, y, z, c] = sample.pose;
-        if drawn.path.last().is_none_or(|p| (p[0] - x).hypot(p[1] - y) >= 0.5) {
+        if drawn.path.last().is_none_or(|p| (p[0] - x).hypot(p[1] - y) >= path_spacing) {
             drawn.path.push([x, y]);
+            if drawn.path.len() > MAX_POINTS {
+                thin(&mut drawn.path);
+                path_spacing *= 2.0;
+            }
         }
         let pose = Pose::from_degrees(x, y, z, c);
         let Ok(mut solution) = model.inverse(&pose) else { continue };
         theta3.apply(&mut solution);
-        // Joint curves: one point per 5 ms is plenty for a picture.
-        if drawn.t.last().is_none_or(|&t| sample.t - t >= 0.005) {
+        if drawn.t.last().is_none_or(|&t| sample.t - t >= time_spacing) {
             drawn.t.push(sample.t);
-            let q = solution.joints.to_degrees();
-            drawn.q.push(q);
+            drawn.q.push(solution.joints.to_degrees());
+            if drawn.t.len() > MAX_POINTS {
+                thin(&mut drawn.t);
+                thin(&mut drawn.q);
+                time_spacing *= 2.0;
+            }
         }
         while next_time < wanted.len() && wanted[next_time] <= sample.t + 1e-9 {
             drawn.bodies.push((
@@ -227,4 +249,16 @@ fn default_sampling() -> anyhow::Result<SamplingArgs> {
     let matches =
         SamplingArgs::augment_args(clap::Command::new("demo")).try_get_matches_from(["demo"])?;
     Ok(SamplingArgs::from_arg_matches(&matches)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thin_keeps_every_other_point() {
+        let mut points: Vec<u32> = (0..7).collect();
+        thin(&mut points);
+        assert_eq!(points, [0, 2, 4, 6]);
+    }
 }
