@@ -479,3 +479,133 @@ fn random_programs_conform() {
     }
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
+
+/// A soup of tokens: words, numbers, expressions, comments and stray characters in any order,
+/// a few lines of it between `F100` and `M2`.
+fn token_soup(rng: &mut Rng) -> String {
+    const TOKENS: [&str; 80] = [
+        "G0",
+        "G1",
+        "G2",
+        "G3",
+        "G4",
+        "G17",
+        "G18",
+        "G19",
+        "G20",
+        "G21",
+        "G90",
+        "G91",
+        "G92",
+        "G92.1",
+        "G28",
+        "G53",
+        "G54",
+        "G55",
+        "G93",
+        "G94",
+        "M0",
+        "M3",
+        "M5",
+        "M2",
+        "X",
+        "Y",
+        "Z",
+        "C",
+        "I",
+        "J",
+        "K",
+        "R",
+        "P",
+        "F",
+        "S",
+        "T",
+        "N10",
+        "#1=",
+        "#2=",
+        "#<a>=",
+        "#<_b>=",
+        "#1",
+        "#<a>",
+        "#<_b>",
+        "#<_x>",
+        "[",
+        "]",
+        "+",
+        "-",
+        "*",
+        "/",
+        "**",
+        " MOD ",
+        " EQ ",
+        " AND ",
+        " OR ",
+        "SIN[",
+        "ABS[",
+        "ATAN[1]/[",
+        "SQRT[",
+        "EXISTS[#<a>]",
+        "(c)",
+        "(MSG,x)",
+        ";c",
+        " ",
+        ".",
+        "1",
+        "2.5",
+        "-3",
+        "0",
+        "10",
+        ".5",
+        "5.",
+        "%",
+        "@",
+        "$",
+        "E1",
+        "D1",
+        "H1",
+        "L2",
+    ];
+    let mut text = String::from("F100\n");
+    for _ in 0..1 + rng.below(5) {
+        for _ in 0..1 + rng.below(8) {
+            text.push_str(TOKENS[rng.below(TOKENS.len() as u64) as usize]);
+        }
+        text.push('\n');
+    }
+    text.push_str("M2\n");
+    text
+}
+
+/// Token soups: nearly all are refused, and must be refused alike — the same motions before
+/// the error and LinuxCNC's message within ours (which also checks the order of LinuxCNC's
+/// checks within a block).
+#[test]
+fn token_soups_are_refused_alike() {
+    if !rs274::available("token_soups_are_refused_alike") {
+        return;
+    }
+    let dir = temp_dir("conformance-soup");
+    let mut rng = Rng(0x0000_50c0_ffee_d00d);
+    let mut failures = Vec::new();
+    let mut counts = [0usize; 5];
+    let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..total {
+        let program = token_soup(&mut rng);
+        let path = dir.join(format!("soup{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        match check(&path, &dir) {
+            Ok(verdict) => counts[verdict as usize] += 1,
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "token soups: {} match, {} refused alike, {} refused here as not supported",
+            counts[Verdict::Match as usize],
+            counts[Verdict::BothRefuse as usize],
+            counts[Verdict::NotSupported as usize] + counts[Verdict::ForeignAxis as usize],
+        );
+    }
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+}

@@ -125,7 +125,7 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"M123\nM2\n".to_vec(), "job.ngc:1:1: Unknown m code used: M123"),
         (b"G1 X1\nM2\n".to_vec(), "job.ngc:1:1: Cannot do g1 with zero feed rate"),
         (b"G0 X1 NaN\nM2\n".to_vec(), "job.ngc:1:7: Bad character 'n' used"),
-        (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word starting with i"),
+        (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word where unary operation could be"),
         (
             format!("G0 X1{}\nM2\n", "0".repeat(240)).into_bytes(),
             "job.ngc:1:4: 1e240 is out of range: positions must lie within ±1e6 mm",

@@ -390,7 +390,7 @@ impl<R: BufRead> Interpreter<R> {
             None if axis_words && !group0_uses_axes => self.state.motion,
             None => None,
         };
-        self.check_other_words(motion_to_be)?;
+        self.check_group_zero()?;
         if let Some(zero) = group0.filter(|zero| zero.code == 530) {
             if !matches!(motion_to_be, Some(0 | 10)) {
                 return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
@@ -404,6 +404,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
 
+        self.check_other_words(motion_to_be)?;
         // Parameter settings take effect after the whole line is read.
         for index in 0..self.block.numbered.len() {
             let (number, value) = self.block.numbered[index];
@@ -426,9 +427,6 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 4. feed rate
         if let Some(f) = self.block.word(b'f') {
-            if f.value < 0.0 {
-                return Err(self.word_fault(f, "Negative f word used"));
-            }
             if !self.state.inverse_time {
                 self.state.feed_rate = f.value;
                 self.state.feed_mm = f.value * self.state.factor();
@@ -436,9 +434,6 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 5, 6. spindle speed, tool selection: no effect on motion.
         if let Some(s) = self.block.word(b's') {
-            if s.value < 0.0 {
-                return Err(self.word_fault(s, "Negative spindle speed used"));
-            }
             self.state.speed = s.value;
         }
         if let Some(t) = self.block.word(b't') {
@@ -471,10 +466,15 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 14. dwell
-        if let Some(code) = group0.filter(|zero| zero.code == 40) {
-            match self.block.word(b'p') {
-                Some(p) if p.value >= 0.0 => self.emit(MotionKind::Dwell { seconds: p.value }),
-                _ => return Err(self.code_fault(code, "Dwell time missing with g4")),
+        if group0.is_some_and(|zero| zero.code == 40) {
+            if let Some(p) = self.block.word(b'p') {
+                if p.value < 0.0 {
+                    return Err(self.word_fault(
+                        p,
+                        format!("a dwell time must not be negative: P{}", p.value),
+                    ));
+                }
+                self.emit(MotionKind::Dwell { seconds: p.value });
             }
         }
         // 15. plane
@@ -527,22 +527,23 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
                 920 => self.set_axis_offsets(zero)?,
-                921 | 922 => {
-                    self.apply_axis_offsets([0.0; 4]);
-                    if zero.code == 921 {
-                        for slot in 0..10 {
-                            self.state.params.set(G92_ENABLED + slot, 0.0);
-                        }
+                _ => {}
+            }
+        }
+        if let Some(code) = g[11] {
+            if code.code == 923 {
+                let offsets = std::array::from_fn(|axis| {
+                    let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
+                    self.state.mm_to_program(axis, value)
+                });
+                self.apply_axis_offsets(offsets);
+            } else {
+                self.apply_axis_offsets([0.0; 4]);
+                if code.code == 921 {
+                    for slot in 0..10 {
+                        self.state.params.set(G92_ENABLED + slot, 0.0);
                     }
                 }
-                923 => {
-                    let offsets = std::array::from_fn(|axis| {
-                        let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
-                        self.state.mm_to_program(axis, value)
-                    });
-                    self.apply_axis_offsets(offsets);
-                }
-                _ => {}
             }
         }
         // 24. motion
@@ -602,6 +603,39 @@ impl<R: BufRead> Interpreter<R> {
 
     fn first_axis_word(&self) -> Option<Word> {
         AXES.iter().filter_map(|&letter| self.block.word(letter)).min_by_key(|word| word.at)
+    }
+
+    /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
+    fn check_group_zero(&self) -> Result<(), Fault> {
+        let Some(zero) = self.block.g[0] else { return Ok(()) };
+        let p = self.block.word(b'p');
+        match zero.code {
+            // P-1 is LinuxCNC's "no P" value.
+            40 if p.is_none_or(|p| p.value == -1.0) => {
+                Err(self.code_fault(zero, "Dwell time missing with g4"))
+            }
+            100 => {
+                let l = self.block.word(b'l').map(|l| l.value as i64);
+                let Some(l @ (0 | 1 | 2 | 10 | 11 | 20)) = l else {
+                    return Err(self.code_fault(
+                        zero,
+                        "Line with G10 does not have L0, L1, L10, L11, L2, or L20",
+                    ));
+                };
+                if matches!(l, 2 | 20)
+                    && !p.is_some_and(|p| (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0)
+                {
+                    return Err(
+                        self.code_fault(zero, format!("P value out of range (0-9) with G10 L{l}"))
+                    );
+                }
+                Ok(())
+            }
+            920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+                Err(self.code_fault(zero, "All axes missing with g52 or g92"))
+            }
+            _ => Ok(()),
+        }
     }
 
     /// Refuses codes and words this interpreter does not implement.

@@ -172,7 +172,11 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact) -> Result<(), Fault> {
                 comment_start = Some(index);
                 out.push(b'(', index);
             }
-            b';' => break,
+            b';' => {
+                // LinuxCNC keeps the `;` (a value cannot be read from it); the rest is comment.
+                out.push(b';', index);
+                break;
+            }
             _ => out.push(byte.to_ascii_lowercase(), index),
         }
     }
@@ -196,8 +200,8 @@ mod tests {
     #[test]
     fn spaces_go_case_folds_comments_shrink() {
         let (text, columns) = squeeze("G0 X1 (move) y 2.5 ; rest").unwrap();
-        assert_eq!(text, "g0x1(y2.5");
-        assert_eq!(columns, [0, 1, 3, 4, 6, 13, 15, 16, 17]);
+        assert_eq!(text, "g0x1(y2.5;");
+        assert_eq!(columns, [0, 1, 3, 4, 6, 13, 15, 16, 17, 19]);
         assert_eq!(squeeze("G0 (a(b))").unwrap_err(), "Nested comment found");
         assert_eq!(squeeze("G0 (open").unwrap_err(), "Unclosed comment found");
     }

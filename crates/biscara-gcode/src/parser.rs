@@ -26,7 +26,9 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
     use Support::{No, Yes};
     let cycle = No("canned cycle");
     Some(match code {
-        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => (0, Yes),
+        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
+        // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
+        921..=923 => (11, Yes),
         520 => (0, No("local offset G52")),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
         50..=53 => (1, No("spline")),
@@ -269,15 +271,42 @@ impl<'a> Reader<'a> {
             self.pos += 1;
         }
         if self.peek() == b'n' {
+            // LinuxCNC's `read_n_number`: an unsigned integer, optionally `.` and more digits.
             let start = self.pos;
             self.pos += 1;
-            let number = self.read_number()?;
-            if number < 0.0 {
-                return Err(self.syntax(start, self.pos, "Negative line number (N word)"));
+            for part in 0..2 {
+                if part == 1 {
+                    if self.peek() != b'.' {
+                        break;
+                    }
+                    self.pos += 1;
+                }
+                let digits = self.pos;
+                while self.peek().is_ascii_digit() {
+                    self.pos += 1;
+                }
+                if self.pos == digits {
+                    return Err(self.syntax(start, self.pos + 1, "Bad format unsigned integer"));
+                }
             }
         }
-        while self.pos < self.bytes.len() {
+        while self.pos < self.bytes.len() && self.peek() != b';' {
             self.read_item(block)?;
+        }
+        // Assignments are stored after the whole line is read: only then are read-only names
+        // refused.
+        for &(name_start, name_end, _) in &block.named {
+            let name = &self.bytes[name_start..name_end];
+            if name.first() == Some(&b'_') && self.predefined.predefined(name).is_some() {
+                return Err(self.syntax(
+                    name_start.saturating_sub(2),
+                    name_end + 1,
+                    format!(
+                        "Cannot assign to read-only parameter #<{}>",
+                        String::from_utf8_lossy(name)
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -303,13 +332,17 @@ impl<'a> Reader<'a> {
                     "subroutines and control flow: o-sub, o-if, o-while, o-repeat",
                 ));
             }
-            b'@' | b'^' => {
-                let (first, last) = self.span(start, start + 1);
+            b'@' | b'^' | b'$' => {
+                // LinuxCNC reads these words' values first (polar coordinates, spindle number).
+                self.pos += 1;
+                self.read_real_value()?;
+                let (first, last) = self.span(start, self.pos);
+                let note = if letter == b'$' { "spindle selection" } else { "polar coordinates" };
                 return Err(Fault::not_supported(
                     first,
                     last,
                     format!("the {} word", char::from(letter)),
-                    "polar coordinates",
+                    note,
                 ));
             }
             b'a' | b'b' | b'u' | b'v' | b'w' => {
@@ -360,9 +393,18 @@ impl<'a> Reader<'a> {
         }
         self.pos += 1;
         let value = match letter {
-            b'l' | b't' | b'd' | b'h' => self.read_integer_value()? as f64,
+            b'l' | b't' | b'h' => self.read_integer_value()? as f64,
             _ => self.read_real_value()?,
         };
+        match letter {
+            b'f' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative f word used"));
+            }
+            b's' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative spindle speed used"));
+            }
+            _ => {}
+        }
         block.letters[slot] = Some(Word { value, at: start, end: self.pos });
         Ok(())
     }
@@ -374,10 +416,10 @@ impl<'a> Reader<'a> {
         if value - code > 0.999 {
             code = value.ceil();
         } else if value - code > 0.001 {
-            return Err(self.syntax(start, end, "G code out of range"));
+            return Err(self.syntax(start, end, "G-code out of range"));
         }
         if code > 999.0 {
-            return Err(self.syntax(start, end, "G code out of range"));
+            return Err(self.syntax(start, end, "G-code out of range"));
         }
         if code < 0.0 {
             return Err(self.syntax(start, end, "Negative g code used"));
@@ -423,22 +465,11 @@ impl<'a> Reader<'a> {
         self.pos += 1;
         if self.peek() == b'<' {
             let (name_start, name_end) = self.read_name()?;
-            let name = &self.bytes[name_start..name_end];
-            if name.first() == Some(&b'_') && self.predefined.predefined(name).is_some() {
-                return Err(self.syntax(
-                    start,
-                    self.pos,
-                    format!(
-                        "Cannot assign to read-only parameter #<{}>",
-                        String::from_utf8_lossy(name)
-                    ),
-                ));
-            }
+            self.expect_equals(start)?;
             if self.created_count < self.created.len() {
                 self.created[self.created_count] = (name_start as u8, name_end as u8);
                 self.created_count += 1;
             }
-            self.expect_equals(start)?;
             let value = self.read_real_value()?;
             block.named.push((name_start, name_end, value));
         } else {
@@ -501,9 +532,6 @@ impl<'a> Reader<'a> {
         let value = match c {
             0 => {
                 return Err(self.syntax(start, start, "No characters found in reading real value"));
-            }
-            b'(' => {
-                return Err(self.syntax(start, start + 1, "Comment found where a value should be"));
             }
             b'[' => self.read_expression()?,
             b'#' => self.read_parameter()?,
@@ -617,22 +645,24 @@ impl<'a> Reader<'a> {
 
     /// A unary function: `abs[…]`, `atan[…]/[…]`, `exists[#<name>]`, ….
     fn read_unary(&mut self) -> Result<f64, Fault> {
+        // LinuxCNC's `read_operation_unary`: the first letter chooses, the name is matched as a
+        // prefix (so `absx[` is ABS followed by a missing bracket).
         let start = self.pos;
-        while self.peek().is_ascii_lowercase() {
-            self.pos += 1;
-        }
-        let name = &self.bytes[start..self.pos];
         const NAMES: [&[u8]; 14] = [
-            b"abs", b"acos", b"asin", b"atan", b"cos", b"exists", b"exp", b"fix", b"fup", b"ln",
+            b"abs", b"acos", b"asin", b"atan", b"cos", b"exp", b"exists", b"fix", b"fup", b"ln",
             b"round", b"sin", b"sqrt", b"tan",
         ];
-        if !NAMES.contains(&name) {
-            return Err(self.syntax(
-                start,
-                self.pos,
-                format!("Unknown word starting with {}", char::from(self.bytes[start])),
-            ));
-        }
+        let rest = &self.bytes[start..];
+        let first = rest[0];
+        let Some(name) = NAMES.iter().copied().find(|name| rest.starts_with(name)) else {
+            let message = if b"aceflrst".contains(&first) {
+                format!("Unknown word starting with {}", char::from(first))
+            } else {
+                "Unknown word where unary operation could be".to_owned()
+            };
+            return Err(self.syntax(start, start + 1, message));
+        };
+        self.pos += name.len();
         let name_end = self.pos;
         if self.peek() != b'[' {
             return Err(self.syntax(
