@@ -19,7 +19,9 @@
 //! - A, B, U, V, W words are errors (LinuxCNC machines may have those axes; this robot has not).
 //! - Parameters hold millimetres: G28.1/G30.1, G10 and G92 store mm in 5161–5390, where
 //!   LinuxCNC stores its configured user unit (the standalone `rs274` uses inches).
-//! - A value that is not finite (`[10**400]`) and a position beyond ±1e6 mm are errors.
+//! - A value that is not finite (`EXP[1000]`), a position beyond ±1e6 mm and a negative dwell
+//!   (`G4 P-0.5`) are errors.
+//! - `$` (spindle), `@` and `^` (polar coordinates) words are refused as not supported yet.
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
