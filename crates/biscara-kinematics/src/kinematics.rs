@@ -48,7 +48,7 @@ impl PlanarConfiguration {
     /// The absolute angle `ψ_i = atan2(P − E_i)` of chain `chain`'s distal link, radians.
     pub fn distal_angle(&self, chain: Chain) -> f64 {
         let link = self.distal(chain);
-        link.y.atan2(link.x)
+        libm::atan2(link.y, link.x)
     }
 
     /// How far this configuration is from each singularity (SPEC §1.2).
@@ -423,7 +423,7 @@ impl Kinematics {
         let root = self.working_mode.of(chain).factor() * discriminant.sqrt();
         let cos_theta = a * c - b * root;
         let sin_theta = b * c + a * root;
-        let theta = sin_theta.atan2(cos_theta);
+        let theta = libm::atan2(sin_theta, cos_theta);
         let scale = self.l1 / reach2;
         let elbow = na::Point2::new(base.x - scale * sin_theta, base.y + scale * cos_theta);
         Ok((theta, elbow))
