@@ -6,10 +6,10 @@
 //! of G-code; lines/s = 1e6 / time.
 //!
 //! Measured 2026-11-22 on the 2-core development machine (x86_64, rustc 1.95, release profile,
-//! load ≈ 3.5 from other builds): 205 ms per pass over the 1,000,000 lines (23.8 MB), i.e.
-//! 110.5 MiB/s (116 MB/s) and 4.9 M lines/s. End to end, `biscara interpret` writing the
-//! inter-file takes 0.55 s on the same program (43 MB/s, 1.8 M lines/s, peak RSS 4.1 MiB): the
-//! JSON writer's float formatting is then the larger half.
+//! load 3.5–6 from other builds): 205–215 ms per pass over the 1,000,000 lines (23.8 MB), i.e.
+//! 106–110 MiB/s (111–116 MB/s) and 4.7–4.9 M lines/s. End to end, `biscara interpret` writing
+//! the inter-file takes 0.47–0.49 s on the same program (49–51 MB/s, 2.1 M lines/s, peak RSS
+//! 4.6 MiB): the JSON writer's float formatting is then the larger half.
 
 #![allow(missing_docs)]
 
