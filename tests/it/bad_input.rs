@@ -8,15 +8,19 @@ use std::path::Path;
 use crate::util::{biscara, repo_root, temp_dir};
 
 /// Each reader: its folder, its file extension, and the command that reads it (`{}` is the
-/// file, `{out}` the output that must not appear).
-const READERS: [(&str, &str, &[&str]); 6] = [
+/// file, `{out}` the output that must not appear; `check` gets a good program, [`PROGRAM`]).
+const READERS: [(&str, &str, &[&str]); 7] = [
     ("points", "txt", &["clf", "{}", "-o", "{out}"]),
     ("cl", "cl", &["post", "{}", "-o", "{out}"]),
     ("gcode", "ngc", &["interpret", "{}", "-o", "{out}"]),
     ("robot", "json", &["--robot", "{}", "robot", "-o", "{out}"]),
     ("path", "csv", &["joints", "--from", "path", "{}", "-o", "{out}"]),
     ("jsonl", "jsonl", &["interpolate", "--from", "jsonl", "{}", "-o", "{out}"]),
+    ("scene", "json", &["check", "--scene", "{}", "program.jsonl", "-o", "{out}"]),
 ];
+
+/// A clean program, for the commands that read a bad file beside a good program.
+const PROGRAM: &str = "{\"line\":1,\"kind\":\"rapid\",\"end\":[0.0,400.0,80.0,0.0]}\n";
 
 /// The generated cases: the same for every reader.
 fn generated_cases() -> Vec<(&'static str, Vec<u8>)> {
@@ -60,6 +64,7 @@ fn every_bad_input_fails_cleanly_with_its_expected_message() {
     for (reader, extension, command) in READERS {
         let catalogue = repo_root().join("tests/bad_input").join(reader);
         let dir = temp_dir(&format!("bad-input-{reader}"));
+        std::fs::write(dir.join("program.jsonl"), PROGRAM).expect("write the good program");
         let mut inputs: Vec<(String, Vec<u8>)> = Vec::new();
         for entry in std::fs::read_dir(&catalogue).expect("catalogue folder") {
             let path = entry.expect("entry").path();
@@ -101,7 +106,7 @@ fn every_bad_input_fails_cleanly_with_its_expected_message() {
         let leftovers: Vec<_> = std::fs::read_dir(&dir)
             .expect("dir")
             .filter_map(Result::ok)
-            .filter(|entry| entry.file_name().to_string_lossy().starts_with('.'))
+            .filter(|entry| entry.file_name().to_string_lossy().starts_with(".out"))
             .collect();
         assert!(leftovers.is_empty(), "{reader}: temporary files left: {leftovers:?}");
     }
