@@ -948,14 +948,12 @@ impl<R: BufRead> Interpreter<R> {
         let mut offset1 = 0.0;
         let mut offset2 = 0.0;
         if ijk {
-            let forbidden = letters[normal];
             if let Some(word) = offsets[normal] {
                 let name = match plane {
                     Plane::Xy => "K word given for arc in xy plane",
                     Plane::Xz => "J word given for arc in xz plane",
                     Plane::Yz => "I word given for arc in yz plane",
                 };
-                let _ = forbidden;
                 return Err(self.word_fault(word, name));
             }
             for (value, axis) in [(&mut offset1, first), (&mut offset2, second)] {
