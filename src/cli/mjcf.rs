@@ -8,9 +8,10 @@ use biscara::kinematics::Robot;
 use biscara::view::{MjcfOptions, QposWriter, Scene, write_mjcf};
 use clap::Args;
 
+use super::check::read_scene;
+use super::display_path;
 use super::input::open_input;
 use super::output::write_output;
-use super::{display_path, read_text};
 
 /// Writes a MuJoCo model (MJCF) of the robot (SPEC §8.3).
 ///
@@ -51,11 +52,7 @@ pub(crate) struct MjcfArgs {
 
 /// The scene in `path`, or an empty one.
 pub(crate) fn load_scene(path: Option<&Path>) -> anyhow::Result<Scene> {
-    let Some(path) = path else {
-        return Ok(Scene::default());
-    };
-    let text = read_text(path)?;
-    Scene::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
+    path.map_or_else(|| Ok(Scene::default()), read_scene)
 }
 
 /// The companion trajectory file of the model `output`: `robot.xml` → `robot.traj.csv`.

@@ -6,17 +6,6 @@ use std::io;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ViewError {
-    /// Occurs when a scene file is not valid JSON, has unknown keys or impossible boxes; the
-    /// message starts with `LINE:COL: `.
-    #[error("{line}:{column}: {message}")]
-    Scene {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
     /// Occurs when a trajectory row's joints do not assemble (the distal links cannot meet).
     #[error("at t = {t:.3} s the joints do not assemble: {source}")]
     Assembly {

@@ -21,9 +21,8 @@
 mod error;
 mod html;
 mod mjcf;
-mod scene;
 
+pub use biscara_robot::{Scene, SceneBox};
 pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
-pub use scene::{Scene, SceneBox};
