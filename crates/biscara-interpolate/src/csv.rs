@@ -182,11 +182,12 @@ impl<W: Write> PathCsvWriter<W> {
     }
 }
 
-/// A path CSV that cannot be read.
+/// A CSV of numbers (path or joint CSV) that cannot be read.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum PathCsvError {
-    /// Occurs when the underlying reader fails (including text that is not UTF-8).
+pub enum CsvError {
+    /// Occurs when the underlying reader fails (including text that is not UTF-8 and lines over
+    /// [`biscara_motion::MAX_LINE_BYTES`]).
     #[error("{line}: {source}")]
     Io {
         /// 1-based line being read.
@@ -194,9 +195,11 @@ pub enum PathCsvError {
         /// The I/O error.
         source: io::Error,
     },
-    /// Occurs when the file is empty or its first line is not a path CSV header.
-    #[error("1:1: expected the header `{PATH_HEADER}` (optionally `,gripper`), found `{found}`")]
+    /// Occurs when the file is empty or its first line is not the header the reader expects.
+    #[error("1:1: expected {expected}, found `{found}`")]
     Header {
+        /// The headers the reader accepts, in words.
+        expected: &'static str,
         /// The first line as found (shortened).
         found: String,
     },
@@ -213,142 +216,152 @@ pub enum PathCsvError {
     },
 }
 
-/// Reads a path CSV written by `biscara interpolate`, streaming. Each sample's `line` is its line
-/// in the CSV file.
-pub fn read_path_csv<R: BufRead>(reader: R) -> PathCsvReader<R> {
-    PathCsvReader {
-        reader,
-        line: 0,
-        buffer: String::new(),
-        columns: None,
-        previous_t: f64::NEG_INFINITY,
-        failed: false,
-    }
-}
+/// A path CSV that cannot be read.
+pub type PathCsvError = CsvError;
 
-/// The iterator returned by [`read_path_csv`]; stops after the first error.
+/// The most columns a [`NumericCsvReader`] row may have.
+pub const MAX_CSV_COLUMNS: usize = 16;
+
+/// What the path and joint CSV readers share: bounded lines read one at a time, rows of finite
+/// numbers with `FILE`-relative line and column errors, and a first column (time) that increases.
 #[derive(Debug)]
-pub struct PathCsvReader<R> {
+pub struct NumericCsvReader<R> {
     reader: R,
     line: usize,
     buffer: String,
-    columns: Option<usize>,
     previous_t: f64,
-    failed: bool,
 }
 
-impl<R: BufRead> PathCsvReader<R> {
-    fn read_line(&mut self) -> Result<bool, PathCsvError> {
+impl<R: BufRead> NumericCsvReader<R> {
+    /// A reader at the start of `reader`.
+    pub fn new(reader: R) -> NumericCsvReader<R> {
+        NumericCsvReader { reader, line: 0, buffer: String::new(), previous_t: f64::NEG_INFINITY }
+    }
+
+    fn read_line(&mut self) -> Result<bool, CsvError> {
         self.buffer.clear();
         self.line += 1;
         match biscara_motion::read_bounded_line(&mut self.reader, &mut self.buffer) {
             Ok(read) => Ok(read > 0),
-            Err(source) => Err(PathCsvError::Io { line: self.line, source }),
+            Err(source) => Err(CsvError::Io { line: self.line, source }),
         }
     }
 
-    fn header(&mut self) -> Result<usize, PathCsvError> {
-        let found =
-            if self.read_line()? { self.buffer.trim_end().to_owned() } else { String::new() };
-        if found == PATH_HEADER {
-            Ok(5)
-        } else if found.strip_prefix(PATH_HEADER) == Some(",gripper") {
-            Ok(6)
-        } else {
-            Err(PathCsvError::Header { found: found.chars().take(80).collect() })
+    /// The first line without its line break (empty for an empty input), for the caller to
+    /// recognise; [`NumericCsvReader::header_error`] makes the error when it does not.
+    pub fn header(&mut self) -> Result<&str, CsvError> {
+        if !self.read_line()? {
+            self.buffer.clear();
         }
+        Ok(self.buffer.trim_end())
     }
 
-    fn row(&mut self, columns: usize) -> Result<CartesianSample, PathCsvError> {
+    /// The error for a header that is not one of `expected`.
+    pub fn header_error(&self, expected: &'static str) -> CsvError {
+        CsvError::Header { expected, found: self.buffer.trim_end().chars().take(80).collect() }
+    }
+
+    /// The next non-blank row as exactly `columns` (at most [`MAX_CSV_COLUMNS`]) finite numbers,
+    /// with its 1-based line; `None` at the end of the input.
+    pub fn row(
+        &mut self,
+        columns: usize,
+    ) -> Result<Option<(usize, [f64; MAX_CSV_COLUMNS])>, CsvError> {
+        loop {
+            if !self.read_line()? {
+                return Ok(None);
+            }
+            if !self.buffer.trim().is_empty() {
+                break;
+            }
+        }
         let line = self.line;
         let text = self.buffer.trim_end_matches(['\n', '\r']);
-        let mut values = [0.0; 6];
+        let error = |column, message| CsvError::Row { line, column, message };
+        let columns = columns.min(MAX_CSV_COLUMNS);
+        let mut values = [0.0; MAX_CSV_COLUMNS];
         let mut count = 0;
         let mut column = 1;
         for field in text.split(',') {
             if count == columns {
-                return Err(PathCsvError::Row {
-                    line,
-                    column,
-                    message: format!("expected {columns} fields, found more"),
-                });
+                return Err(error(column, format!("expected {columns} fields, found more")));
             }
-            let value: f64 = field.trim().parse().map_err(|_| PathCsvError::Row {
-                line,
-                column,
-                message: format!(
-                    "`{}` is not a number",
-                    field.chars().take(40).collect::<String>().escape_debug()
-                ),
-            })?;
+            let shown = field.chars().take(40).collect::<String>();
+            let shown = shown.escape_debug();
+            let value: f64 = field
+                .trim()
+                .parse()
+                .map_err(|_| error(column, format!("`{shown}` is not a number")))?;
             if !value.is_finite() {
-                return Err(PathCsvError::Row {
-                    line,
-                    column,
-                    message: format!("`{}` is not a finite number", field.escape_debug()),
-                });
+                return Err(error(column, format!("`{shown}` is not a finite number")));
             }
             values[count] = value;
             count += 1;
             column += field.len() + 1;
         }
         if count < columns {
-            return Err(PathCsvError::Row {
-                line,
-                column: text.len() + 1,
-                message: format!("expected {columns} fields, found {count}"),
-            });
+            return Err(error(text.len() + 1, format!("expected {columns} fields, found {count}")));
         }
         if values[0] <= self.previous_t {
-            return Err(PathCsvError::Row {
-                line,
-                column: 1,
-                message: format!("time {} does not increase", values[0]),
-            });
+            return Err(error(1, format!("time {} does not increase", values[0])));
         }
         self.previous_t = values[0];
-        Ok(CartesianSample {
+        Ok(Some((line, values)))
+    }
+}
+
+/// Reads a path CSV written by `biscara interpolate`, streaming. Each sample's `line` is its line
+/// in the CSV file.
+pub fn read_path_csv<R: BufRead>(reader: R) -> PathCsvReader<R> {
+    PathCsvReader { csv: NumericCsvReader::new(reader), columns: None, failed: false }
+}
+
+/// The iterator returned by [`read_path_csv`]; stops after the first error.
+#[derive(Debug)]
+pub struct PathCsvReader<R> {
+    csv: NumericCsvReader<R>,
+    /// 5, or 6 with the gripper column; known once the header is read.
+    columns: Option<usize>,
+    failed: bool,
+}
+
+impl<R: BufRead> PathCsvReader<R> {
+    fn next_sample(&mut self) -> Result<Option<CartesianSample>, CsvError> {
+        let columns = match self.columns {
+            Some(columns) => columns,
+            None => {
+                let header = self.csv.header()?;
+                let columns = if header == PATH_HEADER {
+                    5
+                } else if header.strip_prefix(PATH_HEADER) == Some(",gripper") {
+                    6
+                } else {
+                    return Err(self.csv.header_error(
+                        "the header `t_s,x_mm,y_mm,z_mm,c_deg` (optionally `,gripper`)",
+                    ));
+                };
+                *self.columns.insert(columns)
+            }
+        };
+        Ok(self.csv.row(columns)?.map(|(line, values)| CartesianSample {
             t: values[0],
             pose: [values[1], values[2], values[3], values[4]],
             line,
             gripper: columns == 6 && values[5] != 0.0,
-        })
+        }))
     }
 }
 
 impl<R: BufRead> Iterator for PathCsvReader<R> {
-    type Item = Result<CartesianSample, PathCsvError>;
+    type Item = Result<CartesianSample, CsvError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.failed {
             return None;
         }
-        let result = (|| {
-            let columns = match self.columns {
-                Some(columns) => columns,
-                None => {
-                    let columns = self.header()?;
-                    self.columns = Some(columns);
-                    columns
-                }
-            };
-            loop {
-                if !self.read_line()? {
-                    return Ok(None);
-                }
-                if !self.buffer.trim().is_empty() {
-                    return self.row(columns).map(Some);
-                }
-            }
-        })();
-        match result {
-            Ok(Some(sample)) => Some(Ok(sample)),
-            Ok(None) => None,
-            Err(err) => {
-                self.failed = true;
-                Some(Err(err))
-            }
-        }
+        let result = self.next_sample();
+        self.failed = result.is_err();
+        result.transpose()
     }
 }
 

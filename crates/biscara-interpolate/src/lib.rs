@@ -45,8 +45,8 @@ mod segment;
 pub use biscara_motion::Motion;
 
 pub use csv::{
-    FLUSH_AT, MAX_DECIMALS, PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, push_fixed,
-    read_path_csv,
+    CsvError, FLUSH_AT, MAX_CSV_COLUMNS, MAX_DECIMALS, NumericCsvReader, PATH_HEADER, PathCsvError,
+    PathCsvReader, PathCsvWriter, push_fixed, read_path_csv,
 };
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,

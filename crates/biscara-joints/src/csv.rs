@@ -2,7 +2,7 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_interpolate::{FLUSH_AT, push_fixed};
+use biscara_interpolate::{CsvError, FLUSH_AT, NumericCsvReader, push_fixed};
 
 use biscara_kinematics::Joints;
 
@@ -116,120 +116,52 @@ pub struct JointCsvRow {
     pub velocity: Option<[f64; 4]>,
 }
 
-/// A joint CSV that cannot be read; `Display` starts with `LINE:COL: `.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum JointCsvError {
-    /// Occurs when the underlying reader fails (including text that is not UTF-8).
-    #[error("{line}:1: {source}")]
-    Io {
-        /// 1-based line being read.
-        line: usize,
-        /// The I/O error.
-        source: io::Error,
-    },
-    /// Occurs when the file is empty or its first line is not a joint CSV header.
-    #[error(
-        "1:1: expected a joint CSV header `t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm` (or `_deg`, \
-         optionally with derivative columns), found `{found}`"
-    )]
-    Header {
-        /// The first line as found (shortened).
-        found: String,
-    },
-    /// Occurs when a row has the wrong number of fields or a field that is not a finite number,
-    /// or time does not increase.
-    #[error("{line}:{column}: {message}")]
-    Row {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column where the offending field starts.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
-}
+/// A joint CSV that cannot be read; `Display` starts with `LINE:COL: ` or `LINE: `.
+pub type JointCsvError = CsvError;
 
 /// Reads a joint CSV written by `biscara joints` (any angle unit, with or without derivatives),
 /// streaming; rows come back in radians and millimetres. Lines longer than
 /// [`biscara_motion::MAX_LINE_BYTES`] are refused.
 pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
-    JointCsvReader {
-        reader,
-        line: 0,
-        buffer: String::new(),
-        format: None,
-        previous_t: f64::NEG_INFINITY,
-        failed: false,
-    }
+    JointCsvReader { csv: NumericCsvReader::new(reader), format: None, failed: false }
 }
 
 /// The iterator returned by [`read_joint_csv`]; stops after the first error.
 #[derive(Debug)]
 pub struct JointCsvReader<R> {
-    reader: R,
-    line: usize,
-    buffer: String,
+    csv: NumericCsvReader<R>,
+    /// Known once the header is read.
     format: Option<JointCsvFormat>,
-    previous_t: f64,
     failed: bool,
 }
 
 impl<R: BufRead> JointCsvReader<R> {
-    fn read_line(&mut self) -> Result<bool, JointCsvError> {
-        self.buffer.clear();
-        self.line += 1;
-        match biscara_motion::read_bounded_line(&mut self.reader, &mut self.buffer) {
-            Ok(read) => Ok(read > 0),
-            Err(source) => Err(JointCsvError::Io { line: self.line, source }),
-        }
-    }
-
-    fn header(&mut self) -> Result<JointCsvFormat, JointCsvError> {
-        let found =
-            if self.read_line()? { self.buffer.trim_end().to_owned() } else { String::new() };
+    fn read_format(&mut self) -> Result<JointCsvFormat, JointCsvError> {
+        let header = self.csv.header()?;
         for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
             for derivatives in [false, true] {
                 let format = JointCsvFormat { angle_unit, derivatives, precision: 0 };
-                if found == format.header() {
+                if header == format.header() {
                     return Ok(format);
                 }
             }
         }
-        Err(JointCsvError::Header { found: found.chars().take(80).collect() })
+        Err(self.csv.header_error(
+            "a joint CSV header `t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm` (or `_deg`, \
+             optionally with derivative columns)",
+        ))
     }
 
-    fn row(&mut self, format: JointCsvFormat) -> Result<JointCsvRow, JointCsvError> {
-        let line = self.line;
+    fn next_row(&mut self) -> Result<Option<JointCsvRow>, JointCsvError> {
+        let format = match self.format {
+            Some(format) => format,
+            None => {
+                let format = self.read_format()?;
+                *self.format.insert(format)
+            }
+        };
         let columns = if format.derivatives { 13 } else { 5 };
-        let text = self.buffer.trim_end_matches(['\n', '\r']);
-        let mut values = [0.0; 13];
-        let mut count = 0;
-        let mut column = 1;
-        let error = |column, message| JointCsvError::Row { line, column, message };
-        for field in text.split(',') {
-            if count == columns {
-                return Err(error(column, format!("expected {columns} fields, found more")));
-            }
-            let shown: String = field.chars().take(40).collect();
-            let value: f64 = field
-                .trim()
-                .parse()
-                .map_err(|_| error(column, format!("`{shown}` is not a number")))?;
-            if !value.is_finite() {
-                return Err(error(column, format!("`{shown}` is not a finite number")));
-            }
-            values[count] = value;
-            count += 1;
-            column += field.len() + 1;
-        }
-        if count < columns {
-            return Err(error(text.len() + 1, format!("expected {columns} fields, found {count}")));
-        }
-        if values[0] <= self.previous_t {
-            return Err(error(1, format!("time {} does not increase", values[0])));
-        }
-        self.previous_t = values[0];
+        let Some((line, values)) = self.csv.row(columns)? else { return Ok(None) };
         let scale = match format.angle_unit {
             AngleUnit::Radians => 1.0,
             AngleUnit::Degrees => std::f64::consts::PI / 180.0,
@@ -243,7 +175,7 @@ impl<R: BufRead> JointCsvReader<R> {
         let velocity = format
             .derivatives
             .then(|| [values[5] * scale, values[6] * scale, values[7] * scale, values[8]]);
-        Ok(JointCsvRow { t: values[0], line, joints, velocity })
+        Ok(Some(JointCsvRow { t: values[0], line, joints, velocity }))
     }
 }
 
@@ -254,32 +186,9 @@ impl<R: BufRead> Iterator for JointCsvReader<R> {
         if self.failed {
             return None;
         }
-        let result = (|| {
-            let format = match self.format {
-                Some(format) => format,
-                None => {
-                    let format = self.header()?;
-                    self.format = Some(format);
-                    format
-                }
-            };
-            loop {
-                if !self.read_line()? {
-                    return Ok(None);
-                }
-                if !self.buffer.trim().is_empty() {
-                    return self.row(format).map(Some);
-                }
-            }
-        })();
-        match result {
-            Ok(Some(row)) => Some(Ok(row)),
-            Ok(None) => None,
-            Err(err) => {
-                self.failed = true;
-                Some(Err(err))
-            }
-        }
+        let result = self.next_row();
+        self.failed = result.is_err();
+        result.transpose()
     }
 }
 
@@ -338,9 +247,9 @@ mod tests {
         let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n";
         let long = format!("{header}0,{}\n", "1".repeat(100_000)).into_bytes();
         let cases: [(Vec<u8>, &str); 8] = [
-            (long, "2:1: the line is longer than 65536 bytes"),
+            (long, "2: the line is longer than 65536 bytes"),
             (b"".to_vec(), "1:1: expected a joint CSV header"),
-            (b"\x00\xff\xfe garbage".to_vec(), "1:1: "),
+            (b"\x00\xff\xfe garbage".to_vec(), "1: stream did not contain valid UTF-8"),
             (b"t_s,x_mm,y_mm,z_mm,c_deg\n0,0,0,0,0\n".to_vec(), "1:1: expected a joint CSV header"),
             (format!("{header}0,0,0,0\n").into_bytes(), "2:8: expected 5 fields, found 4"),
             (format!("{header}0,0,0,0,0,1\n").into_bytes(), "2:11: expected 5 fields, found more"),
