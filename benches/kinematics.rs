@@ -50,7 +50,8 @@ fn reachable_poses(model: &Kinematics) -> Vec<Pose> {
 }
 
 /// The reference: SPEC §1.4's formulas as one plain scalar function, no types, no checks
-/// beyond the reach test. Default robot, working mode "+-".
+/// beyond the reach test, with the same `atan2` (libm's) as the library. Default robot, working
+/// mode "+-".
 #[inline(never)]
 fn reference_ik(x: f64, y: f64, z: f64, phi: f64, psi1_home: f64) -> Option<[f64; 4]> {
     const L1: f64 = 210.0;
@@ -67,11 +68,11 @@ fn reference_ik(x: f64, y: f64, z: f64, phi: f64, psi1_home: f64) -> Option<[f64
         let root = sigma * disc.sqrt();
         let (ct, st) = (a * c - b * root, b * c + a * root);
         let scale = L1 / r2;
-        Some((st.atan2(ct), bx - scale * st, scale * ct))
+        Some((libm::atan2(st, ct), bx - scale * st, scale * ct))
     };
     let (theta1, ex, ey) = chain(100.0, 1.0)?;
     let (theta2, _, _) = chain(-100.0, -1.0)?;
-    let mut rotation = (y - ey).atan2(x - ex) - psi1_home;
+    let mut rotation = libm::atan2(y - ey, x - ex) - psi1_home;
     if rotation > PI {
         rotation -= 2.0 * PI;
     } else if rotation <= -PI {
