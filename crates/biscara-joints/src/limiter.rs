@@ -7,7 +7,7 @@ use biscara_kinematics::{Joint, Kinematics, Pose, Robot};
 const PROBES_PER_MM: f64 = 1.0;
 const PROBES_PER_DEGREE: f64 = 1.0;
 /// Bounds on the number of probes of one move.
-const MIN_PROBES: f64 = 4.0;
+const MIN_PROBES: f64 = 2.0;
 const MAX_PROBES: f64 = 4096.0;
 /// The rate found at the probes of a revolute joint is lowered by this factor, for peaks between
 /// probes (probes at most 1 mm or 1° apart miss a peak by far less). d4 = lp − z is linear in the

@@ -1,6 +1,6 @@
 //! Keeping angles continuous along a path.
 
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 use crate::IkSolution;
 
@@ -8,7 +8,8 @@ use crate::IkSolution;
 /// half a turn of the previous output. The first value passes unchanged.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct AngleUnwrapper {
-    previous: Option<f64>,
+    /// The previous result and the raw angle it came from.
+    previous: Option<(f64, f64)>,
 }
 
 impl AngleUnwrapper {
@@ -20,10 +21,25 @@ impl AngleUnwrapper {
     /// The angle (radians) shifted by whole turns to be nearest to the previous result.
     pub fn unwrap(&mut self, angle: f64) -> f64 {
         let continuous = match self.previous {
-            Some(previous) => angle + TAU * ((previous - angle) / TAU).round(),
+            // Along a path consecutive angles are close: add the step from the previous raw angle,
+            // brought into (−π, π] by at most one turn, instead of dividing and rounding (`round`
+            // is a library call on baseline x86-64). Raw angles may come unwrapped too: then the
+            // step is reduced by whole turns the slow way.
+            Some((previous, previous_raw)) => {
+                let mut step = angle - previous_raw;
+                if step.abs() > 3.0 * PI {
+                    step -= TAU * (step / TAU).round();
+                }
+                if step > PI {
+                    step -= TAU;
+                } else if step <= -PI {
+                    step += TAU;
+                }
+                previous + step
+            }
             None => angle,
         };
-        self.previous = Some(continuous);
+        self.previous = Some((continuous, angle));
         continuous
     }
 }
@@ -70,6 +86,19 @@ mod tests {
         for (output, expected) in outputs {
             assert_relative_eq!(output, expected, epsilon = 1e-12);
         }
+    }
+
+    #[test]
+    fn many_turns_and_unwrapped_inputs() {
+        let mut unwrapper = AngleUnwrapper::new();
+        let mut last = 0.0;
+        for step in 0..=100_000 {
+            last = unwrapper.unwrap(crate::wrap_angle(0.3 * f64::from(step)));
+        }
+        assert_relative_eq!(last, 30_000.0, epsilon = 1e-6);
+        let mut unwrapper = AngleUnwrapper::new();
+        unwrapper.unwrap(0.0);
+        assert_relative_eq!(unwrapper.unwrap(10.0 * PI + 0.1), 0.1, epsilon = 1e-12);
     }
 
     #[test]
