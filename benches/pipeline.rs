@@ -16,11 +16,11 @@ use std::io;
 
 use biscara::gcode::{Config, interpret};
 use biscara::interpolate::{
-    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, NoSpeedLimit, Profile,
-    SlowDown,
+    CartesianSample, InterpolationConfig, Interpolator, NoSpeedLimit, Profile, SlowDown,
 };
 use biscara::joints::{
     AngleUnit, JointCsvFormat, JointCsvWriter, JointSample, JointSpeedLimit, JointTrajectory,
+    cartesian_limits,
 };
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::Motion;
@@ -49,12 +49,7 @@ fn interpolation_config(robot: &Robot, model: &Kinematics) -> InterpolationConfi
         dt: 0.001,
         profile: Profile::Trapezoid,
         start: model.home().to_degrees(),
-        limits: CartesianLimits {
-            rapid_velocity: robot.motion.rapid_velocity,
-            rapid_rotation: robot.motion.rapid_rotation,
-            acceleration: robot.motion.acceleration,
-            rotation_acceleration: robot.motion.rotation_acceleration,
-        },
+        limits: cartesian_limits(robot),
         grip_time: 0.0,
     }
 }

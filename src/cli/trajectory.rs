@@ -7,11 +7,12 @@ use std::rc::Rc;
 use anyhow::anyhow;
 use biscara::gcode::{Config as GcodeConfig, interpret as interpret_gcode};
 use biscara::interpolate::{
-    CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
-    PathCsvWriter, Profile, SlowDown, read_path_csv,
+    CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvWriter, Profile,
+    SlowDown, read_path_csv,
 };
 use biscara::joints::{
     AngleUnit, JointCsvFormat, JointCsvWriter, JointSpeedLimit, JointTrajectory, JointsError,
+    cartesian_limits,
 };
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::{Motion, read_jsonl};
@@ -267,12 +268,7 @@ pub(crate) fn samples(
             ProfileArg::Trapezoid => Profile::Trapezoid,
         },
         start: model.home().to_degrees(),
-        limits: CartesianLimits {
-            rapid_velocity: robot.motion.rapid_velocity,
-            rapid_rotation: robot.motion.rapid_rotation,
-            acceleration: robot.motion.acceleration,
-            rotation_acceleration: robot.motion.rotation_acceleration,
-        },
+        limits: cartesian_limits(robot),
         grip_time: sampling.grip_time,
     };
     let limit = JointSpeedLimit::new(model, robot);

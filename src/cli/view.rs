@@ -5,10 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use biscara::gcode::{Config as GcodeConfig, interpret as interpret_gcode};
-use biscara::interpolate::{
-    CartesianLimits, InterpolateError, InterpolationConfig, Interpolator, Profile,
-};
-use biscara::joints::{JointSpeedLimit, read_joint_csv};
+use biscara::interpolate::{InterpolateError, InterpolationConfig, Interpolator, Profile};
+use biscara::joints::{JointSpeedLimit, cartesian_limits, read_joint_csv};
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::{Motion, read_jsonl};
 use biscara::view::{Viewer, ViewerOptions};
@@ -117,12 +115,7 @@ fn add_program(
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: Profile::Trapezoid,
         start: model.home().to_degrees(),
-        limits: CartesianLimits {
-            rapid_velocity: robot.motion.rapid_velocity,
-            rapid_rotation: robot.motion.rapid_rotation,
-            acceleration: robot.motion.acceleration,
-            rotation_acceleration: robot.motion.rotation_acceleration,
-        },
+        limits: cartesian_limits(robot),
         grip_time: 0.0,
     };
     let limit = JointSpeedLimit::new(model, robot);

@@ -30,5 +30,5 @@ pub use csv::{
     AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
     read_joint_csv,
 };
-pub use limiter::JointSpeedLimit;
+pub use limiter::{JointSpeedLimit, cartesian_limits};
 pub use trajectory::{JointSample, JointTrajectory, JointsError};

@@ -1,6 +1,6 @@
 //! Slowing moves down so that no joint exceeds its velocity limit (SPEC §6, §7).
 
-use biscara_interpolate::{RateLimit, Segment, SpeedLimit};
+use biscara_interpolate::{CartesianLimits, RateLimit, Segment, SpeedLimit};
 use biscara_kinematics::{Joint, Kinematics, Pose, Robot};
 
 /// Probes per millimetre of XYZ path and per degree of C when bounding a move's joint rates.
@@ -69,5 +69,15 @@ impl SpeedLimit for JointSpeedLimit {
             }
         }
         best
+    }
+}
+
+/// The interpolator's Cartesian limits from `robot.json`'s `motion` section.
+pub fn cartesian_limits(robot: &Robot) -> CartesianLimits {
+    CartesianLimits {
+        rapid_velocity: robot.motion.rapid_velocity,
+        rapid_rotation: robot.motion.rapid_rotation,
+        acceleration: robot.motion.acceleration,
+        rotation_acceleration: robot.motion.rotation_acceleration,
     }
 }

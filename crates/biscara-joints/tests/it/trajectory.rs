@@ -4,9 +4,11 @@
 use std::convert::Infallible;
 
 use biscara_interpolate::{
-    CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit, Profile, Segment, SlowDown,
+    InterpolationConfig, Interpolator, NoSpeedLimit, Profile, Segment, SlowDown,
 };
-use biscara_joints::{JointSample, JointSpeedLimit, JointTrajectory, JointsError};
+use biscara_joints::{
+    JointSample, JointSpeedLimit, JointTrajectory, JointsError, cartesian_limits,
+};
 use biscara_kinematics::{Kinematics, KinematicsError, Robot};
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use proptest::prelude::*;
@@ -17,12 +19,7 @@ fn config(robot: &Robot, profile: Profile, dt: f64) -> InterpolationConfig {
         dt,
         profile,
         start: model.home().to_degrees(),
-        limits: CartesianLimits {
-            rapid_velocity: robot.motion.rapid_velocity,
-            rapid_rotation: robot.motion.rapid_rotation,
-            acceleration: robot.motion.acceleration,
-            rotation_acceleration: robot.motion.rotation_acceleration,
-        },
+        limits: cartesian_limits(robot),
         grip_time: 0.0,
     }
 }
