@@ -325,9 +325,9 @@ pub(crate) fn joints(robot: &Robot, args: &JointsArgs) -> anyhow::Result<()> {
     };
     write_output(args.output.as_deref(), |out| {
         let mut writer = JointCsvWriter::new(out, format)?;
-        for row in JointTrajectory::new(samples, model) {
-            let row = row.map_err(|err| joints_error(&name, err))?;
-            writer.write(&row)?;
+        let mut trajectory = JointTrajectory::new(samples, model);
+        while let Some(row) = trajectory.next_sample() {
+            writer.write(row.map_err(|err| joints_error(&name, err))?)?;
         }
         writer.finish()?;
         Ok(())

@@ -38,6 +38,7 @@
 //! ```
 
 mod csv;
+mod fixed;
 mod interpolator;
 mod profile;
 mod segment;
@@ -45,9 +46,10 @@ mod segment;
 pub use biscara_motion::Motion;
 
 pub use csv::{
-    CsvError, FLUSH_AT, MAX_CSV_COLUMNS, MAX_DECIMALS, NumericCsvReader, PATH_HEADER, PathCsvError,
-    PathCsvReader, PathCsvWriter, push_fixed, read_path_csv,
+    CsvError, MAX_CSV_COLUMNS, NumericCsvReader, PATH_HEADER, PathCsvError, PathCsvReader,
+    PathCsvWriter, read_path_csv,
 };
+pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, push_fixed};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
     NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,

@@ -2,7 +2,7 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_interpolate::{CsvError, FLUSH_AT, NumericCsvReader, push_fixed};
+use biscara_interpolate::{CsvError, NumericCsvReader, RowBuffer};
 
 use biscara_kinematics::Joints;
 
@@ -50,21 +50,21 @@ impl JointCsvFormat {
     }
 }
 
-/// Writes joint samples as CSV; rows reach the output in chunks of [`FLUSH_AT`] bytes and at
+/// Writes joint samples as CSV; rows reach the output in chunks of [`biscara_interpolate::FLUSH_AT`] bytes and at
 /// [`JointCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct JointCsvWriter<W: Write> {
     out: W,
     format: JointCsvFormat,
     /// Rows not yet handed to `out`.
-    row: Vec<u8>,
+    row: RowBuffer,
 }
 
 impl<W: Write> JointCsvWriter<W> {
     /// A writer in `format`; writes the header at once.
     pub fn new(mut out: W, format: JointCsvFormat) -> io::Result<Self> {
         writeln!(out, "{}", format.header())?;
-        Ok(JointCsvWriter { out, format, row: Vec::with_capacity(FLUSH_AT + 512) })
+        Ok(JointCsvWriter { out, format, row: RowBuffer::new() })
     }
 
     /// Writes one sample.
@@ -75,11 +75,11 @@ impl<W: Write> JointCsvWriter<W> {
             AngleUnit::Degrees => 180.0 / std::f64::consts::PI,
         };
         let scales = [scale, scale, scale, 1.0];
-        push_fixed(&mut self.row, sample.t, decimals);
-        let push_all = |row: &mut Vec<u8>, values: [f64; 4]| {
+        self.row.push_fixed(sample.t, decimals);
+        let push_all = |row: &mut RowBuffer, values: [f64; 4]| {
             for (value, scale) in values.into_iter().zip(scales) {
                 row.push(b',');
-                push_fixed(row, value * scale, decimals);
+                row.push_fixed(value * scale, decimals);
             }
         };
         push_all(&mut self.row, sample.joints.to_array());
@@ -88,16 +88,15 @@ impl<W: Write> JointCsvWriter<W> {
             push_all(&mut self.row, sample.acceleration);
         }
         self.row.push(b'\n');
-        if self.row.len() >= FLUSH_AT {
-            self.out.write_all(&self.row)?;
-            self.row.clear();
+        if self.row.is_full() {
+            self.row.write_to(&mut self.out)?;
         }
         Ok(())
     }
 
     /// Writes the rows still buffered, flushes and returns the underlying writer.
     pub fn finish(mut self) -> io::Result<W> {
-        self.out.write_all(&self.row)?;
+        self.row.write_to(&mut self.out)?;
         self.out.flush()?;
         Ok(self.out)
     }

@@ -133,8 +133,8 @@ where
     }
 
     /// With three samples held, completes the middle one's differences (and the first sample's,
-    /// at the start) and emits the oldest.
-    fn emit_oldest_of_three(&mut self) -> JointSample {
+    /// at the start) and emits the oldest: returns its ring index.
+    fn emit_oldest_of_three(&mut self) -> usize {
         let (previous, current, next) = (self.at(0), self.at(1), self.at(2));
         let back = slope(&self.ring[previous], &self.ring[current]);
         let ahead = slope(&self.ring[current], &self.ring[next]);
@@ -155,16 +155,16 @@ where
         }
         self.head = current;
         self.held -= 1;
-        self.ring[previous]
+        previous
     }
 
-    /// Emits what is left once the input has ended.
-    fn flush(&mut self) -> Option<JointSample> {
+    /// Emits what is left once the input has ended: the ring index of the next sample.
+    fn flush(&mut self) -> Option<usize> {
         match self.held {
             0 => None,
             1 => {
                 self.held = 0;
-                Some(self.ring[self.head])
+                Some(self.head)
             }
             _ => {
                 let (previous, last) = (self.at(0), self.at(1));
@@ -178,7 +178,7 @@ where
                 self.ring[last].acceleration = self.ring[previous].acceleration;
                 self.head = last;
                 self.held = 1;
-                Some(self.ring[previous])
+                Some(previous)
             }
         }
     }
@@ -191,13 +191,23 @@ fn slope(a: &JointSample, b: &JointSample) -> [f64; 4] {
     [0, 1, 2, 3].map(|j| (qb[j] - qa[j]) / dt)
 }
 
-impl<I, E> Iterator for JointTrajectory<I>
+impl<I, E> JointTrajectory<I>
 where
     I: Iterator<Item = Result<CartesianSample, E>>,
 {
-    type Item = Result<JointSample, JointsError<E>>;
+    /// The next sample, borrowed: [`Iterator::next`] without copying the sample out. For the
+    /// CLI's writer: returning the 152-byte sample inside an `Option<Result<…>>`, then moving it
+    /// out, cost 5 % of `joints` on the engraving program (0.563 → 0.524 s).
+    #[inline]
+    pub fn next_sample(&mut self) -> Option<Result<&JointSample, JointsError<E>>> {
+        match self.advance()? {
+            Ok(index) => Some(Ok(&self.ring[index])),
+            Err(err) => Some(Err(err)),
+        }
+    }
 
-    fn next(&mut self) -> Option<Self::Item> {
+    /// Solves samples until one can be emitted; returns its ring index.
+    fn advance(&mut self) -> Option<Result<usize, JointsError<E>>> {
         loop {
             if self.finished {
                 return self.flush().map(Ok);
@@ -227,5 +237,16 @@ where
             self.held = 0;
             return Some(Err(failure));
         }
+    }
+}
+
+impl<I, E> Iterator for JointTrajectory<I>
+where
+    I: Iterator<Item = Result<CartesianSample, E>>,
+{
+    type Item = Result<JointSample, JointsError<E>>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        Some(self.next_sample()?.copied())
     }
 }
