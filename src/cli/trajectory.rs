@@ -1,14 +1,15 @@
 //! `biscara interpolate` and `biscara joints`: programs → Cartesian path → joint trajectory.
 
 use std::cell::Cell;
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use anyhow::anyhow;
 use biscara::gcode::{Config as GcodeConfig, interpret as interpret_gcode};
 use biscara::interpolate::{
-    CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvWriter, Profile,
-    SlowDown, read_path_csv,
+    CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader,
+    PathCsvWriter, Profile, SlowDown, read_path_csv,
 };
 use biscara::joints::{
     AngleUnit, JointCsvFormat, JointCsvWriter, JointSpeedLimit, JointTrajectory, JointsError,
@@ -182,7 +183,42 @@ pub(crate) fn input_kind(path: &Path, from: Option<InputKind>) -> InputKind {
 }
 
 type Motions = Box<dyn Iterator<Item = anyhow::Result<Motion>>>;
-type Samples = Box<dyn Iterator<Item = anyhow::Result<CartesianSample>>>;
+
+/// The Cartesian samples of a program, read from a path CSV or interpolated from its motions,
+/// with errors as `FILE:LINE: message`.
+///
+/// A concrete type rather than a boxed iterator, so that `joints` can inline the step from one
+/// sample to the next: a sample passed through a `dyn Iterator` and a `map` was stored and
+/// loaded back twice, with a store-forwarding stall each time (with `Interpolator::next`
+/// inlined as well: 0.429 → 0.423 s for `joints` on the engraving program).
+pub(crate) enum Samples<F> {
+    /// A path CSV.
+    Path { reader: PathCsvReader<Box<dyn BufRead>>, name: String },
+    /// A program's motions, interpolated.
+    Program { interpolator: Box<Interpolator<Motions, JointSpeedLimit, F>>, name: String },
+}
+
+impl<F: FnMut(&SlowDown)> Iterator for Samples<F> {
+    type Item = anyhow::Result<CartesianSample>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Self::Item> {
+        match self {
+            Samples::Path { reader, name } => {
+                Some(reader.next()?.map_err(|err| anyhow!("{name}:{err}")))
+            }
+            Samples::Program { interpolator, name } => {
+                Some(interpolator.next()?.map_err(|err| match err {
+                    InterpolateError::Input(err) => err,
+                    InterpolateError::Motion { line, message } => {
+                        anyhow!("{name}:{line}: {message}")
+                    }
+                    other => anyhow!("{name}: {other}"),
+                }))
+            }
+        }
+    }
+}
 
 /// The motions of a program file.
 pub(crate) fn motions(
@@ -243,23 +279,21 @@ pub(crate) fn report_slow_total(count: usize) {
 }
 
 /// The Cartesian samples of a program: read from a path CSV, or interpolated from its motions.
-pub(crate) fn samples(
+pub(crate) fn samples<F: FnMut(&SlowDown)>(
     path: &Path,
     kind: InputKind,
     sampling: &SamplingArgs,
     robot: &Robot,
     model: Kinematics,
-    on_slow: impl FnMut(&SlowDown) + 'static,
-) -> anyhow::Result<Samples> {
+    on_slow: F,
+) -> anyhow::Result<Samples<F>> {
     let name = display_path(path);
     if kind == InputKind::Path {
         if sampling.fit {
             return Err(anyhow!("{name}: --fit places a program, not a path CSV"));
         }
-        let input = open_with_progress(path)?;
-        return Ok(Box::new(
-            read_path_csv(input).map(move |result| result.map_err(|err| anyhow!("{name}:{err}"))),
-        ));
+        let reader = read_path_csv(open_with_progress(path)?);
+        return Ok(Samples::Path { reader, name });
     }
     let config = InterpolationConfig {
         dt: sampling.dt,
@@ -278,14 +312,8 @@ pub(crate) fn samples(
         let [x, y, ..] = config.start;
         motions = Box::new(motions.map(move |m| m.map(|m| shift_motion(m, offset, [x, y]))));
     }
-    let interpolator = Interpolator::new(motions, config, limit, on_slow);
-    Ok(Box::new(interpolator.map(move |result| {
-        result.map_err(|err| match err {
-            InterpolateError::Input(err) => err,
-            InterpolateError::Motion { line, message } => anyhow!("{name}:{line}: {message}"),
-            other => anyhow!("{name}: {other}"),
-        })
-    })))
+    let interpolator = Box::new(Interpolator::new(motions, config, limit, on_slow));
+    Ok(Samples::Program { interpolator, name })
 }
 
 pub(crate) fn interpolate(robot: &Robot, args: &InterpolateArgs) -> anyhow::Result<()> {

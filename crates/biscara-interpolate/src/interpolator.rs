@@ -154,7 +154,8 @@ where
         CartesianSample { t: self.step as f64 * self.config.dt, pose, line, gripper: self.gripper }
     }
 
-    /// Starts the next motion; `Ok(false)` when it takes no time.
+    /// Starts the next motion.
+    #[inline(never)]
     fn begin(&mut self, motion: Motion) -> Result<(), InterpolateError<E>> {
         let line = motion.line;
         let fail = |message: String| InterpolateError::Motion { line, message };
@@ -275,6 +276,7 @@ where
 {
     type Item = Result<CartesianSample, InterpolateError<E>>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         if !self.started {
             self.started = true;
