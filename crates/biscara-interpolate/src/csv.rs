@@ -30,11 +30,8 @@ impl<W: Write> PathCsvWriter<W> {
 
     /// Writes one sample.
     pub fn write(&mut self, sample: &CartesianSample) -> io::Result<()> {
-        self.row.push_fixed(sample.t, self.decimals);
-        for value in sample.pose {
-            self.row.push(b',');
-            self.row.push_fixed(value, self.decimals);
-        }
+        let [x, y, z, c] = sample.pose;
+        self.row.push_fixed_list([sample.t, x, y, z, c], self.decimals);
         if self.events {
             self.row.extend_from_slice(if sample.gripper { b",1" } else { b",0" });
         }

@@ -132,26 +132,45 @@ impl RowBuffer {
     /// of a tie (`format!` rounds the exact binary value).
     #[inline]
     pub fn push_fixed(&mut self, value: f64, decimals: usize) {
+        self.push_fixed_list([value], decimals);
+    }
+
+    /// Appends `values` separated by commas, each as [`RowBuffer::push_fixed`] writes it.
+    ///
+    /// A row's numbers in one call, with the number of decimals dispatched once (`joints` on the
+    /// engraving program: 0.377 → 0.367 s, median of 10).
+    #[inline]
+    pub fn push_fixed_list<const N: usize>(&mut self, values: [f64; N], decimals: usize) {
         // One instance per number of decimals, so that the divisions by 10^decimals are by
         // constants (a multiplication) rather than a 64-bit `div`.
-        let written = match decimals {
-            0 => write_fixed::<0>(self.fast_room(), value),
-            1 => write_fixed::<1>(self.fast_room(), value),
-            2 => write_fixed::<2>(self.fast_room(), value),
-            3 => write_fixed::<3>(self.fast_room(), value),
-            4 => write_fixed::<4>(self.fast_room(), value),
-            5 => write_fixed::<5>(self.fast_room(), value),
-            6 => write_fixed::<6>(self.fast_room(), value),
-            7 => write_fixed::<7>(self.fast_room(), value),
-            8 => write_fixed::<8>(self.fast_room(), value),
-            9 => write_fixed::<9>(self.fast_room(), value),
-            10 => write_fixed::<10>(self.fast_room(), value),
-            11 => write_fixed::<11>(self.fast_room(), value),
-            _ => write_fixed::<MAX_DECIMALS>(self.fast_room(), value),
-        };
-        match written {
-            Some(length) => self.len += length,
-            None => self.extend_from_slice(format_fixed(value, decimals).as_bytes()),
+        match decimals {
+            0 => self.push_list_with::<0, N>(values),
+            1 => self.push_list_with::<1, N>(values),
+            2 => self.push_list_with::<2, N>(values),
+            3 => self.push_list_with::<3, N>(values),
+            4 => self.push_list_with::<4, N>(values),
+            5 => self.push_list_with::<5, N>(values),
+            6 => self.push_list_with::<6, N>(values),
+            7 => self.push_list_with::<7, N>(values),
+            8 => self.push_list_with::<8, N>(values),
+            9 => self.push_list_with::<9, N>(values),
+            10 => self.push_list_with::<10, N>(values),
+            11 => self.push_list_with::<11, N>(values),
+            _ => self.push_list_with::<MAX_DECIMALS, N>(values),
+        }
+    }
+
+    /// [`RowBuffer::push_fixed_list`] with `DECIMALS` decimals.
+    #[inline(always)]
+    fn push_list_with<const DECIMALS: usize, const N: usize>(&mut self, values: [f64; N]) {
+        for (index, value) in values.into_iter().enumerate() {
+            if index > 0 {
+                self.push(b',');
+            }
+            match write_fixed::<DECIMALS>(self.fast_room(), value) {
+                Some(length) => self.len += length,
+                None => self.extend_from_slice(format_fixed(value, DECIMALS).as_bytes()),
+            }
         }
     }
 

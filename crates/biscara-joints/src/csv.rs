@@ -74,18 +74,14 @@ impl<W: Write> JointCsvWriter<W> {
             AngleUnit::Radians => 1.0,
             AngleUnit::Degrees => 180.0 / std::f64::consts::PI,
         };
-        let scales = [scale, scale, scale, 1.0];
-        self.row.push_fixed(sample.t, decimals);
-        let push_all = |row: &mut RowBuffer, values: [f64; 4]| {
-            for (value, scale) in values.into_iter().zip(scales) {
-                row.push(b',');
-                row.push_fixed(value * scale, decimals);
-            }
-        };
-        push_all(&mut self.row, sample.joints.to_array());
+        let scaled = |[a, b, c, d]: [f64; 4]| [a * scale, b * scale, c * scale, d];
+        let [theta1, theta2, theta3, d4] = scaled(sample.joints.to_array());
+        self.row.push_fixed_list([sample.t, theta1, theta2, theta3, d4], decimals);
         if self.format.derivatives {
-            push_all(&mut self.row, sample.velocity);
-            push_all(&mut self.row, sample.acceleration);
+            let [v1, v2, v3, v4] = scaled(sample.velocity);
+            let [a1, a2, a3, a4] = scaled(sample.acceleration);
+            self.row.push(b',');
+            self.row.push_fixed_list([v1, v2, v3, v4, a1, a2, a3, a4], decimals);
         }
         self.row.push(b'\n');
         if self.row.is_full() {
