@@ -106,6 +106,15 @@ impl Segment {
         self.end[3] - self.start[3]
     }
 
+    /// How far the direction of travel turns over the move, degrees: an arc's sweep, 0 for a
+    /// line.
+    pub fn turning(&self) -> f64 {
+        match self.shape {
+            Shape::Line => 0.0,
+            Shape::Arc { sweep, .. } => sweep.abs().to_degrees(),
+        }
+    }
+
     /// The pose at path parameter `s` (exactly `end` at `s = 1`).
     pub fn point(&self, s: f64) -> [f64; 4] {
         if s >= 1.0 {
