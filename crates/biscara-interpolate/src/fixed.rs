@@ -61,7 +61,8 @@ const INTEGER_POWERS_OF_TEN: [u64; 16] = [
 /// than through a stack array.
 #[derive(Debug, Clone)]
 pub struct RowBuffer {
-    /// Always at least `len + FAST_WIDTH` long; bytes past `len` are scratch.
+    /// Text, then scratch: numbers are written whole into the bytes past `len`, which grow when
+    /// fewer than [`FAST_WIDTH`] (or a long number) are left.
     bytes: Vec<u8>,
     /// Bytes written.
     len: usize,
