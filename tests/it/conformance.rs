@@ -609,3 +609,94 @@ fn token_soups_are_refused_alike() {
     }
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
+
+/// SIN, COS, TAN, ASIN, ACOS and ATAN to the last bit. rs274 computes them in long double (the
+/// degrees converted with the long double π), which `f64` does not reproduce: `COS[90] LT 0`
+/// holds there. Each expression's value as we compute it is written back into a program where
+/// rs274 compares it with its own (`[E LT v] + 2 * [E GT v]` is 0 when they are equal).
+#[test]
+fn trigonometry_agrees_to_the_last_bit() {
+    if !rs274::available("trigonometry_agrees_to_the_last_bit") {
+        return;
+    }
+    let dir = temp_dir("conformance-trig");
+    let mut rng = Rng(0x7219_0000_dead_beef);
+    let mut expressions: Vec<String> =
+        ["SIN[180]", "COS[90]", "COS[270]", "SIN[30]", "ACOS[0.5]", "ASIN[0.5]", "ATAN[1]/[1]"]
+            .map(str::to_owned)
+            .to_vec();
+    for _ in 0..200 {
+        let degrees = format!("{:.3}", rng.below(1_440_001) as f64 / 1000.0 - 720.0);
+        for function in ["SIN", "COS", "TAN"] {
+            expressions.push(format!("{function}[{degrees}]"));
+        }
+        let x = format!("{:.4}", rng.below(20_001) as f64 / 10_000.0 - 1.0);
+        let y = format!("{:.2}", rng.below(1001) as f64 / 100.0 - 5.0);
+        expressions.push(format!("ASIN[{x}]"));
+        expressions.push(format!("ACOS[{x}]"));
+        expressions.push(format!("ATAN[{x}]/[{y}]"));
+        expressions.push(format!("ATAN[{y}]/[{x}]"));
+    }
+    // Positions are refused beyond ±1e6 mm: tangents near a pole are left out.
+    expressions.retain(|expression| {
+        let Some(degrees) = expression.strip_prefix("TAN[").and_then(|e| e.strip_suffix(']'))
+        else {
+            return true;
+        };
+        degrees.parse::<f64>().is_ok_and(|d| d.to_radians().tan().abs() < 1e5)
+    });
+    let mut program = String::from("G21 G90\n");
+    for expression in &expressions {
+        program.push_str(&format!("G0 X[{expression}]\n"));
+    }
+    program.push_str("M2\n");
+    let path = dir.join("values.ngc");
+    std::fs::write(&path, &program).expect("write");
+    let values: Vec<f64> = ours(&path)
+        .expect("our values")
+        .iter()
+        .filter_map(|m| m.kind.end())
+        .map(|e| e[0])
+        .collect();
+    assert_eq!(values.len(), expressions.len());
+    let mut comparisons = String::from("G21 G90\n");
+    for (expression, value) in expressions.iter().zip(&values) {
+        comparisons.push_str(&format!(
+            "G0 X[[{expression} LT {value}] + 2 * [{expression} GT {value}]]\n"
+        ));
+    }
+    comparisons.push_str("M2\n");
+    let path = dir.join("comparisons.ngc");
+    std::fs::write(&path, &comparisons).expect("write");
+    let Outcome::Motions(motions) = rs274::run(&path, &dir) else {
+        panic!("rs274 refused the comparisons");
+    };
+    let verdicts: Vec<f64> = motions.iter().filter_map(|m| m.kind.end()).map(|e| e[0]).collect();
+    assert_eq!(verdicts.len(), expressions.len());
+    let (mut forward, mut forward_differ, mut inverse_differ) = (0, Vec::new(), Vec::new());
+    for ((expression, value), &x) in expressions.iter().zip(&values).zip(&verdicts) {
+        let is_forward = ["SIN", "COS", "TAN"].iter().any(|f| expression.starts_with(f));
+        forward += usize::from(is_forward);
+        if x != 0.0 {
+            let side = if x == 1.0 { "below" } else { "above" };
+            let line = format!("{expression}: rs274's value is {side} ours, {value}");
+            if is_forward { forward_differ.push(line) } else { inverse_differ.push(line) }
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "trigonometry: {} expressions; last bit differs in {} of {forward} SIN/COS/TAN and {} \
+             of {} ASIN/ACOS/ATAN",
+            expressions.len(),
+            forward_differ.len(),
+            inverse_differ.len(),
+            expressions.len() - forward
+        );
+    }
+    // glibc's long double sinl/cosl/tanl are not always correctly rounded, so a value now and
+    // then rounds to the other double (6 of 604 here): allowed in 2 % of them, never in the
+    // inverse functions.
+    assert!(inverse_differ.is_empty(), "{}", inverse_differ.join("\n"));
+    assert!(forward_differ.len() * 50 <= forward, "{}", forward_differ.join("\n"));
+}

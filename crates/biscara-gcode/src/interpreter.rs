@@ -405,6 +405,21 @@ impl<R: BufRead> Interpreter<R> {
         }
 
         self.check_other_words(motion_to_be)?;
+        // Read-only names are refused when the settings are stored, after the block's checks
+        // (rs274 reports an unused E word on `#<_x>=1 E1`, not the assignment).
+        for &(start, end, _) in &self.block.named {
+            let name = &self.compact.bytes()[start..end];
+            if name.first() == Some(&b'_') && self.state.predefined(name).is_some() {
+                return Err(self.fault_at(
+                    start.saturating_sub(2),
+                    end + 1,
+                    format!(
+                        "Cannot assign to read-only parameter #<{}>",
+                        String::from_utf8_lossy(name)
+                    ),
+                ));
+            }
+        }
         // Parameter settings take effect after the whole line is read.
         for index in 0..self.block.numbered.len() {
             let (number, value) = self.block.numbered[index];
@@ -660,13 +675,14 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// LinuxCNC's checks of words no code in the block uses.
+    /// LinuxCNC's checks of words no code in the block uses (`check_other_codes`, in its order:
+    /// D E H I J K L P Q R).
     fn check_other_words(&self, motion: Option<u16>) -> Result<(), Fault> {
         let block = &self.block;
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
         let g10 = group0 == Some(100);
-        let checks: [(u8, bool, &str); 8] = [
+        let checks: [(u8, bool, &str); 7] = [
             (
                 b'd',
                 false,
@@ -687,7 +703,6 @@ impl<R: BufRead> Interpreter<R> {
                 "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
                  or NURBS code",
             ),
-            (b'r', arc || g10, "R word with no g code that uses it"),
         ];
         for (letter, used, message) in checks {
             if let Some(word) = block.word(letter) {
@@ -706,6 +721,13 @@ impl<R: BufRead> Interpreter<R> {
                      M53 M62 M63 M64 M65 M66 M98 or user M code to use it",
                 ));
             }
+            // The turns of an arc, checked here with the block, before the arc's own checks.
+            if arc && (round_to_int(p.value) - p.value).abs() > 0.001 {
+                return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
+            }
+            if arc && round_to_int(p.value) < 1.0 {
+                return Err(self.word_fault(p, "P value should be 1 or greater with G2 or G3"));
+            }
         }
         if let Some(q) = block.word(b'q') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
@@ -715,6 +737,11 @@ impl<R: BufRead> Interpreter<R> {
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
                      that uses it",
                 ));
+            }
+        }
+        if let Some(r) = block.word(b'r') {
+            if !(arc || g10) {
+                return Err(self.word_fault(r, "R word with no g code that uses it"));
             }
         }
         Ok(())
@@ -985,13 +1012,8 @@ impl<R: BufRead> Interpreter<R> {
         let turns = match self.block.word(b'p') {
             None => 1,
             Some(p) => {
-                let rounded = p.value.round();
-                if (p.value - rounded).abs() > 0.0001 {
-                    return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
-                }
-                if rounded < 1.0 {
-                    return Err(self.word_fault(p, "P value should be 1 or greater with G2 or G3"));
-                }
+                // An integer ≥ 1 within 0.001 (`check_other_words`).
+                let rounded = round_to_int(p.value);
                 if rounded > 1e6 {
                     return Err(
                         self.word_fault(p, "P value is too large (more than 1000000 turns)")
@@ -1187,6 +1209,11 @@ impl<R: BufRead> Iterator for Interpreter<R> {
             }
         }
     }
+}
+
+/// LinuxCNC's `round_to_int`: `floor(x + 0.5)` (as a float: the caller bounds it).
+fn round_to_int(x: f64) -> f64 {
+    (x + 0.5).floor()
 }
 
 #[cfg(test)]

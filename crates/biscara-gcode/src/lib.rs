@@ -44,6 +44,7 @@
 
 #![warn(missing_docs)]
 
+mod degrees;
 mod error;
 mod interpreter;
 mod lexer;

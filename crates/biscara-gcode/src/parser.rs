@@ -1,6 +1,7 @@
 //! Blocks: the words of one line, with parameters and expressions evaluated as LinuxCNC reads
 //! them (`read_items`, `read_real_value`, `read_real_expression`).
 
+use crate::degrees;
 use crate::lexer::{Compact, Fault};
 use crate::params::{MAX_PARAMETERS, Params};
 
@@ -130,6 +131,19 @@ impl Block {
 pub(crate) trait Predefined {
     /// The value of predefined parameter `name` (without `#<` `>`, lower case, with its `_`).
     fn predefined(&self, name: &[u8]) -> Option<f64>;
+}
+
+/// LinuxCNC's ROUND: `(double) (int) (x ± 0.5)`, half away from zero through a C `int`. A zero
+/// result is +0 (ATAN tells it from −0), and beyond the `int` range, or for NaN, the conversion
+/// gives `INT_MIN` on x86-64, as rs274 prints.
+fn round_to_c_int(x: f64) -> f64 {
+    let shifted = x + if x < 0.0 { -0.5 } else { 0.5 };
+    let truncated = shifted.trunc();
+    if (-2_147_483_648.0..=2_147_483_647.0).contains(&truncated) {
+        f64::from(truncated as i32)
+    } else {
+        -2_147_483_648.0
+    }
 }
 
 /// Binary operators with LinuxCNC's precedence.
@@ -293,21 +307,8 @@ impl<'a> Reader<'a> {
         while self.pos < self.bytes.len() && self.peek() != b';' {
             self.read_item(block)?;
         }
-        // Assignments are stored after the whole line is read: only then are read-only names
-        // refused.
-        for &(name_start, name_end, _) in &block.named {
-            let name = &self.bytes[name_start..name_end];
-            if name.first() == Some(&b'_') && self.predefined.predefined(name).is_some() {
-                return Err(self.syntax(
-                    name_start.saturating_sub(2),
-                    name_end + 1,
-                    format!(
-                        "Cannot assign to read-only parameter #<{}>",
-                        String::from_utf8_lossy(name)
-                    ),
-                ));
-            }
-        }
+        // Assignments are stored, and read-only names refused, by the interpreter after the
+        // block's checks.
         Ok(())
     }
 
@@ -687,19 +688,27 @@ impl<'a> Reader<'a> {
         }
         let argument = self.read_expression()?;
         let fail = |message: &str| self.invalid(start, name_end, message);
+        // LinuxCNC's `execute_unary`; the trigonometry in `degrees`.
         let value = match name {
-            b"abs" => argument.abs(),
+            // `if x < 0 then −x`: −0 stays −0 (which ATAN tells from +0).
+            b"abs" => {
+                if argument < 0.0 {
+                    -argument
+                } else {
+                    argument
+                }
+            }
             b"acos" => {
                 if !(-1.0..=1.0).contains(&argument) {
                     return Err(fail("Argument to acos out of range"));
                 }
-                argument.acos().to_degrees()
+                degrees::acos(argument)
             }
             b"asin" => {
                 if !(-1.0..=1.0).contains(&argument) {
                     return Err(fail("Argument to asin out of range"));
                 }
-                argument.asin().to_degrees()
+                degrees::asin(argument)
             }
             b"atan" => {
                 if self.peek() != b'/' {
@@ -718,9 +727,9 @@ impl<'a> Reader<'a> {
                     ));
                 }
                 let x = self.read_expression()?;
-                argument.atan2(x).to_degrees()
+                degrees::atan2(argument, x)
             }
-            b"cos" => argument.to_radians().cos(),
+            b"cos" => degrees::cos(argument),
             b"exp" => argument.exp(),
             b"fix" => argument.floor(),
             b"fup" => argument.ceil(),
@@ -730,15 +739,15 @@ impl<'a> Reader<'a> {
                 }
                 argument.ln()
             }
-            b"round" => (argument + 0.5_f64.copysign(argument)).trunc(),
-            b"sin" => argument.to_radians().sin(),
+            b"round" => round_to_c_int(argument),
+            b"sin" => degrees::sin(argument),
             b"sqrt" => {
                 if argument < 0.0 {
                     return Err(fail("Negative argument to sqrt"));
                 }
                 argument.sqrt()
             }
-            _ => argument.to_radians().tan(),
+            _ => degrees::tan(argument),
         };
         Ok(value)
     }
