@@ -2,8 +2,10 @@
 //! and its canonical-machining output read back as motions in absolute millimetres — the
 //! reference that `interpret` is compared with.
 //!
-//! Invocation: `HOME=DIR rs274 -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no prompts; a HOME
-//! of its own because rs274 maps `$HOME/.tool.mmap`). It writes one
+//! Invocation: `HOME=DIR rs274 -t DIR/tools.tbl -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no
+//! prompts; a HOME of its own because rs274 maps `$HOME/.tool.mmap`; a tool table holding tools
+//! 0–999, because `interpret` has no tool table — T words have no effect, SPEC §4.2 — and the
+//! standalone's default table refuses `T5`). It writes one
 //! canonical command a line (`STRAIGHT_FEED(x, y, z, a, b, c)`, `ARC_FEED(…)`, …) to OUTPUT,
 //! positions in program units relative to the active offsets, 4 decimals; errors go to stderr
 //! (the message, then the offending line) with exit code 1. rs274 starts at 0,0,0 with the G28
@@ -58,10 +60,17 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     let output = dir.join("rs274.out");
+    let tools = dir.join("tools.tbl");
+    if !tools.exists() {
+        let table: String = (1..1000).map(|tool| format!("T{tool} P{tool} Z0 D0\n")).collect();
+        std::fs::write(&tools, table).expect("write the tool table");
+    }
     let mut attempt = 0;
     let run = loop {
         let _ = std::fs::remove_file(&output);
         let run = Command::new(RS274)
+            .arg("-t")
+            .arg(&tools)
             .arg("-g")
             .arg(program)
             .arg(&output)
