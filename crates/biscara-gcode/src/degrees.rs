@@ -45,8 +45,9 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 /// the rounding of every x87 long double operation.
 fn round_to_extended(hi: f64, lo: f64) -> Extended {
     let (hi, lo) = two_sum(hi, lo);
-    if lo == 0.0 || !hi.is_finite() || hi == 0.0 {
-        return Extended { hi, lo: 0.0 };
+    // Below 2⁻⁹⁰⁰ the grid's spacing would underflow; no G-code value is that small but zero.
+    if lo == 0.0 || !hi.is_finite() || hi.abs() < 1e-270 {
+        return Extended { hi: hi + lo, lo: 0.0 };
     }
     // The 64-bit grid in hi's binade is 2^11 times finer than hi's own; hi is on it. Just below a
     // power of two (hi = 2^k, lo < 0) the grid is twice finer again.
@@ -244,6 +245,24 @@ mod tests {
                 assert!((atan2(x, y) - plain).abs() <= 1e-13, "atan2 {x} {y}");
             }
         }
+    }
+
+    #[test]
+    fn extreme_arguments_give_numbers_or_nan_never_a_panic() {
+        // Beyond 5.7e307 degrees the product by π overflows a double (not a long double): NaN,
+        // which the interpreter refuses as not finite.
+        assert!(sin(f64::MAX).is_nan());
+        for value in [0.0, -0.0, 1e-320, -1e-300, 1e-200, 1e15, 1e300, f64::MIN_POSITIVE] {
+            for result in [sin(value), cos(value), tan(value)] {
+                assert!(result.is_finite(), "{value}: {result}");
+            }
+        }
+        for value in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(sin(value).is_nan() && cos(value).is_nan() && tan(value).is_nan());
+        }
+        assert!(sin(1e-320) > 1.7e-322 && sin(1e-320) < 1.8e-322);
+        assert!(asin(1e-320).abs() < 1e-300 && atan2(1e-320, 1.0).abs() < 1e-300);
+        assert_eq!(atan2(f64::INFINITY, 1.0), 90.0);
     }
 
     #[test]
