@@ -16,6 +16,7 @@ use super::input::open_input;
 use super::interpret::{gcode_error, parse_pose};
 use super::mjcf::load_scene;
 use super::output::write_output;
+use super::trajectory::{ProfileArg, parse_duration};
 use super::{display_path, run_command};
 
 /// Writes one self-contained HTML file that animates a joint trajectory (SPEC §8.3).
@@ -30,7 +31,8 @@ use super::{display_path, run_command};
 ///
 /// TRAJ is a joint CSV from `biscara joints` (radians or degrees, with or without derivatives).
 /// The program (G-code, or an inter-file with the `.jsonl` extension) is sampled as `joints`
-/// samples it by default (trapezoid profile) at TRAJ's time step; give the same --origin.
+/// samples it, at TRAJ's time step: give the --origin, --profile and --grip-time TRAJ was made
+/// with (a warning says when the durations disagree).
 #[derive(Debug, Args)]
 #[command(
     about = "Animated HTML view of a joint trajectory (top and side views, no network)",
@@ -60,6 +62,18 @@ pub(crate) struct ViewArgs {
         help = "G54 offset before the first line of a G-code program"
     )]
     origin: Option<[f64; 4]>,
+    /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
+    #[arg(long, value_enum, default_value = "trapezoid", help = "Profile TRAJ was made with")]
+    profile: ProfileArg,
+    /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value = "0",
+        value_parser = parse_duration,
+        help = "Grip time TRAJ was made with"
+    )]
+    grip_time: f64,
 }
 
 pub(crate) fn view(robot: &Robot, args: &ViewArgs) -> anyhow::Result<()> {
@@ -79,7 +93,16 @@ pub(crate) fn view(robot: &Robot, args: &ViewArgs) -> anyhow::Result<()> {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
     }
     if let Some(program) = &args.program {
-        add_program(&mut viewer, robot, program, args.origin.unwrap_or([0.0; 4]))?;
+        let profile = match args.profile {
+            ProfileArg::Constant => Profile::Constant,
+            ProfileArg::Trapezoid => Profile::Trapezoid,
+        };
+        let sampling = ProgramSampling {
+            origin: args.origin.unwrap_or([0.0; 4]),
+            profile,
+            grip_time: args.grip_time,
+        };
+        add_program(&mut viewer, robot, program, sampling)?;
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
 }
@@ -89,13 +112,22 @@ fn file_name(path: &Path) -> String {
     path.file_name().map_or_else(|| display_path(path), |name| name.to_string_lossy().into_owned())
 }
 
+/// How the program is sampled: as `joints` sampled it for the trajectory.
+#[derive(Debug, Clone, Copy)]
+struct ProgramSampling {
+    origin: [f64; 4],
+    profile: Profile,
+    grip_time: f64,
+}
+
 /// Samples the program at the trajectory's time step and adds its path, events and line texts.
 fn add_program(
     viewer: &mut Viewer,
     robot: &Robot,
     program: &Path,
-    origin: [f64; 4],
+    sampling: ProgramSampling,
 ) -> anyhow::Result<()> {
+    let origin = sampling.origin;
     let name = display_path(program);
     let model = Kinematics::new(robot)?;
     let input = open_input(program)?;
@@ -113,10 +145,10 @@ fn add_program(
         };
     let config = InterpolationConfig {
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
-        profile: Profile::Trapezoid,
+        profile: sampling.profile,
         start: model.home().to_degrees(),
         limits: cartesian_limits(robot),
-        grip_time: 0.0,
+        grip_time: sampling.grip_time,
     };
     let limit = JointSpeedLimit::new(model, robot);
     let mut end = 0.0;
@@ -135,9 +167,9 @@ fn add_program(
         #[allow(clippy::print_stderr)]
         {
             eprintln!(
-                "biscara: warning: {name} takes {end:.3} s with the default sampling, the \
-                 trajectory {duration:.3} s: the program lines shown may be off (was the \
-                 trajectory made with other --profile, --grip-time or --origin?)"
+                "biscara: warning: {name} takes {end:.3} s as sampled here, the trajectory \
+                 {duration:.3} s: the program lines shown may be off (was the trajectory made \
+                 with other --profile, --grip-time or --origin?)"
             );
         }
     }

@@ -124,3 +124,34 @@ fn view_writes_one_self_contained_page_with_the_program() {
     bare.success();
     assert!(bare.stdout.contains("\"path\":[],\"lines\":[]"));
 }
+
+#[test]
+fn view_samples_the_program_as_the_trajectory_was_made() {
+    let dir = temp_dir("view-sampling");
+    biscara(&dir, &["demo", "out"]).success();
+    let made = ["joints", "out/job.ngc", "--profile", "constant", "--grip-time", "0.3"];
+    biscara(&dir, &[&made[..], &["-o", "slow.csv"]].concat()).success();
+    // With the defaults the program runs shorter than the trajectory: a warning.
+    let defaults = biscara(&dir, &["view", "slow.csv", "--program", "out/job.ngc"]);
+    defaults.success();
+    assert!(defaults.stderr.contains("warning"), "{defaults}");
+    // With the same sampling, no warning, and the events fall where the trajectory has them.
+    let same = biscara(
+        &dir,
+        &[
+            "view",
+            "slow.csv",
+            "--program",
+            "out/job.ngc",
+            "--profile",
+            "constant",
+            "--grip-time",
+            "0.3",
+        ],
+    );
+    same.success();
+    assert!(!same.stderr.contains("warning"), "{same}");
+    assert_ne!(defaults.stdout, same.stdout);
+    let bad = biscara(&dir, &["view", "slow.csv", "--program", "out/job.ngc", "--grip-time", "-1"]);
+    assert_eq!(bad.code, 2, "{bad}");
+}
