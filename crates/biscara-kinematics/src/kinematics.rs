@@ -107,7 +107,7 @@ pub struct IkSolution {
     /// The pose that was solved for.
     pub pose: Pose,
     /// The joint values: θ1, θ2 in (−π, π] (or shifted by 2π into their limits), θ3 from the
-    /// single-pose rule `φ − wrap(ψ1 − ψ1_home)`; see [`Theta3Unwrapper`] for paths.
+    /// single-pose rule `φ − wrap(ψ1 − ψ1_home)`; see [`crate::Theta3Unwrapper`] for paths.
     pub joints: Joints,
     /// The five-bar configuration.
     pub configuration: PlanarConfiguration,
