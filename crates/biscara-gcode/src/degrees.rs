@@ -74,6 +74,10 @@ fn to_radians(degrees: f64) -> Extended {
 /// to double), the division by `M_PIl` is in long double; the result is rounded to double.
 fn to_degrees(radians: f64) -> f64 {
     let product = radians * 180.0;
+    if product == 0.0 || !product.is_finite() {
+        // ±0 keeps its sign (ATAN tells them apart), as the long double division does.
+        return product / PI_HI;
+    }
     let quotient = DoubleDouble::new(product, 0.0).div(DoubleDouble::new(PI_HI, PI_LO));
     quotient.to_f64()
 }
@@ -131,8 +135,13 @@ const HALF_PI: [f64; 3] =
 fn sin_cos(angle: Extended) -> (DoubleDouble, DoubleDouble) {
     let turns = (angle.hi / HALF_PI[0]).round();
     if !turns.is_finite() || turns.abs() > 1e15 {
-        let (sin, cos) = angle.hi.sin_cos();
-        return (DoubleDouble::new(sin, 0.0), DoubleDouble::new(cos, 0.0));
+        // Huge angles: sin(h + l) from f64's exactly reduced sin and cos of both parts (l is
+        // itself large here, and decides the result as much as h).
+        let (sin_hi, cos_hi) = angle.hi.sin_cos();
+        let (sin_lo, cos_lo) = angle.lo.sin_cos();
+        let sin = sin_hi.mul_add(cos_lo, cos_hi * sin_lo);
+        let cos = cos_hi.mul_add(cos_lo, -(sin_hi * sin_lo));
+        return (DoubleDouble { hi: sin, lo: 0.0 }, DoubleDouble { hi: cos, lo: 0.0 });
     }
     // turns · π/2, each part's product exact or far below the result's precision.
     let mut reduced = DoubleDouble::new(angle.hi, angle.lo);
@@ -161,6 +170,10 @@ fn sin_cos(angle: Extended) -> (DoubleDouble, DoubleDouble) {
 
 /// `SIN[degrees]`.
 pub(crate) fn sin(degrees: f64) -> f64 {
+    if degrees == 0.0 {
+        // ±0, as `sinl` returns it (the double-double sums would lose the sign).
+        return degrees;
+    }
     sin_cos(to_radians(degrees)).0.to_f64()
 }
 
@@ -171,6 +184,9 @@ pub(crate) fn cos(degrees: f64) -> f64 {
 
 /// `TAN[degrees]` (at 90°, π_ld/2 lies past the pole: −4e19).
 pub(crate) fn tan(degrees: f64) -> f64 {
+    if degrees == 0.0 {
+        return degrees;
+    }
     let (sin, cos) = sin_cos(to_radians(degrees));
     sin.div(cos).to_f64()
 }
@@ -220,6 +236,9 @@ mod tests {
         assert_eq!(atan2(-0.0, -1.0), -180.0);
         assert_eq!(atan2(0.0, -1.0), 180.0);
         assert_eq!(sin(0.0), 0.0);
+        // Signed zeros survive, as in rs274: ATAN of them gives ±180.
+        assert!(sin(-0.0).is_sign_negative() && tan(-0.0).is_sign_negative());
+        assert!(asin(-0.0).is_sign_negative() && atan2(-0.0, 1.0).is_sign_negative());
         assert_eq!(cos(0.0), 1.0);
     }
 

@@ -452,9 +452,7 @@ impl<R: BufRead> Interpreter<R> {
             self.state.speed = s.value;
         }
         if let Some(t) = self.block.word(b't') {
-            if t.value < 0.0 {
-                return Err(self.word_fault(t, "Negative tool id (tool not found)"));
-            }
+            // Not negative: the reader refuses that.
             self.state.selected_tool = t.value;
         }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)

@@ -404,6 +404,10 @@ impl<'a> Reader<'a> {
             b's' if value < 0.0 => {
                 return Err(self.invalid(start, self.pos, "Negative spindle speed used"));
             }
+            // Checked as it is read (`read_t`), before the rest of the line.
+            b't' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative tool id (tool not found)"));
+            }
             _ => {}
         }
         block.letters[slot] = Some(Word { value, at: start, end: self.pos });
@@ -584,9 +588,13 @@ impl<'a> Reader<'a> {
             return Ok(value);
         }
         let text = std::str::from_utf8(text).unwrap_or("");
-        let digits = text.bytes().filter(u8::is_ascii_digit).count();
         let dots = text.bytes().filter(|&b| b == b'.').count();
-        if digits == 0 {
+        // As C's strtod, which LinuxCNC calls: nothing converts unless a digit comes first, or a
+        // point and then a digit (`..5` fails to convert; `1..5` converts `1.` and leaves `.5`).
+        let body = text.trim_start_matches(['+', '-']).as_bytes();
+        let converts = body.first().is_some_and(u8::is_ascii_digit)
+            || (body.first() == Some(&b'.') && body.get(1).is_some_and(u8::is_ascii_digit));
+        if !converts {
             return Err(self.syntax(
                 start,
                 self.pos + 1,
