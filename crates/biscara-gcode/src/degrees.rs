@@ -3,10 +3,10 @@
 //! rs274 converts with `M_PIl`, the 64-bit-significand π of the x87 long double: `SIN[a]` is
 //! `sinl((a · π_ld) / 180)`, both operations rounded to long double, and `ASIN[x]`, `ACOS[x]`,
 //! `ATAN[y]/[x]` are `(f(x) · 180) / π_ld`, `f` in double, the product in double and the
-//! division in long double; the result is rounded to double. The
-//! difference from plain `f64` shows where it matters: `COS[90]` is −2.5e-20 in rs274 (π_ld is
-//! above π), 6.1e-17 in `f64`, so `COS[90] LT 0` is true there; `TAN[90]` is −4e19, not +1.6e16;
-//! `ACOS[0.5]` is exactly 60, not 60.00000000000001.
+//! division in long double; the result is rounded to double. The difference from plain `f64`
+//! shows where it matters: `COS[90]` is −2.5e-20 in rs274 (π_ld is above π), 6.1e-17 in `f64`,
+//! so `COS[90] LT 0` is true there; `TAN[90]` is −4e19, not +1.6e16; `ACOS[0.5]` is exactly 60,
+//! not 60.00000000000001. Signed zeros keep their sign (ATAN of −0 and +0 differ by 360°).
 //!
 //! Long double values are emulated as unevaluated sums of two doubles ("double-double", about
 //! 106 bits), rounded to 64 significant bits after each operation as the x87 unit does; sin, cos
@@ -45,7 +45,8 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 /// the rounding of every x87 long double operation.
 fn round_to_extended(hi: f64, lo: f64) -> Extended {
     let (hi, lo) = two_sum(hi, lo);
-    // Below 2⁻⁹⁰⁰ the grid's spacing would underflow; no G-code value is that small but zero.
+    // Below about 1e-270 the grid's spacing would underflow; left as it is (zeros, with their
+    // sign, are handled by the callers).
     if lo == 0.0 || !hi.is_finite() || hi.abs() < 1e-270 {
         return Extended { hi: hi + lo, lo: 0.0 };
     }
