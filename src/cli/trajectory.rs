@@ -54,6 +54,15 @@ pub(crate) enum AngleUnitArg {
     Deg,
 }
 
+impl From<ProfileArg> for Profile {
+    fn from(profile: ProfileArg) -> Profile {
+        match profile {
+            ProfileArg::Constant => Profile::Constant,
+            ProfileArg::Trapezoid => Profile::Trapezoid,
+        }
+    }
+}
+
 /// Options shared by the commands that sample a program in time.
 #[derive(Debug, Args)]
 pub(crate) struct SamplingArgs {
@@ -297,10 +306,7 @@ pub(crate) fn samples<F: FnMut(&SlowDown)>(
     }
     let config = InterpolationConfig {
         dt: sampling.dt,
-        profile: match sampling.profile {
-            ProfileArg::Constant => Profile::Constant,
-            ProfileArg::Trapezoid => Profile::Trapezoid,
-        },
+        profile: sampling.profile.into(),
         start: model.home().to_degrees(),
         limits: cartesian_limits(robot),
         grip_time: sampling.grip_time,

@@ -93,13 +93,9 @@ pub(crate) fn view(robot: &Robot, args: &ViewArgs) -> anyhow::Result<()> {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
     }
     if let Some(program) = &args.program {
-        let profile = match args.profile {
-            ProfileArg::Constant => Profile::Constant,
-            ProfileArg::Trapezoid => Profile::Trapezoid,
-        };
         let sampling = ProgramSampling {
             origin: args.origin.unwrap_or([0.0; 4]),
-            profile,
+            profile: args.profile.into(),
             grip_time: args.grip_time,
         };
         add_program(&mut viewer, robot, program, sampling)?;

@@ -20,13 +20,6 @@
 const PI_HI: f64 = std::f64::consts::PI;
 const PI_LO: f64 = 1.225_148_454_908_62e-16;
 
-/// A long double: `hi + lo`, `hi` the nearest double, and `hi + lo` on the 64-bit grid.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Extended {
-    hi: f64,
-    lo: f64,
-}
-
 /// `a + b` as a double and its rounding error (exact).
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let sum = a + b;
@@ -43,12 +36,12 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 
 /// `hi + lo` (with `|lo|` small next to `|hi|`) rounded to 64 significant bits, ties to even:
 /// the rounding of every x87 long double operation.
-fn round_to_extended(hi: f64, lo: f64) -> Extended {
+fn round_to_extended(hi: f64, lo: f64) -> DoubleDouble {
     let (hi, lo) = two_sum(hi, lo);
     // Below about 1e-270 the grid's spacing would underflow; left as it is (zeros, with their
     // sign, are handled by the callers).
     if lo == 0.0 || !hi.is_finite() || hi.abs() < 1e-270 {
-        return Extended { hi: hi + lo, lo: 0.0 };
+        return DoubleDouble { hi: hi + lo, lo: 0.0 };
     }
     // The 64-bit grid in hi's binade is 2^11 times finer than hi's own; hi is on it. Just below a
     // power of two (hi = 2^k, lo < 0) the grid is twice finer again.
@@ -57,12 +50,11 @@ fn round_to_extended(hi: f64, lo: f64) -> Extended {
     let shift = if power_of_two && (lo < 0.0) == (hi > 0.0) { 64 } else { 63 };
     let spacing = 2f64.powi(exponent - shift);
     let lo = (lo / spacing).round_ties_even() * spacing;
-    let (hi, lo) = two_sum(hi, lo);
-    Extended { hi, lo }
+    DoubleDouble::new(hi, lo)
 }
 
 /// `(degrees · π_ld) / 180` in long double arithmetic.
-fn to_radians(degrees: f64) -> Extended {
+fn to_radians(degrees: f64) -> DoubleDouble {
     let (product, error) = two_product(degrees, PI_HI);
     let product = round_to_extended(product, error + degrees * PI_LO);
     let quotient = product.hi / 180.0;
@@ -83,8 +75,9 @@ fn to_degrees(radians: f64) -> f64 {
     quotient.to_f64()
 }
 
-/// A double-double `hi + lo` with `|lo| ≤ ulp(hi) / 2`.
-#[derive(Debug, Clone, Copy)]
+/// A double-double `hi + lo` with `|lo| ≤ ulp(hi) / 2`; a long double when on the 64-bit grid
+/// ([`round_to_extended`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct DoubleDouble {
     hi: f64,
     lo: f64,
@@ -133,7 +126,7 @@ const HALF_PI: [f64; 3] =
 
 /// `sin` and `cos` of a long double angle, in double-double: `angle = k·π/2 + r` with
 /// `|r| ≤ π/4`, Taylor series of `r`, then the quarter turns.
-fn sin_cos(angle: Extended) -> (DoubleDouble, DoubleDouble) {
+fn sin_cos(angle: DoubleDouble) -> (DoubleDouble, DoubleDouble) {
     let turns = (angle.hi / HALF_PI[0]).round();
     if !turns.is_finite() || turns.abs() > 1e15 {
         // Huge angles: sin(h + l) from f64's exactly reduced sin and cos of both parts (l is
@@ -145,7 +138,7 @@ fn sin_cos(angle: Extended) -> (DoubleDouble, DoubleDouble) {
         return (DoubleDouble { hi: sin, lo: 0.0 }, DoubleDouble { hi: cos, lo: 0.0 });
     }
     // turns · π/2, each part's product exact or far below the result's precision.
-    let mut reduced = DoubleDouble::new(angle.hi, angle.lo);
+    let mut reduced = angle;
     for part in HALF_PI {
         let (product, error) = two_product(turns, part);
         reduced = reduced.add(DoubleDouble::new(-product, -error));
@@ -288,12 +281,12 @@ mod tests {
     #[test]
     fn rounding_to_64_bits() {
         // 1 + 2⁻⁶⁴ is below half a step of the 64-bit grid (2⁻⁶³): it rounds to 1.
-        assert_eq!(round_to_extended(1.0, 2f64.powi(-64)), Extended { hi: 1.0, lo: 0.0 });
+        assert_eq!(round_to_extended(1.0, 2f64.powi(-64)), DoubleDouble { hi: 1.0, lo: 0.0 });
         // 1 + 3·2⁻⁶⁵ rounds up to 1 + 2⁻⁶³.
         let rounded = round_to_extended(1.0, 3.0 * 2f64.powi(-65));
-        assert_eq!(rounded, Extended { hi: 1.0, lo: 2f64.powi(-63) });
+        assert_eq!(rounded, DoubleDouble { hi: 1.0, lo: 2f64.powi(-63) });
         // Just below 2 the grid is 2⁻⁶³; just below 1, 2⁻⁶⁴.
         let below_one = round_to_extended(1.0, -3.0 * 2f64.powi(-66));
-        assert_eq!(below_one, Extended { hi: 1.0, lo: -2f64.powi(-64) });
+        assert_eq!(below_one, DoubleDouble { hi: 1.0, lo: -2f64.powi(-64) });
     }
 }
