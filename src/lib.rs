@@ -32,6 +32,7 @@ pub use biscara_interpolate as interpolate;
 pub use biscara_joints as joints;
 pub use biscara_kinematics as kinematics;
 pub use biscara_motion as motion;
+pub use biscara_pipeline as pipeline;
 pub use biscara_pnp as pnp;
 pub use biscara_post as post;
 pub use biscara_robot as robot;

@@ -1,19 +1,18 @@
 //! `biscara check`: a program run on the virtual robot, every problem reported (SPEC §8.1).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::kinematics::{Joint, Kinematics, Robot};
-use biscara::robot::{Checker, Problem, Report, Scene};
+use biscara::kinematics::Joint;
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
+use biscara::robot::{Checker, Problem, Report};
 use clap::Args;
 use serde_json::{Value, json};
 
-use super::display_path;
+use super::args::{InputKind, SamplingArgs};
+use super::diag::NoteReporter;
+use super::files::{FileSource, load_scene, write_output};
 use super::fmt::fixed;
-use super::output::write_output;
-use super::trajectory::{
-    InputKind, SamplingArgs, input_kind, report_slow_total, samples, slow_down_reporter,
-};
 
 /// Runs a program on the virtual robot and reports every problem (SPEC §8.1).
 ///
@@ -28,8 +27,9 @@ use super::trajectory::{
 /// acceleration with their lines, and the smallest singularity angle.
 ///
 /// Exit code 0 when the program is clean, 1 when anything was found. The program's kind comes
-/// from --from, else from its extension: `.jsonl` is an inter-file, `.csv` a path CSV, anything
-/// else G-code.
+/// from --from, else from its extension: `.jsonl` is an inter-file, `.csv` a path CSV,
+/// `.ngc`/`.nc`/`.gcode`/… G-code; else from its first bytes (`{`: an inter-file, `t_s,`: a path
+/// CSV, anything else G-code).
 #[derive(Debug, Args)]
 #[command(
     about = "Run a program on the virtual robot and report every problem",
@@ -41,7 +41,7 @@ pub(crate) struct CheckArgs {
     /// The program (G-code, inter-file or path CSV); `-` reads standard input.
     #[arg(value_name = "PROGRAM")]
     program: PathBuf,
-    /// The program's kind (default: from the extension).
+    /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
     from: Option<InputKind>,
     /// Boxes around the robot that no part of it may touch (JSON, millimetres, base frame).
@@ -57,49 +57,25 @@ pub(crate) struct CheckArgs {
     sampling: SamplingArgs,
 }
 
-/// Reads a scene file (`-`: standard input), errors as `FILE:LINE:COL: key: message`.
-pub(crate) fn read_scene(path: &Path) -> anyhow::Result<Scene> {
-    let bytes = if path == Path::new("-") {
-        let mut bytes = Vec::new();
-        std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes)?;
-        bytes
-    } else {
-        std::fs::read(path).map_err(|err| anyhow!("cannot read {}: {err}", path.display()))?
-    };
-    Scene::from_json(&bytes).map_err(|err| anyhow!("{}:{err}", display_path(path)))
-}
-
-/// Runs `program` on the virtual robot.
-pub(crate) fn run_check(
-    robot: &Robot,
-    program: &Path,
-    kind: InputKind,
-    sampling: &SamplingArgs,
-    scene: Scene,
-) -> anyhow::Result<Report> {
-    let model = Kinematics::new(robot)?;
-    let (on_slow, slowed) = slow_down_reporter(display_path(program));
-    let mut checker = Checker::new(robot, scene)?;
-    for sample in samples(program, kind, sampling, robot, model, on_slow)? {
+pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let source = FileSource::new(&args.program);
+    let kind = source.kind(args.from)?;
+    let notes = NoteReporter::default();
+    let mut checker = Checker::new(model, scene);
+    for sample in
+        Pipeline::new(model, args.sampling.config()).samples(&source, kind, notes.sink())?
+    {
         checker.push(&sample?);
     }
-    report_slow_total(slowed.get());
-    Ok(checker.finish())
-}
-
-pub(crate) fn check(robot: &Robot, args: &CheckArgs) -> anyhow::Result<()> {
-    let scene = match &args.scene {
-        Some(path) => read_scene(path)?,
-        None => Scene::new(),
-    };
-    let kind = input_kind(&args.program, args.from);
-    let report = run_check(robot, &args.program, kind, &args.sampling, scene)?;
-    let name = display_path(&args.program);
+    notes.finish();
+    let report = checker.finish();
+    let name = source.name();
     write_output(args.output.as_deref(), |out| {
         if args.json {
             writeln!(out, "{}", report_json(&report))?;
         } else {
-            write_text(out, &name, &report)?;
+            write_text(out, name, &report)?;
         }
         Ok(())
     })?;
@@ -141,7 +117,7 @@ fn problem_json(problem: &Problem) -> Value {
 }
 
 /// The report as SPEC §9's `{"ok":…,"problems":[…],"summary":{…}}`.
-pub(crate) fn report_json(report: &Report) -> Value {
+fn report_json(report: &Report) -> Value {
     let summary = &report.summary;
     let peaks = |peaks: &[biscara::robot::Peak; 4], per: &str| {
         let mut map = serde_json::Map::new();

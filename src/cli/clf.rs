@@ -3,13 +3,11 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::kinematics::{Kinematics, Robot};
+use biscara::kinematics::RobotModel;
 use biscara::pnp::write_cl;
 use clap::Args;
 
-use super::display_path;
-use super::input::open_input;
-use super::output::write_output;
+use super::files::{display_path, open_input, write_output};
 
 /// Turns a pick-and-place points file into an APT-style CL file (SPEC §2, §3).
 ///
@@ -34,8 +32,8 @@ pub(crate) struct ClfArgs {
     output: Option<PathBuf>,
 }
 
-pub(crate) fn clf(robot: &Robot, args: &ClfArgs) -> anyhow::Result<()> {
-    let model = Kinematics::new(robot)?;
+pub(crate) fn clf(robot: &RobotModel, args: &ClfArgs) -> anyhow::Result<()> {
+    let model = robot.kinematics();
     let input = open_input(&args.points)?;
     write_output(args.output.as_deref(), |out| {
         write_cl(input, &model, out).map_err(|err| match err.line() {

@@ -1,13 +1,13 @@
 //! `biscara demo`: the whole pipeline on the bundled pick-and-place example.
 
-use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, anyhow};
-use biscara::kinematics::Robot;
+use biscara::joints::read_joint_csv;
+use biscara::pipeline::RobotModel;
 use clap::Args;
 
-use super::output::write_output;
+use super::files::{display_path, open_input, write_output};
 use super::run_command;
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
@@ -30,104 +30,84 @@ pub(crate) struct DemoArgs {
 /// The bundled job: SPEC §2's example points file (also `data/jobs/pick_place.txt`).
 const EXAMPLE_JOB: &str = include_str!("../../data/jobs/pick_place.txt");
 
-pub(crate) fn demo(robot: &Robot, args: &DemoArgs) -> anyhow::Result<()> {
+pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let file = |name: &str| dir.join(name);
-    let text = |path: PathBuf| path.to_string_lossy().into_owned();
-    let mut written = Vec::new();
-
-    let robot_file = file("robot.json");
-    write_output(Some(&robot_file), |out| Ok(writeln!(out, "{}", robot.to_json_pretty())?))?;
-    written.push((robot_file, "the robot in force"));
-    let points = file("job.txt");
-    write_output(Some(&points), |out| Ok(out.write_all(EXAMPLE_JOB.as_bytes())?))?;
-    written.push((points.clone(), "the pick-and-place points (SPEC §2)"));
-
-    let (cl, gcode, jsonl) = (file("job.cl"), file("job.ngc"), file("job.jsonl"));
+    let file = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    write_output(Some(&dir.join("robot.json")), |out| {
+        Ok(writeln!(out, "{}", model.robot().to_json_pretty())?)
+    })?;
+    write_output(Some(&dir.join("job.txt")), |out| Ok(out.write_all(EXAMPLE_JOB.as_bytes())?))?;
+    let (points, cl, gcode, jsonl) =
+        (file("job.txt"), file("job.cl"), file("job.ngc"), file("job.jsonl"));
+    let (path, traj) = (file("path.csv"), file("traj.csv"));
+    run_command(model, ["gen", &points, "-o", &gcode, "--clf", &cl])?;
+    run_command(model, ["interpret", &gcode, "-o", &jsonl])?;
+    run_command(model, ["interpolate", &jsonl, "--events", "-o", &path])?;
+    run_command(model, ["joints", &jsonl, "--derivatives", "-o", &traj])?;
+    let summary = summarize(Path::new(&traj))?;
+    run_command(model, ["check", &jsonl, "--json", "-o", &file("check.json")])?;
     run_command(
-        robot,
-        ["gen", &text(points), "-o", &text(gcode.clone()), "--clf", &text(cl.clone())],
+        model,
+        ["workspace", "--svg", &file("workspace.svg"), "-o", &file("workspace.txt")],
     )?;
-    written.push((cl, "CL file (biscara clf)"));
-    written.push((gcode.clone(), "G-code for LinuxCNC (biscara post)"));
-    run_command(robot, ["interpret", &text(gcode), "-o", &text(jsonl.clone())])?;
-    written.push((jsonl.clone(), "motions, the inter-file (biscara interpret)"));
-    let (path, trajectory) = (file("path.csv"), file("traj.csv"));
-    run_command(
-        robot,
-        ["interpolate", &text(jsonl.clone()), "--events", "-o", &text(path.clone())],
-    )?;
-    written.push((path, "Cartesian samples at 1 ms (biscara interpolate)"));
-    run_command(
-        robot,
-        ["joints", &text(jsonl.clone()), "--derivatives", "-o", &text(trajectory.clone())],
-    )?;
-    written.push((
-        trajectory.clone(),
-        "joint trajectory with velocities and accelerations (biscara joints)",
-    ));
-    let virtual_robot = super::plot::write_virtual_robot_outputs(dir, robot, &jsonl)?;
-    let what = [
-        "the virtual robot's report (biscara check --json)",
-        "the workspace and its largest rectangle (biscara workspace --svg)",
-        "workspace, path and robot in top view (biscara plot)",
+    let at = [0.0, 0.25, 0.5, 0.75].map(|f| format!("{:.3}", f * summary.duration)).join(",");
+    run_command(model, ["plot", &jsonl, "--at", &at, "-o", &file("plot.svg")])?;
+    run_command(model, ["view", &traj, "--program", &gcode, "-o", &file("view.html")])?;
+    run_command(model, ["mjcf", "-o", &file("robot.xml"), "--traj", &traj])?;
+    let written = [
+        ("robot.json", "the robot in force"),
+        ("job.txt", "the pick-and-place points (SPEC §2)"),
+        ("job.cl", "CL file (biscara clf)"),
+        ("job.ngc", "G-code for LinuxCNC (biscara post)"),
+        ("job.jsonl", "motions, the inter-file (biscara interpret)"),
+        ("path.csv", "Cartesian samples at 1 ms (biscara interpolate)"),
+        ("traj.csv", "joint trajectory with velocities and accelerations (biscara joints)"),
+        ("check.json", "the virtual robot's report (biscara check --json)"),
+        ("workspace.txt", "the workspace's area and largest rectangle (biscara workspace)"),
+        ("workspace.svg", "the workspace and its largest rectangle (biscara workspace --svg)"),
+        ("plot.svg", "workspace, path and robot in top view (biscara plot)"),
+        ("view.html", "the robot in motion, open in a browser (biscara view)"),
+        ("robot.xml", "MuJoCo model (biscara mjcf)"),
+        ("robot.traj.csv", "the trajectory in the model's joints (mjcf --traj)"),
     ];
-    written.extend(virtual_robot.into_iter().zip(what));
-
-    written.extend(super::view::demo_pictures(robot, dir)?);
-
-    let summary = summarize(&trajectory)?;
-    print_summary(&summary, &written);
+    print_summary(dir, &summary, &written);
     Ok(())
 }
 
-/// Duration, samples and peak joint speeds of a joint CSV with derivative columns.
 struct Summary {
     duration: f64,
     samples: usize,
-    /// |velocity| peaks: rad/s for θ, mm/s for d4.
     peak_velocity: [f64; 4],
 }
 
+/// Duration, samples and peak joint speeds (degrees/s, mm/s) of a joint CSV with derivatives.
 fn summarize(trajectory: &Path) -> anyhow::Result<Summary> {
-    let reader = BufReader::new(
-        std::fs::File::open(trajectory)
-            .with_context(|| format!("cannot read {}", trajectory.display()))?,
-    );
+    let name = display_path(trajectory);
     let mut summary = Summary { duration: 0.0, samples: 0, peak_velocity: [0.0; 4] };
-    for line in reader.lines().skip(1) {
-        let line = line?;
-        let fields: Vec<f64> = line
-            .split(',')
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .map_err(|err| anyhow!("{}: {err}", trajectory.display()))?;
-        summary.duration = fields[0];
+    for row in read_joint_csv(open_input(trajectory)?) {
+        let row = row.map_err(|err| anyhow!("{name}:{err}"))?;
+        summary.duration = row.t;
         summary.samples += 1;
-        for joint in 0..4 {
-            summary.peak_velocity[joint] =
-                summary.peak_velocity[joint].max(fields[5 + joint].abs());
+        let velocity = row.velocity.unwrap_or([0.0; 4]);
+        for (joint, peak) in summary.peak_velocity.iter_mut().enumerate() {
+            let value = if joint < 3 { velocity[joint].to_degrees() } else { velocity[joint] };
+            *peak = peak.max(value.abs());
         }
     }
     Ok(summary)
 }
 
 #[allow(clippy::print_stdout)]
-fn print_summary(summary: &Summary, written: &[(PathBuf, &str)]) {
+fn print_summary(dir: &Path, summary: &Summary, written: &[(&str, &str)]) {
     println!("biscara demo: the bundled pick-and-place job through the whole pipeline");
-    for (path, what) in written {
-        println!("  wrote {:<24} {what}", path.display());
+    for (name, what) in written {
+        println!("  wrote {:<24} {what}", dir.join(name).display());
     }
     let [t1, t2, t3, d4] = summary.peak_velocity;
     println!(
-        "duration {:.3} s, {} samples; peak joint speeds: theta1 {:.1} °/s, theta2 {:.1} °/s, \
-         theta3 {:.1} °/s, d4 {:.1} mm/s",
-        summary.duration,
-        summary.samples,
-        t1.to_degrees(),
-        t2.to_degrees(),
-        t3.to_degrees(),
-        d4
+        "duration {:.3} s, {} samples; peak joint speeds: theta1 {t1:.1} °/s, theta2 {t2:.1} °/s, \
+         theta3 {t3:.1} °/s, d4 {d4:.1} mm/s",
+        summary.duration, summary.samples,
     );
 }

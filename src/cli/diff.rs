@@ -6,8 +6,7 @@ use anyhow::anyhow;
 use biscara::diff::{DiffError, DiffOptions, Side, diff as compare};
 use clap::Args;
 
-use super::display_path;
-use super::progress::open_with_progress;
+use super::files::{display_path, open_input};
 
 /// Compares two outputs of the same kind (joint or path CSV, inter-file) number by number.
 ///
@@ -42,18 +41,15 @@ fn parse_tolerance(text: &str) -> Result<f64, String> {
 pub(crate) fn diff(args: &DiffArgs) -> anyhow::Result<()> {
     let (name_a, name_b) = (display_path(&args.a), display_path(&args.b));
     let name = |side| if side == Side::A { name_a.clone() } else { name_b.clone() };
-    let report = compare(
-        open_with_progress(&args.a)?,
-        open_with_progress(&args.b)?,
-        DiffOptions { tolerance: args.tol },
-    )
-    .map_err(|err| match err {
-        DiffError::Io { side, line, source } => anyhow!("{}:{line}: {source}", name(side)),
-        DiffError::Json { side, line, message } => {
-            anyhow!("{}:{line}: not JSON: {message}", name(side))
-        }
-        other => anyhow!("{name_a} and {name_b}: {other}"),
-    })?;
+    let report =
+        compare(open_input(&args.a)?, open_input(&args.b)?, DiffOptions { tolerance: args.tol })
+            .map_err(|err| match err {
+                DiffError::Io { side, line, source } => anyhow!("{}:{line}: {source}", name(side)),
+                DiffError::Json { side, line, message } => {
+                    anyhow!("{}:{line}: not JSON: {message}", name(side))
+                }
+                other => anyhow!("{name_a} and {name_b}: {other}"),
+            })?;
     match report.first {
         None => {
             #[allow(clippy::print_stdout)]

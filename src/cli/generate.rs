@@ -4,16 +4,15 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, anyhow};
-use biscara::kinematics::{Kinematics, Robot};
+use biscara::kinematics::{Kinematics, RobotModel};
 use biscara::pnp::ClProgram;
 use biscara::post::{PostOptions, Postprocessor, write_statement};
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 
-use super::input::open_input;
-use super::output::write_output;
-use super::post::post_error;
-use super::{Cli, display_path};
+use super::Cli;
+use super::diag::post_error;
+use super::files::{display_path, open_input, write_output};
 
 /// Turns a pick-and-place points file straight into G-code: `biscara clf` and `biscara post` in
 /// one pass, with the same checks and the same output.
@@ -41,7 +40,7 @@ pub(crate) struct GenArgs {
     line_numbers: bool,
 }
 
-pub(crate) fn generate(robot: &Robot, args: &GenArgs) -> anyhow::Result<()> {
+pub(crate) fn generate(robot: &RobotModel, args: &GenArgs) -> anyhow::Result<()> {
     let is_stdout = |path: Option<&Path>| path.is_none_or(|path| path == Path::new("-"));
     if args.clf.as_deref().is_some_and(|path| path == Path::new("-"))
         && is_stdout(args.output.as_deref())
@@ -49,7 +48,7 @@ pub(crate) fn generate(robot: &Robot, args: &GenArgs) -> anyhow::Result<()> {
         let message = "--clf - and the G-code cannot both go to standard output: give -o FILE";
         Cli::command().error(ErrorKind::ArgumentConflict, message).exit();
     }
-    let model = Kinematics::new(robot)?;
+    let model = robot.kinematics();
     let input = open_input(&args.points)?;
     let options = PostOptions { line_numbers: args.line_numbers };
     match args.clf.as_deref() {

@@ -1,17 +1,15 @@
 //! `biscara interpret`: G-code → inter-file (JSON Lines).
 
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::anyhow;
-use biscara::gcode::{Config, GcodeError, interpret as interpret_gcode};
-use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::write_jsonl;
+use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
 use clap::Args;
 
-use super::display_path;
-use super::input::open_input;
-use super::output::write_output;
+use super::args::parse_pose;
+use super::diag::NoteReporter;
+use super::files::{FileSource, write_output};
 
 /// Interprets a G-code program as LinuxCNC does and writes its motions as the inter-file
 /// (SPEC §4.2, §5): one JSON object per motion or event, absolute positions in the robot's base
@@ -60,54 +58,20 @@ pub(crate) struct InterpretArgs {
     fit: bool,
 }
 
-/// `X,Y,Z,C`: four finite numbers.
-pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
-    let values: Vec<&str> = text.split(',').map(str::trim).collect();
-    if values.len() != 4 {
-        return Err(format!("expected four numbers X,Y,Z,C, found {}", values.len()));
-    }
-    let mut pose = [0.0; 4];
-    for (slot, value) in pose.iter_mut().zip(values) {
-        *slot = value
-            .parse::<f64>()
-            .ok()
-            .filter(|number| number.is_finite())
-            .ok_or_else(|| format!("`{value}` is not a finite number"))?;
-    }
-    Ok(pose)
-}
-
-pub(crate) fn interpret(robot: &Robot, args: &InterpretArgs) -> anyhow::Result<()> {
-    let home = Kinematics::new(robot)?.home().to_degrees();
-    let (origin, _) = super::fit::placement(
-        &args.program,
-        super::trajectory::InputKind::Gcode,
-        robot,
-        args.origin,
-        args.fit,
-    )?;
-    let config = Config { home, origin, ..Config::default() };
-    let input = open_input(&args.program)?;
+pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
+    let source = FileSource::new(&args.program);
+    let config = SamplingConfig { origin: args.origin, fit: args.fit, ..SamplingConfig::default() };
+    let notes = NoteReporter::default();
+    let motions =
+        Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, &mut notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         // serde_json writes a motion in many small pieces: gather them in a buffer of a
         // concrete type rather than through `dyn Write`.
         let mut out = BufWriter::with_capacity(64 * 1024, out);
-        for motion in interpret_gcode(input, &config) {
-            let motion = motion.map_err(|err| gcode_error(&args.program, &err))?;
-            write_jsonl(&mut out, &motion)?;
+        for motion in motions {
+            write_jsonl(&mut out, &motion?)?;
         }
         out.flush()?;
         Ok(())
     })
-}
-
-/// `FILE:LINE:COL: message`, then the line and a caret under the column.
-pub(crate) fn gcode_error(path: &Path, err: &GcodeError) -> anyhow::Error {
-    match err.location() {
-        Some(location) => {
-            let snippet = location.snippet().replace('\n', "\n    ");
-            anyhow!("{}:{err}\n    {snippet}", display_path(path))
-        }
-        None => anyhow!("{}:{err}", display_path(path)),
-    }
 }

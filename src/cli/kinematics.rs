@@ -3,12 +3,13 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use biscara::kinematics::{FkSolution, IkSolution, Joints, Kinematics, Pose, Robot};
+use biscara::kinematics::{FkSolution, IkSolution, Joints, Kinematics, Pose, RobotModel};
 use clap::Args;
 use serde::Serialize;
 
+use super::diag::{Level, report};
+use super::files::write_output;
 use super::fmt::{clean, fixed};
-use super::output::write_output;
 
 /// Inverse kinematics of one pose: prints θ1 θ2 θ3 d4 (degrees, degrees, degrees, mm).
 ///
@@ -108,8 +109,8 @@ struct FkJson {
     assembly_mode: String,
 }
 
-pub(crate) fn ik(robot: &Robot, args: &IkArgs) -> anyhow::Result<()> {
-    let model = Kinematics::new(robot)?;
+pub(crate) fn ik(robot: &RobotModel, args: &IkArgs) -> anyhow::Result<()> {
+    let model = robot.kinematics();
     let pose = Pose::from_degrees(args.x, args.y, args.z, args.c);
     let solution = model.inverse_checked(&pose).with_context(|| {
         format!(
@@ -145,8 +146,8 @@ fn ik_json(solution: &IkSolution, model: &Kinematics) -> IkJson {
     }
 }
 
-pub(crate) fn fk(robot: &Robot, args: &FkArgs) -> anyhow::Result<()> {
-    let model = Kinematics::new(robot)?;
+pub(crate) fn fk(robot: &RobotModel, args: &FkArgs) -> anyhow::Result<()> {
+    let model = robot.kinematics();
     let joints = Joints::from_degrees(args.theta1, args.theta2, args.theta3, args.d4);
     let solution = model.forward(&joints).with_context(|| {
         format!(
@@ -189,16 +190,13 @@ fn warn_about_fk(model: &Kinematics, solution: &FkSolution) {
         warnings.push(err.to_string());
     }
     for warning in warnings {
-        #[allow(clippy::print_stderr)]
-        {
-            eprintln!("biscara: warning: {warning}");
-        }
+        report(Level::Warning, warning);
     }
 }
 
-pub(crate) fn robot(robot: &Robot, args: &RobotArgs) -> anyhow::Result<()> {
+pub(crate) fn robot(robot: &RobotModel, args: &RobotArgs) -> anyhow::Result<()> {
     write_output(args.output.as_deref(), |out| {
-        writeln!(out, "{}", robot.to_json_pretty())?;
+        writeln!(out, "{}", robot.robot().to_json_pretty())?;
         Ok(())
     })
 }

@@ -4,14 +4,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use biscara::joints::read_joint_csv;
-use biscara::kinematics::Robot;
-use biscara::view::{MjcfOptions, QposWriter, Scene, write_mjcf};
+use biscara::kinematics::RobotModel;
+use biscara::view::{MjcfOptions, QposWriter, write_mjcf};
 use clap::Args;
 
-use super::check::read_scene;
-use super::display_path;
-use super::input::open_input;
-use super::output::write_output;
+use super::files::{display_path, load_scene, open_input, write_output};
 
 /// Writes a MuJoCo model (MJCF) of the robot (SPEC §8.3).
 ///
@@ -51,17 +48,12 @@ pub(crate) struct MjcfArgs {
 }
 
 /// The scene in `path`, or an empty one.
-pub(crate) fn load_scene(path: Option<&Path>) -> anyhow::Result<Scene> {
-    path.map_or_else(|| Ok(Scene::default()), read_scene)
-}
-
-/// The companion trajectory file of the model `output`: `robot.xml` → `robot.traj.csv`.
 fn companion_path(output: &Path) -> PathBuf {
     let stem = output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     output.with_file_name(format!("{stem}.traj.csv"))
 }
 
-pub(crate) fn mjcf(robot: &Robot, args: &MjcfArgs) -> anyhow::Result<()> {
+pub(crate) fn mjcf(robot: &RobotModel, args: &MjcfArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let mut options = MjcfOptions::default();
     if let (Some(traj), Some(output)) = (&args.traj, &args.output) {
@@ -74,7 +66,7 @@ pub(crate) fn mjcf(robot: &Robot, args: &MjcfArgs) -> anyhow::Result<()> {
 }
 
 /// Reads the joint CSV `traj` and writes the companion file `companion`.
-fn write_companion(robot: &Robot, traj: &Path, companion: &Path) -> anyhow::Result<()> {
+fn write_companion(robot: &RobotModel, traj: &Path, companion: &Path) -> anyhow::Result<()> {
     let name = display_path(traj);
     let input = open_input(traj)?;
     write_output(Some(companion), |out| {

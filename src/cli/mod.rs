@@ -1,20 +1,19 @@
 //! Command-line parsing, dispatch, exit codes and diagnostics.
 
+mod args;
 mod check;
 mod clf;
 mod demo;
+mod diag;
 mod diff;
-mod fit;
+mod files;
 mod fmt;
 mod generate;
-mod input;
 mod interpret;
 mod kinematics;
 mod mjcf;
-mod output;
 mod plot;
 mod post;
-mod progress;
 mod trajectory;
 mod view;
 mod workspace;
@@ -24,8 +23,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, anyhow};
-use biscara::kinematics::Robot;
+use biscara::kinematics::RobotModel;
 use clap::{Parser, Subcommand};
+use files::display_path;
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
 /// vertical prismatic axis and a rotary axis about Z.
@@ -87,12 +87,12 @@ pub(crate) fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
-    let robot = load_robot(cli.robot.as_deref())?;
-    dispatch(&robot, cli.command)
+    let model = load_robot(cli.robot.as_deref())?;
+    dispatch(&model, cli.command)
 }
 
 /// Runs one subcommand with the robot already in force.
-fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
+fn dispatch(robot: &RobotModel, command: Command) -> anyhow::Result<()> {
     match command {
         Command::Ik(args) => kinematics::ik(robot, &args),
         Command::Fk(args) => kinematics::fk(robot, &args),
@@ -115,7 +115,7 @@ fn dispatch(robot: &Robot, command: Command) -> anyhow::Result<()> {
 
 /// Runs `biscara ARGS…` in this process with `robot` in force, as if typed on the command line:
 /// the demo chains the pipeline's commands this way, so it runs exactly what users run.
-fn run_command<I, T>(robot: &Robot, args: I) -> anyhow::Result<()>
+fn run_command<I, T>(robot: &RobotModel, args: I) -> anyhow::Result<()>
 where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
@@ -126,13 +126,13 @@ where
     dispatch(robot, cli.command)
 }
 
-/// The robot in force: the built-in one, or `path` read and validated.
-fn load_robot(path: Option<&Path>) -> anyhow::Result<Robot> {
+/// The robot in force, validated and modelled once: the built-in one, or `path` read.
+fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
     let Some(path) = path else {
-        return Ok(Robot::default());
+        return Ok(RobotModel::default());
     };
     let text = read_text(path)?;
-    Robot::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
+    RobotModel::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
 }
 
 /// Reads a whole text file (or standard input for `-`).
@@ -148,11 +148,6 @@ fn read_text(path: &Path) -> anyhow::Result<String> {
         let line = valid.iter().filter(|&&byte| byte == b'\n').count() + 1;
         anyhow!("{}:{line}: the file is not UTF-8 text", display_path(path))
     })
-}
-
-/// How a path is named in messages: `<stdin>` for `-`.
-fn display_path(path: &Path) -> String {
-    if path == Path::new("-") { "<stdin>".to_owned() } else { path.display().to_string() }
 }
 
 fn is_broken_pipe(err: &anyhow::Error) -> bool {

@@ -2,13 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::anyhow;
-use biscara::post::{PostError, PostOptions, PostSummary, post as post_file};
+use biscara::post::{PostOptions, PostSummary, post as post_file};
 use clap::Args;
 
-use super::display_path;
-use super::input::open_input;
-use super::output::write_output;
+use super::diag::{Level, post_error, report};
+use super::files::{display_path, open_input, write_output};
 
 /// Turns a CL file into G-code that runs unchanged on LinuxCNC (SPEC §3, §4.1).
 ///
@@ -49,16 +47,8 @@ pub(crate) fn post(args: &PostArgs) -> anyhow::Result<()> {
 }
 
 /// A postprocessor error, prefixed with the CL file's name when it names a line.
-pub(crate) fn post_error(path: &Path, err: PostError) -> anyhow::Error {
-    if err.line().is_some() {
-        anyhow!("{}:{err}", display_path(path))
-    } else {
-        anyhow::Error::from(err)
-    }
-}
-
 /// Lists the ignored post words once on stderr.
-pub(crate) fn report_ignored(path: &Path, summary: &PostSummary) {
+fn report_ignored(path: &Path, summary: &PostSummary) {
     if summary.ignored.is_empty() {
         return;
     }
@@ -72,13 +62,12 @@ pub(crate) fn report_ignored(path: &Path, summary: &PostSummary) {
             }
         })
         .collect();
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!(
-            "biscara: note: {}: ignored post words with no meaning for this robot (written as \
-             comments): {}",
+    report(
+        Level::Note,
+        format_args!(
+            "{}: ignored post words with no meaning for this robot (written as comments): {}",
             display_path(path),
             words.join(", ")
-        );
-    }
+        ),
+    );
 }

@@ -1,23 +1,16 @@
-//! `biscara view` (the HTML viewer) and the pictures `biscara demo` adds to its folder.
+//! `biscara view`: the HTML viewer of a joint trajectory.
 
-use std::io::BufRead;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::gcode::{Config as GcodeConfig, interpret as interpret_gcode};
-use biscara::interpolate::{InterpolateError, InterpolationConfig, Interpolator, Profile};
-use biscara::joints::{JointSpeedLimit, cartesian_limits, read_joint_csv};
-use biscara::kinematics::{Kinematics, Robot};
-use biscara::motion::{Motion, read_jsonl};
+use biscara::joints::read_joint_csv;
+use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
-use super::input::open_input;
-use super::interpret::{gcode_error, parse_pose};
-use super::mjcf::load_scene;
-use super::output::write_output;
-use super::trajectory::{ProfileArg, parse_duration};
-use super::{display_path, run_command};
+use super::args::{InputKind, ProfileArg, parse_duration, parse_pose};
+use super::diag::{Level, report};
+use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
 
 /// Writes one self-contained HTML file that animates a joint trajectory (SPEC §8.3).
 ///
@@ -30,9 +23,9 @@ use super::{display_path, run_command};
 /// start. Long trajectories are decimated for display (at most 40 000 frames, every Nth row).
 ///
 /// TRAJ is a joint CSV from `biscara joints` (radians or degrees, with or without derivatives).
-/// The program (G-code, or an inter-file with the `.jsonl` extension) is sampled as `joints`
-/// samples it, at TRAJ's time step: give the --origin, --profile and --grip-time TRAJ was made
-/// with (a warning says when the durations disagree).
+/// The program (G-code, an inter-file or a path CSV, as --from or its extension says) is sampled
+/// as `joints` samples it, at TRAJ's time step: give the --origin, --fit, --profile and
+/// --grip-time TRAJ was made with (a warning says when the durations disagree).
 #[derive(Debug, Args)]
 #[command(
     about = "Animated HTML view of a joint trajectory (top and side views, no network)",
@@ -74,130 +67,59 @@ pub(crate) struct ViewArgs {
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
+    /// Whether TRAJ was made with `--fit`, as `biscara joints --fit`.
+    #[arg(long, help = "TRAJ was made with --fit")]
+    fit: bool,
+    /// The program's kind (default: from the extension, else from its first bytes).
+    #[arg(long, value_enum, value_name = "KIND")]
+    from: Option<InputKind>,
 }
 
-pub(crate) fn view(robot: &Robot, args: &ViewArgs) -> anyhow::Result<()> {
+pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let traj_name = display_path(&args.traj);
-    let title = match &args.program {
-        Some(program) => format!("biscara view · {}", file_name(program)),
-        None => format!("biscara view · {}", file_name(&args.traj)),
-    };
-    let mut viewer =
-        Viewer::new(robot, scene, ViewerOptions { title, ..ViewerOptions::default() })?;
+    let title =
+        format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
+    let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
     for row in read_joint_csv(open_input(&args.traj)?) {
         let row = row.map_err(|err| anyhow!("{traj_name}:{err}"))?;
         viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;
     }
-    if viewer.duration().is_none() {
+    let Some(duration) = viewer.duration() else {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
-    }
-    if let Some(program) = &args.program {
-        let sampling = ProgramSampling {
-            origin: args.origin.unwrap_or([0.0; 4]),
-            profile: args.profile.into(),
-            grip_time: args.grip_time,
-        };
-        add_program(&mut viewer, robot, program, sampling)?;
-    }
-    write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
-}
-
-/// The last component of a path, for titles.
-fn file_name(path: &Path) -> String {
-    path.file_name().map_or_else(|| display_path(path), |name| name.to_string_lossy().into_owned())
-}
-
-/// How the program is sampled: as `joints` sampled it for the trajectory.
-#[derive(Debug, Clone, Copy)]
-struct ProgramSampling {
-    origin: [f64; 4],
-    profile: Profile,
-    grip_time: f64,
-}
-
-/// Samples the program at the trajectory's time step and adds its path, events and line texts.
-fn add_program(
-    viewer: &mut Viewer,
-    robot: &Robot,
-    program: &Path,
-    sampling: ProgramSampling,
-) -> anyhow::Result<()> {
-    let origin = sampling.origin;
-    let name = display_path(program);
-    let model = Kinematics::new(robot)?;
-    let input = open_input(program)?;
-    let motions: Box<dyn Iterator<Item = anyhow::Result<Motion>>> =
-        if program.extension().is_some_and(|ext| ext == "jsonl") {
-            let name = name.clone();
-            Box::new(read_jsonl(input).map(move |r| r.map_err(|err| anyhow!("{name}:{err}"))))
-        } else {
-            let config =
-                GcodeConfig { home: model.home().to_degrees(), origin, ..GcodeConfig::default() };
-            let path = program.to_owned();
-            Box::new(
-                interpret_gcode(input, &config).map(move |r| r.map_err(|e| gcode_error(&path, &e))),
-            )
-        };
-    let config = InterpolationConfig {
-        dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
-        profile: sampling.profile,
-        start: model.home().to_degrees(),
-        limits: cartesian_limits(robot),
-        grip_time: sampling.grip_time,
     };
-    let limit = JointSpeedLimit::new(model, robot);
+    let Some(program) = &args.program else {
+        return write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?));
+    };
+    // The program sampled as `joints` sampled it, at the trajectory's time step.
+    let source = FileSource::new(program);
+    let kind = source.kind(args.from)?;
+    let config = SamplingConfig {
+        dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
+        profile: args.profile.into(),
+        grip_time: args.grip_time,
+        origin: args.origin,
+        fit: args.fit,
+    };
     let mut end = 0.0;
-    for sample in Interpolator::new(motions, config, limit, |_| {}) {
-        let sample = sample.map_err(|err| match err {
-            InterpolateError::Input(err) => err,
-            InterpolateError::Motion { line, message } => anyhow!("{name}:{line}: {message}"),
-            other => anyhow!("{name}: {other}"),
-        })?;
+    for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {
+        let sample = sample?;
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
         end = sample.t;
     }
-    if let Some(duration) = viewer.duration()
-        && (duration - end).abs() > 1e-6 + viewer.time_step().unwrap_or(0.0)
-    {
-        #[allow(clippy::print_stderr)]
-        {
-            eprintln!(
-                "biscara: warning: {name} takes {end:.3} s as sampled here, the trajectory \
-                 {duration:.3} s: the program lines shown may be off (was the trajectory made \
-                 with other --profile, --grip-time or --origin?)"
-            );
-        }
+    if (duration - end).abs() > 1e-6 + viewer.time_step().unwrap_or(0.0) {
+        let name = source.name();
+        report(
+            Level::Warning,
+            format_args!(
+                "{name} takes {end:.3} s as sampled here, the trajectory {duration:.3} s: the \
+                 program lines shown may be off (was the trajectory made with other --profile, \
+                 --grip-time, --origin or --fit?)"
+            ),
+        );
     }
-    // The text of the lines the page shows, read again line by line.
-    let wanted = viewer.referenced_lines();
-    let mut wanted = wanted.into_iter().peekable();
-    for (index, line) in open_input(program)?.lines().enumerate() {
-        let Some(&next) = wanted.peek() else { break };
-        if index + 1 == next {
-            viewer.set_line_text(next, &line?);
-            wanted.next();
-        }
+    if kind != ProgramKind::Path {
+        viewer.read_line_texts(source.open()?)?;
     }
-    Ok(())
-}
-
-/// Writes the demo's pictures into `dir` from its `job.ngc` and `traj.csv`: the viewer
-/// (`view.html`) and the MuJoCo model (`robot.xml` with the companion `robot.traj.csv`); returns
-/// what it wrote, for the demo's summary.
-pub(crate) fn demo_pictures(
-    robot: &Robot,
-    dir: &Path,
-) -> anyhow::Result<Vec<(PathBuf, &'static str)>> {
-    let text = |name: &str| dir.join(name).to_string_lossy().into_owned();
-    run_command(
-        robot,
-        ["view", &text("traj.csv"), "--program", &text("job.ngc"), "-o", &text("view.html")],
-    )?;
-    run_command(robot, ["mjcf", "-o", &text("robot.xml"), "--traj", &text("traj.csv")])?;
-    Ok(vec![
-        (dir.join("view.html"), "the robot in motion, open in a browser (biscara view)"),
-        (dir.join("robot.xml"), "MuJoCo model (biscara mjcf)"),
-        (dir.join("robot.traj.csv"), "the trajectory in the model's joints (mjcf --traj)"),
-    ])
+    write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
 }

@@ -3,12 +3,12 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use biscara::kinematics::{Kinematics, Robot};
-use biscara::robot::{Rectangle, Workspace};
+use biscara::kinematics::{Joints, Robot, RobotModel};
+use biscara::robot::{Rectangle, VirtualRobot, Workspace, draw_workspace};
 use clap::Args;
 
+use super::files::{format_of, write_output};
 use super::fmt::fixed;
-use super::output::write_output;
 
 /// The reachable region of the XY plane and the largest axis-aligned rectangle inside it
 /// (SPEC §8.2, the paper's "reduced workspace", Fig. 5).
@@ -50,14 +50,6 @@ pub(crate) struct WorkspaceArgs {
 }
 
 /// The workspace of `robot` and its largest rectangle.
-pub(crate) fn compute(robot: &Robot, step: f64) -> anyhow::Result<(Workspace, Rectangle)> {
-    let model = Kinematics::new(robot)?;
-    let workspace = Workspace::compute(&model, step)?;
-    let rectangle = workspace.largest_rectangle()?;
-    Ok((workspace, rectangle))
-}
-
-/// The JSON object of SPEC §9, keys in its order.
 #[derive(serde::Serialize)]
 struct WorkspaceJson {
     area_mm2: f64,
@@ -72,7 +64,7 @@ struct RectangleJson {
 }
 
 /// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (SPEC §9).
-pub(crate) fn workspace_json(workspace: &Workspace, rectangle: &Rectangle) -> String {
+fn workspace_json(workspace: &Workspace, rectangle: &Rectangle) -> String {
     let r = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
     let value = WorkspaceJson {
         area_mm2: r(workspace.area_mm2()),
@@ -82,13 +74,16 @@ pub(crate) fn workspace_json(workspace: &Workspace, rectangle: &Rectangle) -> St
     serde_json::to_string(&value).unwrap_or_default()
 }
 
-pub(crate) fn workspace(robot: &Robot, args: &WorkspaceArgs) -> anyhow::Result<()> {
-    let (workspace, rectangle) = compute(robot, args.step)?;
-    if let Some(path) = &args.svg {
-        super::plot::write_workspace_picture(path, robot, &workspace, &rectangle)?;
-    }
-    if let Some(path) = &args.png {
-        super::plot::write_workspace_picture(path, robot, &workspace, &rectangle)?;
+pub(crate) fn workspace(model: &RobotModel, args: &WorkspaceArgs) -> anyhow::Result<()> {
+    let robot = model.robot();
+    let workspace = Workspace::compute(&model.kinematics(), args.step)?;
+    let rectangle = workspace.largest_rectangle()?;
+    for path in [&args.svg, &args.png].into_iter().flatten() {
+        let home = VirtualRobot::new(model).body(&Joints::default())?;
+        let title = format!("Workspace of {} (grid {} mm)", robot.name, workspace.step());
+        let bytes =
+            draw_workspace(&workspace, &rectangle, Some(&home), &title, format_of(Some(path)))?;
+        write_output(Some(path), |out| Ok(out.write_all(&bytes)?))?;
     }
     write_output(args.output.as_deref(), |out| {
         if args.json {

@@ -92,7 +92,7 @@ pub enum InterpolateError<E> {
     Input(E),
     /// Occurs when a motion cannot be timed: a feed that is not positive, a non-finite position,
     /// or a duration too long to count in steps.
-    #[error("line {line}: {message}")]
+    #[error("{line}: {message}")]
     Motion {
         /// 1-based line of the motion.
         line: usize,

@@ -77,6 +77,24 @@ impl Segment {
         }
     }
 
+    /// The path parameters s ∈ [0, 1] at which an arc passes the angle `angle` (radians, in its
+    /// plane's axes, from the first axis toward the second), in no particular order; none for a
+    /// line. With the angles 0, π/2, π and 3π/2 these are the only places besides the ends where
+    /// a coordinate of the plane can be extreme.
+    pub fn parameters_at_angle(&self, angle: f64) -> impl Iterator<Item = f64> {
+        let (start_angle, sweep) = match self.shape {
+            Shape::Arc { start_angle, sweep, .. } => (start_angle, sweep),
+            Shape::Line => (0.0, 0.0),
+        };
+        let delta = if sweep < 0.0 { start_angle - angle } else { angle - start_angle };
+        let length = sweep.abs();
+        let first = delta.rem_euclid(TAU);
+        (0..)
+            .map(move |turn| first + TAU * f64::from(turn))
+            .take_while(move |&delta| length > 0.0 && delta <= length)
+            .map(move |delta| delta / length)
+    }
+
     /// The start pose.
     pub fn start(&self) -> [f64; 4] {
         self.start

@@ -21,7 +21,9 @@
 //! ```
 
 mod csv;
+mod differences;
 mod limiter;
+mod solver;
 mod trajectory;
 
 pub use biscara_interpolate::CartesianSample;
@@ -30,5 +32,7 @@ pub use csv::{
     AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
     read_joint_csv,
 };
+pub use differences::{central_differences, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};
+pub use solver::{JointSolver, LimitViolation, SampleError};
 pub use trajectory::{JointSample, JointTrajectory, JointsError};

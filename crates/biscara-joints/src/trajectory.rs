@@ -1,7 +1,10 @@
 //! Joint samples from Cartesian samples: IK of every sample, θ3 continuous, derivatives.
 
 use biscara_interpolate::CartesianSample;
-use biscara_kinematics::{Joints, Kinematics, KinematicsError, Pose, Theta3Unwrapper};
+use biscara_kinematics::{Joints, Kinematics};
+
+use crate::differences::{central_differences, slope};
+use crate::solver::{JointSolver, SampleError};
 
 /// One row of the joint trajectory: radians and millimetres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,21 +34,8 @@ pub enum JointsError<E> {
     Input(E),
     /// Occurs when a sample cannot be taken by the robot: unreachable, beyond a type-2
     /// singularity, outside the joint limits or near a singularity.
-    #[error("line {line}: at t = {t:.3} s, pose ({}): {source}", format_pose(pose))]
-    Pose {
-        /// 1-based line of the motion.
-        line: usize,
-        /// Time of the sample, s.
-        t: f64,
-        /// The pose `[x, y, z, c]`, mm and degrees.
-        pose: [f64; 4],
-        /// Why the robot cannot take it.
-        source: KinematicsError,
-    },
-}
-
-fn format_pose(pose: &[f64; 4]) -> String {
-    format!("{:.3}, {:.3}, {:.3}, {:.3}", pose[0], pose[1], pose[2], pose[3])
+    #[error(transparent)]
+    Pose(SampleError),
 }
 
 /// Solves every Cartesian sample in the robot's working and assembly mode, keeps θ3 continuous,
@@ -56,8 +46,7 @@ fn format_pose(pose: &[f64; 4]) -> String {
 /// Holds three samples at a time: memory does not grow with the trajectory.
 pub struct JointTrajectory<I> {
     samples: I,
-    model: Kinematics,
-    theta3: Theta3Unwrapper,
+    solver: JointSolver,
     /// Solved samples in a ring, solved and differenced in place: each sample is copied once,
     /// when it is emitted (moving them through `Option`s cost 9 % of `joints` in `memcpy`).
     ring: [JointSample; 3],
@@ -87,8 +76,7 @@ where
     pub fn new(samples: I, model: Kinematics) -> Self {
         JointTrajectory {
             samples,
-            model,
-            theta3: Theta3Unwrapper::new(),
+            solver: JointSolver::new(model),
             ring: [EMPTY_SAMPLE; 3],
             head: 0,
             held: 0,
@@ -98,25 +86,13 @@ where
     }
 
     /// Solves `sample` into `slot`.
+    #[inline(always)]
     fn solve(
-        model: &Kinematics,
-        theta3: &mut Theta3Unwrapper,
+        solver: &mut JointSolver,
         sample: &CartesianSample,
         slot: &mut JointSample,
     ) -> Result<(), JointsError<E>> {
-        let [x, y, z, c] = sample.pose;
-        let pose = Pose::from_degrees(x, y, z, c);
-        let fail = |source| JointsError::Pose {
-            line: sample.line,
-            t: sample.t,
-            pose: sample.pose,
-            source,
-        };
-        let mut solution = model.inverse(&pose).map_err(fail)?;
-        model.check_assembly(&solution).map_err(fail)?;
-        theta3.apply(&mut solution);
-        model.check_limits(&solution.joints).map_err(fail)?;
-        model.check_singularity(&solution.configuration).map_err(fail)?;
+        let solution = solver.solve(sample).map_err(JointsError::Pose)?;
         slot.t = sample.t;
         slot.line = sample.line;
         slot.pose = sample.pose;
@@ -136,17 +112,14 @@ where
     /// at the start) and emits the oldest: returns its ring index.
     fn emit_oldest_of_three(&mut self) -> usize {
         let (previous, current, next) = (self.at(0), self.at(1), self.at(2));
-        let back = slope(&self.ring[previous], &self.ring[current]);
-        let ahead = slope(&self.ring[current], &self.ring[next]);
-        let span = self.ring[next].t - self.ring[previous].t;
-        let (q_before, q_after) =
-            (self.ring[previous].joints.to_array(), self.ring[next].joints.to_array());
+        let q = [previous, current, next].map(|index| self.ring[index].joints.to_array());
+        let t = [previous, current, next].map(|index| self.ring[index].t);
+        let (velocity, acceleration) =
+            central_differences((t[0], &q[0]), (t[1], &q[1]), (t[2], &q[2]));
         let middle = &mut self.ring[current];
-        for j in 0..4 {
-            middle.velocity[j] = (q_after[j] - q_before[j]) / span;
-            middle.acceleration[j] = 2.0 * (ahead[j] - back[j]) / span;
-        }
-        let acceleration = middle.acceleration;
+        middle.velocity = velocity;
+        middle.acceleration = acceleration;
+        let back = slope(t[0], &q[0], t[1], &q[1]);
         if !self.emitted_any {
             // The first sample: forward difference, and the acceleration of its neighbour.
             self.ring[previous].velocity = back;
@@ -168,7 +141,8 @@ where
             }
             _ => {
                 let (previous, last) = (self.at(0), self.at(1));
-                let velocity = slope(&self.ring[previous], &self.ring[last]);
+                let (a, b) = (&self.ring[previous], &self.ring[last]);
+                let velocity = slope(a.t, &a.joints.to_array(), b.t, &b.joints.to_array());
                 if !self.emitted_any {
                     // Only two samples in all.
                     self.ring[previous].velocity = velocity;
@@ -182,13 +156,6 @@ where
             }
         }
     }
-}
-
-/// First differences `(b − a) / (t_b − t_a)` per joint.
-fn slope(a: &JointSample, b: &JointSample) -> [f64; 4] {
-    let (qa, qb) = (a.joints.to_array(), b.joints.to_array());
-    let dt = b.t - a.t;
-    [0, 1, 2, 3].map(|j| (qb[j] - qa[j]) / dt)
 }
 
 impl<I, E> JointTrajectory<I>
@@ -220,8 +187,7 @@ where
                 Some(Err(err)) => JointsError::Input(err),
                 Some(Ok(sample)) => {
                     let slot = self.at(self.held);
-                    match Self::solve(&self.model, &mut self.theta3, &sample, &mut self.ring[slot])
-                    {
+                    match Self::solve(&mut self.solver, &sample, &mut self.ring[slot]) {
                         Ok(()) => {
                             self.held += 1;
                             if self.held == 3 {

@@ -26,6 +26,7 @@ mod error;
 mod jacobian;
 mod kinematics;
 mod mode;
+mod model;
 mod pose;
 mod robot;
 mod unwrap;
@@ -39,6 +40,7 @@ pub use kinematics::{
     wrap_angle,
 };
 pub use mode::{AssemblyMode, ParseModeError, Sign, WorkingMode};
+pub use model::RobotModel;
 pub use pose::{Chain, Joint, Joints, Pose};
 pub use robot::{Base, Geometry, JointLimits, JointValues, Links, MotionLimits, Robot, RobotError};
 pub use unwrap::{AngleUnwrapper, Theta3Unwrapper};

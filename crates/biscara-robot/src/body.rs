@@ -3,11 +3,9 @@
 use std::fmt;
 
 use biscara_kinematics::{
-    Chain, Geometry, Joints, Kinematics, KinematicsError, PlanarConfiguration, Robot,
+    Chain, Geometry, Joints, Kinematics, KinematicsError, PlanarConfiguration, RobotModel,
 };
 use nalgebra as na;
-
-use crate::VirtualRobotError;
 
 /// One of the four links of the five-bar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -136,9 +134,10 @@ pub struct VirtualRobot {
 }
 
 impl VirtualRobot {
-    /// The virtual robot of `robot` (validated).
-    pub fn new(robot: &Robot) -> Result<VirtualRobot, VirtualRobotError> {
-        Ok(VirtualRobot { model: Kinematics::new(robot)?, geometry: robot.geometry, lp: robot.lp })
+    /// The virtual robot of a validated robot.
+    pub fn new(model: &RobotModel) -> VirtualRobot {
+        let robot = model.robot();
+        VirtualRobot { model: model.kinematics(), geometry: robot.geometry, lp: robot.lp }
     }
 
     /// The kinematic model.
@@ -177,7 +176,7 @@ mod tests {
 
     #[test]
     fn home_body_of_the_default_robot() {
-        let robot = VirtualRobot::new(&Robot::default()).unwrap();
+        let robot = VirtualRobot::new(&RobotModel::default());
         let body = robot.body(&Joints::default()).unwrap();
         let links = body.links();
         assert_eq!(links[0].start, na::Point2::new(100.0, 0.0));
@@ -200,7 +199,7 @@ mod tests {
 
     #[test]
     fn no_column_when_the_gripper_reaches_the_links() {
-        let robot = VirtualRobot::new(&Robot::default()).unwrap();
+        let robot = VirtualRobot::new(&RobotModel::default());
         let mut body = robot.body(&Joints::default()).unwrap();
         body.z = 215.0;
         assert!(body.column().is_none());

@@ -3,12 +3,11 @@
 use std::fmt;
 
 use biscara_interpolate::CartesianSample;
-use biscara_kinematics::{
-    Joint, Joints, Kinematics, KinematicsError, Pose, Robot, Shortfall, Theta3Unwrapper,
-};
+use biscara_joints::{JointSolver, central_differences};
+use biscara_kinematics::{Joint, Joints, KinematicsError, RobotModel, Shortfall};
 
 use crate::collision::{scene_collisions, self_collisions};
-use crate::{Scene, VirtualRobot, VirtualRobotError};
+use crate::{Scene, VirtualRobot};
 
 /// The kinds of problem of SPEC §8.1, in the order reports list them at equal times.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -201,7 +200,7 @@ struct Solved {
 pub struct Checker {
     robot: VirtualRobot,
     scene: Scene,
-    theta3: Theta3Unwrapper,
+    solver: JointSolver,
     /// Velocity and acceleration limits, radians or mm per second (squared).
     max_velocity: [f64; 4],
     max_acceleration: [f64; 4],
@@ -225,8 +224,9 @@ fn unit(joint: Joint) -> &'static str {
 }
 
 impl Checker {
-    /// A checker for `robot` in `scene`.
-    pub fn new(robot: &Robot, scene: Scene) -> Result<Checker, VirtualRobotError> {
+    /// A checker for `model` in `scene`.
+    pub fn new(model: &RobotModel, scene: Scene) -> Checker {
+        let robot = model.robot();
         let to_internal = |values: [f64; 4]| {
             let mut values = values;
             for value in &mut values[..3] {
@@ -241,10 +241,10 @@ impl Checker {
             summary.peak_velocity[j].limit = velocity[j];
             summary.peak_acceleration[j].limit = acceleration[j];
         }
-        Ok(Checker {
-            robot: VirtualRobot::new(robot)?,
+        Checker {
+            robot: VirtualRobot::new(model),
             scene,
-            theta3: Theta3Unwrapper::new(),
+            solver: JointSolver::new(model.kinematics()),
             max_velocity: to_internal(velocity),
             max_acceleration: to_internal(acceleration),
             max_velocity_user: velocity,
@@ -255,11 +255,7 @@ impl Checker {
             summary,
             previous_pose: None,
             count: 0,
-        })
-    }
-
-    fn model(&self) -> &Kinematics {
-        self.robot.model()
+        }
     }
 
     /// Checks the next sample.
@@ -320,58 +316,31 @@ impl Checker {
 
     /// IK, limits, singularity and collisions of one sample; the joints when it is reachable.
     fn solve(&mut self, info: &SampleInfo, findings: &mut Vec<Finding>) -> Option<Joints> {
-        let [x, y, z, c] = info.pose;
-        let pose = Pose::from_degrees(x, y, z, c);
-        let model = *self.model();
-        let unreachable = |err: &KinematicsError| {
-            let (subject, severity) = match *err {
-                KinematicsError::Unreachable { chain, shortfall_mm, side, .. } => (
-                    format!(
-                        "{chain} {}",
-                        match side {
-                            Shortfall::TooFar => "too far",
-                            Shortfall::TooClose => "too close",
-                        }
-                    ),
-                    shortfall_mm,
-                ),
-                KinematicsError::BeyondType2 { .. } => ("assembly mode".to_owned(), 0.0),
-                _ => ("pose".to_owned(), 0.0),
-            };
-            Finding { kind: ProblemKind::Unreachable, subject, severity, detail: err.to_string() }
-        };
-        let mut solution = match model.inverse(&pose) {
+        let solution = match self.solver.reach(&info.pose) {
             Ok(solution) => solution,
             Err(err) => {
                 findings.push(unreachable(&err));
                 return None;
             }
         };
-        if let Err(err) = model.check_assembly(&solution) {
-            findings.push(unreachable(&err));
-            return None;
-        }
-        self.theta3.apply(&mut solution);
+        let model = *self.solver.model();
         let joints = solution.joints;
-        for joint in Joint::ALL {
-            let value = joints.get(joint);
-            let [min, max] = model.limits(joint);
-            if !(min..=max).contains(&value) {
-                let excess = user_unit(joint, if value < min { min - value } else { value - max });
-                let [min, max] = [min, max].map(|limit| user_unit(joint, limit));
-                findings.push(Finding {
-                    kind: ProblemKind::JointLimit,
-                    subject: joint.name().to_owned(),
-                    severity: excess,
-                    detail: format!(
-                        "{joint} = {:.3}{u} is outside its limits [{}, {}]{u} by {excess:.3}{u}",
-                        user_unit(joint, value),
-                        round(min),
-                        round(max),
-                        u = unit(joint),
-                    ),
-                });
-            }
+        for violation in self.solver.limit_violations(&joints) {
+            let excess = violation.excess();
+            let joint = violation.joint;
+            let [min, max] = violation.limits;
+            findings.push(Finding {
+                kind: ProblemKind::JointLimit,
+                subject: joint.name().to_owned(),
+                severity: excess,
+                detail: format!(
+                    "{joint} = {:.3}{u} is outside its limits [{}, {}]{u} by {excess:.3}{u}",
+                    violation.value,
+                    round(min),
+                    round(max),
+                    u = unit(joint),
+                ),
+            });
         }
         let angles = solution.configuration.singularity();
         let (kind, angle) = angles.nearest();
@@ -401,6 +370,7 @@ impl Checker {
                 ),
             });
         }
+        let pose = solution.pose;
         let body = self.robot.body_at(solution.configuration, pose.z, pose.phi);
         let width = body.geometry.link_width;
         for hit in self_collisions(&body) {
@@ -449,11 +419,13 @@ impl Checker {
         if !(span > 0.0 && dt_back > 0.0 && dt_ahead > 0.0) {
             return;
         }
+        let (velocities, accelerations) = central_differences(
+            (before.info.t, &before.q),
+            (middle.info.t, &middle.q),
+            (after.info.t, &after.q),
+        );
         for (j, joint) in Joint::ALL.into_iter().enumerate() {
-            let velocity = (after.q[j] - before.q[j]) / span;
-            let back = (middle.q[j] - before.q[j]) / dt_back;
-            let ahead = (after.q[j] - middle.q[j]) / dt_ahead;
-            let acceleration = 2.0 * (ahead - back) / span;
+            let (velocity, acceleration) = (velocities[j], accelerations[j]);
             let checks = [
                 (
                     velocity,
@@ -556,6 +528,25 @@ impl Checker {
             }
         }
     }
+}
+
+/// The finding for a pose the robot cannot reach (or only beyond a type-2 singularity).
+fn unreachable(err: &KinematicsError) -> Finding {
+    let (subject, severity) = match *err {
+        KinematicsError::Unreachable { chain, shortfall_mm, side, .. } => (
+            format!(
+                "{chain} {}",
+                match side {
+                    Shortfall::TooFar => "too far",
+                    Shortfall::TooClose => "too close",
+                }
+            ),
+            shortfall_mm,
+        ),
+        KinematicsError::BeyondType2 { .. } => ("assembly mode".to_owned(), 0.0),
+        _ => ("pose".to_owned(), 0.0),
+    };
+    Finding { kind: ProblemKind::Unreachable, subject, severity, detail: err.to_string() }
 }
 
 /// Relative slack on the velocity and acceleration limits, against rounding.

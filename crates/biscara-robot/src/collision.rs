@@ -133,13 +133,13 @@ fn rect_of(scene_box: &SceneBox) -> Rect {
 
 #[cfg(test)]
 mod tests {
-    use biscara_kinematics::{Joints, Robot};
+    use biscara_kinematics::{Joints, RobotModel};
 
     use super::*;
     use crate::VirtualRobot;
 
     fn home_body() -> Body {
-        VirtualRobot::new(&Robot::default()).unwrap().body(&Joints::default()).unwrap()
+        VirtualRobot::new(&RobotModel::default()).body(&Joints::default()).unwrap()
     }
 
     fn scene(min: [f64; 3], max: [f64; 3]) -> Scene {
@@ -187,7 +187,7 @@ mod tests {
 
     #[test]
     fn folded_links_collide() {
-        let robot = VirtualRobot::new(&Robot::default()).unwrap();
+        let robot = VirtualRobot::new(&RobotModel::default());
         // θ1 = −θ2 ≈ 27° brings the elbows within 10 mm of each other: the proximal links meet.
         let t = (100.0f64 / 210.0).asin();
         let t = 0.95 * t;

@@ -1,6 +1,6 @@
 //! A program's XY extent and the offset that places it in the workspace rectangle (`--fit`).
 
-use std::f64::consts::{FRAC_PI_2, TAU};
+use std::f64::consts::FRAC_PI_2;
 
 use biscara_interpolate::Segment;
 use biscara_motion::{Motion, MotionKind, Plane};
@@ -81,8 +81,10 @@ impl Bounds {
             }
             MotionKind::Arc { end, center, plane, clockwise, turns, .. } => {
                 let segment = Segment::arc(start, end, center, plane, clockwise, turns);
-                for s in arc_extreme_parameters(start, end, center, plane, clockwise, turns) {
-                    self.include(segment.point(s));
+                for quarter in 0..4 {
+                    for s in segment.parameters_at_angle(f64::from(quarter) * FRAC_PI_2) {
+                        self.include(segment.point(s));
+                    }
                 }
                 self.include(end);
             }
@@ -92,42 +94,6 @@ impl Bounds {
             self.current = end;
         }
     }
-}
-
-/// The path parameters s ∈ [0, 1] where an arc passes the angles 0, 90°, 180° and 270° of its
-/// plane: the only places, besides its ends, where x or y can be extreme.
-fn arc_extreme_parameters(
-    start: [f64; 4],
-    end: [f64; 4],
-    center: [f64; 2],
-    plane: Plane,
-    clockwise: bool,
-    turns: u32,
-) -> Vec<f64> {
-    let axes = plane.axes();
-    let offset = |point: [f64; 4]| [point[axes[0]] - center[0], point[axes[1]] - center[1]];
-    let (from, to) = (offset(start), offset(end));
-    let start_angle = from[1].atan2(from[0]);
-    let end_angle = to[1].atan2(to[0]);
-    // The same sweep as `Segment::arc`.
-    let gap = if clockwise { start_angle - end_angle } else { end_angle - start_angle };
-    let mut sweep = gap.rem_euclid(TAU);
-    let same = (from[0] - to[0]).abs() < 1e-12 && (from[1] - to[1]).abs() < 1e-12;
-    if sweep < 1e-12 || TAU - sweep < 1e-12 && same {
-        sweep = TAU;
-    }
-    sweep += TAU * f64::from(turns.max(1) - 1);
-    let mut parameters = Vec::new();
-    for quarter in 0..4 {
-        let target = f64::from(quarter) * FRAC_PI_2;
-        let mut delta = if clockwise { start_angle - target } else { target - start_angle };
-        delta = delta.rem_euclid(TAU);
-        while delta <= sweep {
-            parameters.push(delta / sweep);
-            delta += TAU;
-        }
-    }
-    parameters
 }
 
 /// Where a program goes when placed in the workspace rectangle.

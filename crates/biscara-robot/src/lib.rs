@@ -21,10 +21,10 @@
 //!
 //! ```
 //! use biscara_interpolate::CartesianSample;
-//! use biscara_kinematics::Robot;
+//! use biscara_kinematics::RobotModel;
 //! use biscara_robot::{Checker, Scene};
 //!
-//! let mut checker = Checker::new(&Robot::default(), Scene::new())?;
+//! let mut checker = Checker::new(&RobotModel::default(), Scene::new());
 //! for step in 0..=100 {
 //!     let t = f64::from(step) * 0.01;
 //!     checker.push(&CartesianSample { t, pose: [t * 10.0, 400.0, 50.0, 0.0], line: 1, gripper: false });

@@ -2,10 +2,11 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+use std::io::BufRead;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Kinematics, Robot};
+use biscara_kinematics::{Kinematics, Robot, RobotModel};
 
 use crate::{Scene, ViewError};
 
@@ -126,12 +127,11 @@ pub struct Viewer {
 }
 
 impl Viewer {
-    /// A viewer of `robot` in `scene`.
-    pub fn new(robot: &Robot, scene: Scene, options: ViewerOptions) -> Result<Viewer, ViewError> {
-        let model = Kinematics::new(robot)?;
-        Ok(Viewer {
-            robot: robot.clone(),
-            model,
+    /// A viewer of the robot `model` in `scene`.
+    pub fn new(model: &RobotModel, scene: Scene, options: ViewerOptions) -> Viewer {
+        Viewer {
+            robot: model.robot().clone(),
+            model: model.kinematics(),
             scene,
             frames: Decimator::new(options.max_frames),
             path: Decimator::new(options.max_path_points),
@@ -143,7 +143,7 @@ impl Viewer {
             line_text: BTreeMap::new(),
             time_step: None,
             previous_t: None,
-        })
+        }
     }
 
     /// Adds one trajectory row; fails when its joints do not assemble.
@@ -204,6 +204,20 @@ impl Viewer {
     pub fn set_line_text(&mut self, line: usize, text: &str) {
         let text: String = text.trim_end().chars().take(100).collect();
         self.line_text.insert(line, text);
+    }
+
+    /// Reads the program's text and keeps the lines the page refers to
+    /// ([`Viewer::referenced_lines`]); stops reading after the last of them.
+    pub fn read_line_texts(&mut self, program: impl BufRead) -> std::io::Result<()> {
+        let mut wanted = self.referenced_lines().into_iter().peekable();
+        for (index, line) in program.lines().enumerate() {
+            let Some(&next) = wanted.peek() else { break };
+            if index + 1 == next {
+                self.set_line_text(next, &line?);
+                wanted.next();
+            }
+        }
+        Ok(())
     }
 
     /// Writes the page: one HTML file with the data and the JavaScript inside.
@@ -363,7 +377,7 @@ mod tests {
     #[test]
     fn the_page_holds_frames_path_events_and_no_raw_angle_brackets_in_data() {
         let mut viewer = Viewer::new(
-            &Robot::default(),
+            &RobotModel::default(),
             Scene {
                 boxes: vec![crate::SceneBox {
                     name: "</script>".to_owned(),
@@ -372,8 +386,7 @@ mod tests {
                 }],
             },
             ViewerOptions::default(),
-        )
-        .unwrap();
+        );
         for step in 0..5 {
             viewer.push_row(&row(f64::from(step) * 0.5, f64::from(step))).unwrap();
             viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
@@ -398,7 +411,7 @@ mod tests {
         // An hour at 10 ms: ten times more rows than frames are kept, so the page has reached
         // its bound (at 1 ms, `biscara view` wrote 2.8 MB for the demo job repeated for an hour).
         let options = ViewerOptions::default();
-        let mut viewer = Viewer::new(&Robot::default(), Scene::default(), options).unwrap();
+        let mut viewer = Viewer::new(&RobotModel::default(), Scene::default(), options);
         let rows = 360_000;
         for step in 0..rows {
             let t = f64::from(step) * 0.01;

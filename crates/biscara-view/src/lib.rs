@@ -21,8 +21,10 @@
 mod error;
 mod html;
 mod mjcf;
+mod trace;
 
 pub use biscara_robot::{Scene, SceneBox};
 pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
+pub use trace::ProgramTrace;

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Chain, Joints, Kinematics, Robot};
+use biscara_kinematics::{Chain, Joints, Kinematics, Robot, RobotModel};
 
 use crate::{Scene, ViewError};
 
@@ -85,11 +85,12 @@ fn escape(text: &str) -> String {
 /// and the rotary joint; chain 2 is closed on it by an equality `connect` at the platform point.
 pub fn write_mjcf(
     out: &mut dyn Write,
-    robot: &Robot,
+    model: &RobotModel,
     scene: &Scene,
     options: &MjcfOptions,
 ) -> Result<(), ViewError> {
-    let model = Kinematics::new(robot)?;
+    let robot = model.robot();
+    let model = model.kinematics();
     let geometry = &robot.geometry;
     let (l1, l2) = (m(robot.links.l1), m(robot.links.l2));
     let height = m(geometry.link_height);
@@ -334,11 +335,10 @@ pub struct QposWriter<W: Write> {
 }
 
 impl<W: Write> QposWriter<W> {
-    /// A writer for `robot`'s model; writes the header at once.
-    pub fn new(mut out: W, robot: &Robot) -> Result<Self, ViewError> {
-        let model = Kinematics::new(robot)?;
+    /// A writer for the robot `model`; writes the header at once.
+    pub fn new(mut out: W, model: &RobotModel) -> Result<Self, ViewError> {
         writeln!(out, "{QPOS_HEADER}")?;
-        Ok(QposWriter { out, model, row: String::new() })
+        Ok(QposWriter { out, model: model.kinematics(), row: String::new() })
     }
 
     /// Writes one row; fails when its joints do not assemble.
@@ -383,7 +383,7 @@ mod tests {
 
     fn model_text(scene: &Scene) -> String {
         let mut out = Vec::new();
-        write_mjcf(&mut out, &Robot::default(), scene, &MjcfOptions::default()).unwrap();
+        write_mjcf(&mut out, &RobotModel::default(), scene, &MjcfOptions::default()).unwrap();
         String::from_utf8(out).unwrap()
     }
 
@@ -430,7 +430,7 @@ mod tests {
 
     #[test]
     fn the_companion_rows_hold_fk_in_metres() {
-        let mut writer = QposWriter::new(Vec::new(), &Robot::default()).unwrap();
+        let mut writer = QposWriter::new(Vec::new(), &RobotModel::default()).unwrap();
         let row = JointCsvRow { t: 0.0, line: 2, joints: Joints::default(), velocity: None };
         writer.write(&row).unwrap();
         let text = String::from_utf8(writer.finish().unwrap()).unwrap();

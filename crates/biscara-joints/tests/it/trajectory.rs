@@ -7,7 +7,7 @@ use biscara_interpolate::{
     InterpolationConfig, Interpolator, NoSpeedLimit, Profile, Segment, SlowDown,
 };
 use biscara_joints::{
-    JointSample, JointSpeedLimit, JointTrajectory, JointsError, cartesian_limits,
+    JointSample, JointSpeedLimit, JointTrajectory, JointsError, SampleError, cartesian_limits,
 };
 use biscara_kinematics::{Kinematics, KinematicsError, Robot};
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
@@ -207,7 +207,7 @@ fn an_unreachable_sample_names_its_line_and_time() {
     let results: Vec<_> = JointTrajectory::new(samples, model).collect();
     let err = results.into_iter().find_map(Result::err).expect("an error");
     match &err {
-        JointsError::Pose { line, t, source, .. } => {
+        JointsError::Pose(SampleError { line, t, source, .. }) => {
             assert_eq!(*line, 2);
             assert!(*t > 0.0);
             assert!(

@@ -1,7 +1,7 @@
 //! The checker on hand-made sample streams.
 
 use biscara_interpolate::CartesianSample;
-use biscara_kinematics::Robot;
+use biscara_kinematics::RobotModel;
 use biscara_robot::{Checker, ProblemKind, Scene};
 
 fn sample(t: f64, pose: [f64; 4], line: usize) -> CartesianSample {
@@ -10,7 +10,7 @@ fn sample(t: f64, pose: [f64; 4], line: usize) -> CartesianSample {
 
 #[test]
 fn one_long_violation_is_one_problem_with_its_span() {
-    let mut checker = Checker::new(&Robot::default(), Scene::new()).unwrap();
+    let mut checker = Checker::new(&RobotModel::default(), Scene::new());
     // z from 90 to 130 in 1 mm steps, 10 ms apart: d4 = 100 − z is below 0 for z > 100.
     for k in 0..=40 {
         let z = 90.0 + f64::from(k);
@@ -33,7 +33,7 @@ fn one_long_violation_is_one_problem_with_its_span() {
 
 #[test]
 fn an_unreachable_stretch_does_not_stop_the_check() {
-    let mut checker = Checker::new(&Robot::default(), Scene::new()).unwrap();
+    let mut checker = Checker::new(&RobotModel::default(), Scene::new());
     let ys = [400.0, 450.0, 600.0, 700.0, 450.0, 400.0];
     for (k, y) in ys.iter().enumerate() {
         checker.push(&sample(k as f64, [0.0, *y, 50.0, 0.0], k + 1));

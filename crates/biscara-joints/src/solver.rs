@@ -1,0 +1,146 @@
+//! The per-sample joint solver: the one place a Cartesian sample becomes joint values.
+
+use biscara_interpolate::CartesianSample;
+use biscara_kinematics::{
+    IkSolution, Joint, Joints, Kinematics, KinematicsError, Pose, Theta3Unwrapper,
+};
+
+/// Why the robot cannot take one sample, located in the program and in time.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{line}: at t = {t:.3} s the pose (x, y, z, c) = ({}) cannot be taken: {source}",
+    format_pose(pose)
+)]
+pub struct SampleError {
+    /// 1-based line of the motion the sample belongs to.
+    pub line: usize,
+    /// Time of the sample, s.
+    pub t: f64,
+    /// The pose `[x, y, z, c]`, mm and degrees.
+    pub pose: [f64; 4],
+    /// Why the robot cannot take it: unreachable, beyond a type-2 singularity, outside the joint
+    /// limits or near a singularity.
+    pub source: KinematicsError,
+}
+
+fn format_pose(pose: &[f64; 4]) -> String {
+    format!("{:.3}, {:.3}, {:.3}, {:.3}", pose[0], pose[1], pose[2], pose[3])
+}
+
+/// A joint outside its position limits, in the robot file's units (degrees, mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LimitViolation {
+    /// The joint.
+    pub joint: Joint,
+    /// Its value: degrees for θ, millimetres for d4.
+    pub value: f64,
+    /// Its limits `[min, max]`, same unit.
+    pub limits: [f64; 2],
+}
+
+impl LimitViolation {
+    /// How far outside the limits, same unit (positive).
+    pub fn excess(&self) -> f64 {
+        let [min, max] = self.limits;
+        if self.value < min { min - self.value } else { self.value - max }
+    }
+}
+
+/// Solves the samples of one path in order: IK in the robot's working mode, the assembly-mode
+/// check (SPEC §1.2), θ3 kept continuous ([`Theta3Unwrapper`]), then the joint limits and the
+/// singularity margin on the unwrapped values.
+///
+/// Every consumer of samples uses it: `joints` ([`crate::JointTrajectory`]) stops at the first
+/// error, `check` collects them all, the pictures skip what cannot be drawn. A failed sample does
+/// not stop the solver: the next one is solved as if the failed one had not been there.
+#[derive(Debug, Clone, Copy)]
+pub struct JointSolver {
+    model: Kinematics,
+    theta3: Theta3Unwrapper,
+}
+
+impl JointSolver {
+    /// A solver for a new path of the robot `model`.
+    pub fn new(model: Kinematics) -> JointSolver {
+        JointSolver { model, theta3: Theta3Unwrapper::new() }
+    }
+
+    /// The robot's kinematics.
+    pub fn model(&self) -> &Kinematics {
+        &self.model
+    }
+
+    /// The configuration the robot takes at `pose` (`[x, y, z, c]`, mm and degrees): IK in the
+    /// working mode, refused beyond a type-2 singularity, θ3 continuous with the previous
+    /// solution. Limits and the singularity margin are not checked: see
+    /// [`JointSolver::limit_violations`] and [`Kinematics::check_singularity`].
+    #[inline(always)]
+    pub fn reach(&mut self, pose: &[f64; 4]) -> Result<IkSolution, KinematicsError> {
+        let [x, y, z, c] = *pose;
+        let mut solution = self.model.inverse(&Pose::from_degrees(x, y, z, c))?;
+        self.model.check_assembly(&solution)?;
+        self.theta3.apply(&mut solution);
+        Ok(solution)
+    }
+
+    /// The sample solved with every check a running robot needs ([`JointSolver::reach`], the
+    /// joint limits, the singularity margin), or the first reason it cannot be taken, located.
+    #[inline(always)]
+    pub fn solve(&mut self, sample: &CartesianSample) -> Result<IkSolution, SampleError> {
+        let fail =
+            |source| SampleError { line: sample.line, t: sample.t, pose: sample.pose, source };
+        let solution = self.reach(&sample.pose).map_err(fail)?;
+        self.model.check_limits(&solution.joints).map_err(fail)?;
+        self.model.check_singularity(&solution.configuration).map_err(fail)?;
+        Ok(solution)
+    }
+
+    /// Every joint of `joints` outside its limits, in the robot file's units.
+    pub fn limit_violations(&self, joints: &Joints) -> impl Iterator<Item = LimitViolation> {
+        let model = self.model;
+        let joints = *joints;
+        Joint::ALL.into_iter().filter_map(move |joint| {
+            let value = joints.get(joint);
+            let [min, max] = model.limits(joint);
+            if (min..=max).contains(&value) {
+                return None;
+            }
+            let user = |v: f64| if joint.is_revolute() { v.to_degrees() } else { v };
+            Some(LimitViolation { joint, value: user(value), limits: [user(min), user(max)] })
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use biscara_kinematics::Robot;
+
+    use super::*;
+
+    fn sample(t: f64, pose: [f64; 4]) -> CartesianSample {
+        CartesianSample { t, pose, line: 7, gripper: false }
+    }
+
+    #[test]
+    fn theta3_stays_continuous_across_a_failed_sample() {
+        let mut solver = JointSolver::new(Kinematics::default());
+        let first = solver.solve(&sample(0.0, [0.0, 400.0, 50.0, 170.0])).expect("reachable");
+        let err = solver.solve(&sample(0.1, [0.0, 2000.0, 50.0, 175.0])).expect_err("too far");
+        assert_eq!((err.line, err.t), (7, 0.1));
+        assert!(matches!(err.source, KinematicsError::Unreachable { .. }));
+        let next = solver.solve(&sample(0.2, [0.0, 400.0, 50.0, 190.0])).expect("reachable");
+        let step = next.joints.theta3 - first.joints.theta3;
+        assert!((step - 20f64.to_radians()).abs() < 1e-9, "θ3 jumped by {step} rad");
+    }
+
+    #[test]
+    fn limit_violations_name_every_joint_outside_in_user_units() {
+        let solver = JointSolver::new(Kinematics::new(&Robot::default()).expect("robot"));
+        let joints = Joints::new(140f64.to_radians(), 0.0, 0.0, 120.0);
+        let found: Vec<_> = solver.limit_violations(&joints).collect();
+        assert_eq!(found.len(), 2);
+        assert_eq!(found[0].joint, Joint::Theta1);
+        assert!((found[0].excess() - 5.0).abs() < 1e-9);
+        assert_eq!((found[1].joint, found[1].excess()), (Joint::D4, 20.0));
+    }
+}

@@ -1,0 +1,151 @@
+//! The pipeline's errors and notes.
+
+use std::fmt;
+use std::io;
+
+use biscara_interpolate::SlowDown;
+use biscara_robot::{Fit, VirtualRobotError};
+
+/// A pipeline failure, located: its `Display` is the whole message the user sees, starting with
+/// the file name (`job.ngc:12:5: …`).
+///
+/// Every reader of the stages below reports its position the same way, as its error's `Display`
+/// starting with `LINE:` or `LINE:COL:` (1-based; G-code errors add the line and a caret below);
+/// this type adds the file name once, here.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PipelineError {
+    /// Occurs when the program (or a stage reading it) finds something wrong at a line:
+    /// a G-code, inter-file or CSV error, a motion that cannot be timed, a sample the robot
+    /// cannot take.
+    #[error("{file}:{error}{}", Snippet(snippet.as_deref()))]
+    Program {
+        /// The program's name (`<stdin>` for standard input).
+        file: String,
+        /// What is wrong; its `Display` starts with `LINE:` or `LINE:COL:`.
+        error: Box<dyn std::error::Error + Send + Sync>,
+        /// The offending line with a caret under the column, where the reader has one.
+        snippet: Option<String>,
+    },
+    /// Occurs when the program cannot be opened or read.
+    #[error("cannot read {file}")]
+    Io {
+        /// The program's name.
+        file: String,
+        /// The operating system's reason.
+        source: io::Error,
+    },
+    /// Occurs when `--fit` cannot place the program: it is larger than the workspace
+    /// rectangle, or it has no extent.
+    #[error("{file}: --fit: {error}")]
+    Fit {
+        /// The program's name.
+        file: String,
+        /// Why it does not fit, with the numbers.
+        error: VirtualRobotError,
+    },
+    /// Occurs when the workspace for `--fit` cannot be computed.
+    #[error(transparent)]
+    Workspace(VirtualRobotError),
+    /// Occurs when a program of this kind cannot be used this way (`--fit` on standard input
+    /// or a path CSV, a path CSV where motions are needed).
+    #[error("{file}: {message}")]
+    Unsupported {
+        /// The program's name.
+        file: String,
+        /// What cannot be done and what would work.
+        message: String,
+    },
+}
+
+/// Shows a snippet on the lines below a message, indented.
+struct Snippet<'a>(Option<&'a str>);
+
+impl fmt::Display for Snippet<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(snippet) => write!(f, "\n    {}", snippet.replace('\n', "\n    ")),
+            None => Ok(()),
+        }
+    }
+}
+
+impl PipelineError {
+    /// A located error of the program `file`.
+    pub fn program(file: &str, error: impl std::error::Error + Send + Sync + 'static) -> Self {
+        PipelineError::Program { file: file.to_owned(), error: Box::new(error), snippet: None }
+    }
+}
+
+/// Something the pipeline has to say besides its output; its `Display` is the message, the
+/// caller adds its own prefix (`biscara: note: `).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Note {
+    /// `--fit` placed the program: its extent, the rectangle and the offset.
+    Placed {
+        /// The program's name.
+        file: String,
+        /// The placement.
+        fit: Fit,
+    },
+    /// A motion runs slower than programmed (a joint or C speed limit).
+    SlowedDown {
+        /// The program's name.
+        file: String,
+        /// Which motion, by how much and why.
+        slow: SlowDown,
+    },
+}
+
+impl fmt::Display for Note {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Note::Placed { file, fit } => {
+                let (bounds, rectangle) = (&fit.bounds, &fit.rectangle);
+                let [dx, dy] = fit.offset;
+                let n = |v: f64| Fixed3(v);
+                write!(
+                    f,
+                    "{file}: --fit: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) is \
+                     centred in the workspace rectangle x {}..{}, y {}..{} mm by the offset X{} \
+                     Y{} (z and c unchanged)",
+                    n(bounds.min[0]),
+                    n(bounds.max[0]),
+                    n(bounds.min[1]),
+                    n(bounds.max[1]),
+                    n(bounds.width()),
+                    n(bounds.height()),
+                    n(rectangle.min[0]),
+                    n(rectangle.max[0]),
+                    n(rectangle.min[1]),
+                    n(rectangle.max[1]),
+                    n(dx),
+                    n(dy)
+                )
+            }
+            Note::SlowedDown { file, slow } => write!(
+                f,
+                "{file}:{}: slowed to {:.1}% of the programmed speed ({} limit)",
+                slow.line,
+                100.0 * slow.factor,
+                slow.cause
+            ),
+        }
+    }
+}
+
+/// Three decimals, never a negative zero.
+struct Fixed3(f64);
+
+impl fmt::Display for Fixed3 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let text = format!("{:.3}", self.0);
+        match text.strip_prefix('-') {
+            Some(magnitude) if magnitude.bytes().all(|b| b == b'0' || b == b'.') => {
+                f.write_str(magnitude)
+            }
+            _ => f.write_str(&text),
+        }
+    }
+}

@@ -1,0 +1,47 @@
+//! The pipeline every command that runs a program goes through, as a library: a program
+//! source and a sampling configuration in; motions, Cartesian samples and joint samples out.
+//!
+//! - [`ProgramKind`]: G-code, inter-file or path CSV, chosen by the caller, by the name's
+//!   extension or by the content ([`ProgramKind::detect`]).
+//! - [`ProgramSource`]: where the program's text comes from (a file the caller opens, standard
+//!   input, a string); the crate itself never opens a path.
+//! - [`Pipeline`]: one robot ([`RobotModel`]) and one [`SamplingConfig`] (time step, profile,
+//!   grip time, origin, `--fit`); [`Pipeline::motions`], [`Pipeline::samples`] and
+//!   [`Pipeline::joints`] are the stages, wired once, here.
+//! - [`Note`]: what the pipeline has to say besides its output (the chosen placement, slowed
+//!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
+//!   `FILE:LINE[:COL]: message`.
+//!
+//! It deliberately holds no whole program: motions and samples are iterators, and `--fit`
+//! reads the program twice (once for its extent) rather than keeping it.
+//!
+//! ```
+//! use biscara_kinematics::RobotModel;
+//! use biscara_pipeline::{Pipeline, ProgramKind, SamplingConfig, TextSource};
+//!
+//! let model = RobotModel::default();
+//! let pipeline = Pipeline::new(&model, SamplingConfig::default());
+//! let program = TextSource::new("job.ngc", "G0 X0 Y400 Z50\nG1 X10 F600\nM2\n");
+//! let mut rows = 0;
+//! for row in pipeline.joints(&program, ProgramKind::Gcode, |_| {})? {
+//!     let row = row?;
+//!     assert!(row.joints.theta1.is_finite());
+//!     rows += 1;
+//! }
+//! assert!(rows > 1000);
+//! # Ok::<(), biscara_pipeline::PipelineError>(())
+//! ```
+
+mod error;
+mod kind;
+mod pipeline;
+mod placement;
+mod source;
+
+pub use biscara_kinematics::RobotModel;
+
+pub use error::{Note, PipelineError};
+pub use kind::ProgramKind;
+pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig};
+pub use placement::{Placement, place};
+pub use source::{ProgramSource, TextSource};

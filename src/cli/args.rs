@@ -1,0 +1,125 @@
+//! Arguments and value parsers shared by the commands that run a program.
+
+use biscara::interpolate::Profile;
+use biscara::pipeline::{ProgramKind, SamplingConfig};
+use clap::{Args, ValueEnum};
+
+/// What kind of file a program is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum InputKind {
+    /// RS274/NGC G-code (LinuxCNC's dialect).
+    Gcode,
+    /// An inter-file (JSON Lines) written by `biscara interpret`.
+    Jsonl,
+    /// A path CSV written by `biscara interpolate` (joints only).
+    Path,
+}
+
+impl From<InputKind> for ProgramKind {
+    fn from(kind: InputKind) -> ProgramKind {
+        match kind {
+            InputKind::Gcode => ProgramKind::Gcode,
+            InputKind::Jsonl => ProgramKind::Jsonl,
+            InputKind::Path => ProgramKind::Path,
+        }
+    }
+}
+
+/// The velocity profile, as named on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ProfileArg {
+    /// Constant speed from a motion's first sample to its last (the paper).
+    Constant,
+    /// Accelerate, cruise, decelerate: an exact stop at every corner.
+    Trapezoid,
+}
+
+impl From<ProfileArg> for Profile {
+    fn from(profile: ProfileArg) -> Profile {
+        match profile {
+            ProfileArg::Constant => Profile::Constant,
+            ProfileArg::Trapezoid => Profile::Trapezoid,
+        }
+    }
+}
+
+/// Options shared by the commands that sample a program in time.
+#[derive(Debug, Args)]
+pub(crate) struct SamplingArgs {
+    /// Time step, seconds.
+    #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_step)]
+    dt: f64,
+    /// Velocity profile of every motion.
+    #[arg(long, value_enum, default_value = "trapezoid")]
+    profile: ProfileArg,
+    /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
+    #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
+    grip_time: f64,
+    /// Shift a G-code program by X,Y,Z,C (mm, mm, mm, degrees): the G54 offset in force before
+    /// its first line, as `biscara interpret --origin`.
+    #[arg(
+        long,
+        value_name = "X,Y,Z,C",
+        allow_hyphen_values = true,
+        value_parser = parse_pose,
+        help = "G54 offset before the first line of a G-code program"
+    )]
+    origin: Option<[f64; 4]>,
+    /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
+    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
+    /// The offset is reported on stderr; a program larger than the rectangle is an error.
+    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    fit: bool,
+    /// Decimals of every number in the CSV.
+    #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
+    pub(crate) precision: u8,
+}
+
+impl SamplingArgs {
+    /// The pipeline's sampling configuration.
+    pub(crate) fn config(&self) -> SamplingConfig {
+        SamplingConfig {
+            dt: self.dt,
+            profile: self.profile.into(),
+            grip_time: self.grip_time,
+            origin: self.origin,
+            fit: self.fit,
+        }
+    }
+}
+
+fn parse_step(text: &str) -> Result<f64, String> {
+    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
+    if value.is_finite() && (1e-6..=10.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("the time step must lie in [0.000001, 10] s, got {text}"))
+    }
+}
+
+/// Seconds in [0, 3600].
+pub(crate) fn parse_duration(text: &str) -> Result<f64, String> {
+    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
+    if value.is_finite() && (0.0..=3600.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("expected seconds in [0, 3600], got {text}"))
+    }
+}
+
+/// `X,Y,Z,C`: four finite numbers.
+pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
+    let values: Vec<&str> = text.split(',').map(str::trim).collect();
+    if values.len() != 4 {
+        return Err(format!("expected four numbers X,Y,Z,C, found {}", values.len()));
+    }
+    let mut pose = [0.0; 4];
+    for (slot, value) in pose.iter_mut().zip(values) {
+        *slot = value
+            .parse::<f64>()
+            .ok()
+            .filter(|number| number.is_finite())
+            .ok_or_else(|| format!("`{value}` is not a finite number"))?;
+    }
+    Ok(pose)
+}

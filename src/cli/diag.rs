@@ -1,0 +1,74 @@
+//! Diagnostics on stderr: notes and warnings go through here, one line each, prefixed once.
+
+use std::fmt::Display;
+
+use std::path::Path;
+
+use biscara::pipeline::Note;
+use biscara::post::PostError;
+
+use super::files::display_path;
+
+/// How a diagnostic is labelled.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Level {
+    /// Information: what was chosen or adjusted.
+    Note,
+    /// Something the user should look at; the command still succeeds.
+    Warning,
+}
+
+/// Prints `biscara: note: …` or `biscara: warning: …` on stderr.
+pub(crate) fn report(level: Level, message: impl Display) {
+    let label = match level {
+        Level::Note => "note",
+        Level::Warning => "warning",
+    };
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("biscara: {label}: {message}");
+    }
+}
+
+/// A postprocessor error, as `CL_FILE:LINE: …` when it has a line.
+pub(crate) fn post_error(path: &Path, err: PostError) -> anyhow::Error {
+    if err.line().is_some() {
+        anyhow::anyhow!("{}:{err}", display_path(path))
+    } else {
+        anyhow::Error::from(err)
+    }
+}
+
+/// Most slowed motions listed one by one; past it only their count is printed, at the end.
+const SLOWED_SHOWN: usize = 20;
+
+/// Reports the pipeline's notes: slowed motions one by one up to [`SLOWED_SHOWN`], then counted
+/// ([`NoteReporter::finish`] prints the total).
+#[derive(Debug, Default)]
+pub(crate) struct NoteReporter {
+    slowed: std::rc::Rc<std::cell::Cell<usize>>,
+}
+
+impl NoteReporter {
+    /// A function the pipeline calls with each note.
+    pub(crate) fn sink(&self) -> impl FnMut(Note) + use<> {
+        let slowed = std::rc::Rc::clone(&self.slowed);
+        move |note| {
+            if let Note::SlowedDown { .. } = note {
+                slowed.set(slowed.get() + 1);
+                if slowed.get() > SLOWED_SHOWN {
+                    return;
+                }
+            }
+            report(Level::Note, note);
+        }
+    }
+
+    /// Prints how many motions were slowed when not all were listed.
+    pub(crate) fn finish(self) {
+        let count = self.slowed.get();
+        if count > SLOWED_SHOWN {
+            report(Level::Note, format_args!("{count} motions slowed in all"));
+        }
+    }
+}
