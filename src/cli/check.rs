@@ -3,16 +3,13 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::kinematics::Joint;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
-use biscara::robot::{Checker, Problem, Report};
+use biscara::robot::Checker;
 use clap::Args;
-use serde_json::{Value, json};
 
 use super::args::{InputKind, SamplingArgs};
 use super::diag::NoteReporter;
 use super::files::{FileSource, load_scene, write_output};
-use super::fmt::fixed;
 
 /// Runs a program on the virtual robot and reports every problem (SPEC §8.1).
 ///
@@ -73,9 +70,9 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let name = source.name();
     write_output(args.output.as_deref(), |out| {
         if args.json {
-            writeln!(out, "{}", report_json(&report))?;
+            writeln!(out, "{}", report.to_json())?;
         } else {
-            write_text(out, name, &report)?;
+            report.write_text(out, name)?;
         }
         Ok(())
     })?;
@@ -85,133 +82,4 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
         let count = report.problems.len();
         Err(anyhow!("{name}: the check found {count} problem{}", if count == 1 { "" } else { "s" }))
     }
-}
-
-/// A number rounded to 6 decimals, negative zero cleaned, for JSON.
-fn round6(value: f64) -> Value {
-    let rounded = (value * 1e6).round() / 1e6 + 0.0;
-    json!(rounded)
-}
-
-fn pose_json(pose: &[f64; 4]) -> Value {
-    Value::Array(pose.iter().map(|&v| round6(v)).collect())
-}
-
-fn problem_json(problem: &Problem) -> Value {
-    json!({
-        "kind": problem.kind.name(),
-        "line": problem.line,
-        "t_s": round6(problem.t_start),
-        "t_end_s": round6(problem.t_end),
-        "line_end": problem.line_end,
-        "samples": problem.samples,
-        "subject": problem.subject,
-        "pose": pose_json(&problem.pose),
-        "worst": {
-            "t_s": round6(problem.t_worst),
-            "line": problem.line_worst,
-            "pose": pose_json(&problem.pose_worst),
-        },
-        "message": problem.message(),
-    })
-}
-
-/// The report as SPEC §9's `{"ok":…,"problems":[…],"summary":{…}}`.
-fn report_json(report: &Report) -> Value {
-    let summary = &report.summary;
-    let peaks = |peaks: &[biscara::robot::Peak; 4], per: &str| {
-        let mut map = serde_json::Map::new();
-        for (joint, peak) in Joint::ALL.into_iter().zip(peaks) {
-            let unit = if joint.is_revolute() { "deg" } else { "mm" };
-            map.insert(
-                joint.name().to_owned(),
-                json!({
-                    "value": round6(peak.value),
-                    "limit": round6(peak.limit),
-                    "unit": format!("{unit}{per}"),
-                    "line": peak.line,
-                    "t_s": round6(peak.t),
-                }),
-            );
-        }
-        Value::Object(map)
-    };
-    json!({
-        "ok": report.ok(),
-        "problems": report.problems.iter().map(problem_json).collect::<Vec<_>>(),
-        "summary": {
-            "samples": summary.samples,
-            "duration_s": round6(summary.duration_s),
-            "path_length_mm": round6(summary.path_length_mm),
-            "peak_velocity": peaks(&summary.peak_velocity, "/s"),
-            "peak_acceleration": peaks(&summary.peak_acceleration, "/s2"),
-            "min_singularity": summary.min_singularity.as_ref().map(|nearest| json!({
-                "angle_deg": round6(nearest.angle_deg),
-                "kind": nearest.kind,
-                "line": nearest.line,
-                "t_s": round6(nearest.t),
-            })),
-        },
-    })
-}
-
-fn write_text(out: &mut dyn std::io::Write, name: &str, report: &Report) -> anyhow::Result<()> {
-    let count = report.problems.len();
-    if report.ok() {
-        writeln!(out, "{name}: clean: no problem found")?;
-    } else {
-        writeln!(out, "{name}: {count} problem{}", if count == 1 { "" } else { "s" })?;
-    }
-    for problem in &report.problems {
-        let [x, y, z, c] = problem.pose.map(|v| fixed(v, 3));
-        writeln!(
-            out,
-            "{name}:{}: {} ({}) at t = {} s, pose (x, y, z, c) = ({x}, {y}, {z}, {c}): {}",
-            problem.line,
-            problem.kind,
-            problem.subject,
-            fixed(problem.t_start, 3),
-            problem.message()
-        )?;
-    }
-    let summary = &report.summary;
-    writeln!(out, "summary:")?;
-    writeln!(
-        out,
-        "  duration {} s ({} sample{}), path length {} mm",
-        fixed(summary.duration_s, 3),
-        summary.samples,
-        if summary.samples == 1 { "" } else { "s" },
-        fixed(summary.path_length_mm, 3)
-    )?;
-    for (what, peaks, per) in [
-        ("velocity", &summary.peak_velocity, "/s"),
-        ("acceleration", &summary.peak_acceleration, "/s²"),
-    ] {
-        writeln!(out, "  peak joint {what}:")?;
-        for (joint, peak) in Joint::ALL.into_iter().zip(peaks) {
-            let unit = if joint.is_revolute() { "°" } else { "mm" };
-            writeln!(
-                out,
-                "    {:<7} {:>12} {unit}{per} (limit {}; line {}, t = {} s)",
-                joint.name(),
-                fixed(peak.value, 3),
-                peak.limit,
-                peak.line,
-                fixed(peak.t, 3)
-            )?;
-        }
-    }
-    match &summary.min_singularity {
-        Some(nearest) => writeln!(
-            out,
-            "  nearest singularity: {}° from the {} (line {}, t = {} s)",
-            fixed(nearest.angle_deg, 3),
-            nearest.kind,
-            nearest.line,
-            fixed(nearest.t, 3)
-        )?,
-        None => writeln!(out, "  nearest singularity: no reachable sample")?,
-    }
-    Ok(())
 }

@@ -3,13 +3,11 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use biscara::kinematics::{FkSolution, IkSolution, Joints, Kinematics, Pose, RobotModel};
+use biscara::kinematics::{Joints, Pose, RobotModel};
 use clap::Args;
-use serde::Serialize;
 
 use super::diag::{Level, report};
 use super::files::write_output;
-use super::fmt::{clean, fixed};
 
 /// Inverse kinematics of one pose: prints θ1 θ2 θ3 d4 (degrees, degrees, degrees, mm).
 ///
@@ -82,33 +80,6 @@ pub(crate) struct RobotArgs {
     output: Option<PathBuf>,
 }
 
-#[derive(Serialize)]
-struct IkJson {
-    theta1: f64,
-    theta2: f64,
-    theta3: f64,
-    d4: f64,
-    working_mode: String,
-    assembly_mode: String,
-    singularity: SingularityJson,
-}
-
-#[derive(Serialize)]
-struct SingularityJson {
-    type1_deg: [f64; 2],
-    type2_deg: f64,
-}
-
-#[derive(Serialize)]
-struct FkJson {
-    x: f64,
-    y: f64,
-    z: f64,
-    c: f64,
-    elbows: [[f64; 2]; 2],
-    assembly_mode: String,
-}
-
 pub(crate) fn ik(robot: &RobotModel, args: &IkArgs) -> anyhow::Result<()> {
     let model = robot.kinematics();
     let pose = Pose::from_degrees(args.x, args.y, args.z, args.c);
@@ -119,31 +90,9 @@ pub(crate) fn ik(robot: &RobotModel, args: &IkArgs) -> anyhow::Result<()> {
         )
     })?;
     write_output(None, |out| {
-        if args.json {
-            serde_json::to_writer(&mut *out, &ik_json(&solution, &model))?;
-            writeln!(out)?;
-        } else {
-            writeln!(out, "{}", joined(solution.joints.to_degrees()))?;
-        }
-        Ok(())
+        let text = if args.json { solution.to_json(&model) } else { solution.to_text() };
+        Ok(writeln!(out, "{text}")?)
     })
-}
-
-fn ik_json(solution: &IkSolution, model: &Kinematics) -> IkJson {
-    let [theta1, theta2, theta3, d4] = solution.joints.to_degrees().map(clean);
-    let singularity = solution.configuration.singularity();
-    IkJson {
-        theta1,
-        theta2,
-        theta3,
-        d4,
-        working_mode: model.working_mode().to_string(),
-        assembly_mode: solution.assembly_mode().to_string(),
-        singularity: SingularityJson {
-            type1_deg: singularity.type1.map(f64::to_degrees),
-            type2_deg: singularity.type2.to_degrees(),
-        },
-    }
 }
 
 pub(crate) fn fk(robot: &RobotModel, args: &FkArgs) -> anyhow::Result<()> {
@@ -155,43 +104,14 @@ pub(crate) fn fk(robot: &RobotModel, args: &FkArgs) -> anyhow::Result<()> {
             args.theta1, args.theta2, args.theta3, args.d4
         )
     })?;
-    warn_about_fk(&model, &solution);
-    write_output(None, |out| {
-        if args.json {
-            serde_json::to_writer(&mut *out, &fk_json(&solution))?;
-            writeln!(out)?;
-        } else {
-            writeln!(out, "{}", joined(solution.pose.to_degrees()))?;
-        }
-        Ok(())
-    })
-}
-
-fn fk_json(solution: &FkSolution) -> FkJson {
-    let [x, y, z, c] = solution.pose.to_degrees().map(clean);
-    let elbows = solution.configuration.elbows.map(|elbow| [clean(elbow.x), clean(elbow.y)]);
-    FkJson { x, y, z, c, elbows, assembly_mode: solution.configuration.assembly_mode().to_string() }
-}
-
-/// FK is a calculator: it answers outside the limits too, but says so.
-fn warn_about_fk(model: &Kinematics, solution: &FkSolution) {
-    let mut warnings = Vec::new();
-    if let Err(err) = model.check_limits(&solution.joints) {
-        warnings.push(err.to_string());
-    }
-    let mode = solution.configuration.working_mode();
-    if mode != model.working_mode() {
-        warnings.push(format!(
-            "the pose is in working mode {mode}, the robot runs in {}",
-            model.working_mode()
-        ));
-    }
-    if let Err(err) = model.check_singularity(&solution.configuration) {
-        warnings.push(err.to_string());
-    }
-    for warning in warnings {
+    // FK is a calculator: it answers outside the limits too, but says so.
+    for warning in model.fk_warnings(&solution) {
         report(Level::Warning, warning);
     }
+    write_output(None, |out| {
+        let text = if args.json { solution.to_json() } else { solution.to_text() };
+        Ok(writeln!(out, "{text}")?)
+    })
 }
 
 pub(crate) fn robot(robot: &RobotModel, args: &RobotArgs) -> anyhow::Result<()> {
@@ -199,9 +119,4 @@ pub(crate) fn robot(robot: &RobotModel, args: &RobotArgs) -> anyhow::Result<()> 
         writeln!(out, "{}", robot.robot().to_json_pretty())?;
         Ok(())
     })
-}
-
-/// Four values with six decimals, separated by spaces.
-fn joined(values: [f64; 4]) -> String {
-    values.map(|value| fixed(value, 6)).join(" ")
 }

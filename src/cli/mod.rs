@@ -7,7 +7,6 @@ mod demo;
 mod diag;
 mod diff;
 mod files;
-mod fmt;
 mod generate;
 mod interpret;
 mod kinematics;

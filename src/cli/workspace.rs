@@ -1,14 +1,12 @@
 //! `biscara workspace`: the reachable XY region, its area and largest rectangle (SPEC §8.2).
 
-use std::io::Write;
 use std::path::PathBuf;
 
-use biscara::kinematics::{Joints, Robot, RobotModel};
-use biscara::robot::{Rectangle, VirtualRobot, Workspace, draw_workspace};
+use biscara::kinematics::{Joints, RobotModel};
+use biscara::robot::{VirtualRobot, Workspace, draw_workspace};
 use clap::Args;
 
 use super::files::{format_of, write_output};
-use super::fmt::fixed;
 
 /// The reachable region of the XY plane and the largest axis-aligned rectangle inside it
 /// (SPEC §8.2, the paper's "reduced workspace", Fig. 5).
@@ -49,31 +47,6 @@ pub(crate) struct WorkspaceArgs {
     png: Option<PathBuf>,
 }
 
-/// The workspace of `robot` and its largest rectangle.
-#[derive(serde::Serialize)]
-struct WorkspaceJson {
-    area_mm2: f64,
-    step_mm: f64,
-    rectangle: RectangleJson,
-}
-
-#[derive(serde::Serialize)]
-struct RectangleJson {
-    min: [f64; 2],
-    max: [f64; 2],
-}
-
-/// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (SPEC §9).
-fn workspace_json(workspace: &Workspace, rectangle: &Rectangle) -> String {
-    let r = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
-    let value = WorkspaceJson {
-        area_mm2: r(workspace.area_mm2()),
-        step_mm: workspace.step(),
-        rectangle: RectangleJson { min: rectangle.min.map(r), max: rectangle.max.map(r) },
-    };
-    serde_json::to_string(&value).unwrap_or_default()
-}
-
 pub(crate) fn workspace(model: &RobotModel, args: &WorkspaceArgs) -> anyhow::Result<()> {
     let robot = model.robot();
     let workspace = Workspace::compute(&model.kinematics(), args.step)?;
@@ -87,52 +60,12 @@ pub(crate) fn workspace(model: &RobotModel, args: &WorkspaceArgs) -> anyhow::Res
     }
     write_output(args.output.as_deref(), |out| {
         if args.json {
-            writeln!(out, "{}", workspace_json(&workspace, &rectangle))?;
+            writeln!(out, "{}", workspace.to_json(&rectangle))?;
         } else if args.csv {
-            write_csv(out, &workspace)?;
+            workspace.write_csv(out)?;
         } else {
-            write_text(out, robot, &workspace, &rectangle)?;
+            workspace.write_text(out, &robot.name, &rectangle)?;
         }
         Ok(())
     })
-}
-
-fn write_csv(out: &mut dyn Write, workspace: &Workspace) -> anyhow::Result<()> {
-    writeln!(out, "x_mm,y_mm,reachable")?;
-    let (columns, rows) = workspace.size();
-    for j in 0..rows {
-        for i in 0..columns {
-            let [x, y] = workspace.point(i, j);
-            let flag = u8::from(workspace.is_reachable(i, j));
-            writeln!(out, "{},{},{flag}", fixed(x, 3), fixed(y, 3))?;
-        }
-    }
-    Ok(())
-}
-
-fn write_text(
-    out: &mut dyn Write,
-    robot: &Robot,
-    workspace: &Workspace,
-    rectangle: &Rectangle,
-) -> anyhow::Result<()> {
-    writeln!(out, "workspace of {} (grid step {} mm)", robot.name, workspace.step())?;
-    writeln!(
-        out,
-        "reachable area: {} mm² ({} grid points)",
-        fixed(workspace.area_mm2(), 0),
-        workspace.count()
-    )?;
-    writeln!(
-        out,
-        "largest rectangle: x {} .. {} mm, y {} .. {} mm ({} x {} mm, {} mm²)",
-        fixed(rectangle.min[0], 3),
-        fixed(rectangle.max[0], 3),
-        fixed(rectangle.min[1], 3),
-        fixed(rectangle.max[1], 3),
-        fixed(rectangle.width(), 3),
-        fixed(rectangle.height(), 3),
-        fixed(rectangle.width() * rectangle.height(), 0)
-    )?;
-    Ok(())
 }

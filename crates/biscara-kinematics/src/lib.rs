@@ -28,6 +28,7 @@ mod kinematics;
 mod mode;
 mod model;
 mod pose;
+mod report;
 mod robot;
 mod unwrap;
 

@@ -42,6 +42,7 @@ mod error;
 mod fit;
 mod geometry;
 mod plot;
+mod report;
 mod scene;
 mod workspace;
 

@@ -9,11 +9,11 @@
 //! its data and hand-written JavaScript inside: no network, no other files.
 //!
 //! ```
-//! use biscara_kinematics::Robot;
+//! use biscara_kinematics::RobotModel;
 //! use biscara_view::{MjcfOptions, Scene, write_mjcf};
 //!
 //! let mut xml = Vec::new();
-//! write_mjcf(&mut xml, &Robot::default(), &Scene::default(), &MjcfOptions::default())?;
+//! write_mjcf(&mut xml, &RobotModel::default(), &Scene::default(), &MjcfOptions::default())?;
 //! assert!(String::from_utf8(xml)?.contains("<site name=\"tool\""));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -232,7 +232,7 @@ fn input_errors_and_bad_feeds_stop_the_stream() {
     .collect();
     assert_eq!(results.len(), 2);
     let err = results[1].as_ref().expect_err("zero feed");
-    assert_eq!(err.to_string(), "line 1: the feed 0 mm/min is not positive");
+    assert_eq!(err.to_string(), "1: the feed 0 mm/min is not positive");
 }
 
 proptest! {

@@ -220,7 +220,7 @@ fn an_unreachable_sample_names_its_line_and_time() {
         }
         other => panic!("unexpected {other:?}"),
     }
-    assert!(err.to_string().starts_with("line 2: at t = "), "{err}");
+    assert!(err.to_string().starts_with("2: at t = "), "{err}");
 }
 
 fn reachable_pose() -> impl Strategy<Value = [f64; 4]> {

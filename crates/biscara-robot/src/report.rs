@@ -1,0 +1,225 @@
+//! The report of `check` as the user reads it: JSON (SPEC §9) and text.
+
+use biscara_kinematics::Joint;
+use serde_json::{Value, json};
+
+use std::io::Write;
+
+use crate::{Peak, Problem, Rectangle, Report, Workspace};
+
+/// A number rounded to 6 decimals, negative zero cleaned, for JSON.
+fn round6(value: f64) -> Value {
+    let rounded = (value * 1e6).round() / 1e6 + 0.0;
+    json!(rounded)
+}
+
+fn pose_json(pose: &[f64; 4]) -> Value {
+    Value::Array(pose.iter().map(|&v| round6(v)).collect())
+}
+
+fn problem_json(problem: &Problem) -> Value {
+    json!({
+        "kind": problem.kind.name(),
+        "line": problem.line,
+        "t_s": round6(problem.t_start),
+        "t_end_s": round6(problem.t_end),
+        "line_end": problem.line_end,
+        "samples": problem.samples,
+        "subject": problem.subject,
+        "pose": pose_json(&problem.pose),
+        "worst": {
+            "t_s": round6(problem.t_worst),
+            "line": problem.line_worst,
+            "pose": pose_json(&problem.pose_worst),
+        },
+        "message": problem.message(),
+    })
+}
+
+impl Report {
+    /// The report as SPEC §9's `{"ok":…,"problems":[…],"summary":{…}}` (`check --json`).
+    pub fn to_json(&self) -> Value {
+        let report = self;
+        let summary = &report.summary;
+        let peaks = |peaks: &[Peak; 4], per: &str| {
+            let mut map = serde_json::Map::new();
+            for (joint, peak) in Joint::ALL.into_iter().zip(peaks) {
+                let unit = if joint.is_revolute() { "deg" } else { "mm" };
+                map.insert(
+                    joint.name().to_owned(),
+                    json!({
+                        "value": round6(peak.value),
+                        "limit": round6(peak.limit),
+                        "unit": format!("{unit}{per}"),
+                        "line": peak.line,
+                        "t_s": round6(peak.t),
+                    }),
+                );
+            }
+            Value::Object(map)
+        };
+        json!({
+            "ok": report.ok(),
+            "problems": report.problems.iter().map(problem_json).collect::<Vec<_>>(),
+            "summary": {
+                "samples": summary.samples,
+                "duration_s": round6(summary.duration_s),
+                "path_length_mm": round6(summary.path_length_mm),
+                "peak_velocity": peaks(&summary.peak_velocity, "/s"),
+                "peak_acceleration": peaks(&summary.peak_acceleration, "/s2"),
+                "min_singularity": summary.min_singularity.as_ref().map(|nearest| json!({
+                    "angle_deg": round6(nearest.angle_deg),
+                    "kind": nearest.kind,
+                    "line": nearest.line,
+                    "t_s": round6(nearest.t),
+                })),
+            },
+        })
+    }
+
+    /// The report as text (`check`): the problems of `name`, one a line, then the summary.
+    pub fn write_text(&self, out: &mut dyn std::io::Write, name: &str) -> std::io::Result<()> {
+        let report = self;
+        let count = report.problems.len();
+        if report.ok() {
+            writeln!(out, "{name}: clean: no problem found")?;
+        } else {
+            writeln!(out, "{name}: {count} problem{}", if count == 1 { "" } else { "s" })?;
+        }
+        for problem in &report.problems {
+            let [x, y, z, c] = problem.pose.map(|v| fixed(v, 3));
+            writeln!(
+                out,
+                "{name}:{}: {} ({}) at t = {} s, pose (x, y, z, c) = ({x}, {y}, {z}, {c}): {}",
+                problem.line,
+                problem.kind,
+                problem.subject,
+                fixed(problem.t_start, 3),
+                problem.message()
+            )?;
+        }
+        let summary = &report.summary;
+        writeln!(out, "summary:")?;
+        writeln!(
+            out,
+            "  duration {} s ({} sample{}), path length {} mm",
+            fixed(summary.duration_s, 3),
+            summary.samples,
+            if summary.samples == 1 { "" } else { "s" },
+            fixed(summary.path_length_mm, 3)
+        )?;
+        for (what, peaks, per) in [
+            ("velocity", &summary.peak_velocity, "/s"),
+            ("acceleration", &summary.peak_acceleration, "/s²"),
+        ] {
+            writeln!(out, "  peak joint {what}:")?;
+            for (joint, peak) in Joint::ALL.into_iter().zip(peaks) {
+                let unit = if joint.is_revolute() { "°" } else { "mm" };
+                writeln!(
+                    out,
+                    "    {:<7} {:>12} {unit}{per} (limit {}; line {}, t = {} s)",
+                    joint.name(),
+                    fixed(peak.value, 3),
+                    peak.limit,
+                    peak.line,
+                    fixed(peak.t, 3)
+                )?;
+            }
+        }
+        match &summary.min_singularity {
+            Some(nearest) => writeln!(
+                out,
+                "  nearest singularity: {}° from the {} (line {}, t = {} s)",
+                fixed(nearest.angle_deg, 3),
+                nearest.kind,
+                nearest.line,
+                fixed(nearest.t, 3)
+            )?,
+            None => writeln!(out, "  nearest singularity: no reachable sample")?,
+        }
+        Ok(())
+    }
+}
+
+/// The workspace and its largest rectangle, as `workspace --json` prints them.
+#[derive(serde::Serialize)]
+struct WorkspaceJson {
+    area_mm2: f64,
+    step_mm: f64,
+    rectangle: RectangleJson,
+}
+
+#[derive(serde::Serialize)]
+struct RectangleJson {
+    min: [f64; 2],
+    max: [f64; 2],
+}
+
+impl Workspace {
+    /// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (SPEC §9).
+    pub fn to_json(&self, rectangle: &Rectangle) -> String {
+        let workspace = self;
+        let r = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
+        let value = WorkspaceJson {
+            area_mm2: r(workspace.area_mm2()),
+            step_mm: workspace.step(),
+            rectangle: RectangleJson { min: rectangle.min.map(r), max: rectangle.max.map(r) },
+        };
+        serde_json::to_string(&value).unwrap_or_default()
+    }
+
+    /// The grid as CSV, `x_mm,y_mm,reachable` (1 or 0), one row per grid point.
+    pub fn write_csv(&self, out: &mut dyn Write) -> std::io::Result<()> {
+        let workspace = self;
+        writeln!(out, "x_mm,y_mm,reachable")?;
+        let (columns, rows) = workspace.size();
+        for j in 0..rows {
+            for i in 0..columns {
+                let [x, y] = workspace.point(i, j);
+                let flag = u8::from(workspace.is_reachable(i, j));
+                writeln!(out, "{},{},{flag}", fixed(x, 3), fixed(y, 3))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The area and the rectangle as text, for the robot named `name`.
+    pub fn write_text(
+        &self,
+        out: &mut dyn Write,
+        name: &str,
+        rectangle: &Rectangle,
+    ) -> std::io::Result<()> {
+        let workspace = self;
+        writeln!(out, "workspace of {name} (grid step {} mm)", workspace.step())?;
+        writeln!(
+            out,
+            "reachable area: {} mm² ({} grid points)",
+            fixed(workspace.area_mm2(), 0),
+            workspace.count()
+        )?;
+        writeln!(
+            out,
+            "largest rectangle: x {} .. {} mm, y {} .. {} mm ({} x {} mm, {} mm²)",
+            fixed(rectangle.min[0], 3),
+            fixed(rectangle.max[0], 3),
+            fixed(rectangle.min[1], 3),
+            fixed(rectangle.max[1], 3),
+            fixed(rectangle.width(), 3),
+            fixed(rectangle.height(), 3),
+            fixed(rectangle.width() * rectangle.height(), 0)
+        )?;
+        Ok(())
+    }
+}
+
+/// `value` with exactly `decimals` decimals, never printing a negative zero (`-0.000`).
+fn fixed(value: f64, decimals: usize) -> String {
+    let text = format!("{value:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(magnitude) if magnitude.bytes().all(|byte| byte == b'0' || byte == b'.') => {
+            magnitude.to_owned()
+        }
+        _ => text,
+    }
+}
