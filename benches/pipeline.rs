@@ -24,6 +24,7 @@ use biscara::joints::{
 };
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::Motion;
+use biscara::pipeline::{Note, Pipeline, ProgramKind, RobotModel, SamplingConfig, TextSource};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 /// Lines of the generated program (the same shape as `scripts/gen-program.sh`).
@@ -124,18 +125,17 @@ fn pipeline(c: &mut Criterion) {
             writer.finish().expect("sink");
         })
     });
+    // The whole chain as the `joints` command runs it: through the pipeline library.
+    let robot_model = RobotModel::default();
+    let pipeline = Pipeline::new(&robot_model, SamplingConfig::default());
+    let source = TextSource::new("bench.ngc", text.clone());
     group.bench_function("end_to_end_gcode_to_csv", |b| {
         b.iter(|| {
-            let motions = interpret(text.as_bytes(), &gcode_config);
-            let samples = Interpolator::new(
-                motions,
-                config,
-                JointSpeedLimit::new(model, &robot),
-                |_: &SlowDown| {},
-            );
+            let mut joints =
+                pipeline.joints(&source, ProgramKind::Gcode, |_: Note| {}).expect("pipeline");
             let mut writer = JointCsvWriter::new(io::sink(), format).expect("sink");
-            for row in JointTrajectory::new(samples, model) {
-                writer.write(&row.expect("reachable")).expect("sink");
+            while let Some(row) = joints.next_sample() {
+                writer.write(row.expect("reachable")).expect("sink");
             }
             writer.finish().expect("sink");
         })

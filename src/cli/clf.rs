@@ -2,12 +2,13 @@
 
 use std::path::PathBuf;
 
-use anyhow::anyhow;
+
 use biscara::kinematics::RobotModel;
 use biscara::pnp::write_cl;
 use clap::Args;
 
-use super::files::{display_path, open_input, write_output};
+use super::diag::located;
+use super::files::{open_input, write_output};
 
 /// Turns a pick-and-place points file into an APT-style CL file (SPEC §2, §3).
 ///
@@ -37,7 +38,7 @@ pub(crate) fn clf(robot: &RobotModel, args: &ClfArgs) -> anyhow::Result<()> {
     let input = open_input(&args.points)?;
     write_output(args.output.as_deref(), |out| {
         write_cl(input, &model, out).map_err(|err| match err.line() {
-            Some(_) => anyhow!("{}:{err}", display_path(&args.points)),
+            Some(_) => located(&args.points, err),
             None => anyhow::Error::from(err),
         })
     })

@@ -2,12 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, anyhow};
+use anyhow::Context;
 use biscara::joints::read_joint_csv;
 use biscara::pipeline::RobotModel;
 use clap::Args;
 
-use super::files::{display_path, open_input, write_output};
+use super::diag::located;
+use super::files::{open_input, write_output};
 use super::run_command;
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
@@ -83,10 +84,9 @@ struct Summary {
 
 /// Duration, samples and peak joint speeds (degrees/s, mm/s) of a joint CSV with derivatives.
 fn summarize(trajectory: &Path) -> anyhow::Result<Summary> {
-    let name = display_path(trajectory);
     let mut summary = Summary { duration: 0.0, samples: 0, peak_velocity: [0.0; 4] };
     for row in read_joint_csv(open_input(trajectory)?) {
-        let row = row.map_err(|err| anyhow!("{name}:{err}"))?;
+        let row = row.map_err(|err| located(trajectory, err))?;
         summary.duration = row.t;
         summary.samples += 1;
         let velocity = row.velocity.unwrap_or([0.0; 4]);

@@ -30,10 +30,16 @@ pub(crate) fn report(level: Level, message: impl Display) {
     }
 }
 
+/// An error of a reader whose `Display` starts with `LINE[:COL]:`, located in `path`: the one
+/// place the binary prefixes a file name.
+pub(crate) fn located(path: &Path, err: impl Display) -> anyhow::Error {
+    anyhow::anyhow!("{}:{err}", display_path(path))
+}
+
 /// A postprocessor error, as `CL_FILE:LINE: …` when it has a line.
 pub(crate) fn post_error(path: &Path, err: PostError) -> anyhow::Error {
     if err.line().is_some() {
-        anyhow::anyhow!("{}:{err}", display_path(path))
+        located(path, err)
     } else {
         anyhow::Error::from(err)
     }

@@ -11,6 +11,7 @@ use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::{ImageFormat, Scene};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressStyle};
 
+use super::diag::located;
 use super::args::InputKind;
 
 /// How a path is named in messages: `<stdin>` for `-`.
@@ -70,7 +71,7 @@ pub(crate) fn load_scene(path: Option<&Path>) -> anyhow::Result<Scene> {
     } else {
         std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?
     };
-    Scene::from_json(&bytes).map_err(|err| anyhow::anyhow!("{}:{err}", display_path(path)))
+    Scene::from_json(&bytes).map_err(|err| located(path, err))
 }
 
 /// The picture format a path asks for: PNG for `.png`, else SVG (also on standard output).

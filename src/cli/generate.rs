@@ -3,16 +3,15 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, anyhow};
-use biscara::kinematics::{Kinematics, RobotModel};
-use biscara::pnp::ClProgram;
-use biscara::post::{PostOptions, Postprocessor, write_statement};
+use biscara::kinematics::RobotModel;
+use biscara::pnp::{GenerateError, generate as generate_gcode};
+use biscara::post::PostOptions;
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 
 use super::Cli;
-use super::diag::post_error;
-use super::files::{display_path, open_input, write_output};
+use super::diag::{located, post_error};
+use super::files::{open_input, write_output};
 
 /// Turns a pick-and-place points file straight into G-code: `biscara clf` and `biscara post` in
 /// one pass, with the same checks and the same output.
@@ -51,40 +50,18 @@ pub(crate) fn generate(robot: &RobotModel, args: &GenArgs) -> anyhow::Result<()>
     let model = robot.kinematics();
     let input = open_input(&args.points)?;
     let options = PostOptions { line_numbers: args.line_numbers };
+    let cl_name = args.clf.as_deref().unwrap_or(Path::new("<generated CL>"));
+    let run = |out: &mut dyn Write, cl_out: Option<&mut dyn Write>| {
+        generate_gcode(input, &model, out, cl_out, options).map_err(|err| match err {
+            GenerateError::Points(err) => located(&args.points, err),
+            GenerateError::Post(err) => post_error(cl_name, err),
+            other => other.into(),
+        })
+    };
     match args.clf.as_deref() {
-        Some(clf_path) => write_output(Some(clf_path), |clf_out| {
-            write_output(args.output.as_deref(), |out| {
-                run(&model, input, out, Some(clf_out), options, &args.points, clf_path)
-            })
+        Some(clf_path) => write_output(Some(clf_path), |cl_out| {
+            write_output(args.output.as_deref(), |out| run(out, Some(cl_out)))
         }),
-        None => write_output(args.output.as_deref(), |out| {
-            run(&model, input, out, None, options, &args.points, Path::new("<generated CL>"))
-        }),
+        None => write_output(args.output.as_deref(), |out| run(out, None)),
     }
-}
-
-fn run(
-    model: &Kinematics,
-    input: Box<dyn std::io::BufRead>,
-    out: &mut dyn Write,
-    mut clf_out: Option<&mut dyn Write>,
-    options: PostOptions,
-    points_path: &Path,
-    clf_path: &Path,
-) -> anyhow::Result<()> {
-    let mut post = Postprocessor::new(out, options);
-    let mut cl_line = 0;
-    for statement in ClProgram::new(input, model) {
-        let statement = statement.map_err(|err| anyhow!("{}:{err}", display_path(points_path)))?;
-        cl_line += 1;
-        if let Some(clf_out) = clf_out.as_mut() {
-            write_statement(clf_out, &statement).context("cannot write the CL file")?;
-        }
-        post.apply(cl_line, &statement).map_err(|err| post_error(clf_path, err))?;
-    }
-    post.finish(cl_line).map_err(|err| post_error(clf_path, err))?;
-    if let Some(clf_out) = clf_out {
-        clf_out.flush().context("cannot write the CL file")?;
-    }
-    Ok(())
 }

@@ -8,6 +8,7 @@ use biscara::kinematics::RobotModel;
 use biscara::view::{MjcfOptions, QposWriter, write_mjcf};
 use clap::Args;
 
+use super::diag::located;
 use super::files::{display_path, load_scene, open_input, write_output};
 
 /// Writes a MuJoCo model (MJCF) of the robot (SPEC §8.3).
@@ -73,7 +74,7 @@ fn write_companion(robot: &RobotModel, traj: &Path, companion: &Path) -> anyhow:
         let mut writer = QposWriter::new(out, robot)?;
         let mut rows = 0usize;
         for row in read_joint_csv(input) {
-            let row = row.map_err(|err| anyhow!("{name}:{err}"))?;
+            let row = row.map_err(|err| located(traj, err))?;
             writer.write(&row).map_err(|err| anyhow!("{name}:{}: {err}", row.line))?;
             rows += 1;
         }

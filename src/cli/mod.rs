@@ -131,7 +131,7 @@ fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
         return Ok(RobotModel::default());
     };
     let text = read_text(path)?;
-    RobotModel::from_json(&text).map_err(|err| anyhow!("{}:{err}", display_path(path)))
+    RobotModel::from_json(&text).map_err(|err| diag::located(path, err))
 }
 
 /// Reads a whole text file (or standard input for `-`).

@@ -1,6 +1,6 @@
 //! `biscara post`: CL file → G-code.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use biscara::post::{PostOptions, PostSummary, post as post_file};
 use clap::Args;
@@ -42,32 +42,9 @@ pub(crate) fn post(args: &PostArgs) -> anyhow::Result<()> {
         summary = post_file(input, out, options).map_err(|err| post_error(&args.cl, err))?;
         Ok(())
     })?;
-    report_ignored(&args.cl, &summary);
+    if let Some(note) = summary.ignored_note() {
+        report(Level::Note, format_args!("{}: {note}", display_path(&args.cl)));
+    }
     Ok(())
 }
 
-/// A postprocessor error, prefixed with the CL file's name when it names a line.
-/// Lists the ignored post words once on stderr.
-fn report_ignored(path: &Path, summary: &PostSummary) {
-    if summary.ignored.is_empty() {
-        return;
-    }
-    let words: Vec<String> = summary
-        .ignored
-        .iter()
-        .map(|ignored| match ignored.count {
-            1 => format!("{} (line {})", ignored.word, ignored.first_line),
-            count => {
-                format!("{} ({count} times, first on line {})", ignored.word, ignored.first_line)
-            }
-        })
-        .collect();
-    report(
-        Level::Note,
-        format_args!(
-            "{}: ignored post words with no meaning for this robot (written as comments): {}",
-            display_path(path),
-            words.join(", ")
-        ),
-    );
-}

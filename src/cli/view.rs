@@ -8,6 +8,7 @@ use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, Sampli
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
+use super::diag::located;
 use super::args::{InputKind, ProfileArg, parse_duration, parse_pose};
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
@@ -82,7 +83,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
     let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
     for row in read_joint_csv(open_input(&args.traj)?) {
-        let row = row.map_err(|err| anyhow!("{traj_name}:{err}"))?;
+        let row = row.map_err(|err| located(&args.traj, err))?;
         viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;
     }
     let Some(duration) = viewer.duration() else {

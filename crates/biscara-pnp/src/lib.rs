@@ -31,4 +31,4 @@ mod program;
 
 pub use error::PointsError;
 pub use points::{Point, PointsReader, PointsRecord, PointsStatement};
-pub use program::{ClProgram, JobSettings, PART_NAME, write_cl};
+pub use program::{ClProgram, GenerateError, JobSettings, PART_NAME, generate, write_cl};

@@ -46,6 +46,32 @@ pub struct PostSummary {
     pub motions: usize,
 }
 
+impl PostSummary {
+    /// The note that lists the ignored post words (`ignored post words with no meaning for this
+    /// robot (written as comments): SPINDL (line 3), COOLNT (2 times, first on line 5)`), or
+    /// `None` when there were none.
+    pub fn ignored_note(&self) -> Option<String> {
+        if self.ignored.is_empty() {
+            return None;
+        }
+        let words: Vec<String> = self
+            .ignored
+            .iter()
+            .map(|ignored| match ignored.count {
+                1 => format!("{} (line {})", ignored.word, ignored.first_line),
+                count => format!(
+                    "{} ({count} times, first on line {})",
+                    ignored.word, ignored.first_line
+                ),
+            })
+            .collect();
+        Some(format!(
+            "ignored post words with no meaning for this robot (written as comments): {}",
+            words.join(", ")
+        ))
+    }
+}
+
 /// An arc waiting for its GOTO: the CIRCLE's line and the circle in millimetres.
 #[derive(Debug, Clone, Copy)]
 struct PendingArc {
