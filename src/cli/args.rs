@@ -1,8 +1,12 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
+use std::path::PathBuf;
+
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
+
+use super::files::FileSource;
 
 /// What kind of file a program is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -43,6 +47,46 @@ impl From<ProfileArg> for Profile {
     }
 }
 
+/// The program a command runs, and its kind.
+#[derive(Debug, Args)]
+pub(crate) struct ProgramArgs {
+    /// The program (G-code, inter-file or path CSV); `-` reads standard input.
+    #[arg(value_name = "PROGRAM")]
+    program: PathBuf,
+    /// The program's kind (default: from the extension, else from its first bytes).
+    #[arg(long, value_enum, value_name = "KIND")]
+    from: Option<InputKind>,
+}
+
+impl ProgramArgs {
+    /// The program as the pipeline's source, and its kind.
+    pub(crate) fn open(&self) -> anyhow::Result<(FileSource, ProgramKind)> {
+        let source = FileSource::new(&self.program);
+        let kind = source.kind(self.from)?;
+        Ok((source, kind))
+    }
+}
+
+/// Where a G-code program is placed: its G54 origin, or centred in the workspace.
+#[derive(Debug, Args)]
+pub(crate) struct PlacementArgs {
+    /// Shift a G-code program by X,Y,Z,C (mm, mm, mm, degrees): the G54 offset in force before
+    /// its first line, as `biscara interpret --origin`.
+    #[arg(
+        long,
+        value_name = "X,Y,Z,C",
+        allow_hyphen_values = true,
+        value_parser = parse_pose,
+        help = "G54 offset before the first line of a G-code program"
+    )]
+    pub(crate) origin: Option<[f64; 4]>,
+    /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
+    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
+    /// The offset is reported on stderr; a program larger than the rectangle is an error.
+    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    pub(crate) fit: bool,
+}
+
 /// Options shared by the commands that sample a program in time.
 #[derive(Debug, Args)]
 pub(crate) struct SamplingArgs {
@@ -55,21 +99,8 @@ pub(crate) struct SamplingArgs {
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
     grip_time: f64,
-    /// Shift a G-code program by X,Y,Z,C (mm, mm, mm, degrees): the G54 offset in force before
-    /// its first line, as `biscara interpret --origin`.
-    #[arg(
-        long,
-        value_name = "X,Y,Z,C",
-        allow_hyphen_values = true,
-        value_parser = parse_pose,
-        help = "G54 offset before the first line of a G-code program"
-    )]
-    origin: Option<[f64; 4]>,
-    /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
-    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
-    /// The offset is reported on stderr; a program larger than the rectangle is an error.
-    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
-    fit: bool,
+    #[command(flatten)]
+    pub(crate) placement: PlacementArgs,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     pub(crate) precision: u8,
@@ -82,8 +113,8 @@ impl SamplingArgs {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
-            origin: self.origin,
-            fit: self.fit,
+            origin: self.placement.origin,
+            fit: self.placement.fit,
         }
     }
 }

@@ -7,9 +7,9 @@ use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Checker;
 use clap::Args;
 
-use super::args::{InputKind, SamplingArgs};
+use super::args::{ProgramArgs, SamplingArgs};
 use super::diag::NoteReporter;
-use super::files::{FileSource, load_scene, write_output};
+use super::files::{load_scene, write_output};
 
 /// Runs a program on the virtual robot and reports every problem (SPEC §8.1).
 ///
@@ -35,12 +35,8 @@ use super::files::{FileSource, load_scene, write_output};
                        A scene is JSON: {\"boxes\":[{\"name\":\"pallet\",\"min\":[x,y,z],\"max\":[x,y,z]}]}"
 )]
 pub(crate) struct CheckArgs {
-    /// The program (G-code, inter-file or path CSV); `-` reads standard input.
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
-    /// The program's kind (default: from the extension, else from its first bytes).
-    #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
+    #[command(flatten)]
+    program: ProgramArgs,
     /// Boxes around the robot that no part of it may touch (JSON, millimetres, base frame).
     #[arg(long, value_name = "FILE")]
     scene: Option<PathBuf>,
@@ -56,8 +52,7 @@ pub(crate) struct CheckArgs {
 
 pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
-    let source = FileSource::new(&args.program);
-    let kind = source.kind(args.from)?;
+    let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
     let mut checker = Checker::new(model, scene);
     for sample in

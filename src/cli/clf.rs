@@ -2,7 +2,6 @@
 
 use std::path::PathBuf;
 
-
 use biscara::kinematics::RobotModel;
 use biscara::pnp::write_cl;
 use clap::Args;

@@ -38,11 +38,7 @@ pub(crate) fn located(path: &Path, err: impl Display) -> anyhow::Error {
 
 /// A postprocessor error, as `CL_FILE:LINE: …` when it has a line.
 pub(crate) fn post_error(path: &Path, err: PostError) -> anyhow::Error {
-    if err.line().is_some() {
-        located(path, err)
-    } else {
-        anyhow::Error::from(err)
-    }
+    if err.line().is_some() { located(path, err) } else { anyhow::Error::from(err) }
 }
 
 /// Most slowed motions listed one by one; past it only their count is printed, at the end.

@@ -11,8 +11,8 @@ use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::{ImageFormat, Scene};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressStyle};
 
-use super::diag::located;
 use super::args::InputKind;
+use super::diag::located;
 
 /// How a path is named in messages: `<stdin>` for `-`.
 pub(crate) fn display_path(path: &Path) -> String {

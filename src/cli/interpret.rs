@@ -7,7 +7,7 @@ use biscara::motion::write_jsonl;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
 use clap::Args;
 
-use super::args::parse_pose;
+use super::args::PlacementArgs;
 use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
@@ -40,27 +40,18 @@ pub(crate) struct InterpretArgs {
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// Shift the whole program by X,Y,Z,C (mm, mm, mm, degrees): the G54 offset in force before
-    /// the first line. CAM programs put their zero on the part; the robot's base origin is not
-    /// reachable.
-    #[arg(
-        long,
-        value_name = "X,Y,Z,C",
-        allow_hyphen_values = true,
-        value_parser = parse_pose,
-        help = "G54 offset before the first line (mm, mm, mm, degrees)"
-    )]
-    origin: Option<[f64; 4]>,
-    /// Place the program in the workspace: add to the origin the XY offset that centres the
-    /// program's bounding box in the largest rectangle of `biscara workspace` (reported on
-    /// stderr; a program larger than the rectangle is an error).
-    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
-    fit: bool,
+    #[command(flatten)]
+    placement: PlacementArgs,
 }
 
 pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
     let source = FileSource::new(&args.program);
-    let config = SamplingConfig { origin: args.origin, fit: args.fit, ..SamplingConfig::default() };
+    let placement = &args.placement;
+    let config = SamplingConfig {
+        origin: placement.origin,
+        fit: placement.fit,
+        ..SamplingConfig::default()
+    };
     let notes = NoteReporter::default();
     let motions =
         Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, &mut notes.sink())?;

@@ -8,9 +8,9 @@ use biscara::robot::{JointCurves, TopView, Workspace, draw_joints, draw_top_view
 use biscara::view::ProgramTrace;
 use clap::Args;
 
-use super::args::{InputKind, SamplingArgs};
+use super::args::{ProgramArgs, SamplingArgs};
 use super::diag::{Level, NoteReporter, report};
-use super::files::{FileSource, format_of, load_scene, write_output};
+use super::files::{format_of, load_scene, write_output};
 
 /// Draws a program on the virtual robot, in top view or as joint curves (SPEC §8.3).
 ///
@@ -29,15 +29,11 @@ use super::files::{FileSource, format_of, load_scene, write_output};
                        $ biscara plot --joints job.ngc -o joints.png"
 )]
 pub(crate) struct PlotArgs {
-    /// The program (G-code, inter-file or path CSV); `-` reads standard input.
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
+    #[command(flatten)]
+    program: ProgramArgs,
     /// Write to FILE (`.svg` or `.png`) instead of SVG on standard output.
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// The program's kind (default: from the extension, else from its first bytes).
-    #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
     /// Times (s) at which to draw the robot, comma-separated (default: the start).
     #[arg(long, value_name = "T,…", value_delimiter = ',', value_parser = parse_time)]
     at: Vec<f64>,
@@ -63,8 +59,7 @@ fn parse_time(text: &str) -> Result<f64, String> {
 
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
-    let source = FileSource::new(&args.program);
-    let kind = source.kind(args.from)?;
+    let (source, kind) = args.program.open()?;
     let at = if args.at.is_empty() { vec![0.0] } else { args.at.clone() };
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();

@@ -47,4 +47,3 @@ pub(crate) fn post(args: &PostArgs) -> anyhow::Result<()> {
     }
     Ok(())
 }
-

@@ -8,9 +8,9 @@ use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
 use clap::{Args, ValueEnum};
 
-use super::args::{InputKind, SamplingArgs};
+use super::args::{ProgramArgs, SamplingArgs};
 use super::diag::NoteReporter;
-use super::files::{FileSource, write_output};
+use super::files::write_output;
 
 /// The angle unit of the joint CSV, as named on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -38,15 +38,11 @@ pub(crate) enum AngleUnitArg {
                        $ biscara interpolate --from jsonl --dt 0.01 --profile constant job.jsonl"
 )]
 pub(crate) struct InterpolateArgs {
-    /// The program (G-code or inter-file); `-` reads standard input.
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
+    #[command(flatten)]
+    program: ProgramArgs,
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// The program's kind (default: from the extension, else from its first bytes).
-    #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
     #[command(flatten)]
     sampling: SamplingArgs,
     /// Add a `gripper` column: 1 from a pick to the next place.
@@ -72,15 +68,11 @@ pub(crate) struct InterpolateArgs {
                        $ biscara joints --derivatives --angle-unit deg --from path path.csv"
 )]
 pub(crate) struct JointsArgs {
-    /// The program (G-code, inter-file or path CSV); `-` reads standard input.
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
+    #[command(flatten)]
+    program: ProgramArgs,
     /// Write to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// The program's kind (default: from the extension, else from its first bytes).
-    #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
     #[command(flatten)]
     sampling: SamplingArgs,
     /// Add velocity and acceleration columns for every joint.
@@ -92,8 +84,7 @@ pub(crate) struct JointsArgs {
 }
 
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
-    let source = FileSource::new(&args.program);
-    let kind = source.kind(args.from)?;
+    let (source, kind) = args.program.open()?;
     if kind == ProgramKind::Path {
         return Err(anyhow!("interpolate reads G-code or an inter-file, not a path CSV"));
     }
@@ -114,8 +105,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 }
 
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
-    let source = FileSource::new(&args.program);
-    let kind = source.kind(args.from)?;
+    let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config());
     let mut samples = pipeline.joints(&source, kind, notes.sink())?;

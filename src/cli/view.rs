@@ -8,8 +8,8 @@ use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, Sampli
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
+use super::args::{InputKind, PlacementArgs, ProfileArg, parse_duration};
 use super::diag::located;
-use super::args::{InputKind, ProfileArg, parse_duration, parse_pose};
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
 
@@ -47,15 +47,8 @@ pub(crate) struct ViewArgs {
     /// A scene file: `{"boxes":[{"name":…,"min":[x,y,z],"max":[x,y,z]}]}` (mm).
     #[arg(long, value_name = "FILE", help = "Scene boxes to draw")]
     scene: Option<PathBuf>,
-    /// Shift a G-code program by X,Y,Z,C, as `biscara joints --origin`.
-    #[arg(
-        long,
-        value_name = "X,Y,Z,C",
-        allow_hyphen_values = true,
-        value_parser = parse_pose,
-        help = "G54 offset before the first line of a G-code program"
-    )]
-    origin: Option<[f64; 4]>,
+    #[command(flatten)]
+    placement: PlacementArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "trapezoid", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
@@ -68,9 +61,6 @@ pub(crate) struct ViewArgs {
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
-    /// Whether TRAJ was made with `--fit`, as `biscara joints --fit`.
-    #[arg(long, help = "TRAJ was made with --fit")]
-    fit: bool,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
     from: Option<InputKind>,
@@ -99,8 +89,8 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: args.profile.into(),
         grip_time: args.grip_time,
-        origin: args.origin,
-        fit: args.fit,
+        origin: args.placement.origin,
+        fit: args.placement.fit,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

@@ -1,6 +1,6 @@
 //! The interpolator: an iterator of motions in, an iterator of Cartesian samples out.
 
-use biscara_motion::{Motion, MotionKind};
+use biscara_motion::{Motion, MotionKind, Position};
 
 use crate::{Profile, Segment, Timing};
 
@@ -25,7 +25,7 @@ pub struct InterpolationConfig {
     /// The velocity profile of every motion.
     pub profile: Profile,
     /// The pose before the first motion (the robot's home pose), `[x, y, z, c]`.
-    pub start: [f64; 4],
+    pub start: Position,
     /// Cartesian limits.
     pub limits: CartesianLimits,
     /// Seconds each pick and place holds the pose (0: they take no time).
@@ -38,7 +38,7 @@ pub struct CartesianSample {
     /// Time since the start, s (a whole number of steps).
     pub t: f64,
     /// The pose `[x, y, z, c]`, mm and degrees.
-    pub pose: [f64; 4],
+    pub pose: Position,
     /// 1-based line of the motion this sample belongs to (0 for the start sample).
     pub line: usize,
     /// Whether the gripper is closed (from a pick to the next place).

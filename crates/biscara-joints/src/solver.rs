@@ -1,6 +1,7 @@
 //! The per-sample joint solver: the one place a Cartesian sample becomes joint values.
 
 use biscara_interpolate::CartesianSample;
+use biscara_motion::Position;
 use biscara_kinematics::{
     IkSolution, Joint, Joints, Kinematics, KinematicsError, Pose, Theta3Unwrapper,
 };
@@ -17,7 +18,7 @@ pub struct SampleError {
     /// Time of the sample, s.
     pub t: f64,
     /// The pose `[x, y, z, c]`, mm and degrees.
-    pub pose: [f64; 4],
+    pub pose: Position,
     /// Why the robot cannot take it: unreachable, beyond a type-2 singularity, outside the joint
     /// limits or near a singularity.
     pub source: KinematicsError,
@@ -75,7 +76,7 @@ impl JointSolver {
     /// solution. Limits and the singularity margin are not checked: see
     /// [`JointSolver::limit_violations`] and [`Kinematics::check_singularity`].
     #[inline(always)]
-    pub fn reach(&mut self, pose: &[f64; 4]) -> Result<IkSolution, KinematicsError> {
+    pub fn reach(&mut self, pose: &Position) -> Result<IkSolution, KinematicsError> {
         let [x, y, z, c] = *pose;
         let mut solution = self.model.inverse(&Pose::from_degrees(x, y, z, c))?;
         self.model.check_assembly(&solution)?;

@@ -2,6 +2,7 @@
 
 use biscara_interpolate::CartesianSample;
 use biscara_kinematics::{Joints, Kinematics};
+use biscara_motion::Position;
 
 use crate::differences::{central_differences, slope};
 use crate::solver::{JointSolver, SampleError};
@@ -14,7 +15,7 @@ pub struct JointSample {
     /// 1-based line of the motion (G-code, inter-file or path CSV) this sample belongs to.
     pub line: usize,
     /// The Cartesian pose it was solved from, `[x, y, z, c]` (mm, degrees).
-    pub pose: [f64; 4],
+    pub pose: Position,
     /// Joint positions.
     pub joints: Joints,
     /// Joint velocities (rad/s, mm/s), by finite differences of the positions.

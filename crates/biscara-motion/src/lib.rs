@@ -24,3 +24,10 @@ mod motion;
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
 pub use lines::{MAX_LINE_BYTES, read_bounded_line};
 pub use motion::{Feed, Motion, MotionKind, Plane};
+
+/// A position at a stage boundary: `[x, y, z, c]` in the robot's base frame, millimetres for
+/// x, y, z and **degrees** for c (the G-code C word), as in every file the stages exchange.
+///
+/// The name for what motions end at, what Cartesian samples are and what the home pose and the
+/// G54 origin are given as; inside the kinematics the same place is a `Pose` in radians.
+pub type Position = [f64; 4];

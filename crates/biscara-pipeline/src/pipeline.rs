@@ -8,6 +8,7 @@ use biscara_joints::{
     JointSample, JointSpeedLimit, JointTrajectory, JointsError, cartesian_limits,
 };
 use biscara_kinematics::RobotModel;
+use biscara_motion::Position;
 use biscara_robot::shift_motion;
 
 use crate::placement::{MotionReader, read_motions};
@@ -24,7 +25,7 @@ pub struct SamplingConfig {
     pub grip_time: f64,
     /// The G54 offset before a G-code program's first line, `[x, y, z, c]` (mm, degrees);
     /// `None` is zero.
-    pub origin: Option<[f64; 4]>,
+    pub origin: Option<Position>,
     /// Centre the program's XY extent in the workspace rectangle (`--fit`).
     pub fit: bool,
 }

@@ -3,7 +3,7 @@
 
 use biscara_gcode::{Config as GcodeConfig, interpret};
 use biscara_kinematics::RobotModel;
-use biscara_motion::{Motion, read_jsonl};
+use biscara_motion::{Motion, Position, read_jsonl};
 use biscara_robot::{Bounds, Workspace, fit};
 
 use crate::{Note, PipelineError, ProgramKind, ProgramSource};
@@ -17,7 +17,7 @@ const FIT_STEP_MM: f64 = 2.0;
 pub struct Placement {
     /// The G54 offset in force before a G-code program's first line, `[x, y, z, c]` (mm, mm,
     /// mm, degrees).
-    pub origin: [f64; 4],
+    pub origin: Position,
     /// An XY shift added to an inter-file's absolute motions (mm); `None` for G-code, whose
     /// origin moves instead (so that G28 and G53 keep their machine meaning).
     pub shift: Option<[f64; 2]>,
@@ -31,7 +31,7 @@ pub fn place(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    origin: Option<[f64; 4]>,
+    origin: Option<Position>,
     fit_program: bool,
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
@@ -79,7 +79,7 @@ pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    origin: [f64; 4],
+    origin: Position,
 ) -> Result<MotionReader, PipelineError> {
     let file = source.name().to_owned();
     let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
