@@ -1,10 +1,10 @@
 //! The per-sample joint solver: the one place a Cartesian sample becomes joint values.
 
 use biscara_interpolate::CartesianSample;
-use biscara_motion::Position;
 use biscara_kinematics::{
     IkSolution, Joint, Joints, Kinematics, KinematicsError, Pose, Theta3Unwrapper,
 };
+use biscara_motion::Position;
 
 /// Why the robot cannot take one sample, located in the program and in time.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -1,0 +1,147 @@
+//! The pipeline run as a library, without a process: the same stages as the commands.
+
+use biscara_interpolate::Profile;
+use biscara_kinematics::{Pose, RobotModel};
+use biscara_pipeline::{
+    Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig, TextSource,
+};
+
+const PROGRAM: &str = "G21 G90\nG0 X-20 Y380 Z60 C0\nG1 X20 F3000\nG2 X40 Y400 I0 J20\nM2\n";
+
+fn pipeline(model: &RobotModel, config: SamplingConfig) -> Pipeline<'_> {
+    Pipeline::new(model, config)
+}
+
+#[test]
+fn gcode_and_its_inter_file_give_the_same_samples() {
+    let model = RobotModel::default();
+    let pipeline = pipeline(&model, SamplingConfig::default());
+    let gcode = TextSource::new("job.ngc", PROGRAM);
+    let mut jsonl = Vec::new();
+    for motion in pipeline.motions(&gcode, ProgramKind::Gcode, &mut |_| {}).unwrap() {
+        biscara_motion::write_jsonl(&mut jsonl, &motion.unwrap()).unwrap();
+    }
+    let jsonl = TextSource::new("job.jsonl", String::from_utf8(jsonl).unwrap());
+    let from_gcode: Vec<_> =
+        pipeline.samples(&gcode, ProgramKind::Gcode, |_| {}).unwrap().map(Result::unwrap).collect();
+    let from_jsonl: Vec<_> =
+        pipeline.samples(&jsonl, ProgramKind::Jsonl, |_| {}).unwrap().map(Result::unwrap).collect();
+    assert_eq!(from_gcode.len(), from_jsonl.len());
+    assert!(from_gcode.len() > 1000);
+    for (a, b) in from_gcode.iter().zip(&from_jsonl) {
+        assert_eq!(a.t, b.t);
+        for axis in 0..4 {
+            assert!((a.pose[axis] - b.pose[axis]).abs() < 1e-9);
+        }
+    }
+}
+
+#[test]
+fn every_joint_row_lies_on_the_path_and_starts_at_home() {
+    let model = RobotModel::default();
+    let config = SamplingConfig { dt: 0.002, profile: Profile::Constant, ..Default::default() };
+    let source = TextSource::new("job.ngc", PROGRAM);
+    let mut rows = pipeline(&model, config).joints(&source, ProgramKind::Gcode, |_| {}).unwrap();
+    let first = rows.next().unwrap().unwrap();
+    assert_eq!(first.t, 0.0);
+    assert_eq!(first.pose, model.home_position());
+    for row in rows {
+        let row = row.unwrap();
+        let fk = model.kinematics().forward(&row.joints).unwrap();
+        let [x, y, z, c] = row.pose;
+        let expected = Pose::from_degrees(x, y, z, c);
+        assert!((fk.pose.x - expected.x).hypot(fk.pose.y - expected.y) < 1e-6, "t = {}", row.t);
+    }
+}
+
+#[test]
+fn errors_are_located_in_the_program_with_a_caret() {
+    let model = RobotModel::default();
+    let source = TextSource::new("bad.ngc", "G0 X0 Y400\nG2 X10 Y400 F100\n");
+    let err = pipeline(&model, SamplingConfig::default())
+        .samples(&source, ProgramKind::Gcode, |_| {})
+        .unwrap()
+        .find_map(Result::err)
+        .unwrap();
+    let text = err.to_string();
+    assert!(text.starts_with("bad.ngc:2:1: "), "{text}");
+    assert!(text.ends_with("\n    G2 X10 Y400 F100\n    ^^"), "{text}");
+}
+
+#[test]
+fn an_unreachable_sample_names_the_file_line_and_time() {
+    let model = RobotModel::default();
+    let source = TextSource::new("far.ngc", "G0 X0 Y400 Z50\nG1 Y900 F6000\n");
+    let err = pipeline(&model, SamplingConfig::default())
+        .joints(&source, ProgramKind::Gcode, |_| {})
+        .unwrap()
+        .find_map(Result::err)
+        .unwrap();
+    let text = err.to_string();
+    assert!(text.starts_with("far.ngc:2: at t = "), "{text}");
+    assert!(text.contains("cannot be taken"), "{text}");
+}
+
+#[test]
+fn fit_places_the_program_and_says_so() {
+    let model = RobotModel::default();
+    // A part drawn about its own zero: (0, 0) is not reachable by the robot.
+    let part = "G0 X0 Y0 Z50\nG1 X40 F3000\nG1 Y30\nG1 X0\nG1 Y0\nM2\n";
+    let source = TextSource::new("part.ngc", part);
+    let mut notes = Vec::new();
+    let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
+    let rows: Vec<_> = pipeline(&model, config)
+        .joints(&source, ProgramKind::Gcode, |note| notes.push(note))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert!(rows.len() > 100);
+    let [Note::Placed { file, fit }] = notes.as_slice() else { panic!("{notes:?}") };
+    assert_eq!(file, "part.ngc");
+    assert!(fit.offset[1] > 100.0, "{fit:?}");
+}
+
+/// Standard input: readable once.
+struct Once(TextSource);
+
+impl ProgramSource for Once {
+    fn name(&self) -> &str {
+        "<stdin>"
+    }
+
+    fn open(&self) -> std::io::Result<Box<dyn std::io::BufRead>> {
+        self.0.open()
+    }
+
+    fn rereadable(&self) -> bool {
+        false
+    }
+}
+
+#[test]
+fn fit_refuses_a_source_it_cannot_read_twice_and_a_path_csv() {
+    let model = RobotModel::default();
+    let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
+    let stdin = Once(TextSource::new("-", PROGRAM));
+    let err = pipeline(&model, config).samples(&stdin, ProgramKind::Gcode, |_| {}).err().unwrap();
+    assert!(matches!(err, PipelineError::Unsupported { .. }), "{err}");
+    assert!(err.to_string().contains("not standard input"), "{err}");
+    let csv = TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n");
+    let err = pipeline(&model, config).samples(&csv, ProgramKind::Path, |_| {}).err().unwrap();
+    assert_eq!(err.to_string(), "path.csv: --fit places a program, not a path CSV");
+}
+
+#[test]
+fn a_path_csv_is_read_as_it_is() {
+    let model = RobotModel::default();
+    let csv =
+        TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n0.5,10,400,50,0\n");
+    let samples: Vec<_> = pipeline(&model, SamplingConfig::default())
+        .samples(&csv, ProgramKind::Path, |_| {})
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(samples.len(), 2);
+    assert_eq!(samples[1].pose, [10.0, 400.0, 50.0, 0.0]);
+    assert_eq!(samples[1].line, 3);
+}
