@@ -117,10 +117,10 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
         }
         _ => {}
     }
-    if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind {
-        if !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0) {
-            return Err(invalid(format!("\"feed\" must be positive, got {}", feed.mm_per_min)));
-        }
+    if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind
+        && !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0)
+    {
+        return Err(invalid(format!("\"feed\" must be positive, got {}", feed.mm_per_min)));
     }
     if motion.line == 0 {
         motion.line = line;

@@ -133,19 +133,19 @@ impl<W: Write> Postprocessor<W> {
                 after: "END",
             });
         }
-        if let Some(arc) = self.arc {
-            if !matches!(
+        if let Some(arc) = self.arc
+            && !matches!(
                 statement,
                 Statement::Goto(_)
                     | Statement::Feed(_)
                     | Statement::Pprint(_)
                     | Statement::PostWord { .. }
-            ) {
-                return Err(PostError::CircleWithoutGoto {
-                    line: arc.line,
-                    found: format!("{} on line {line}", statement.word()),
-                });
-            }
+            )
+        {
+            return Err(PostError::CircleWithoutGoto {
+                line: arc.line,
+                found: format!("{} on line {line}", statement.word()),
+            });
         }
         match statement {
             Statement::PartNo(text) | Statement::Pprint(text) => self.comment(text),
