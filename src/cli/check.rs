@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 use anyhow::anyhow;
 use biscara::kinematics::{Joint, Kinematics, Robot};
 use biscara::robot::{Checker, Problem, Report, Scene};
+use biscara::text::fixed;
 use clap::Args;
 use serde_json::{Value, json};
 
 use super::display_path;
-use super::fmt::fixed;
 use super::output::write_output;
 use super::trajectory::{
     InputKind, SamplingArgs, input_kind, report_slow_total, samples, slow_down_reporter,

@@ -5,9 +5,9 @@ use std::path::Path;
 use anyhow::anyhow;
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::robot::{Bounds, fit};
+use biscara::text::fixed;
 
 use super::display_path;
-use super::fmt::fixed;
 use super::trajectory::{InputKind, motions};
 
 /// Grid step of the workspace rectangle `--fit` centres programs in, millimetres (the default of

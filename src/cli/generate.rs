@@ -4,9 +4,10 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, anyhow};
+use biscara::cl::write_statement;
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::pnp::ClProgram;
-use biscara::post::{PostOptions, Postprocessor, write_statement};
+use biscara::post::{PostOptions, Postprocessor};
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 

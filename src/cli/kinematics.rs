@@ -4,10 +4,11 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use biscara::kinematics::{FkSolution, IkSolution, Joints, Kinematics, Pose, Robot};
+use biscara::text::fixed;
 use clap::Args;
 use serde::Serialize;
 
-use super::fmt::{clean, fixed};
+use super::fmt::clean;
 use super::output::write_output;
 
 /// Inverse kinematics of one pose: prints θ1 θ2 θ3 d4 (degrees, degrees, degrees, mm).

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::robot::{Rectangle, Workspace};
+use biscara::text::fixed;
 use clap::Args;
 
-use super::fmt::fixed;
 use super::output::write_output;
 
 /// The reachable region of the XY plane and the largest axis-aligned rectangle inside it

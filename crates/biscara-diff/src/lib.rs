@@ -293,7 +293,7 @@ impl<R: BufRead> Lines<R> {
         loop {
             self.text.clear();
             self.line += 1;
-            let read = biscara_motion::read_bounded_line(&mut self.reader, &mut self.text)
+            let read = biscara_text::read_bounded_line(&mut self.reader, &mut self.text)
                 .map_err(|source| DiffError::Io { side: self.side, line: self.line, source })?;
             if read == 0 {
                 return Ok(None);

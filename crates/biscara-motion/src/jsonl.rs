@@ -2,6 +2,8 @@
 
 use std::io::{self, BufRead, Write};
 
+use biscara_text::{read_bounded_line, strip_position};
+
 use crate::{Motion, MotionKind};
 
 /// An inter-file that cannot be read.
@@ -69,7 +71,7 @@ impl<R: BufRead> Iterator for JsonlReader<R> {
             self.buffer.clear();
             self.line += 1;
             let line = self.line;
-            match crate::read_bounded_line(&mut self.reader, &mut self.buffer) {
+            match read_bounded_line(&mut self.reader, &mut self.buffer) {
                 Ok(0) => return None,
                 Ok(_) => {}
                 Err(source) => {
@@ -126,14 +128,6 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
         motion.line = line;
     }
     Ok(motion)
-}
-
-/// serde_json appends " at line L column C"; the position is reported separately.
-fn strip_position(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(index) => message[..index].to_owned(),
-        None => message.to_owned(),
-    }
 }
 
 #[cfg(test)]

@@ -18,9 +18,7 @@
 //! ```
 
 mod jsonl;
-mod lines;
 mod motion;
 
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
-pub use lines::{MAX_LINE_BYTES, read_bounded_line};
 pub use motion::{Feed, Motion, MotionKind, Plane};

@@ -3,8 +3,8 @@
 use std::collections::VecDeque;
 use std::io::{BufRead, Write};
 
+use biscara_cl::{Feed, FeedUnit, Goto, Statement, Units, write_statement};
 use biscara_kinematics::{Kinematics, Pose};
-use biscara_post::{Feed, FeedUnit, Goto, Statement, Units, write_statement};
 
 use crate::error::PointsError;
 use crate::points::{Point, PointsReader, PointsStatement};

@@ -2,9 +2,10 @@
 
 use std::io::{BufRead, Write};
 
-use crate::cl::{Circle, ClReader, Feed, FeedUnit, Goto, Statement, Units};
+use biscara_cl::{Circle, ClReader, Feed, FeedUnit, Goto, Statement, Units};
+use biscara_text::fixed;
+
 use crate::error::PostError;
-use crate::fmt::fixed;
 
 /// Millimetres per inch.
 const MM_PER_INCH: f64 = 25.4;

@@ -1,20 +1,26 @@
-//! Reading text one line at a time from any `BufRead`, with a bound on the line length, 1-based
-//! line numbers and a UTF-8 check per line: the shared front end of the CL and points readers.
+//! Reading text one line at a time from any `BufRead`, with a bound on the line length.
+//!
+//! [`LineReader`] numbers lines from 1 and checks each is text (UTF-8, no NUL): the front end of
+//! the CL and points readers. [`read_bounded_line`] is `BufRead::read_line` with the same bound,
+//! for the readers whose messages are `io::Error`'s (the inter-file, the CSV readers, `diff`).
 
-use std::io::{self, BufRead};
+use std::io::{self, BufRead, Read};
 
 /// The longest line a reader accepts, in bytes (64 KiB): a longer one is an error, so a binary
 /// file or a runaway line cannot make a reader hold unbounded memory.
 pub const MAX_LINE_BYTES: usize = 64 * 1024;
 
 /// Why a line could not be read.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum LineError {
-    /// Reading failed.
+    /// Occurs when reading fails.
+    #[error("cannot read: {0}")]
     Io(io::Error),
-    /// The line is not valid UTF-8.
+    /// Occurs when the line is not valid UTF-8 or holds NUL bytes.
+    #[error("not a text file (invalid UTF-8 or NUL bytes)")]
     NotText,
-    /// The line is longer than [`MAX_LINE_BYTES`].
+    /// Occurs when the line is longer than [`MAX_LINE_BYTES`].
+    #[error("the line is longer than {MAX_LINE_BYTES} bytes")]
     TooLong,
 }
 
@@ -108,6 +114,21 @@ impl<R: BufRead> LineReader<R> {
     }
 }
 
+/// Appends the next line (with its `\n`) of `reader` to `buffer`, like [`BufRead::read_line`], but
+/// fails with [`io::ErrorKind::InvalidData`] instead of growing past [`MAX_LINE_BYTES`]. Returns
+/// the bytes read, 0 at the end of input.
+pub fn read_bounded_line(reader: &mut impl BufRead, buffer: &mut String) -> io::Result<usize> {
+    let limit = (MAX_LINE_BYTES + 1) as u64;
+    let read = reader.by_ref().take(limit).read_line(buffer)?;
+    if read > MAX_LINE_BYTES && !buffer.ends_with('\n') {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("the line is longer than {MAX_LINE_BYTES} bytes"),
+        ));
+    }
+    Ok(read)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,5 +171,20 @@ mod tests {
         assert_eq!(lines(&huge), vec![Err(1)]);
         let exact = vec![b'x'; MAX_LINE_BYTES];
         assert_eq!(lines(&exact).len(), 1);
+    }
+
+    #[test]
+    fn bounded_lines_refuse_long_lines_and_read_short_ones() {
+        let mut text = "a\n".to_owned();
+        text.push_str(&"x".repeat(MAX_LINE_BYTES + 10));
+        let mut reader = text.as_bytes();
+        let mut line = String::new();
+        assert_eq!(read_bounded_line(&mut reader, &mut line).unwrap(), 2);
+        line.clear();
+        let err = read_bounded_line(&mut reader, &mut line).unwrap_err();
+        assert_eq!(err.to_string(), "the line is longer than 65536 bytes");
+        let exact = "y".repeat(MAX_LINE_BYTES);
+        let mut line = String::new();
+        assert_eq!(read_bounded_line(&mut exact.as_bytes(), &mut line).unwrap(), MAX_LINE_BYTES);
     }
 }
