@@ -12,11 +12,12 @@
 //! - [`diff`]: numeric comparison of outputs within a tolerance (golden-file checks).
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
 //! - [`robot`]: the virtual robot: body poses, scenes, collisions, `check`, the workspace and
-//!   its rectangle, placing programs (`--fit`) and plots.
+//!   its rectangle, placing programs (`--fit`).
 //! - [`cl`]: CL statements, read and written: the contract between `pnp` and `post`.
 //! - [`post`]: CL files posted to LinuxCNC G-code (`biscara post`).
 //! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
-//! - [`view`]: the HTML viewer and the MuJoCo model of a trajectory (`biscara view`, `mjcf`).
+//! - [`view`]: the HTML viewer, the MuJoCo model and the SVG/PNG plots of a trajectory
+//!   (`biscara view`, `mjcf`, `plot`).
 //! - [`text`]: the text plumbing the stages share: bounded lines, fixed decimals, numeric CSV.
 //!
 //! ```

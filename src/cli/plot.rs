@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use biscara::kinematics::{Kinematics, Pose, Robot, Theta3Unwrapper};
-use biscara::robot::{
-    Body, ImageFormat, JointCurves, Rectangle, Scene, TopView, VirtualRobot, Workspace,
-    draw_joints, draw_top_view, draw_workspace,
+use biscara::robot::{Body, Rectangle, Scene, VirtualRobot, Workspace};
+use biscara::view::{
+    ImageFormat, JointCurves, TopView, draw_joints, draw_top_view, draw_workspace,
 };
 use clap::Args;
 
