@@ -1,7 +1,8 @@
 //! The text plumbing every biscara stage shares, so that each reads and writes text the same way:
 //!
-//! - bounded lines: [`LineReader`] (1-based lines, UTF-8 and NUL checked, at most
-//!   [`MAX_LINE_BYTES`]) and [`read_bounded_line`] (`BufRead::read_line` with the same bound);
+//! - bounded lines: [`read_capped_line`] (bytes, the cap a parameter: the G-code lexer's 252),
+//!   [`LineReader`] on it (1-based lines, UTF-8 and NUL checked, at most [`MAX_LINE_BYTES`]) and
+//!   [`read_bounded_line`] (`BufRead::read_line` with the same bound);
 //! - fixed-decimal numbers: [`fixed`] (never a negative zero), [`round_to`] for JSON, and the
 //!   [`RowBuffer`] the CSV writers gather rows in, with its fast formatter;
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;
@@ -9,8 +10,7 @@
 //!
 //! It knows no file format of its own (no header, no column meaning) and nothing of robots,
 //! G-code or CL: those live in the stage crates on top of it. It never prints and never opens a
-//! file. The G-code interpreter keeps its own line reader (LinuxCNC's 252-character cap, bytes
-//! not text; see `ARCHITECTURE.md`).
+//! file.
 //!
 //! ```
 //! use biscara_text::{LineReader, RowBuffer, fixed};
@@ -30,5 +30,5 @@ mod message;
 
 pub use csv::{CsvError, MAX_CSV_COLUMNS, NumericCsvReader};
 pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, fixed, push_fixed, round_to};
-pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line};
+pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line, read_capped_line};
 pub use message::{compact, shorten, strip_position};

@@ -1,7 +1,9 @@
 //! Reading text one line at a time from any `BufRead`, with a bound on the line length.
 //!
-//! [`LineReader`] numbers lines from 1 and checks each is text (UTF-8, no NUL): the front end of
-//! the CL and points readers. [`read_bounded_line`] is `BufRead::read_line` with the same bound,
+//! [`read_capped_line`] reads one line as bytes with a cap given by the caller, keeping the head
+//! of a longer one: the G-code lexer uses it with LinuxCNC's 252 characters. [`LineReader`] reads
+//! text on it (64 KiB, lines numbered from 1, UTF-8 and NUL checked): the front end of the CL
+//! and points readers. [`read_bounded_line`] is `BufRead::read_line` with the same 64 KiB bound,
 //! for the readers whose messages are `io::Error`'s (the inter-file, the CSV readers, `diff`).
 
 use std::io::{self, BufRead, Read};
@@ -52,47 +54,19 @@ impl<R: BufRead> LineReader<R> {
         if self.done {
             return Ok(None);
         }
-        self.buffer.clear();
-        let mut read_any = false;
-        loop {
-            let available = match self.inner.fill_buf() {
-                Ok(available) => available,
-                Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
-                Err(err) => {
-                    self.done = true;
-                    return Err((self.line + 1, LineError::Io(err)));
-                }
-            };
-            if available.is_empty() {
-                break;
-            }
-            read_any = true;
-            let (taken, ends) = match available.iter().position(|&byte| byte == b'\n') {
-                Some(end) => (end + 1, true),
-                None => (available.len(), false),
-            };
-            if self.buffer.len() + taken > MAX_LINE_BYTES + 2 {
+        let too_long = match read_capped_line(&mut self.inner, &mut self.buffer, MAX_LINE_BYTES) {
+            Ok(Some(too_long)) => too_long,
+            Ok(None) => {
                 self.done = true;
-                return Err((self.line + 1, LineError::TooLong));
+                return Ok(None);
             }
-            self.buffer.extend_from_slice(&available[..taken]);
-            self.inner.consume(taken);
-            if ends {
-                break;
+            Err(err) => {
+                self.done = true;
+                return Err((self.line + 1, LineError::Io(err)));
             }
-        }
-        if !read_any {
-            self.done = true;
-            return Ok(None);
-        }
+        };
         self.line += 1;
-        if self.buffer.last() == Some(&b'\n') {
-            self.buffer.pop();
-        }
-        if self.buffer.last() == Some(&b'\r') {
-            self.buffer.pop();
-        }
-        if self.buffer.len() > MAX_LINE_BYTES {
+        if too_long {
             self.done = true;
             return Err((self.line, LineError::TooLong));
         }
@@ -112,6 +86,70 @@ impl<R: BufRead> LineReader<R> {
         }
         Ok(Some((self.line, text)))
     }
+}
+
+/// Reads the next line of `reader` into `line` (cleared first) as bytes, without its `\n` and a
+/// `\r` before it, keeping at most `max + 1` bytes of it: `Ok(None)` at the end of the input,
+/// else `Ok(Some(too_long))`, `too_long` telling that the line has more than `max` bytes (then
+/// `line` holds its first `max + 1` and the rest is read and dropped, so that memory stays
+/// bounded and the next call starts on the next line).
+///
+/// The one bounded line reader: [`LineReader`] reads text on it with [`MAX_LINE_BYTES`], the
+/// G-code lexer reads bytes with LinuxCNC's 252 characters. `Interrupted` reads are retried.
+///
+/// ```
+/// let mut input = "G0 X1\r\nG1 X123456\n".as_bytes();
+/// let mut line = Vec::new();
+/// assert_eq!(biscara_text::read_capped_line(&mut input, &mut line, 8)?, Some(false));
+/// assert_eq!(line, b"G0 X1");
+/// assert_eq!(biscara_text::read_capped_line(&mut input, &mut line, 8)?, Some(true));
+/// assert_eq!(line, b"G1 X12345"); // the first max + 1 bytes
+/// assert_eq!(biscara_text::read_capped_line(&mut input, &mut line, 8)?, None);
+/// # Ok::<(), std::io::Error>(())
+/// ```
+#[inline]
+pub fn read_capped_line(
+    reader: &mut impl BufRead,
+    line: &mut Vec<u8>,
+    max: usize,
+) -> io::Result<Option<bool>> {
+    line.clear();
+    let mut length = 0usize;
+    let mut any = false;
+    loop {
+        let available = match reader.fill_buf() {
+            Ok(available) => available,
+            Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
+            Err(err) => return Err(err),
+        };
+        if available.is_empty() {
+            break;
+        }
+        any = true;
+        let (chunk, used, done) = match available.iter().position(|&byte| byte == b'\n') {
+            Some(index) => (&available[..index], index + 1, true),
+            None => (available, available.len(), false),
+        };
+        let room = (max + 2).saturating_sub(line.len());
+        line.extend_from_slice(&chunk[..chunk.len().min(room)]);
+        length += chunk.len();
+        reader.consume(used);
+        if done {
+            break;
+        }
+    }
+    if !any {
+        return Ok(None);
+    }
+    if line.last() == Some(&b'\r') && length <= max + 1 {
+        line.pop();
+        length -= 1;
+    }
+    let too_long = length > max;
+    if too_long {
+        line.truncate(max + 1);
+    }
+    Ok(Some(too_long))
 }
 
 /// Appends the next line (with its `\n`) of `reader` to `buffer`, like [`BufRead::read_line`], but
@@ -171,6 +209,27 @@ mod tests {
         assert_eq!(lines(&huge), vec![Err(1)]);
         let exact = vec![b'x'; MAX_LINE_BYTES];
         assert_eq!(lines(&exact).len(), 1);
+    }
+
+    #[test]
+    fn capped_lines_keep_the_head_of_a_long_line_and_go_on() {
+        let mut input = "abc\r\nabcd\r\nxyz\rabc\r".as_bytes();
+        let mut line = Vec::new();
+        let mut next = || {
+            let result = read_capped_line(&mut input, &mut line, 3).unwrap();
+            result.map(|too_long| (String::from_utf8(line.clone()).unwrap(), too_long))
+        };
+        assert_eq!(next(), Some(("abc".to_owned(), false)));
+        assert_eq!(next(), Some(("abcd".to_owned(), true)));
+        // A `\r` inside a line is kept; only the one before the line's end is dropped.
+        assert_eq!(next(), Some(("xyz\r".to_owned(), true)));
+        let input = "x".repeat(10_000) + "\nok\n";
+        let mut bytes = input.as_bytes();
+        assert_eq!(read_capped_line(&mut bytes, &mut line, 5).unwrap(), Some(true));
+        assert_eq!(line.len(), 6);
+        assert_eq!(read_capped_line(&mut bytes, &mut line, 5).unwrap(), Some(false));
+        assert_eq!(line, b"ok");
+        assert_eq!(read_capped_line(&mut bytes, &mut line, 5).unwrap(), None);
     }
 
     #[test]
