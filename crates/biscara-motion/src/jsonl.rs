@@ -72,8 +72,8 @@ impl<R: BufRead> Iterator for JsonlReader<R> {
             self.line += 1;
             let line = self.line;
             match read_bounded_line(&mut self.reader, &mut self.buffer) {
-                Ok(0) => return None,
-                Ok(_) => {}
+                Ok(false) => return None,
+                Ok(true) => {}
                 Err(source) => {
                     self.failed = true;
                     return Some(Err(InterFileError::Io { line, source }));

@@ -60,10 +60,9 @@ impl<R: BufRead> NumericCsvReader<R> {
     fn read_line(&mut self) -> Result<bool, CsvError> {
         self.buffer.clear();
         self.line += 1;
-        match read_bounded_line(&mut self.reader, &mut self.buffer) {
-            Ok(read) => Ok(read > 0),
-            Err(source) => Err(CsvError::Io { line: self.line, source }),
-        }
+        let line = self.line;
+        read_bounded_line(&mut self.reader, &mut self.buffer)
+            .map_err(|source| CsvError::Io { line, source })
     }
 
     /// The first line without its line break (empty for an empty input), for the caller to

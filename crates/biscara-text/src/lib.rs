@@ -1,8 +1,8 @@
 //! The text plumbing every biscara stage shares, so that each reads and writes text the same way:
 //!
 //! - bounded lines: [`read_capped_line`] (bytes, the cap a parameter: the G-code lexer's 252),
-//!   [`LineReader`] on it (1-based lines, UTF-8 and NUL checked, at most [`MAX_LINE_BYTES`]) and
-//!   [`read_bounded_line`] (`BufRead::read_line` with the same bound);
+//!   and on it [`LineReader`] (1-based lines, UTF-8 and NUL checked, at most
+//!   [`MAX_LINE_BYTES`]) and [`read_bounded_line`] (the same bound, `io::Error`s);
 //! - fixed-decimal numbers: [`fixed`] (never a negative zero), [`round_to`] for JSON, and the
 //!   [`RowBuffer`] the CSV writers gather rows in, with its fast formatter;
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;

@@ -3,10 +3,10 @@
 //! [`read_capped_line`] reads one line as bytes with a cap given by the caller, keeping the head
 //! of a longer one: the G-code lexer uses it with LinuxCNC's 252 characters. [`LineReader`] reads
 //! text on it (64 KiB, lines numbered from 1, UTF-8 and NUL checked): the front end of the CL
-//! and points readers. [`read_bounded_line`] is `BufRead::read_line` with the same 64 KiB bound,
-//! for the readers whose messages are `io::Error`'s (the inter-file, the CSV readers, `diff`).
+//! and points readers. [`read_bounded_line`] reads text on it too, with `BufRead::read_line`'s
+//! `io::Error`s: the inter-file, the CSV readers and `diff`.
 
-use std::io::{self, BufRead, Read};
+use std::io::{self, BufRead};
 
 /// The longest line a reader accepts, in bytes (64 KiB): a longer one is an error, so a binary
 /// file or a runaway line cannot make a reader hold unbounded memory.
@@ -152,19 +152,27 @@ pub fn read_capped_line(
     Ok(Some(too_long))
 }
 
-/// Appends the next line (with its `\n`) of `reader` to `buffer`, like [`BufRead::read_line`], but
-/// fails with [`io::ErrorKind::InvalidData`] instead of growing past [`MAX_LINE_BYTES`]. Returns
-/// the bytes read, 0 at the end of input.
-pub fn read_bounded_line(reader: &mut impl BufRead, buffer: &mut String) -> io::Result<usize> {
-    let limit = (MAX_LINE_BYTES + 1) as u64;
-    let read = reader.by_ref().take(limit).read_line(buffer)?;
-    if read > MAX_LINE_BYTES && !buffer.ends_with('\n') {
-        return Err(io::Error::new(
+/// Reads the next line of `reader` into `buffer` (replacing what it held), without its line
+/// ending: `Ok(false)` at the end of the input. [`read_capped_line`] with [`MAX_LINE_BYTES`] and
+/// `BufRead::read_line`'s errors, for the readers whose messages are `io::Error`s (the
+/// inter-file, the CSV readers, `diff`): a longer line is an [`io::ErrorKind::InvalidData`]
+/// error "the line is longer than 65536 bytes", text that is not UTF-8 one "stream did not
+/// contain valid UTF-8".
+pub fn read_bounded_line(reader: &mut impl BufRead, buffer: &mut String) -> io::Result<bool> {
+    let mut bytes = std::mem::take(buffer).into_bytes();
+    match read_capped_line(reader, &mut bytes, MAX_LINE_BYTES)? {
+        None => Ok(false),
+        Some(true) => Err(io::Error::new(
             io::ErrorKind::InvalidData,
             format!("the line is longer than {MAX_LINE_BYTES} bytes"),
-        ));
+        )),
+        Some(false) => {
+            *buffer = String::from_utf8(bytes).map_err(|_| {
+                io::Error::new(io::ErrorKind::InvalidData, "stream did not contain valid UTF-8")
+            })?;
+            Ok(true)
+        }
     }
-    Ok(read)
 }
 
 #[cfg(test)]
@@ -238,12 +246,18 @@ mod tests {
         text.push_str(&"x".repeat(MAX_LINE_BYTES + 10));
         let mut reader = text.as_bytes();
         let mut line = String::new();
-        assert_eq!(read_bounded_line(&mut reader, &mut line).unwrap(), 2);
-        line.clear();
+        assert!(read_bounded_line(&mut reader, &mut line).unwrap());
+        assert_eq!(line, "a");
         let err = read_bounded_line(&mut reader, &mut line).unwrap_err();
         assert_eq!(err.to_string(), "the line is longer than 65536 bytes");
-        let exact = "y".repeat(MAX_LINE_BYTES);
-        let mut line = String::new();
-        assert_eq!(read_bounded_line(&mut exact.as_bytes(), &mut line).unwrap(), MAX_LINE_BYTES);
+        let exact = "y".repeat(MAX_LINE_BYTES) + "\r\n\n";
+        let mut reader = exact.as_bytes();
+        assert!(read_bounded_line(&mut reader, &mut line).unwrap());
+        assert_eq!(line.len(), MAX_LINE_BYTES);
+        assert!(read_bounded_line(&mut reader, &mut line).unwrap());
+        assert_eq!(line, "");
+        assert!(!read_bounded_line(&mut reader, &mut line).unwrap());
+        let err = read_bounded_line(&mut &b"ok\xff\n"[..], &mut line).unwrap_err();
+        assert_eq!(err.to_string(), "stream did not contain valid UTF-8");
     }
 }
