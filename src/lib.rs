@@ -12,10 +12,13 @@
 //! - [`diff`]: numeric comparison of outputs within a tolerance (golden-file checks).
 //! - [`pnp`]: pick-and-place points files and the CL program they make (`biscara clf`).
 //! - [`robot`]: the virtual robot: body poses, scenes, collisions, `check`, the workspace and
-//!   its rectangle, placing programs (`--fit`) and plots.
-//! - [`post`]: CL files read, written and posted to LinuxCNC G-code (`biscara post`).
+//!   its rectangle, placing programs (`--fit`).
+//! - [`cl`]: CL statements, read and written: the contract between `pnp` and `post`.
+//! - [`post`]: CL files posted to LinuxCNC G-code (`biscara post`).
 //! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
-//! - [`view`]: the HTML viewer and the MuJoCo model of a trajectory (`biscara view`, `mjcf`).
+//! - [`view`]: the HTML viewer, the MuJoCo model and the SVG/PNG plots of a trajectory
+//!   (`biscara view`, `mjcf`, `plot`).
+//! - [`text`]: the text plumbing the stages share: bounded lines, fixed decimals, numeric CSV.
 //!
 //! ```
 //! use biscara::kinematics::{Kinematics, Pose};
@@ -26,6 +29,7 @@
 //! # Ok::<(), biscara::kinematics::KinematicsError>(())
 //! ```
 
+pub use biscara_cl as cl;
 pub use biscara_diff as diff;
 pub use biscara_gcode as gcode;
 pub use biscara_interpolate as interpolate;
@@ -36,4 +40,5 @@ pub use biscara_pipeline as pipeline;
 pub use biscara_pnp as pnp;
 pub use biscara_post as post;
 pub use biscara_robot as robot;
+pub use biscara_text as text;
 pub use biscara_view as view;

@@ -8,7 +8,8 @@ use std::sync::Mutex;
 
 use anyhow::Context;
 use biscara::pipeline::{ProgramKind, ProgramSource};
-use biscara::robot::{ImageFormat, Scene};
+use biscara::robot::Scene;
+use biscara::view::ImageFormat;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressStyle};
 
 use super::args::InputKind;

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use biscara::kinematics::RobotModel;
-use biscara::pnp::{GenerateError, generate as generate_gcode};
+use biscara::pipeline::{GenerateError, generate as generate_gcode};
 use biscara::post::PostOptions;
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};

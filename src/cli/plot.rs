@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
-use biscara::robot::{JointCurves, TopView, Workspace, draw_joints, draw_top_view};
-use biscara::view::ProgramTrace;
+use biscara::robot::Workspace;
+use biscara::view::{JointCurves, ProgramTrace, TopView, draw_joints, draw_top_view};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs};

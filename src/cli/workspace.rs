@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use biscara::kinematics::{Joints, RobotModel};
-use biscara::robot::{VirtualRobot, Workspace, draw_workspace};
+use biscara::robot::{VirtualRobot, Workspace};
+use biscara::view::draw_workspace;
 use clap::Args;
 
 use super::files::{format_of, write_output};

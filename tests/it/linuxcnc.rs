@@ -26,7 +26,7 @@
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use biscara::post::{ClReader, FeedUnit, Statement, Units};
+use biscara::cl::{ClReader, FeedUnit, Statement, Units};
 
 use crate::programming::{data_files, stem};
 use crate::util::{biscara, temp_dir};

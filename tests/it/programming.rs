@@ -187,8 +187,8 @@ fn bad_points_files_get_a_clear_error_and_no_output() {
             "points.txt:3: approach pose above the place (x, y, z, c) = (-150, 300, 130, 0) is unreachable: d4 = -30.000 mm is outside its limits [0, 100] by 30.000 mm",
         ),
         (
-            "pick 150 320 10 30\nplace -150 300 20 250\n".into(),
-            "points.txt:2: place (x, y, z, c) = (-150, 300, 20, 250) is unreachable: theta3 = 201.221° is outside its limits [-180, 180] by 21.221°",
+            "pick 150 320 10 30\nplace -150 300 20 600\n".into(),
+            "points.txt:2: place (x, y, z, c) = (-150, 300, 20, 600) is unreachable: theta3 = 551.221° is outside its limits [-180, 180] by 371.221°",
         ),
         ("pick 150 320 10 30\nplace 0 60 10 0\n".into(), "beyond a type-2 singularity"),
         ("# job\nmove 150 320 10 30\n".into(), "points.txt:2: unknown keyword `move`"),

@@ -293,9 +293,9 @@ impl<R: BufRead> Lines<R> {
         loop {
             self.text.clear();
             self.line += 1;
-            let read = biscara_motion::read_bounded_line(&mut self.reader, &mut self.text)
+            let read = biscara_text::read_bounded_line(&mut self.reader, &mut self.text)
                 .map_err(|source| DiffError::Io { side: self.side, line: self.line, source })?;
-            if read == 0 {
+            if !read {
                 return Ok(None);
             }
             let trimmed = self.text.trim_end_matches(['\n', '\r']);

@@ -360,12 +360,10 @@ impl<R: BufRead> Interpreter<R> {
         let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
         let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
         // check_g_codes / check_other_codes
-        if let (Some(zero), Some(_)) = (group0, motion_code) {
-            if uses_axes(zero.code) {
-                return Err(
-                    self.code_fault(zero, "Cannot use two g codes that both use axis values")
-                );
-            }
+        if let (Some(zero), Some(_)) = (group0, motion_code)
+            && uses_axes(zero.code)
+        {
+            return Err(self.code_fault(zero, "Cannot use two g codes that both use axis values"));
         }
         let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code));
         let modal_motion = match motion_code {
@@ -441,11 +439,11 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 4. feed rate
-        if let Some(f) = self.block.word(b'f') {
-            if !self.state.inverse_time {
-                self.state.feed_rate = f.value;
-                self.state.feed_mm = f.value * self.state.factor();
-            }
+        if let Some(f) = self.block.word(b'f')
+            && !self.state.inverse_time
+        {
+            self.state.feed_rate = f.value;
+            self.state.feed_mm = f.value * self.state.factor();
         }
         // 5, 6. spindle speed, tool selection: no effect on motion.
         if let Some(s) = self.block.word(b's') {
@@ -479,16 +477,15 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 14. dwell
-        if group0.is_some_and(|zero| zero.code == 40) {
-            if let Some(p) = self.block.word(b'p') {
-                if p.value < 0.0 {
-                    return Err(self.word_fault(
-                        p,
-                        format!("a dwell time must not be negative: P{}", p.value),
-                    ));
-                }
-                self.emit(MotionKind::Dwell { seconds: p.value });
+        if group0.is_some_and(|zero| zero.code == 40)
+            && let Some(p) = self.block.word(b'p')
+        {
+            if p.value < 0.0 {
+                return Err(
+                    self.word_fault(p, format!("a dwell time must not be negative: P{}", p.value))
+                );
             }
+            self.emit(MotionKind::Dwell { seconds: p.value });
         }
         // 15. plane
         if let Some(code) = g[2] {
@@ -703,10 +700,10 @@ impl<R: BufRead> Interpreter<R> {
             ),
         ];
         for (letter, used, message) in checks {
-            if let Some(word) = block.word(letter) {
-                if !used {
-                    return Err(self.word_fault(word, message));
-                }
+            if let Some(word) = block.word(letter)
+                && !used
+            {
+                return Err(self.word_fault(word, message));
             }
         }
         if let Some(p) = block.word(b'p') {
@@ -737,10 +734,10 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
         }
-        if let Some(r) = block.word(b'r') {
-            if !(arc || g10) {
-                return Err(self.word_fault(r, "R word with no g code that uses it"));
-            }
+        if let Some(r) = block.word(b'r')
+            && !(arc || g10)
+        {
+            return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
         Ok(())
     }

@@ -53,7 +53,8 @@ impl Fault {
     }
 }
 
-/// Reads lines into one reused buffer, never holding more than `MAX_LINE + 1` bytes of a line.
+/// Reads lines into one reused buffer, never holding more than `MAX_LINE + 1` bytes of a line
+/// (`biscara_text::read_capped_line` with LinuxCNC's cap).
 #[derive(Debug)]
 pub(crate) struct LineReader<R> {
     reader: R,
@@ -73,45 +74,15 @@ impl<R: BufRead> LineReader<R> {
 
     /// Reads the next line; `Ok(false)` at the end of the input.
     pub(crate) fn next_line(&mut self) -> io::Result<bool> {
-        self.line.clear();
         self.too_long = false;
-        let mut length = 0usize;
-        let mut any = false;
-        loop {
-            let available = match self.reader.fill_buf() {
-                Ok(available) => available,
-                Err(err) if err.kind() == io::ErrorKind::Interrupted => continue,
-                Err(err) => return Err(err),
-            };
-            if available.is_empty() {
-                break;
+        match biscara_text::read_capped_line(&mut self.reader, &mut self.line, MAX_LINE)? {
+            Some(too_long) => {
+                self.number += 1;
+                self.too_long = too_long;
+                Ok(true)
             }
-            any = true;
-            let (chunk, used, done) = match available.iter().position(|&byte| byte == b'\n') {
-                Some(index) => (&available[..index], index + 1, true),
-                None => (available, available.len(), false),
-            };
-            let room = (MAX_LINE + 2).saturating_sub(self.line.len());
-            self.line.extend_from_slice(&chunk[..chunk.len().min(room)]);
-            length += chunk.len();
-            self.reader.consume(used);
-            if done {
-                break;
-            }
+            None => Ok(false),
         }
-        if !any {
-            return Ok(false);
-        }
-        self.number += 1;
-        if self.line.last() == Some(&b'\r') && length <= MAX_LINE + 1 {
-            self.line.pop();
-            length -= 1;
-        }
-        if length > MAX_LINE {
-            self.too_long = true;
-            self.line.truncate(MAX_LINE + 1);
-        }
-        Ok(true)
     }
 }
 

@@ -638,10 +638,10 @@ impl<'a> Reader<'a> {
     }
 
     fn named_value(&self, name: &[u8]) -> Option<f64> {
-        if name.first() == Some(&b'_') {
-            if let Some(value) = self.predefined.predefined(name) {
-                return Some(value);
-            }
+        if name.first() == Some(&b'_')
+            && let Some(value) = self.predefined.predefined(name)
+        {
+            return Some(value);
         }
         self.params.named(name).or_else(|| {
             let created = &self.created[..self.created_count];

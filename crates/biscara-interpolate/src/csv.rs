@@ -1,14 +1,15 @@
-//! The path CSV (SPEC §6): `t_s,x_mm,y_mm,z_mm,c_deg[,gripper]`, and fixed-decimal numbers.
+//! The path CSV (SPEC §6): `t_s,x_mm,y_mm,z_mm,c_deg[,gripper]`.
 
 use std::io::{self, BufRead, Write};
 
+use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
+
 use crate::CartesianSample;
-use crate::fixed::RowBuffer;
 
 /// The header of a path CSV, without and with the gripper column.
 pub const PATH_HEADER: &str = "t_s,x_mm,y_mm,z_mm,c_deg";
 
-/// Writes samples as a path CSV; rows reach the output in chunks of [`crate::FLUSH_AT`] bytes and at
+/// Writes samples as a path CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`] bytes and at
 /// [`PathCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct PathCsvWriter<W: Write> {
@@ -50,133 +51,8 @@ impl<W: Write> PathCsvWriter<W> {
     }
 }
 
-/// A CSV of numbers (path or joint CSV) that cannot be read.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum CsvError {
-    /// Occurs when the underlying reader fails (including text that is not UTF-8 and lines over
-    /// [`biscara_motion::MAX_LINE_BYTES`]).
-    #[error("{line}: {source}")]
-    Io {
-        /// 1-based line being read.
-        line: usize,
-        /// The I/O error.
-        source: io::Error,
-    },
-    /// Occurs when the file is empty or its first line is not the header the reader expects.
-    #[error("1:1: expected {expected}, found `{found}`")]
-    Header {
-        /// The headers the reader accepts, in words.
-        expected: &'static str,
-        /// The first line as found (shortened).
-        found: String,
-    },
-    /// Occurs when a row has the wrong number of fields or a field that is not a finite number,
-    /// or time does not increase.
-    #[error("{line}:{column}: {message}")]
-    Row {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column where the offending field starts.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
-}
-
-/// A path CSV that cannot be read.
+/// A path CSV that cannot be read (the numeric CSV reader's error).
 pub type PathCsvError = CsvError;
-
-/// The most columns a [`NumericCsvReader`] row may have.
-pub const MAX_CSV_COLUMNS: usize = 16;
-
-/// What the path and joint CSV readers share: bounded lines read one at a time, rows of finite
-/// numbers with `FILE`-relative line and column errors, and a first column (time) that increases.
-#[derive(Debug)]
-pub struct NumericCsvReader<R> {
-    reader: R,
-    line: usize,
-    buffer: String,
-    previous_t: f64,
-}
-
-impl<R: BufRead> NumericCsvReader<R> {
-    /// A reader at the start of `reader`.
-    pub fn new(reader: R) -> NumericCsvReader<R> {
-        NumericCsvReader { reader, line: 0, buffer: String::new(), previous_t: f64::NEG_INFINITY }
-    }
-
-    fn read_line(&mut self) -> Result<bool, CsvError> {
-        self.buffer.clear();
-        self.line += 1;
-        match biscara_motion::read_bounded_line(&mut self.reader, &mut self.buffer) {
-            Ok(read) => Ok(read > 0),
-            Err(source) => Err(CsvError::Io { line: self.line, source }),
-        }
-    }
-
-    /// The first line without its line break (empty for an empty input), for the caller to
-    /// recognise; [`NumericCsvReader::header_error`] makes the error when it does not.
-    pub fn header(&mut self) -> Result<&str, CsvError> {
-        if !self.read_line()? {
-            self.buffer.clear();
-        }
-        Ok(self.buffer.trim_end())
-    }
-
-    /// The error for a header that is not one of `expected`.
-    pub fn header_error(&self, expected: &'static str) -> CsvError {
-        CsvError::Header { expected, found: self.buffer.trim_end().chars().take(80).collect() }
-    }
-
-    /// The next non-blank row as exactly `columns` (at most [`MAX_CSV_COLUMNS`]) finite numbers,
-    /// with its 1-based line; `None` at the end of the input.
-    pub fn row(
-        &mut self,
-        columns: usize,
-    ) -> Result<Option<(usize, [f64; MAX_CSV_COLUMNS])>, CsvError> {
-        loop {
-            if !self.read_line()? {
-                return Ok(None);
-            }
-            if !self.buffer.trim().is_empty() {
-                break;
-            }
-        }
-        let line = self.line;
-        let text = self.buffer.trim_end_matches(['\n', '\r']);
-        let error = |column, message| CsvError::Row { line, column, message };
-        let columns = columns.min(MAX_CSV_COLUMNS);
-        let mut values = [0.0; MAX_CSV_COLUMNS];
-        let mut count = 0;
-        let mut column = 1;
-        for field in text.split(',') {
-            if count == columns {
-                return Err(error(column, format!("expected {columns} fields, found more")));
-            }
-            let shown = field.chars().take(40).collect::<String>();
-            let shown = shown.escape_debug();
-            let value: f64 = field
-                .trim()
-                .parse()
-                .map_err(|_| error(column, format!("`{shown}` is not a number")))?;
-            if !value.is_finite() {
-                return Err(error(column, format!("`{shown}` is not a finite number")));
-            }
-            values[count] = value;
-            count += 1;
-            column += field.len() + 1;
-        }
-        if count < columns {
-            return Err(error(text.len() + 1, format!("expected {columns} fields, found {count}")));
-        }
-        if values[0] <= self.previous_t {
-            return Err(error(1, format!("time {} does not increase", values[0])));
-        }
-        self.previous_t = values[0];
-        Ok(Some((line, values)))
-    }
-}
 
 /// Reads a path CSV written by `biscara interpolate`, streaming. Each sample's `line` is its line
 /// in the CSV file.

@@ -247,11 +247,11 @@ where
                     cause = Some("C rotation");
                 }
             }
-            if let Some(limit) = self.limit.max_rate(segment) {
-                if limit.rate < rate {
-                    rate = limit.rate;
-                    cause = Some(limit.cause);
-                }
+            if let Some(limit) = self.limit.max_rate(segment)
+                && limit.rate < rate
+            {
+                rate = limit.rate;
+                cause = Some(limit.cause);
             }
             if let Some(cause) = cause {
                 (self.on_slow)(&SlowDown { line, cause, factor: rate / programmed });

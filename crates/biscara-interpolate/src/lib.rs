@@ -38,18 +38,13 @@
 //! ```
 
 mod csv;
-mod fixed;
 mod interpolator;
 mod profile;
 mod segment;
 
 pub use biscara_motion::Motion;
 
-pub use csv::{
-    CsvError, MAX_CSV_COLUMNS, NumericCsvReader, PATH_HEADER, PathCsvError, PathCsvReader,
-    PathCsvWriter, read_path_csv,
-};
-pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, push_fixed};
+pub use csv::{PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, read_path_csv};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
     NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,

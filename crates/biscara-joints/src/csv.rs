@@ -2,9 +2,8 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_interpolate::{CsvError, NumericCsvReader, RowBuffer};
-
 use biscara_kinematics::Joints;
+use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
 
 use crate::JointSample;
 
@@ -50,7 +49,7 @@ impl JointCsvFormat {
     }
 }
 
-/// Writes joint samples as CSV; rows reach the output in chunks of [`biscara_interpolate::FLUSH_AT`] bytes and at
+/// Writes joint samples as CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`] bytes and at
 /// [`JointCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct JointCsvWriter<W: Write> {
@@ -116,7 +115,7 @@ pub type JointCsvError = CsvError;
 
 /// Reads a joint CSV written by `biscara joints` (any angle unit, with or without derivatives),
 /// streaming; rows come back in radians and millimetres. Lines longer than
-/// [`biscara_motion::MAX_LINE_BYTES`] are refused.
+/// [`biscara_text::MAX_LINE_BYTES`] are refused.
 pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
     JointCsvReader { csv: NumericCsvReader::new(reader), format: None, failed: false }
 }

@@ -106,8 +106,9 @@ pub struct PassiveJoints {
 pub struct IkSolution {
     /// The pose that was solved for.
     pub pose: Pose,
-    /// The joint values: θ1, θ2 in (−π, π] (or shifted by 2π into their limits), θ3 from the
-    /// single-pose rule `φ − wrap(ψ1 − ψ1_home)`; see [`crate::Theta3Unwrapper`] for paths.
+    /// The joint values: θ1, θ2 in (−π, π] and θ3 from the single-pose rule
+    /// `φ − wrap(ψ1 − ψ1_home)`, each shifted by 2π into its limits when only that makes it fit;
+    /// see [`crate::Theta3Unwrapper`] for paths.
     pub joints: Joints,
     /// The five-bar configuration.
     pub configuration: PlanarConfiguration,
@@ -272,7 +273,7 @@ impl Kinematics {
         let joints = Joints {
             theta1: fit_into(theta1, self.limits[0]),
             theta2: fit_into(theta2, self.limits[1]),
-            theta3: pose.phi - distal_rotation,
+            theta3: fit_into(pose.phi - distal_rotation, self.limits[2]),
             d4: self.lp - pose.z,
         };
         Ok(IkSolution { pose: *pose, joints, configuration, distal_rotation })
@@ -510,12 +511,14 @@ fn wrap_difference(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Moves a revolute angle by ±2π into `[min, max]` when that makes it fit (joints whose range
-/// reaches past ±180°); otherwise returns it unchanged.
+/// Moves a revolute angle (θ1, θ2, θ3) by ±2π when only that puts it inside `[min, max]` (an
+/// angle just past ±180°, or a range that reaches past it); otherwise returns it unchanged, so
+/// that a limit error reports the angle as solved.
 fn fit_into(angle: f64, [min, max]: [f64; 2]) -> f64 {
-    if angle < min && angle + TAU <= max {
+    let inside = |angle: f64| (min..=max).contains(&angle);
+    if angle < min && inside(angle + TAU) {
         angle + TAU
-    } else if angle > max && angle - TAU >= min {
+    } else if angle > max && inside(angle - TAU) {
         angle - TAU
     } else {
         angle
@@ -649,5 +652,7 @@ mod tests {
         assert_relative_eq!(wrap_difference(3.0, -3.0), 6.0 - TAU);
         assert_relative_eq!(fit_into(-3.0, [0.0, 5.0]), TAU - 3.0);
         assert_relative_eq!(fit_into(-3.0, [-2.0, 2.0]), -3.0);
+        assert_relative_eq!(fit_into(10.0, [-PI, PI]), 10.0);
+        assert_relative_eq!(fit_into(4.0, [-PI, PI]), 4.0 - TAU);
     }
 }

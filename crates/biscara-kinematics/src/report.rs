@@ -1,5 +1,6 @@
 //! One pose's solution as `biscara ik` and `biscara fk` print it (SPEC §9).
 
+use biscara_text::fixed;
 use serde::Serialize;
 
 use crate::{FkSolution, IkSolution, Kinematics};
@@ -38,17 +39,7 @@ fn clean(value: f64) -> f64 {
 
 /// Four values with six decimals, separated by spaces, never a negative zero.
 fn joined(values: [f64; 4]) -> String {
-    values
-        .map(|value| {
-            let text = format!("{value:.6}");
-            match text.strip_prefix('-') {
-                Some(magnitude) if magnitude.bytes().all(|b| b == b'0' || b == b'.') => {
-                    magnitude.to_owned()
-                }
-                _ => text,
-            }
-        })
-        .join(" ")
+    values.map(|value| fixed(value, 6)).join(" ")
 }
 
 impl IkSolution {

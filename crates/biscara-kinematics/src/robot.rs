@@ -257,7 +257,7 @@ impl Robot {
             line: inner.line(),
             column: inner.column(),
             key,
-            message: strip_serde_position(&inner.to_string()),
+            message: biscara_text::strip_position(&inner.to_string()),
         };
         // A JSON array would deserialise as the struct's fields in order: only an object is a
         // robot file.
@@ -395,14 +395,6 @@ fn range(key: &str, [min, max]: [f64; 2]) -> Result<(), RobotError> {
             key,
             format!("the range [{min}, {max}] is empty: write [min, max] with min < max"),
         ))
-    }
-}
-
-/// serde_json appends " at line L column C" to its messages; the position is reported separately.
-fn strip_serde_position(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(index) => message[..index].to_owned(),
-        None => message.to_owned(),
     }
 }
 

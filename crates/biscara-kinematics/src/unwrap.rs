@@ -60,9 +60,26 @@ impl Theta3Unwrapper {
     }
 
     /// Rewrites `solution.joints.theta3` so that it continues the previous solutions' θ3.
+    ///
+    /// The first solution keeps the θ3 [`crate::Kinematics::inverse`] gave it (shifted by a turn
+    /// into the limits when only that makes it fit), so that a path starts where `ik` says.
     pub fn apply(&mut self, solution: &mut IkSolution) {
-        let rotation = self.distal_rotation.unwrap(solution.distal_rotation);
-        solution.joints.theta3 = solution.pose.phi - rotation;
+        let raw = solution.distal_rotation;
+        if self.distal_rotation.previous.is_some() {
+            let rotation = self.distal_rotation.unwrap(raw);
+            solution.joints.theta3 = solution.pose.phi - rotation;
+        } else {
+            // The single-pose θ3 is `φ − raw` or a turn from it: the rotation starts at that turn.
+            let unshifted = solution.pose.phi - raw;
+            let rotation = if solution.joints.theta3 > unshifted + PI {
+                raw - TAU
+            } else if solution.joints.theta3 < unshifted - PI {
+                raw + TAU
+            } else {
+                raw
+            };
+            self.distal_rotation.previous = Some((rotation, raw));
+        }
     }
 }
 
@@ -99,6 +116,27 @@ mod tests {
         let mut unwrapper = AngleUnwrapper::new();
         unwrapper.unwrap(0.0);
         assert_relative_eq!(unwrapper.unwrap(10.0 * PI + 0.1), 0.1, epsilon = 1e-12);
+    }
+
+    /// Issue 13: in working mode `-+`, assembly mode `-`, θ3 = 204.198° is outside [−180°, 180°]
+    /// but −155.802° reaches the same pose; IK and the start of a path both take it.
+    #[test]
+    fn theta3_is_shifted_into_its_limits() {
+        let robot: crate::Robot =
+            crate::Robot::from_json(r#"{"working_mode": "-+", "assembly_mode": "-"}"#).unwrap();
+        let model = crate::Kinematics::new(&robot).unwrap();
+        let pose = crate::Pose::from_degrees(-71.220188, 203.375603, 94.088431, 39.89336);
+        let mut ik = model.inverse_checked(&pose).expect("the pose is reachable");
+        assert_relative_eq!(ik.joints.theta3.to_degrees(), -155.802, epsilon = 1e-3);
+        let single = ik.joints.theta3;
+        let mut unwrapper = Theta3Unwrapper::new();
+        unwrapper.apply(&mut ik);
+        assert_eq!(ik.joints.theta3, single);
+        // The path goes on from there, continuously.
+        let next = crate::Pose::from_degrees(-71.0, 203.5, 94.0, 40.0);
+        let mut ik = model.inverse(&next).unwrap();
+        unwrapper.apply(&mut ik);
+        assert_relative_eq!(ik.joints.theta3, single, epsilon = 0.01);
     }
 
     #[test]

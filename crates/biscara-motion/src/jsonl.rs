@@ -2,6 +2,8 @@
 
 use std::io::{self, BufRead, Write};
 
+use biscara_text::{read_bounded_line, strip_position};
+
 use crate::{Motion, MotionKind};
 
 /// An inter-file that cannot be read.
@@ -69,9 +71,9 @@ impl<R: BufRead> Iterator for JsonlReader<R> {
             self.buffer.clear();
             self.line += 1;
             let line = self.line;
-            match crate::read_bounded_line(&mut self.reader, &mut self.buffer) {
-                Ok(0) => return None,
-                Ok(_) => {}
+            match read_bounded_line(&mut self.reader, &mut self.buffer) {
+                Ok(false) => return None,
+                Ok(true) => {}
                 Err(source) => {
                     self.failed = true;
                     return Some(Err(InterFileError::Io { line, source }));
@@ -117,23 +119,15 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
         }
         _ => {}
     }
-    if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind {
-        if !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0) {
-            return Err(invalid(format!("\"feed\" must be positive, got {}", feed.mm_per_min)));
-        }
+    if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind
+        && !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0)
+    {
+        return Err(invalid(format!("\"feed\" must be positive, got {}", feed.mm_per_min)));
     }
     if motion.line == 0 {
         motion.line = line;
     }
     Ok(motion)
-}
-
-/// serde_json appends " at line L column C"; the position is reported separately.
-fn strip_position(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(index) => message[..index].to_owned(),
-        None => message.to_owned(),
-    }
 }
 
 #[cfg(test)]

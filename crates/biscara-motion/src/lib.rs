@@ -18,11 +18,9 @@
 //! ```
 
 mod jsonl;
-mod lines;
 mod motion;
 
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
-pub use lines::{MAX_LINE_BYTES, read_bounded_line};
 pub use motion::{Feed, Motion, MotionKind, Plane};
 
 /// A position at a stage boundary: `[x, y, z, c]` in the robot's base frame, millimetres for

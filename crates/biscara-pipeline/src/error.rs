@@ -5,6 +5,7 @@ use std::io;
 
 use biscara_interpolate::SlowDown;
 use biscara_robot::{Fit, VirtualRobotError};
+use biscara_text::fixed;
 
 /// A pipeline failure, located: its `Display` is the whole message the user sees, starting with
 /// the file name (`job.ngc:12:5: …`).
@@ -104,7 +105,7 @@ impl fmt::Display for Note {
             Note::Placed { file, fit } => {
                 let (bounds, rectangle) = (&fit.bounds, &fit.rectangle);
                 let [dx, dy] = fit.offset;
-                let n = |v: f64| Fixed3(v);
+                let n = |v: f64| fixed(v, 3);
                 write!(
                     f,
                     "{file}: --fit: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) is \
@@ -131,21 +132,6 @@ impl fmt::Display for Note {
                 100.0 * slow.factor,
                 slow.cause
             ),
-        }
-    }
-}
-
-/// Three decimals, never a negative zero.
-struct Fixed3(f64);
-
-impl fmt::Display for Fixed3 {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let text = format!("{:.3}", self.0);
-        match text.strip_prefix('-') {
-            Some(magnitude) if magnitude.bytes().all(|b| b == b'0' || b == b'.') => {
-                f.write_str(magnitude)
-            }
-            _ => f.write_str(&text),
         }
     }
 }

@@ -12,6 +12,8 @@
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
 //!   `FILE:LINE[:COL]: message`.
 //!
+//! - [`generate`]: the other pipeline, points → CL → G-code (`biscara gen`).
+//!
 //! It deliberately holds no whole program: motions and samples are iterators, and `--fit`
 //! reads the program twice (once for its extent) rather than keeping it.
 //!
@@ -33,6 +35,7 @@
 //! ```
 
 mod error;
+mod generate;
 mod kind;
 mod pipeline;
 mod placement;
@@ -41,6 +44,7 @@ mod source;
 pub use biscara_kinematics::RobotModel;
 
 pub use error::{Note, PipelineError};
+pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
 pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig};
 pub use placement::{Placement, place};

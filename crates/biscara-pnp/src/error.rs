@@ -3,8 +3,7 @@
 use std::io;
 
 use biscara_kinematics::KinematicsError;
-use biscara_post::compact;
-use biscara_post::lines::{LineError, MAX_LINE_BYTES};
+use biscara_text::{LineError, MAX_LINE_BYTES, compact};
 
 /// A points-file failure. Every variant but [`PointsError::Write`] names the 1-based line it is
 /// about, and its message starts with `LINE: ` so that a caller only prefixes the file name
@@ -185,11 +184,4 @@ impl PointsError {
             LineError::TooLong => PointsError::LineTooLong { line },
         }
     }
-}
-
-/// `text` cut to at most 40 characters, with `…` when cut, for quoting input in messages.
-pub(crate) fn shorten(text: &str) -> String {
-    let mut chars = text.chars();
-    let head: String = chars.by_ref().take(40).collect();
-    if chars.next().is_some() { format!("{head}…") } else { head }
 }

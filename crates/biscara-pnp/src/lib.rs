@@ -2,11 +2,11 @@
 //! paper's `trajectoryWorld`.
 //!
 //! [`PointsReader`] reads a points file one statement at a time from any `BufRead`;
-//! [`ClProgram`] turns it into CL [`Statement`](biscara_post::Statement)s, checking the order
+//! [`ClProgram`] turns it into CL [`Statement`](biscara_cl::Statement)s, checking the order
 //! rules and that the robot can take every pose and every approach pose above it (inverse
 //! kinematics with limits, assembly mode and singularity margin). [`write_cl`] writes the
 //! program as CL text (`biscara clf`); feeding the statements to
-//! [`biscara_post::Postprocessor`] gives G-code in the same pass (`biscara gen`).
+//! `biscara_post::Postprocessor` gives G-code in the same pass (`biscara gen`).
 //!
 //! It deliberately knows nothing of G-code, and it checks poses only, not the motions between
 //! them (that is the trajectory stages' job). It keeps at most one pick/place pair in memory.
@@ -31,4 +31,4 @@ mod program;
 
 pub use error::PointsError;
 pub use points::{Point, PointsReader, PointsRecord, PointsStatement};
-pub use program::{ClProgram, GenerateError, JobSettings, PART_NAME, generate, write_cl};
+pub use program::{ClProgram, JobSettings, PART_NAME, write_cl};

@@ -2,9 +2,9 @@
 
 use std::io::BufRead;
 
-use biscara_post::lines::LineReader;
+use biscara_text::{LineReader, shorten};
 
-use crate::error::{PointsError, shorten};
+use crate::error::PointsError;
 
 /// A tool pose as written in a points file: millimetres and degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]

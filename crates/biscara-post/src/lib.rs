@@ -1,12 +1,10 @@
-//! CL (cutter-location) files and the postprocessor that turns them into LinuxCNC G-code: the
-//! paper's `gcodeGeneration`, file to file (SPEC §3, §4.1).
+//! The postprocessor that turns CL (cutter-location) files into LinuxCNC G-code: the paper's
+//! `gcodeGeneration`, file to file (SPEC §3, §4.1).
 //!
-//! [`ClReader`] reads APT-style CL data one [`Statement`] at a time from any `BufRead`: the
-//! dialect `biscara clf` writes and the forms 3-axis CAM systems write (GOTO with 3, 4 or 6
-//! values, FEDRAT in MMPM or IPM in either order, UNITS/INCHES, CIRCLE + GOTO arcs, `$`
-//! continuations, post words such as SPINDL). [`write_statement`] writes a statement back as CL
-//! text. [`Postprocessor`] turns statements into G-code as they come, writing to any `Write`;
-//! [`post`] does both for a whole file.
+//! The CL statements, their reader and their writer are `biscara-cl`'s, the contract this crate
+//! shares with the stage that makes programs (`biscara-pnp`). [`Postprocessor`] turns statements
+//! into G-code as they come, writing to any `Write`; [`post`] reads a whole CL file with
+//! `biscara_cl::ClReader` and posts it.
 //!
 //! It deliberately knows nothing of the robot's kinematics: reachability is checked where the
 //! points are made (`biscara-pnp`) or where the motion is run. It never collects a program:
@@ -25,15 +23,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod cl;
 mod error;
-mod fmt;
-pub mod lines;
 mod post;
 
-pub use cl::{
-    Circle, ClReader, Feed, FeedUnit, Goto, MAX_VALUE, POST_WORDS, Record, Statement, Units,
-    parse_statement, write_statement,
-};
-pub use error::{PostError, compact};
+pub use error::PostError;
 pub use post::{IgnoredWord, PostOptions, PostSummary, Postprocessor, post};

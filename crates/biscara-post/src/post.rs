@@ -2,9 +2,10 @@
 
 use std::io::{BufRead, Write};
 
-use crate::cl::{Circle, ClReader, Feed, FeedUnit, Goto, Statement, Units};
+use biscara_cl::{Circle, ClReader, Feed, FeedUnit, Goto, Statement, Units};
+use biscara_text::fixed;
+
 use crate::error::PostError;
-use crate::fmt::fixed;
 
 /// Millimetres per inch.
 const MM_PER_INCH: f64 = 25.4;
@@ -159,19 +160,19 @@ impl<W: Write> Postprocessor<W> {
                 after: "END",
             });
         }
-        if let Some(arc) = self.arc {
-            if !matches!(
+        if let Some(arc) = self.arc
+            && !matches!(
                 statement,
                 Statement::Goto(_)
                     | Statement::Feed(_)
                     | Statement::Pprint(_)
                     | Statement::PostWord { .. }
-            ) {
-                return Err(PostError::CircleWithoutGoto {
-                    line: arc.line,
-                    found: format!("{} on line {line}", statement.word()),
-                });
-            }
+            )
+        {
+            return Err(PostError::CircleWithoutGoto {
+                line: arc.line,
+                found: format!("{} on line {line}", statement.word()),
+            });
         }
         match statement {
             Statement::PartNo(text) | Statement::Pprint(text) => self.comment(text),

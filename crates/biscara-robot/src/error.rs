@@ -62,12 +62,6 @@ pub enum VirtualRobotError {
         /// Height of the workspace rectangle, millimetres.
         rect_height_mm: f64,
     },
-    /// Occurs when a plot cannot be drawn (the plotting backend failed).
-    #[error("cannot draw the plot: {message}")]
-    Plot {
-        /// What the plotting backend said.
-        message: String,
-    },
 }
 
 fn excess(width: f64, height: f64, rect_width: f64, rect_height: f64) -> String {

@@ -13,8 +13,6 @@
 //! - [`Workspace`]: the reachable XY grid of SPEC §8.2, its area and the largest axis-aligned
 //!   [`Rectangle`] inside it; [`Bounds`] and [`fit`]: a program's XY extent (arcs included) and
 //!   the offset that centres it in that rectangle.
-//! - [`draw_top_view`], [`draw_joints`], [`draw_workspace`]: pictures as SVG or PNG bytes
-//!   (plotters; DejaVu Sans embedded for PNG text).
 //!
 //! It is sans-IO: it takes samples, motions and bytes, and returns values; it never prints
 //! or opens files. It knows nothing of G-code text.
@@ -41,7 +39,6 @@ mod collision;
 mod error;
 mod fit;
 mod geometry;
-mod plot;
 mod report;
 mod scene;
 mod workspace;
@@ -51,6 +48,5 @@ pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
 pub use error::VirtualRobotError;
 pub use fit::{Bounds, Fit, fit, shift_motion};
-pub use plot::{ImageFormat, JointCurves, TopView, draw_joints, draw_top_view, draw_workspace};
 pub use scene::{Scene, SceneBox};
 pub use workspace::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, Workspace, reachable};

@@ -1,6 +1,7 @@
 //! The report of `check` as the user reads it: JSON (SPEC §9) and text.
 
 use biscara_kinematics::Joint;
+use biscara_text::{fixed, round_to};
 use serde_json::{Value, json};
 
 use std::io::Write;
@@ -9,8 +10,7 @@ use crate::{Peak, Problem, Rectangle, Report, Workspace};
 
 /// A number rounded to 6 decimals, negative zero cleaned, for JSON.
 fn round6(value: f64) -> Value {
-    let rounded = (value * 1e6).round() / 1e6 + 0.0;
-    json!(rounded)
+    json!(round_to(value, 6))
 }
 
 fn pose_json(pose: &[f64; 4]) -> Value {
@@ -159,7 +159,7 @@ impl Workspace {
     /// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (SPEC §9).
     pub fn to_json(&self, rectangle: &Rectangle) -> String {
         let workspace = self;
-        let r = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
+        let r = |v: f64| round_to(v, 6);
         let value = WorkspaceJson {
             area_mm2: r(workspace.area_mm2()),
             step_mm: workspace.step(),
@@ -210,16 +210,5 @@ impl Workspace {
             fixed(rectangle.width() * rectangle.height(), 0)
         )?;
         Ok(())
-    }
-}
-
-/// `value` with exactly `decimals` decimals, never printing a negative zero (`-0.000`).
-fn fixed(value: f64, decimals: usize) -> String {
-    let text = format!("{value:.decimals$}");
-    match text.strip_prefix('-') {
-        Some(magnitude) if magnitude.bytes().all(|byte| byte == b'0' || byte == b'.') => {
-            magnitude.to_owned()
-        }
-        _ => text,
     }
 }

@@ -1,5 +1,6 @@
 //! The scene: boxes around the robot that no part of it may touch (SPEC §8.1).
 
+use biscara_text::strip_position;
 use serde::{Deserialize, Serialize};
 
 use crate::VirtualRobotError;
@@ -87,14 +88,6 @@ impl Scene {
             }
         }
         Ok(scene)
-    }
-}
-
-/// serde_json appends " at line L column C" to its messages; the position is reported apart.
-fn strip_position(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(index) => message[..index].to_owned(),
-        None => message.to_owned(),
     }
 }
 

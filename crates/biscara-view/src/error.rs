@@ -2,7 +2,7 @@
 
 use std::io;
 
-/// What can go wrong while building a picture or a model.
+/// What can go wrong while building a picture, a plot or a model.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ViewError {
@@ -23,4 +23,10 @@ pub enum ViewError {
     /// Occurs when writing the output fails.
     #[error(transparent)]
     Io(#[from] io::Error),
+    /// Occurs when a plot cannot be drawn (the plotting backend failed).
+    #[error("cannot draw the plot: {message}")]
+    Plot {
+        /// What the plotting backend said.
+        message: String,
+    },
 }

@@ -58,7 +58,7 @@ impl<T: Clone> Decimator<T> {
     }
 
     fn push(&mut self, item: T) {
-        if self.seen % self.stride == 0 {
+        if self.seen.is_multiple_of(self.stride) {
             if self.kept.len() >= self.capacity {
                 let mut index = 0;
                 self.kept.retain(|_| {
@@ -67,7 +67,7 @@ impl<T: Clone> Decimator<T> {
                 });
                 self.stride *= 2;
             }
-            if self.seen % self.stride == 0 {
+            if self.seen.is_multiple_of(self.stride) {
                 self.kept.push(item.clone());
             }
         }
@@ -77,7 +77,7 @@ impl<T: Clone> Decimator<T> {
 
     /// The kept items and the last one (when it was not kept already).
     fn items(&self) -> impl Iterator<Item = &T> {
-        let last_kept = self.seen > 0 && (self.seen - 1) % self.stride == 0;
+        let last_kept = self.seen > 0 && (self.seen - 1).is_multiple_of(self.stride);
         self.kept.iter().chain(self.last.iter().filter(move |_| !last_kept))
     }
 }

@@ -1,8 +1,10 @@
 //! Pictures of the BiSCARA in motion (SPEC §8.3): a self-contained HTML viewer of a joint
-//! trajectory (`biscara view`) and a MuJoCo model of the robot (`biscara mjcf`).
+//! trajectory (`biscara view`), a MuJoCo model of the robot (`biscara mjcf`), and SVG/PNG plots
+//! (`biscara plot`, `workspace --svg/--png`).
 //!
-//! Both are built from the robot description and forward kinematics alone; neither reads files
-//! nor prints. [`write_mjcf`] writes the model, [`QposWriter`] the companion file that plays a
+//! All are built from the robot description, forward kinematics and the virtual robot's bodies
+//! and workspace; none reads files or prints. [`draw_top_view`], [`draw_joints`] and
+//! [`draw_workspace`] return SVG or PNG bytes (plotters; DejaVu Sans embedded for PNG text). [`write_mjcf`] writes the model, [`QposWriter`] the companion file that plays a
 //! joint trajectory on it (the model's joints in MuJoCo's units, the elbows from our FK, and the
 //! tool pose FK expects). [`Viewer`] gathers a trajectory (decimated so that an hour-long program
 //! stays a few megabytes), the programmed path and a [`Scene`], and writes one HTML file with
@@ -21,10 +23,12 @@
 mod error;
 mod html;
 mod mjcf;
+mod plot;
 mod trace;
 
 pub use biscara_robot::{Scene, SceneBox};
 pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
+pub use plot::{ImageFormat, JointCurves, TopView, draw_joints, draw_top_view, draw_workspace};
 pub use trace::ProgramTrace;

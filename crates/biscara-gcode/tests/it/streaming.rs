@@ -97,7 +97,7 @@ fn a_five_million_line_program_streams_in_flat_memory() {
         let motion = motion.expect("the generated program is valid");
         count += 1;
         last_line = motion.line;
-        if count % 100_000 == 0 {
+        if count.is_multiple_of(100_000) {
             peak = peak.max(resident_kib().unwrap_or(0));
             // Read so far: at most this line, the next one and one buffer ahead.
             assert!(consumed.get() <= (motion.line + 1) * LINE_BYTES + BUFFER, "read ahead");

@@ -22,8 +22,14 @@ pub fn asymmetric_robot() -> Robot {
 
 /// Both test robots in each of the four working modes and both assembly modes.
 pub fn models() -> Vec<(String, Kinematics)> {
+    models_with(|_| {})
+}
+
+/// [`models`], with `edit` applied to both robots first.
+pub fn models_with(edit: impl Fn(&mut Robot)) -> Vec<(String, Kinematics)> {
     let mut models = Vec::new();
-    for (name, robot) in [("default", default_robot()), ("asymmetric", asymmetric_robot())] {
+    for (name, mut robot) in [("default", default_robot()), ("asymmetric", asymmetric_robot())] {
+        edit(&mut robot);
         let model = Kinematics::new(&robot).expect("valid test robot");
         for mode in WorkingMode::ALL {
             for assembly in [Sign::Plus, Sign::Minus] {

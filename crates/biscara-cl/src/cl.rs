@@ -2,9 +2,9 @@
 
 use std::io::{self, BufRead, Write};
 
-use crate::error::{PostError, shorten};
-use crate::fmt::fixed;
-use crate::lines::{LineReader, MAX_LINE_BYTES};
+use biscara_text::{LineReader, MAX_LINE_BYTES, fixed, shorten};
+
+use crate::error::ClError;
 
 /// Post words that mean nothing to this robot: [`ClReader`] passes them on as
 /// [`Statement::PostWord`], and the postprocessor writes them as comments and lists them.
@@ -73,8 +73,10 @@ pub struct Feed {
 }
 
 /// One CL statement.
+///
+/// Not `#[non_exhaustive]`: it is the contract between two crates, and a new statement must
+/// fail to compile in the postprocessor's `match` rather than fall into a wildcard there.
 #[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
 pub enum Statement {
     /// `PARTNO/text`: the program's name.
     PartNo(String),
@@ -163,7 +165,7 @@ impl<R: BufRead> ClReader<R> {
         self.lines.line()
     }
 
-    fn read(&mut self) -> Result<Option<Record>, PostError> {
+    fn read(&mut self) -> Result<Option<Record>, ClError> {
         loop {
             self.statement.clear();
             let mut first_line = 0;
@@ -171,7 +173,7 @@ impl<R: BufRead> ClReader<R> {
                 let Some((line, text)) = self
                     .lines
                     .next_line()
-                    .map_err(|(line, err)| PostError::from_line_error(line, err))?
+                    .map_err(|(line, err)| ClError::from_line_error(line, err))?
                 else {
                     if first_line == 0 {
                         return Ok(None);
@@ -187,7 +189,7 @@ impl<R: BufRead> ClReader<R> {
                     None => (text, false),
                 };
                 if self.statement.len() + text.len() > MAX_LINE_BYTES {
-                    return Err(PostError::LineTooLong { line });
+                    return Err(ClError::LineTooLong { line });
                 }
                 self.statement.push_str(text);
                 if !continues {
@@ -204,7 +206,7 @@ impl<R: BufRead> ClReader<R> {
 }
 
 impl<R: BufRead> Iterator for ClReader<R> {
-    type Item = Result<Record, PostError>;
+    type Item = Result<Record, ClError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.done {
@@ -219,7 +221,7 @@ impl<R: BufRead> Iterator for ClReader<R> {
 }
 
 /// Parses one statement (comments removed, continuations joined) that starts on `line`.
-pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> {
+pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
     let text = text.trim();
     let end =
         text.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_')).unwrap_or(text.len());
@@ -231,7 +233,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
         Some(arguments) => (true, arguments.trim()),
         None => (false, rest),
     };
-    let unknown = || PostError::UnknownStatement { line, word: shorten(text) };
+    let unknown = || ClError::UnknownStatement { line, word: shorten(text) };
     if word.is_empty() {
         return Err(unknown());
     }
@@ -241,7 +243,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
         "RAPID" | "PICK" | "PLACE" | "END" | "FINI" => {
             if !arguments.is_empty() || has_slash {
                 let word = static_word(&upper);
-                return Err(PostError::Syntax {
+                return Err(ClError::Syntax {
                     line,
                     word,
                     message: format!("takes no arguments, found `{}`", shorten(rest)),
@@ -264,7 +266,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
                     Statement::Goto(Goto { x, y, z, c: None, axis: Some([i, j, k]) })
                 }
                 _ => {
-                    return Err(PostError::WrongCount {
+                    return Err(ClError::WrongCount {
                         line,
                         word: "GOTO",
                         expected: "3 (x,y,z), 4 (x,y,z,c) or 6 (x,y,z,i,j,k) values",
@@ -278,7 +280,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
                 numbers(line, "CIRCLE", require_slash(line, "CIRCLE", has_slash, arguments)?)?;
             // Some systems append tolerances: CIRCLE/cx,cy,cz,i,j,k,r,tol,dtol,…
             if values.len() != 7 && values.len() != 11 {
-                return Err(PostError::WrongCount {
+                return Err(ClError::WrongCount {
                     line,
                     word: "CIRCLE",
                     expected: "7 values (cx,cy,cz,i,j,k,r), or 11 with tolerances",
@@ -287,7 +289,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
             }
             let radius = values[6];
             if radius <= 0.0 {
-                return Err(PostError::OutOfRange {
+                return Err(ClError::OutOfRange {
                     line,
                     word: "CIRCLE",
                     value: radius,
@@ -304,7 +306,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
             let values =
                 numbers(line, "DELAY", require_slash(line, "DELAY", has_slash, arguments)?)?;
             let [seconds] = values[..] else {
-                return Err(PostError::WrongCount {
+                return Err(ClError::WrongCount {
                     line,
                     word: "DELAY",
                     expected: "1 value (seconds)",
@@ -312,7 +314,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
                 });
             };
             if seconds < 0.0 {
-                return Err(PostError::OutOfRange {
+                return Err(ClError::OutOfRange {
                     line,
                     word: "DELAY",
                     value: seconds,
@@ -330,7 +332,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, PostError> 
                 "MM" => Statement::Units(Units::Millimetres),
                 "INCHES" | "INCH" => Statement::Units(Units::Inches),
                 _ => {
-                    return Err(PostError::UnknownMinor {
+                    return Err(ClError::UnknownMinor {
                         line,
                         word: "UNITS",
                         minor: shorten(minor),
@@ -356,31 +358,31 @@ fn require_slash<'a>(
     word: &'static str,
     has_slash: bool,
     arguments: &'a str,
-) -> Result<&'a str, PostError> {
+) -> Result<&'a str, ClError> {
     if has_slash {
         Ok(arguments)
     } else {
-        Err(PostError::Syntax { line, word, message: format!("expected `{word}/` and its values") })
+        Err(ClError::Syntax { line, word, message: format!("expected `{word}/` and its values") })
     }
 }
 
 /// Parses one number of statement `word`: finite and within ±[`MAX_VALUE`].
-fn number(line: usize, word: &'static str, text: &str) -> Result<f64, PostError> {
+fn number(line: usize, word: &'static str, text: &str) -> Result<f64, ClError> {
     let text = text.trim();
     if text.is_empty() {
-        return Err(PostError::Syntax {
+        return Err(ClError::Syntax {
             line,
             word,
             message: "a value is missing (two commas in a row, or a comma at the end)".to_owned(),
         });
     }
     let value: f64 =
-        text.parse().map_err(|_| PostError::NotANumber { line, word, text: shorten(text) })?;
+        text.parse().map_err(|_| ClError::NotANumber { line, word, text: shorten(text) })?;
     if !value.is_finite() {
-        return Err(PostError::NotFinite { line, word, text: shorten(text) });
+        return Err(ClError::NotFinite { line, word, text: shorten(text) });
     }
     if value.abs() > MAX_VALUE {
-        return Err(PostError::OutOfRange {
+        return Err(ClError::OutOfRange {
             line,
             word,
             value,
@@ -390,18 +392,18 @@ fn number(line: usize, word: &'static str, text: &str) -> Result<f64, PostError>
     Ok(value)
 }
 
-fn numbers(line: usize, word: &'static str, arguments: &str) -> Result<Vec<f64>, PostError> {
+fn numbers(line: usize, word: &'static str, arguments: &str) -> Result<Vec<f64>, ClError> {
     arguments.split(',').map(|text| number(line, word, text)).collect()
 }
 
-fn feed(line: usize, arguments: &str) -> Result<Feed, PostError> {
+fn feed(line: usize, arguments: &str) -> Result<Feed, ClError> {
     let parts: Vec<&str> = arguments.split(',').map(str::trim).collect();
-    let unit_of = |text: &str| -> Result<Option<FeedUnit>, PostError> {
+    let unit_of = |text: &str| -> Result<Option<FeedUnit>, ClError> {
         if text.starts_with(|ch: char| ch.is_ascii_alphabetic()) {
             match text.to_ascii_uppercase().as_str() {
                 "MMPM" => Ok(Some(FeedUnit::Mmpm)),
                 "IPM" => Ok(Some(FeedUnit::Ipm)),
-                _ => Err(PostError::UnknownMinor {
+                _ => Err(ClError::UnknownMinor {
                     line,
                     word: "FEDRAT",
                     minor: shorten(text),
@@ -418,7 +420,7 @@ fn feed(line: usize, arguments: &str) -> Result<Feed, PostError> {
             (Some(unit), None) => (second, Some(unit)),
             (None, Some(unit)) => (first, Some(unit)),
             _ => {
-                return Err(PostError::Syntax {
+                return Err(ClError::Syntax {
                     line,
                     word: "FEDRAT",
                     message: format!(
@@ -429,7 +431,7 @@ fn feed(line: usize, arguments: &str) -> Result<Feed, PostError> {
             }
         },
         _ => {
-            return Err(PostError::WrongCount {
+            return Err(ClError::WrongCount {
                 line,
                 word: "FEDRAT",
                 expected: "a feed, and optionally MMPM or IPM",
@@ -439,7 +441,7 @@ fn feed(line: usize, arguments: &str) -> Result<Feed, PostError> {
     };
     let value = number(line, "FEDRAT", value)?;
     if value <= 0.0 {
-        return Err(PostError::OutOfRange {
+        return Err(ClError::OutOfRange {
             line,
             word: "FEDRAT",
             value,

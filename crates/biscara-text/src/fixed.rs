@@ -1,10 +1,11 @@
-//! Fixed-decimal numbers for the CSV writers, and the buffer their rows are gathered in.
+//! Fixed-decimal numbers: [`fixed`] for text written a number at a time, [`round_to`] for JSON
+//! outputs, and the [`RowBuffer`] the CSV writers gather their rows in, with its fast formatter.
 //!
-//! The CSV writers' hot spot: 40 % of the instructions of `joints` with the first, digit-at-a-time
-//! writer, and still a fifth of its time after. A number is scaled to an integer whose digits
-//! are made eight at a time, without a loop, and stored straight into the row buffer; its length
-//! is counted from the integer, not from the digits. Values too large to scale exactly fall back
-//! to `format!`.
+//! The fast formatter is the CSV writers' hot spot: 40 % of the instructions of `joints` with the
+//! first, digit-at-a-time writer, and still a fifth of its time after. A number is scaled to an
+//! integer whose digits are made eight at a time, without a loop, and stored straight into the
+//! row buffer; its length is counted from the integer, not from the digits. Values too large to
+//! scale exactly fall back to [`fixed`].
 //!
 //! What each step bought, in time (`joints` on the 200,000-line engraving program of
 //! `scripts/gen-program.sh`, median of 10 interleaved runs): digits two at a time into a stack
@@ -189,15 +190,40 @@ pub fn push_fixed(buffer: &mut Vec<u8>, value: f64, decimals: usize) {
     buffer.extend_from_slice(row.as_bytes());
 }
 
-/// `value` with `decimals` decimals by `format!`, without a negative zero: the slow path, for
-/// values too large to scale exactly, infinities and NaN.
+/// `value` with exactly `decimals` decimals, as `format!("{value:.decimals$}")` writes it (the
+/// exact binary value rounded half to even), but never a negative zero (`-0.000` is `0.000`).
+///
+/// ```
+/// assert_eq!(biscara_text::fixed(-0.0001, 3), "0.000");
+/// assert_eq!(biscara_text::fixed(460.79872, 4), "460.7987");
+/// ```
+pub fn fixed(value: f64, decimals: usize) -> String {
+    let text = format!("{value:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(magnitude) if magnitude.bytes().all(|byte| byte == b'0' || byte == b'.') => {
+            magnitude.to_owned()
+        }
+        _ => text,
+    }
+}
+
+/// `value` rounded to `decimals` decimals (half away from zero), negative zero made zero: the
+/// numbers of the JSON outputs, which serde_json prints shortest, so that they stay stable.
+///
+/// ```
+/// assert_eq!(biscara_text::round_to(1.23456789, 6), 1.234568);
+/// assert_eq!(biscara_text::round_to(-0.0000001, 6).to_string(), "0");
+/// ```
+pub fn round_to(value: f64, decimals: usize) -> f64 {
+    let power = POWERS_OF_TEN.get(decimals).copied().unwrap_or_else(|| 10f64.powi(decimals as i32));
+    (value * power).round() / power + 0.0
+}
+
+/// [`fixed`] with at most [`MAX_DECIMALS`] decimals: the slow path, for values too large to
+/// scale exactly, infinities and NaN.
 #[cold]
 fn format_fixed(value: f64, decimals: usize) -> String {
-    let decimals = decimals.min(MAX_DECIMALS);
-    let text = format!("{value:.decimals$}");
-    let negative_zero =
-        text.starts_with('-') && text[1..].bytes().all(|byte| byte == b'0' || byte == b'.');
-    if negative_zero { text[1..].to_owned() } else { text }
+    fixed(value, decimals.min(MAX_DECIMALS))
 }
 
 /// Writes `value` with `DECIMALS` decimals at the start of `out` and returns its length, or
@@ -277,20 +303,11 @@ fn eight_digits(x: u64) -> u64 {
 mod tests {
     use super::*;
 
-    fn fixed(value: f64, decimals: usize) -> String {
+    /// What [`push_fixed`] writes, as text.
+    fn pushed(value: f64, decimals: usize) -> String {
         let mut buffer = Vec::new();
         push_fixed(&mut buffer, value, decimals);
         String::from_utf8(buffer).unwrap()
-    }
-
-    /// `format!` without a negative zero.
-    fn reference(value: f64, decimals: usize) -> String {
-        let expected = format!("{value:.decimals$}");
-        if expected.starts_with('-') && expected[1..].bytes().all(|b| b == b'0' || b == b'.') {
-            expected[1..].to_owned()
-        } else {
-            expected
-        }
     }
 
     #[test]
@@ -315,8 +332,8 @@ mod tests {
             for (decimals, power) in POWERS_OF_TEN.into_iter().enumerate() {
                 if (value * power).abs() < 1e15 || decimals == 0 {
                     assert_eq!(
+                        pushed(value, decimals),
                         fixed(value, decimals),
-                        reference(value, decimals),
                         "{value} {decimals}"
                     );
                 }
@@ -331,8 +348,8 @@ mod tests {
             let mantissa = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
             let value = mantissa * 10f64.powi((state % 16) as i32);
             for decimals in [0, 1, 2, 3, 5, 6, 9, 12] {
-                let expected = reference(value, decimals);
-                let got = fixed(value, decimals);
+                let expected = fixed(value, decimals);
+                let got = pushed(value, decimals);
                 let scaled = value.abs() * 10f64.powi(decimals as i32);
                 let near_tie = (scaled - scaled.trunc() - 0.5).abs() < 1e-6;
                 if !near_tie && scaled < 1e15 {
@@ -340,13 +357,31 @@ mod tests {
                 }
             }
         }
+        assert_eq!(pushed(-0.0000001, 6), "0.000000");
+        assert_eq!(pushed(-0.0, 0), "0");
+        assert_eq!(pushed(1e300, 2).len(), 304);
+        assert_eq!(pushed(f64::NAN, 3), "NaN");
+        assert_eq!(pushed(f64::NEG_INFINITY, 3), "-inf");
+        assert_eq!(pushed(-4e15, 0), "-4000000000000000");
+        assert_eq!(pushed(-3.5e15, 0), "-3500000000000000");
+    }
+
+    #[test]
+    fn fixed_text_never_prints_negative_zero() {
         assert_eq!(fixed(-0.0000001, 6), "0.000000");
-        assert_eq!(fixed(-0.0, 0), "0");
-        assert_eq!(fixed(1e300, 2).len(), 304);
-        assert_eq!(fixed(f64::NAN, 3), "NaN");
-        assert_eq!(fixed(f64::NEG_INFINITY, 3), "-inf");
-        assert_eq!(fixed(-4e15, 0), "-4000000000000000");
-        assert_eq!(fixed(-3.5e15, 0), "-3500000000000000");
+        assert_eq!(fixed(-0.0, 3), "0.000");
+        assert_eq!(fixed(-1.5, 3), "-1.500");
+        assert_eq!(fixed(2.0, 0), "2");
+        assert_eq!(fixed(f64::NEG_INFINITY, 2), "-inf");
+    }
+
+    #[test]
+    fn round_to_matches_scaling_by_a_power_of_ten() {
+        for value in [0.1234565, -2.5e-7, 123456.7890125, -0.0, 1e300] {
+            assert_eq!(round_to(value, 6), (value * 1e6).round() / 1e6 + 0.0);
+        }
+        assert_eq!(round_to(0.5, 0), 1.0);
+        assert_eq!(round_to(0.1234567, 3), 0.123);
     }
 
     #[test]

@@ -10,7 +10,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::{Body, Rectangle as WorkspaceRectangle, Scene, VirtualRobotError, Workspace};
+use biscara_robot::{Body, Rectangle as WorkspaceRectangle, Scene, Workspace};
+
+use crate::ViewError;
 
 /// DejaVu Sans (Bitstream Vera licence, see `fonts/DejaVuSans-LICENSE.txt`).
 static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
@@ -64,8 +66,8 @@ pub struct JointCurves<'a> {
     pub limits: [[f64; 2]; 4],
 }
 
-fn plot_error(err: impl std::fmt::Display) -> VirtualRobotError {
-    VirtualRobotError::Plot { message: err.to_string() }
+fn plot_error(err: impl std::fmt::Display) -> ViewError {
+    ViewError::Plot { message: err.to_string() }
 }
 
 macro_rules! render_with {
@@ -96,7 +98,7 @@ macro_rules! render_with {
     }};
 }
 
-fn encode_png(pixels: &[u8], width: u32, height: u32) -> Result<Vec<u8>, VirtualRobotError> {
+fn encode_png(pixels: &[u8], width: u32, height: u32) -> Result<Vec<u8>, ViewError> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, width, height);
@@ -124,10 +126,7 @@ const PATH_COLOUR: RGBColor = RGBColor(200, 30, 30);
 const SCENE_FILL: RGBColor = RGBColor(170, 170, 170);
 
 /// The top view as SVG or PNG bytes.
-pub fn draw_top_view(
-    view: &TopView<'_>,
-    format: ImageFormat,
-) -> Result<Vec<u8>, VirtualRobotError> {
+pub fn draw_top_view(view: &TopView<'_>, format: ImageFormat) -> Result<Vec<u8>, ViewError> {
     let (x_range, y_range) = top_view_extent(view);
     let width = 1000u32;
     let plot_height = (f64::from(width - 90) * (y_range.1 - y_range.0) / (x_range.1 - x_range.0))
@@ -326,10 +325,7 @@ fn top_view_on<DB: DrawingBackend>(
 
 /// The joint curves as SVG or PNG bytes: four panels, θ1, θ2, θ3 (degrees) and d4 (mm) against
 /// time, with their limits as dashed lines.
-pub fn draw_joints(
-    curves: &JointCurves<'_>,
-    format: ImageFormat,
-) -> Result<Vec<u8>, VirtualRobotError> {
+pub fn draw_joints(curves: &JointCurves<'_>, format: ImageFormat) -> Result<Vec<u8>, ViewError> {
     render_with!((1000, 900), format, joints_on, curves)
 }
 
@@ -390,7 +386,7 @@ pub fn draw_workspace(
     home: Option<&Body>,
     title: &str,
     format: ImageFormat,
-) -> Result<Vec<u8>, VirtualRobotError> {
+) -> Result<Vec<u8>, ViewError> {
     let bodies: Vec<(f64, Body)> = home.map(|body| (0.0, *body)).into_iter().collect();
     let view = TopView {
         title,
