@@ -4,7 +4,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
-use biscara::gcode::{Config, GcodeError, interpret as interpret_gcode};
+use biscara::gcode::{Config, Dialect, GcodeError, Interpreter, interpret as interpret_gcode};
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::write_jsonl;
 use clap::Args;
@@ -28,6 +28,12 @@ use super::output::write_output;
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.
+///
+/// Programs written for other firmware are read as that firmware reads them (SPEC §4.3, README
+/// "Dialects"): `--dialect auto` (the default) decides from the program's first 64 KiB
+/// (generator comments, E words, printer M-codes, `$` lines, nested comments, `O0001` program
+/// numbers) and says on stderr which dialect it chose and why, and lists the codes with no
+/// motion that it recorded.
 #[derive(Debug, Args)]
 #[command(
     about = "G-code → inter-file (motions as JSON Lines)",
@@ -58,6 +64,20 @@ pub(crate) struct InterpretArgs {
     /// stderr; a program larger than the rectangle is an error).
     #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
     fit: bool,
+    /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
+    /// (Marlin and RepRap printer firmware), `mach3`, or `auto` to decide from the program.
+    #[arg(
+        long,
+        value_name = "DIALECT",
+        default_value = "auto",
+        value_parser = parse_dialect,
+        help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
+    )]
+    dialect: Dialect,
+}
+
+fn parse_dialect(text: &str) -> Result<Dialect, String> {
+    text.parse::<Dialect>().map_err(|err| err.to_string())
 }
 
 /// `X,Y,Z,C`: four finite numbers.
@@ -86,19 +106,84 @@ pub(crate) fn interpret(robot: &Robot, args: &InterpretArgs) -> anyhow::Result<(
         args.origin,
         args.fit,
     )?;
-    let config = Config { home, origin, ..Config::default() };
+    let config = Config { home, origin, dialect: args.dialect, ..Config::default() };
     let input = open_input(&args.program)?;
     write_output(args.output.as_deref(), |out| {
         // serde_json writes a motion in many small pieces: gather them in a buffer of a
         // concrete type rather than through `dyn Write`.
         let mut out = BufWriter::with_capacity(64 * 1024, out);
-        for motion in interpret_gcode(input, &config) {
-            let motion = motion.map_err(|err| gcode_error(&args.program, &err))?;
-            write_jsonl(&mut out, &motion)?;
+        let mut motions = interpret_gcode(input, &config);
+        let mut failure = None;
+        for motion in &mut motions {
+            match motion {
+                Ok(motion) => write_jsonl(&mut out, &motion)?,
+                Err(err) => {
+                    failure = Some(err);
+                    break;
+                }
+            }
         }
+        if let Some(err) = failure {
+            // One error message (its first line is the error); the dialect `auto` chose, when
+            // not LinuxCNC, on a line of its own below.
+            let error = gcode_error(&args.program, &err);
+            return Err(match motions.detection().filter(|d| d.dialect != Dialect::Linuxcnc) {
+                Some(detection) => anyhow!(
+                    "{error:#}\n    (read as {} G-code by --dialect auto: {}; give --dialect to \
+                     choose another)",
+                    detection.dialect,
+                    detection.reason
+                ),
+                None => error,
+            });
+        }
+        dialect_notes(&args.program, &motions);
         out.flush()?;
         Ok(())
     })
+}
+
+/// The dialect `auto` chose and the no-motion codes recorded, as notes on stderr.
+fn dialect_notes<R: std::io::BufRead>(path: &Path, motions: &Interpreter<R>) {
+    let name = display_path(path);
+    let counted = |codes: &std::collections::BTreeMap<String, usize>| {
+        codes.iter().map(|(code, count)| format!("{code} ×{count}")).collect::<Vec<_>>().join(", ")
+    };
+    #[allow(clippy::print_stderr)]
+    {
+        // A program in which nothing tells the dialects apart is LinuxCNC's, as before the
+        // dialects existed: no note.
+        if let Some(detection) = motions
+            .detection()
+            .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
+        {
+            eprintln!(
+                "biscara: note: {name}: read as {} G-code (--dialect auto): {}{}",
+                detection.dialect,
+                detection.reason,
+                if detection.makerbot {
+                    "; MakerBot flavour: the A word is the extruder"
+                } else {
+                    ""
+                }
+            );
+        }
+        let summary = motions.summary();
+        if !summary.codes.is_empty() {
+            eprintln!(
+                "biscara: note: {name}: codes with no motion here, recorded as events: {}",
+                counted(&summary.codes)
+            );
+        }
+        if !summary.unknown.is_empty() {
+            eprintln!(
+                "biscara: note: {name}: codes {} does not know, skipped as it does (\"Unknown \
+                 command\"), recorded as events: {}",
+                motions.dialect(),
+                counted(&summary.unknown)
+            );
+        }
+    }
 }
 
 /// `FILE:LINE:COL: message`, then the line and a caret under the column.

@@ -7,8 +7,11 @@
 use std::collections::VecDeque;
 use std::io::BufRead;
 
-use biscara_motion::{Feed, Motion, MotionKind, Plane};
+use biscara_motion::{CodeName, Feed, Motion, MotionKind, Plane};
 
+use crate::dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+};
 use crate::error::{GcodeError, Location};
 use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, compact};
 use crate::params::{
@@ -16,6 +19,7 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::tool::Tool;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -30,6 +34,8 @@ const SPIRAL_RELATIVE_TOLERANCE: f64 = 0.001;
 const TINY: f64 = 1e-12;
 /// The largest position accepted, mm or degrees.
 const MAX_COORDINATE: f64 = 1e6;
+/// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
+const MARLIN_DEFAULT_FEED: f64 = 4000.0;
 /// The axis letters, in our axis order x y z c.
 const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
 
@@ -45,11 +51,23 @@ pub struct Config {
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
+    /// Whose G-code the program is (SPEC §4.3). [`Dialect::Linuxcnc`] by default: exactly
+    /// LinuxCNC's reading. [`Dialect::Auto`] decides from the program (see
+    /// [`Interpreter::detection`]).
+    pub dialect: Dialect,
+    /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
+    pub tool: Tool,
 }
 
 impl Default for Config {
     fn default() -> Config {
-        Config { home: [0.0; 4], origin: [0.0; 4], block_delete: false }
+        Config {
+            home: [0.0; 4],
+            origin: [0.0; 4],
+            block_delete: false,
+            dialect: Dialect::Linuxcnc,
+            tool: Tool::Gripper,
+        }
     }
 }
 
@@ -70,6 +88,26 @@ pub struct Interpreter<R> {
     block_delete: bool,
     percent: Percent,
     finished: bool,
+    /// The dialect being read ([`Dialect::Linuxcnc`] while `auto` has not decided).
+    dialect: Dialect,
+    /// Whether `auto` still has to read ahead (before the first line).
+    undecided: bool,
+    /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
+    provisional: bool,
+    detection: Option<Detection>,
+    summary: Summary,
+    tool: Tool,
+    /// Whether the tool is on (M3/M4 until M5 or M6).
+    tool_on: bool,
+    /// MakerBot's flavour: the A word is the extruder.
+    makerbot: bool,
+    /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
+    e_position: f64,
+    e_relative: bool,
+    /// The extrusion of the block being executed, for its first move.
+    pending_extrude: Option<f64>,
+    /// Whether any motion was emitted (an empty program is not a program).
+    moved: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -243,6 +281,231 @@ impl<R: BufRead> Interpreter<R> {
             block_delete: config.block_delete,
             percent: Percent::Unknown,
             finished: false,
+            dialect: if config.dialect == Dialect::Auto {
+                Dialect::Linuxcnc
+            } else {
+                config.dialect
+            },
+            undecided: config.dialect == Dialect::Auto,
+            provisional: false,
+            detection: None,
+            summary: Summary::default(),
+            tool: config.tool,
+            tool_on: false,
+            makerbot: false,
+            e_position: 0.0,
+            e_relative: false,
+            pending_extrude: None,
+            moved: false,
+        }
+        .with_line_limit()
+    }
+
+    fn with_line_limit(mut self) -> Self {
+        self.apply_dialect();
+        self
+    }
+
+    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
+    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
+    fn apply_dialect(&mut self) {
+        self.lines.max = if self.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
+        if self.dialect == Dialect::Marlin && self.state.feed_rate == 0.0 {
+            self.state.feed_rate = MARLIN_DEFAULT_FEED;
+            self.state.feed_mm = MARLIN_DEFAULT_FEED;
+        }
+    }
+
+    /// The dialect being read: the configured one, or what `auto` chose so far.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
+    /// when the dialect was given. A program in which nothing tells the dialects apart is read
+    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
+    /// then it is Grbl, decided at its last line (the detection changes at the end).
+    pub fn detection(&self) -> Option<Detection> {
+        if let Some(detection) = &self.detection {
+            return Some(detection.clone());
+        }
+        self.provisional.then(|| Detection {
+            dialect: Dialect::Linuxcnc,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
+                 word, printer M-code, `$` line, nested comment or program number)",
+                LOOKAHEAD_BYTES / 1024
+            ),
+            line: None,
+            makerbot: false,
+        })
+    }
+
+    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
+    pub fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
+    fn decide(&mut self) -> Result<(), GcodeError> {
+        self.undecided = false;
+        let complete = self
+            .lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        match detect_dialect(self.lines.source().head(), complete) {
+            Some(detection) => {
+                self.dialect = detection.dialect;
+                self.makerbot = detection.makerbot;
+                self.detection = Some(detection);
+                self.apply_dialect();
+            }
+            None => self.provisional = true,
+        }
+        Ok(())
+    }
+
+    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
+    /// need no program end.
+    fn end_of_input(&mut self) -> Result<(), GcodeError> {
+        self.finished = true;
+        if self.provisional && self.moved {
+            self.provisional = false;
+            self.dialect = Dialect::Grbl;
+            self.detection = Some(Detection {
+                dialect: Dialect::Grbl,
+                reason: format!(
+                    "nothing tells the dialects apart, and the program ends at line {} without \
+                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
+                     reads the same in both)",
+                    self.lines.number
+                ),
+                line: None,
+                makerbot: false,
+            });
+        }
+        if self.dialect != Dialect::Linuxcnc {
+            return Ok(());
+        }
+        Err(match self.percent {
+            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
+            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
+        })
+    }
+
+    /// Records a no-motion code as an event.
+    fn record(&mut self, name: &str, known: bool) {
+        self.summary.count(name, known);
+        if let Some(code) = CodeName::new(name) {
+            self.emit(MotionKind::Code { code });
+        }
+    }
+
+    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
+    fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
+        match prelude(self.dialect, &self.lines.line) {
+            Prelude::Block => Ok(false),
+            Prelude::Event { name, known } => {
+                self.record(&name, known);
+                Ok(true)
+            }
+            Prelude::ExtruderMode { name, relative } => {
+                self.e_relative = relative;
+                self.record(&name, true);
+                Ok(true)
+            }
+            Prelude::Home { axes, name } => {
+                // One rapid of the named axes to the home pose (G28's stored position), with no
+                // intermediate point.
+                let mut end = self.state.current;
+                for axis in (0..4).filter(|&axis| axes[axis]) {
+                    let machine = self
+                        .state
+                        .mm_to_program(axis, self.state.params.get(G28_HOME + axis_slot(axis)));
+                    end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+                }
+                self.summary.count(&name, true);
+                self.move_to(end, None);
+                self.state.publish_position();
+                Ok(true)
+            }
+            Prelude::Refuse { start, end, code, note } => {
+                Err(self.error(Fault::not_supported(start, end, code, note)))
+            }
+        }
+    }
+
+    /// A dialect's changes to the block just read; `Ok(true)` when the block is done with.
+    fn adapt_block(&mut self) -> Result<bool, Fault> {
+        if self.dialect != Dialect::Marlin {
+            return Ok(false);
+        }
+        // One command per line: later G and M words are the command's parameters.
+        let first =
+            self.block.g.iter().chain(self.block.m.iter()).flatten().map(|code| code.at).min();
+        if let Some(first) = first {
+            for slot in self.block.g.iter_mut().chain(self.block.m.iter_mut()) {
+                if slot.is_some_and(|code| code.at != first) {
+                    *slot = None;
+                }
+            }
+        }
+        if let Some(code) = self.block.g[3] {
+            self.e_relative = code.code == 910;
+        }
+        let factor = if self.block.g[6].map_or(self.state.metric, |code| code.code == 210) {
+            1.0
+        } else {
+            MM_PER_INCH
+        };
+        let e = self.block.letters[usize::from(b'e' - b'a')].take();
+        let group0 = self.block.g[0].map(|code| code.code);
+        if group0 == Some(40) {
+            // G4: S seconds, else P milliseconds, else no wait.
+            let s = self.block.letters[usize::from(b's' - b'a')].take();
+            let p = self.block.word(b'p');
+            let (seconds, word) = match (s, p) {
+                (Some(s), _) => (s.value, s),
+                (None, Some(p)) => (p.value / 1000.0, p),
+                (None, None) => {
+                    let code = self.block.g[0].map_or((0, 1), |code| (code.at, code.end));
+                    (0.0, Word { value: 0.0, at: code.0, end: code.1 })
+                }
+            };
+            self.block.letters[usize::from(b'p' - b'a')] = Some(Word { value: seconds, ..word });
+        }
+        if let Some(e) = e {
+            let value = e.value * factor;
+            if group0 == Some(920) {
+                self.e_position = value;
+                if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
+                    return Ok(true);
+                }
+            } else if self.block.g[1].is_some()
+                || (self.state.motion.is_some()
+                    && AXES.iter().any(|&letter| self.block.word(letter).is_some()))
+            {
+                let delta = if self.e_relative { value } else { value - self.e_position };
+                self.e_position += delta;
+                self.pending_extrude = Some(delta);
+            }
+        }
+        Ok(false)
+    }
+
+    /// MakerBot's flavour: an A word is the extruder's E.
+    fn rename_makerbot_a(&mut self) {
+        let bytes = self.compact.bytes_mut();
+        for index in 0..bytes.len() {
+            let before = if index == 0 { b'(' } else { bytes[index - 1] };
+            let after = bytes.get(index + 1).copied().unwrap_or(0);
+            if bytes[index] == b'a'
+                && !before.is_ascii_alphabetic()
+                && (after.is_ascii_digit() || matches!(after, b'-' | b'+' | b'.'))
+            {
+                bytes[index] = b'e';
+            }
         }
     }
 
@@ -268,24 +531,22 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Reads and executes lines until a motion is queued, the program ends, or an error.
     fn step(&mut self) -> Result<(), GcodeError> {
+        if self.undecided {
+            self.decide()?;
+        }
         loop {
             let more = self
                 .lines
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             if !more {
-                self.finished = true;
-                return Err(match self.percent {
-                    Percent::Open => {
-                        GcodeError::NoClosingPercent { line: self.lines.number.max(1) }
-                    }
-                    _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
-                });
+                return self.end_of_input();
             }
             if self.lines.too_long {
+                let max = self.lines.max;
                 return Err(GcodeError::LineTooLong {
-                    at: self.location(MAX_LINE, MAX_LINE + 1),
-                    max: MAX_LINE,
+                    at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
+                    max,
                 });
             }
             let trimmed = self.lines.line.trim_ascii();
@@ -300,7 +561,18 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(());
             }
             self.state.line = self.lines.number;
-            compact(&self.lines.line, &mut self.compact).map_err(|fault| self.error(fault))?;
+            if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
+                if !self.queue.is_empty() {
+                    return Ok(());
+                }
+                continue;
+            }
+            let nested = matches!(self.dialect, Dialect::Mach3 | Dialect::Marlin);
+            compact(&self.lines.line, &mut self.compact, nested)
+                .map_err(|fault| self.error(fault))?;
+            if self.makerbot {
+                self.rename_makerbot_a();
+            }
             if self.compact.bytes().is_empty() {
                 continue;
             }
@@ -314,6 +586,12 @@ impl<R: BufRead> Interpreter<R> {
                 reader.read_block(&mut self.block)
             };
             result.map_err(|fault| self.error(fault))?;
+            if self.dialect != Dialect::Linuxcnc {
+                self.pending_extrude = None;
+                if self.adapt_block().map_err(|fault| self.error(fault))? {
+                    continue;
+                }
+            }
             self.execute().map_err(|fault| self.error(fault))?;
             if !self.queue.is_empty() || self.finished {
                 return Ok(());
@@ -343,7 +621,9 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn emit(&mut self, kind: MotionKind) {
-        self.queue.push_back(Motion { line: self.state.line, kind });
+        let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
+        self.moved = true;
+        self.queue.push_back(Motion { line: self.state.line, kind, extrude });
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -447,9 +727,15 @@ impl<R: BufRead> Interpreter<R> {
                 self.state.feed_mm = f.value * self.state.factor();
             }
         }
-        // 5, 6. spindle speed, tool selection: no effect on motion.
+        // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
+        // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
+            let changed = s.value != self.state.speed;
             self.state.speed = s.value;
+            let powered = matches!(self.tool, Tool::Laser | Tool::Spindle);
+            if changed && powered && self.tool_on && m[7].is_none() {
+                self.tool_event(self.state.spindle);
+            }
         }
         if let Some(t) = self.block.word(b't') {
             // Not negative: the reader refuses that.
@@ -459,16 +745,12 @@ impl<R: BufRead> Interpreter<R> {
         if m[6].is_some() {
             self.state.tool = self.state.selected_tool;
             self.state.spindle = 5;
-            self.emit(MotionKind::GripperOff);
+            self.tool_event(5);
         }
-        // 9. spindle: the gripper
+        // 9. spindle: the gripper (or the tool)
         if let Some(code) = m[7] {
             self.state.spindle = code.code;
-            self.emit(match code.code {
-                3 => MotionKind::Pick,
-                4 => MotionKind::Place,
-                _ => MotionKind::GripperOff,
-            });
+            self.tool_event(code.code);
         }
         // 11. coolant
         if let Some(code) = m[8] {
@@ -583,6 +865,32 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.state.publish_position();
         Ok(())
+    }
+
+    /// The tool's event for M3, M4 or M5 (`code`), or for a new S while on.
+    fn tool_event(&mut self, code: u16) {
+        self.tool_on = code != 5;
+        let speed = self.state.speed;
+        let kind = match (self.tool, code) {
+            (Tool::Gripper, 3) => MotionKind::Pick,
+            (Tool::Gripper, 4) => MotionKind::Place,
+            (Tool::Gripper, _) => MotionKind::GripperOff,
+            (Tool::Laser, 3 | 4) => MotionKind::LaserOn { power: speed, dynamic: code == 4 },
+            (Tool::Laser, _) => MotionKind::LaserOff,
+            (Tool::Spindle, 3 | 4) => MotionKind::SpindleOn { rpm: speed, clockwise: code == 3 },
+            (Tool::Spindle, _) => MotionKind::SpindleOff,
+            (Tool::Pen, 3 | 4) => MotionKind::PenDown,
+            (Tool::Pen, _) => MotionKind::PenUp,
+            (Tool::Extruder, _) => {
+                let name = format!("M{code}");
+                self.summary.count(&name, true);
+                match CodeName::new(&name) {
+                    Some(code) => MotionKind::Code { code },
+                    None => return,
+                }
+            }
+        };
+        self.emit(kind);
     }
 
     /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
@@ -942,7 +1250,11 @@ impl<R: BufRead> Interpreter<R> {
         );
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
-        let (i, j, k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
+        let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
+        // Grbl reads the K word of an XY-plane arc and ignores it.
+        if self.dialect == Dialect::Grbl && self.state.plane == Plane::Xy {
+            k = None;
+        }
         let ijk = i.is_some() || j.is_some() || k.is_some();
         if r.is_none() && !ijk {
             return Err(fail(

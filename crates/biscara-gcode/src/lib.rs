@@ -45,11 +45,17 @@
 #![warn(missing_docs)]
 
 mod degrees;
+mod dialect;
 mod error;
 mod interpreter;
 mod lexer;
 mod params;
 mod parser;
+mod tool;
 
+pub use dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
+};
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret};
+pub use tool::Tool;

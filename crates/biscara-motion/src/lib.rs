@@ -8,7 +8,7 @@
 //! ```
 //! use biscara_motion::{Motion, MotionKind, read_jsonl, write_jsonl};
 //!
-//! let motion = Motion { line: 3, kind: MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] } };
+//! let motion = Motion::new(3, MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] });
 //! let mut text = Vec::new();
 //! write_jsonl(&mut text, &motion)?;
 //! assert_eq!(text, b"{\"line\":3,\"kind\":\"rapid\",\"end\":[0.0,400.0,100.0,0.0]}\n");
@@ -23,4 +23,4 @@ mod motion;
 
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
 pub use lines::{MAX_LINE_BYTES, read_bounded_line};
-pub use motion::{Feed, Motion, MotionKind, Plane};
+pub use motion::{CodeName, Feed, Motion, MotionKind, Plane};
