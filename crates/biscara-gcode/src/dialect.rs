@@ -544,10 +544,9 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
             }
             _ => Prelude::Block,
         },
-        b'T' | b'F' | b'X' | b'Y' | b'Z' | b'E' | b'S' | b'P' | b'I' | b'J' | b'R' => {
-            Prelude::Block
-        }
-        _ => unknown_text(raw),
+        b'T' => Prelude::Block,
+        // No command letter (Marlin has no modal motion by default): "Unknown command".
+        _ => Prelude::Event { name: code_name(letter, number), known: false },
     }
 }
 
@@ -630,6 +629,7 @@ mod tests {
         assert_eq!(prelude(Dialect::Marlin, b"G280"), event("G280", false));
         assert_eq!(prelude(Dialect::Marlin, b" Total estimated: 0.99"), event("Total", false));
         assert_eq!(prelude(Dialect::Marlin, b"T1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
         let home = |axes: [bool; 4]| Prelude::Home { axes, name: "G28".to_owned() };
         assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));
         assert_eq!(prelude(Dialect::Marlin, b"G28 X0 Y0 (Z)"), home([true, true, false, false]));

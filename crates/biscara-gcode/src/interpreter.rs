@@ -454,13 +454,19 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(code) = self.block.g[3] {
             self.e_relative = code.code == 910;
         }
+        let group0 = self.block.g[0].map(|code| code.code);
+        if self.block.g[1].is_none() && group0 != Some(920) {
+            // Axis words of a command that is not a move are its parameters: no modal motion.
+            for &letter in &AXES {
+                self.block.letters[usize::from(letter - b'a')] = None;
+            }
+        }
         let factor = if self.block.g[6].map_or(self.state.metric, |code| code.code == 210) {
             1.0
         } else {
             MM_PER_INCH
         };
         let e = self.block.letters[usize::from(b'e' - b'a')].take();
-        let group0 = self.block.g[0].map(|code| code.code);
         if group0 == Some(40) {
             // G4: S seconds, else P milliseconds, else no wait.
             let s = self.block.letters[usize::from(b's' - b'a')].take();
