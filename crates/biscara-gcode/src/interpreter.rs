@@ -36,6 +36,8 @@ const TINY: f64 = 1e-12;
 const MAX_COORDINATE: f64 = 1e6;
 /// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
 const MARLIN_DEFAULT_FEED: f64 = 4000.0;
+/// The largest extruder position (E word) accepted, mm.
+const MAX_EXTRUSION: f64 = 1e9;
 /// The axis letters, in our axis order x y z c.
 const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
 
@@ -483,6 +485,12 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(e) = e {
             let value = e.value * factor;
+            if value.is_nan() || value.abs() > MAX_EXTRUSION {
+                return Err(self.word_fault(
+                    e,
+                    format!("{value:e} is out of range: E must lie within ±{MAX_EXTRUSION:e} mm"),
+                ));
+            }
             if group0 == Some(920) {
                 self.e_position = value;
                 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
