@@ -360,7 +360,7 @@ pub(crate) enum Prelude {
     ExtruderMode { name: String, relative: bool },
     /// Marlin's G28: home the named axes (`[x, y, z, c]`), all of them when none is named; the
     /// values after the letters do not matter (`G28 X0 Y0` and `G28 X Y` are the same).
-    Home { axes: [bool; 4], name: String },
+    Home { axes: [bool; 4] },
     /// A code the dialect has but this robot cannot do: refused (`start..end` in the line).
     Refuse { start: usize, end: usize, code: String, note: &'static str },
 }
@@ -518,7 +518,7 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
                 if !axes.iter().any(|&axis| axis) {
                     axes = [true; 4];
                 }
-                Prelude::Home { axes, name: code_name(letter, number) }
+                Prelude::Home { axes }
             }
             // Firmware retract and recover, mesh and probe codes, nozzle park, calibrations,
             // save position: no motion of the program's own.
@@ -630,7 +630,7 @@ mod tests {
         assert_eq!(prelude(Dialect::Marlin, b" Total estimated: 0.99"), event("Total", false));
         assert_eq!(prelude(Dialect::Marlin, b"T1"), Prelude::Block);
         assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
-        let home = |axes: [bool; 4]| Prelude::Home { axes, name: "G28".to_owned() };
+        let home = |axes: [bool; 4]| Prelude::Home { axes };
         assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));
         assert_eq!(prelude(Dialect::Marlin, b"G28 X0 Y0 (Z)"), home([true, true, false, false]));
         assert_eq!(prelude(Dialect::Marlin, b"G28"), home([true; 4]));

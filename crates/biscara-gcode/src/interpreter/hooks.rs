@@ -137,7 +137,7 @@ impl<R: BufRead> Interpreter<R> {
                 self.record(&name, true);
                 Ok(true)
             }
-            Prelude::Home { axes, name } => {
+            Prelude::Home { axes } => {
                 // One rapid of the named axes to the home pose (G28's stored position), with no
                 // intermediate point.
                 let mut end = self.state.current;
@@ -147,7 +147,6 @@ impl<R: BufRead> Interpreter<R> {
                         .mm_to_program(axis, self.state.params.get(G28_HOME + axis_slot(axis)));
                     end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
                 }
-                self.summary.count(&name, true);
                 self.move_to(end, None);
                 self.state.publish_position();
                 Ok(true)
