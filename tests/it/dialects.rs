@@ -522,7 +522,13 @@ impl<'a> Reader<'a> {
         if let Some(code) = motion_code {
             self.motion = Some(code);
         }
-        let moves = motion_code.is_some() || (!marlin && given.iter().any(Option::is_some));
+        let axis_words = given.iter().any(Option::is_some);
+        // Marlin moves only for axis or E words (`G1 F1500` sets the feed rate).
+        let moves = if marlin {
+            motion_code.is_some() && (axis_words || word('E').is_some())
+        } else {
+            motion_code.is_some() || axis_words
+        };
         let Some(motion) = self.motion.filter(|_| moves) else { return };
         let end = target(self);
         let extrude = if (motion_code.is_some() || given.iter().any(Option::is_some)) && marlin {

@@ -188,6 +188,11 @@ impl<R: BufRead> Interpreter<R> {
             MM_PER_INCH
         };
         let e = self.block.letters[usize::from(b'e' - b'a')].take();
+        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        if e.is_none() && !axis_words && self.block.g[1].is_some_and(|code| code.code <= 30) {
+            // `G1 F1500`: a feed rate, no move (LinuxCNC would make a move of no length).
+            self.block.g[1] = None;
+        }
         if group0 == Some(40) {
             // G4: S seconds, else P milliseconds, else no wait.
             let s = self.block.letters[usize::from(b's' - b'a')].take();

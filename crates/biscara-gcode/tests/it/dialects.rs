@@ -144,10 +144,16 @@ fn marlin_reads_one_command_a_line_and_records_the_others() {
 
 #[test]
 fn marlin_feeds_at_its_default_before_the_first_f() {
-    let motions = read("G1 X10\n", Dialect::Marlin);
+    let motions = read("G1 X10\nG1 F1500\nG1 X20\n", Dialect::Marlin);
     assert!(
         matches!(motions[0].kind, MotionKind::Linear { feed, .. } if feed.mm_per_min == 4000.0)
     );
+    // `G1 F1500` sets the feed rate and does not move (LinuxCNC makes a move of no length).
+    assert_eq!(motions.len(), 2);
+    assert!(
+        matches!(motions[1].kind, MotionKind::Linear { feed, .. } if feed.mm_per_min == 1500.0)
+    );
+    assert_eq!(read("G1 X10 F100\nG1 F1500\nM2\n", Dialect::Linuxcnc).len(), 3);
 }
 
 #[test]
