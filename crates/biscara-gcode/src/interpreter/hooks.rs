@@ -23,6 +23,8 @@ const MARLIN_DEFAULT_FEED: f64 = 4000.0;
 const MAX_EXTRUSION: f64 = 1e9;
 
 impl<R: BufRead> Interpreter<R> {
+    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
+    /// with its decision).
     pub(super) fn with_line_limit(mut self) -> Self {
         self.apply_dialect();
         self
