@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use biscara::gcode::Dialect;
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -87,6 +88,26 @@ pub(crate) struct PlacementArgs {
     pub(crate) fit: bool,
 }
 
+/// Whose G-code a program is (SPEC §4.3).
+#[derive(Debug, Args)]
+pub(crate) struct DialectArgs {
+    /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
+    /// (Marlin and RepRap printer firmware), `mach3`, or `auto` to decide from the program (the
+    /// choice and its reason are noted on stderr).
+    #[arg(
+        long,
+        value_name = "DIALECT",
+        default_value = "auto",
+        value_parser = parse_dialect,
+        help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
+    )]
+    pub(crate) dialect: Dialect,
+}
+
+fn parse_dialect(text: &str) -> Result<Dialect, String> {
+    text.parse::<Dialect>().map_err(|err| err.to_string())
+}
+
 /// Options shared by the commands that sample a program in time.
 #[derive(Debug, Args)]
 pub(crate) struct SamplingArgs {
@@ -101,6 +122,8 @@ pub(crate) struct SamplingArgs {
     grip_time: f64,
     #[command(flatten)]
     pub(crate) placement: PlacementArgs,
+    #[command(flatten)]
+    pub(crate) dialect: DialectArgs,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     pub(crate) precision: u8,
@@ -115,6 +138,7 @@ impl SamplingArgs {
             grip_time: self.grip_time,
             origin: self.placement.origin,
             fit: self.placement.fit,
+            dialect: self.dialect.dialect,
         }
     }
 }

@@ -7,7 +7,7 @@ use biscara::motion::write_jsonl;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
 use clap::Args;
 
-use super::args::PlacementArgs;
+use super::args::{DialectArgs, PlacementArgs};
 use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
@@ -26,6 +26,12 @@ use super::files::{FileSource, write_output};
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.
+///
+/// Programs written for other firmware are read as that firmware reads them (SPEC §4.3, README
+/// "Dialects"): `--dialect auto` (the default) decides from the program's first 64 KiB
+/// (generator comments, E words, printer M-codes, `$` lines, nested comments, `O0001` program
+/// numbers) and says on stderr which dialect it chose and why, and lists the codes with no
+/// motion that it recorded.
 #[derive(Debug, Args)]
 #[command(
     about = "G-code → inter-file (motions as JSON Lines)",
@@ -42,6 +48,8 @@ pub(crate) struct InterpretArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     placement: PlacementArgs,
+    #[command(flatten)]
+    dialect: DialectArgs,
 }
 
 pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
@@ -50,11 +58,12 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
     let config = SamplingConfig {
         origin: placement.origin,
         fit: placement.fit,
+        dialect: args.dialect.dialect,
         ..SamplingConfig::default()
     };
     let notes = NoteReporter::default();
     let motions =
-        Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, &mut notes.sink())?;
+        Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         // serde_json writes a motion in many small pieces: gather them in a buffer of a
         // concrete type rather than through `dyn Write`.
@@ -64,5 +73,7 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         }
         out.flush()?;
         Ok(())
-    })
+    })?;
+    notes.finish();
+    Ok(())
 }

@@ -8,7 +8,7 @@ use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, Sampli
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
-use super::args::{InputKind, PlacementArgs, ProfileArg, parse_duration};
+use super::args::{DialectArgs, InputKind, PlacementArgs, ProfileArg, parse_duration};
 use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
@@ -49,6 +49,8 @@ pub(crate) struct ViewArgs {
     scene: Option<PathBuf>,
     #[command(flatten)]
     placement: PlacementArgs,
+    #[command(flatten)]
+    dialect: DialectArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "trapezoid", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
@@ -91,6 +93,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         grip_time: args.grip_time,
         origin: args.placement.origin,
         fit: args.placement.fit,
+        dialect: args.dialect.dialect,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

@@ -74,10 +74,12 @@ fn the_program_starts_at_the_robots_home_pose_and_origin_shifts_it() {
 /// Runs `biscara interpret job.ngc -o out.jsonl` on `content`: exit 1, `message` on stderr, no
 /// output file, no temporary file, no panic.
 #[track_caller]
+/// LinuxCNC's refusals (`--dialect linuxcnc`: `auto` reads some of these programs as another
+/// firmware would, see `tests/it/dialects.rs`).
 fn check_rejected(content: &[u8], message: &str) -> Run {
     let dir = temp_dir("interpret-bad");
     std::fs::write(dir.join("job.ngc"), content).expect("write");
-    let run = biscara(&dir, &["interpret", "job.ngc", "-o", "out.jsonl"]);
+    let run = biscara(&dir, &["interpret", "--dialect", "linuxcnc", "job.ngc", "-o", "out.jsonl"]);
     run.expect_code(1).stderr_has(message);
     assert!(!run.stderr.contains("panicked"), "{run}");
     let left: Vec<_> =

@@ -4,6 +4,7 @@ mod bad_input;
 mod browser;
 mod cli_kinematics;
 mod conformance;
+mod dialects;
 mod golden;
 mod interpret;
 mod linuxcnc;

@@ -126,7 +126,7 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             rest.trim()
         })
         .collect();
-    let push = |motions: &mut Vec<Motion>, kind| motions.push(Motion { line: 0, kind });
+    let push = |motions: &mut Vec<Motion>, kind| motions.push(Motion::new(0, kind));
     for (index, line) in lines.iter().enumerate() {
         let (name, arguments) = match line.find('(') {
             Some(open) => (&line[..open], line[open + 1..].trim_end_matches(')')),

@@ -9,6 +9,7 @@ use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
+use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
 use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, compact};
 use crate::params::{
@@ -16,6 +17,10 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::tool::Tool;
+
+/// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
+mod hooks;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -45,11 +50,23 @@ pub struct Config {
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
+    /// Whose G-code the program is (SPEC §4.3). [`Dialect::Linuxcnc`] by default: exactly
+    /// LinuxCNC's reading. [`Dialect::Auto`] decides from the program (see
+    /// [`Interpreter::detection`]).
+    pub dialect: Dialect,
+    /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
+    pub tool: Tool,
 }
 
 impl Default for Config {
     fn default() -> Config {
-        Config { home: [0.0; 4], origin: [0.0; 4], block_delete: false }
+        Config {
+            home: [0.0; 4],
+            origin: [0.0; 4],
+            block_delete: false,
+            dialect: Dialect::Linuxcnc,
+            tool: Tool::Gripper,
+        }
     }
 }
 
@@ -70,6 +87,26 @@ pub struct Interpreter<R> {
     block_delete: bool,
     percent: Percent,
     finished: bool,
+    /// The dialect being read ([`Dialect::Linuxcnc`] while `auto` has not decided).
+    dialect: Dialect,
+    /// Whether `auto` still has to read ahead (before the first line).
+    undecided: bool,
+    /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
+    provisional: bool,
+    detection: Option<Detection>,
+    summary: Summary,
+    tool: Tool,
+    /// Whether the tool is on (M3/M4 until M5 or M6).
+    tool_on: bool,
+    /// MakerBot's flavour: the A word is the extruder.
+    makerbot: bool,
+    /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
+    e_position: f64,
+    e_relative: bool,
+    /// The extrusion of the block being executed, for its first move.
+    pending_extrude: Option<f64>,
+    /// Whether any motion was emitted (an empty program is not a program).
+    moved: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -243,7 +280,24 @@ impl<R: BufRead> Interpreter<R> {
             block_delete: config.block_delete,
             percent: Percent::Unknown,
             finished: false,
+            dialect: if config.dialect == Dialect::Auto {
+                Dialect::Linuxcnc
+            } else {
+                config.dialect
+            },
+            undecided: config.dialect == Dialect::Auto,
+            provisional: false,
+            detection: None,
+            summary: Summary::default(),
+            tool: config.tool,
+            tool_on: false,
+            makerbot: false,
+            e_position: 0.0,
+            e_relative: false,
+            pending_extrude: None,
+            moved: false,
         }
+        .with_line_limit()
     }
 
     fn location(&self, start: usize, end: usize) -> Location {
@@ -268,24 +322,22 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Reads and executes lines until a motion is queued, the program ends, or an error.
     fn step(&mut self) -> Result<(), GcodeError> {
+        if self.undecided {
+            self.decide()?;
+        }
         loop {
             let more = self
                 .lines
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             if !more {
-                self.finished = true;
-                return Err(match self.percent {
-                    Percent::Open => {
-                        GcodeError::NoClosingPercent { line: self.lines.number.max(1) }
-                    }
-                    _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
-                });
+                return self.end_of_input();
             }
             if self.lines.too_long {
+                let max = self.lines.max;
                 return Err(GcodeError::LineTooLong {
-                    at: self.location(MAX_LINE, MAX_LINE + 1),
-                    max: MAX_LINE,
+                    at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
+                    max,
                 });
             }
             let trimmed = self.lines.line.trim_ascii();
@@ -300,7 +352,18 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(());
             }
             self.state.line = self.lines.number;
-            compact(&self.lines.line, &mut self.compact).map_err(|fault| self.error(fault))?;
+            if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
+                if !self.queue.is_empty() {
+                    return Ok(());
+                }
+                continue;
+            }
+            let nested = matches!(self.dialect, Dialect::Mach3 | Dialect::Marlin);
+            compact(&self.lines.line, &mut self.compact, nested)
+                .map_err(|fault| self.error(fault))?;
+            if self.makerbot {
+                self.rename_makerbot_a();
+            }
             if self.compact.bytes().is_empty() {
                 continue;
             }
@@ -314,6 +377,12 @@ impl<R: BufRead> Interpreter<R> {
                 reader.read_block(&mut self.block)
             };
             result.map_err(|fault| self.error(fault))?;
+            if self.dialect != Dialect::Linuxcnc {
+                self.pending_extrude = None;
+                if self.adapt_block().map_err(|fault| self.error(fault))? {
+                    continue;
+                }
+            }
             self.execute().map_err(|fault| self.error(fault))?;
             if !self.queue.is_empty() || self.finished {
                 return Ok(());
@@ -343,7 +412,9 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn emit(&mut self, kind: MotionKind) {
-        self.queue.push_back(Motion { line: self.state.line, kind });
+        let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
+        self.moved = true;
+        self.queue.push_back(Motion { line: self.state.line, kind, extrude });
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -445,9 +516,15 @@ impl<R: BufRead> Interpreter<R> {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
-        // 5, 6. spindle speed, tool selection: no effect on motion.
+        // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
+        // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
+            let changed = s.value != self.state.speed;
             self.state.speed = s.value;
+            let powered = matches!(self.tool, Tool::Laser | Tool::Spindle);
+            if changed && powered && self.tool_on && m[7].is_none() {
+                self.tool_event(self.state.spindle);
+            }
         }
         if let Some(t) = self.block.word(b't') {
             // Not negative: the reader refuses that.
@@ -457,16 +534,12 @@ impl<R: BufRead> Interpreter<R> {
         if m[6].is_some() {
             self.state.tool = self.state.selected_tool;
             self.state.spindle = 5;
-            self.emit(MotionKind::GripperOff);
+            self.tool_event(5);
         }
-        // 9. spindle: the gripper
+        // 9. spindle: the gripper (or the tool)
         if let Some(code) = m[7] {
             self.state.spindle = code.code;
-            self.emit(match code.code {
-                3 => MotionKind::Pick,
-                4 => MotionKind::Place,
-                _ => MotionKind::GripperOff,
-            });
+            self.tool_event(code.code);
         }
         // 11. coolant
         if let Some(code) = m[8] {
@@ -939,7 +1012,11 @@ impl<R: BufRead> Interpreter<R> {
         );
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
-        let (i, j, k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
+        let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
+        // Grbl reads the K word of an XY-plane arc and ignores it.
+        if self.dialect == Dialect::Grbl && self.state.plane == Plane::Xy {
+            k = None;
+        }
         let ijk = i.is_some() || j.is_some() || k.is_some();
         if r.is_none() && !ijk {
             return Err(fail(

@@ -26,6 +26,27 @@
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
+//! Programs written for other firmware are read as that firmware reads them when
+//! [`Config::dialect`] says so ([`Dialect`]: Grbl, Marlin, Mach3; SPEC §4.3), or when it is
+//! [`Dialect::Auto`]: the interpreter then reads the first [`LOOKAHEAD_BYTES`] ahead and decides
+//! from them ([`detect_dialect`]), and reports its choice and reason as a value
+//! ([`Interpreter::detection`]), with the no-motion codes it recorded ([`Interpreter::summary`]).
+//! What M3, M4, M5 and S mean depends on [`Config::tool`] ([`Tool`], SPEC §1.6). The library's
+//! default is [`Dialect::Linuxcnc`], which has none of the dialects' hooks.
+//!
+//! ```
+//! use biscara_gcode::{Config, Dialect, interpret};
+//!
+//! let program = ";FLAVOR:Marlin\nM104 S200\nG1 X10 E0.5 F1200\n";
+//! let config = Config { dialect: Dialect::Auto, ..Config::default() };
+//! let mut interpreter = interpret(program.as_bytes(), &config);
+//! let motions: Vec<_> = (&mut interpreter).collect::<Result<_, _>>()?;
+//! assert_eq!(motions[1].extrude, Some(0.5));
+//! assert_eq!(interpreter.detection().map(|d| d.dialect), Some(Dialect::Marlin));
+//! assert_eq!(interpreter.summary().codes.get("M104"), Some(&1));
+//! # Ok::<(), biscara_gcode::GcodeError>(())
+//! ```
+//!
 //! Like LinuxCNC, it refuses a file that ends without M2, M30 or a closing `%` (a truncated
 //! file), lines longer than 252 characters ("Command too long"), and emits a zero-length move
 //! for a motion block without axis words (`G1 F100`) and the intermediate point of G28/G30.
@@ -45,11 +66,17 @@
 #![warn(missing_docs)]
 
 mod degrees;
+mod dialect;
 mod error;
 mod interpreter;
 mod lexer;
 mod params;
 mod parser;
+mod tool;
 
+pub use dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
+};
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret};
+pub use tool::Tool;

@@ -192,6 +192,8 @@ where
             MotionKind::GripperOff => self.gripper = false,
             MotionKind::Pause => {}
             MotionKind::End => self.finished = true,
+            // Tool events and recorded codes take no time and do not move the robot.
+            _ => {}
         }
         Ok(())
     }

@@ -29,6 +29,7 @@
 //! let motions = [Ok::<_, std::convert::Infallible>(Motion {
 //!     line: 1,
 //!     kind: MotionKind::Linear { end: [10.0, 400.0, 50.0, 0.0], feed },
+//!     extrude: None,
 //! })];
 //! let samples: Vec<_> = Interpolator::new(motions.into_iter(), config, NoSpeedLimit, |_| {})
 //!     .collect::<Result<_, _>>()?;

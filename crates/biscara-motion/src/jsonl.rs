@@ -117,7 +117,16 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
         MotionKind::Dwell { seconds } if !(seconds.is_finite() && seconds >= 0.0) => {
             return Err(invalid(format!("\"seconds\" must be a finite number ≥ 0, got {seconds}")));
         }
+        MotionKind::LaserOn { power, .. } if !(power.is_finite() && power >= 0.0) => {
+            return Err(invalid(format!("\"power\" must be a finite number ≥ 0, got {power}")));
+        }
+        MotionKind::SpindleOn { rpm, .. } if !(rpm.is_finite() && rpm >= 0.0) => {
+            return Err(invalid(format!("\"rpm\" must be a finite number ≥ 0, got {rpm}")));
+        }
         _ => {}
+    }
+    if let Some(extrude) = motion.extrude.filter(|extrude| !extrude.is_finite()) {
+        return Err(invalid(format!("\"extrude\" must be a finite number, got {extrude}")));
     }
     if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind
         && !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0)
@@ -133,7 +142,7 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Feed, Plane};
+    use crate::{CodeName, Feed, Plane};
 
     fn round_trip(motion: Motion) -> String {
         let mut text = Vec::new();
@@ -183,10 +192,43 @@ mod tests {
             (MotionKind::GripperOff, r#"{"line":3,"kind":"gripper_off"}"#),
             (MotionKind::Pause, r#"{"line":3,"kind":"pause"}"#),
             (MotionKind::End, r#"{"line":3,"kind":"end"}"#),
+            (
+                MotionKind::LaserOn { power: 300.0, dynamic: true },
+                r#"{"line":3,"kind":"laser_on","power":300.0,"dynamic":true}"#,
+            ),
+            (MotionKind::LaserOff, r#"{"line":3,"kind":"laser_off"}"#),
+            (
+                MotionKind::SpindleOn { rpm: 12000.0, clockwise: false },
+                r#"{"line":3,"kind":"spindle_on","clockwise":false,"rpm":12000.0}"#,
+            ),
+            (MotionKind::SpindleOff, r#"{"line":3,"kind":"spindle_off"}"#),
+            (MotionKind::PenDown, r#"{"line":3,"kind":"pen_down"}"#),
+            (MotionKind::PenUp, r#"{"line":3,"kind":"pen_up"}"#),
+            (
+                MotionKind::Code { code: CodeName::new("M104").unwrap() },
+                r#"{"line":3,"kind":"code","code":"M104"}"#,
+            ),
         ];
         for (kind, expected) in cases {
-            assert_eq!(round_trip(Motion { line: 3, kind }).trim_end(), expected);
+            assert_eq!(round_trip(Motion::new(3, kind)).trim_end(), expected);
         }
+    }
+
+    #[test]
+    fn moves_carry_their_extrusion() {
+        let feed = Feed { mm_per_min: 1800.0, inverse_time: false };
+        let linear = Motion {
+            line: 7,
+            kind: MotionKind::Linear { end: [1.0, 2.0, 3.0, 0.0], feed },
+            extrude: Some(0.5),
+        };
+        assert_eq!(
+            round_trip(linear).trim_end(),
+            r#"{"line":7,"kind":"linear","end":[1.0,2.0,3.0,0.0],"feed":1800.0,"extrude":0.5}"#
+        );
+        let retract =
+            Motion { line: 8, kind: MotionKind::Rapid { end: [0.0; 4] }, extrude: Some(-2.0) };
+        assert!(round_trip(retract).contains(r#""extrude":-2.0"#));
     }
 
     #[track_caller]
@@ -200,7 +242,7 @@ mod tests {
     fn bad_lines_are_reported_with_their_position() {
         check_error(
             "\n{\"line\":1,\"kind\":\"fly\"}\n",
-            "2:22: unknown variant `fly`, expected one of `rapid`, `linear`, `arc`, `dwell`, `pick`, `place`, `gripper_off`, `pause`, `end`",
+            "2:22: unknown variant `fly`, expected one of `rapid`, `linear`, `arc`, `dwell`, `pick`, `place`, `gripper_off`, `pause`, `end`, `laser_on`, `laser_off`, `spindle_on`, `spindle_off`, `pen_down`, `pen_up`, `code`",
         );
         check_error("{\"line\":1,\"kind\":\"rapid\"}", "1: missing field `end` for a rapid motion");
         check_error(
@@ -217,7 +259,40 @@ mod tests {
         );
         check_error(
             "{\"line\":1,\"kind\":\"pick\",\"extra\":1}",
-            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`",
+            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`, `extrude`, `power`, `dynamic`, `rpm`, `code`",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"pick\",\"extrude\":1}",
+            "1: field `extrude` does not belong to a pick motion",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"rapid\",\"end\":[0,0,0,0],\"extrude\":\"a\"}",
+            "1:54: invalid type: string \"a\", expected f64",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"laser_on\"}",
+            "1: missing field `power` for a laser_on motion",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"laser_on\",\"power\":-5}",
+            "1: \"power\" must be a finite number ≥ 0, got -5",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"spindle_on\",\"rpm\":-1}",
+            "1: \"rpm\" must be a finite number ≥ 0, got -1",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"laser_off\",\"power\":5}",
+            "1: field `power` does not belong to a laser_off motion",
+        );
+        check_error("{\"line\":1,\"kind\":\"code\"}", "1: missing field `code` for a code motion");
+        check_error(
+            "{\"line\":1,\"kind\":\"code\",\"code\":\"M 104\"}",
+            "1: \"code\" must be 1 to 15 printable ASCII characters without spaces, got \"M 104\"",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"code\",\"code\":\"M104\",\"end\":[0,0,0,0]}",
+            "1: field `end` does not belong to a code motion",
         );
         check_error("not json", "1:2: expected ident");
     }

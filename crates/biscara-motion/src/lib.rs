@@ -8,7 +8,7 @@
 //! ```
 //! use biscara_motion::{Motion, MotionKind, read_jsonl, write_jsonl};
 //!
-//! let motion = Motion { line: 3, kind: MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] } };
+//! let motion = Motion::new(3, MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] });
 //! let mut text = Vec::new();
 //! write_jsonl(&mut text, &motion)?;
 //! assert_eq!(text, b"{\"line\":3,\"kind\":\"rapid\",\"end\":[0.0,400.0,100.0,0.0]}\n");
@@ -21,7 +21,7 @@ mod jsonl;
 mod motion;
 
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
-pub use motion::{Feed, Motion, MotionKind, Plane};
+pub use motion::{CodeName, Feed, Motion, MotionKind, Plane};
 
 /// A position at a stage boundary: `[x, y, z, c]` in the robot's base frame, millimetres for
 /// x, y, z and **degrees** for c (the G-code C word), as in every file the stages exchange.

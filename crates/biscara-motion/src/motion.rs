@@ -12,6 +12,62 @@ pub struct Motion {
     pub line: usize,
     /// What to do.
     pub kind: MotionKind,
+    /// Filament the extruder feeds during this move, millimetres (negative: a retraction);
+    /// `None` when the block had no E word. Only moves carry it (SPEC §1.6, §5).
+    pub extrude: Option<f64>,
+}
+
+impl Motion {
+    /// A motion with no extrusion.
+    pub fn new(line: usize, kind: MotionKind) -> Motion {
+        Motion { line, kind, extrude: None }
+    }
+}
+
+/// The name of a code with no motion that a dialect accepts (`M104`, `G29`, `$H`): printable
+/// ASCII, 1 to [`CodeName::MAX`] bytes, stored inline so that motions stay `Copy`.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CodeName {
+    bytes: [u8; CodeName::MAX],
+    len: u8,
+}
+
+impl CodeName {
+    /// The longest name, bytes.
+    pub const MAX: usize = 15;
+
+    /// `name` as a code name; `None` when it is empty, longer than [`CodeName::MAX`] bytes or
+    /// holds anything but printable ASCII without spaces.
+    pub fn new(name: &str) -> Option<CodeName> {
+        let bytes = name.as_bytes();
+        if bytes.is_empty()
+            || bytes.len() > CodeName::MAX
+            || !bytes.iter().all(u8::is_ascii_graphic)
+        {
+            return None;
+        }
+        let mut stored = [0; CodeName::MAX];
+        stored[..bytes.len()].copy_from_slice(bytes);
+        Some(CodeName { bytes: stored, len: bytes.len() as u8 })
+    }
+
+    /// The name.
+    pub fn as_str(&self) -> &str {
+        // Only printable ASCII is ever stored.
+        std::str::from_utf8(&self.bytes[..usize::from(self.len)]).unwrap_or("?")
+    }
+}
+
+impl std::fmt::Debug for CodeName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}", self.as_str())
+    }
+}
+
+impl std::fmt::Display for CodeName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// The plane of an arc, with its axes in LinuxCNC's canonical order `(first, second)` and the
@@ -93,6 +149,36 @@ pub enum MotionKind {
     Pause,
     /// M2 or M30: end of program.
     End,
+    /// A laser tool switched on (M3: constant power; M4: dynamic power, Grbl's laser mode), or
+    /// its power changed while on (an S word). Takes no time.
+    LaserOn {
+        /// The S value: power, 0 … the tool's maximum.
+        power: f64,
+        /// M4: power scaled with the actual speed (Grbl laser mode).
+        dynamic: bool,
+    },
+    /// A laser tool switched off (M5). Takes no time.
+    LaserOff,
+    /// A spindle switched on (M3 clockwise, M4 counter-clockwise), or its speed changed while
+    /// on. Takes no time.
+    SpindleOn {
+        /// The S value, revolutions per minute.
+        rpm: f64,
+        /// M3 (true) or M4 (false).
+        clockwise: bool,
+    },
+    /// A spindle switched off (M5). Takes no time.
+    SpindleOff,
+    /// A pen put down on the paper (M3 or M4). Takes no time.
+    PenDown,
+    /// A pen lifted (M5). Takes no time.
+    PenUp,
+    /// A code with no motion that the program's dialect accepts (a temperature, fan, progress
+    /// or settings code, a Grbl `$` line, …): recorded, not acted on. Takes no time.
+    Code {
+        /// The code as the program wrote it, upper case (`M104`, `G29`, `$H`).
+        code: CodeName,
+    },
 }
 
 impl MotionKind {
@@ -122,6 +208,13 @@ impl MotionKind {
             MotionKind::GripperOff => Tag::GripperOff,
             MotionKind::Pause => Tag::Pause,
             MotionKind::End => Tag::End,
+            MotionKind::LaserOn { .. } => Tag::LaserOn,
+            MotionKind::LaserOff => Tag::LaserOff,
+            MotionKind::SpindleOn { .. } => Tag::SpindleOn,
+            MotionKind::SpindleOff => Tag::SpindleOff,
+            MotionKind::PenDown => Tag::PenDown,
+            MotionKind::PenUp => Tag::PenUp,
+            MotionKind::Code { .. } => Tag::Code,
         }
     }
 }
@@ -138,6 +231,13 @@ enum Tag {
     GripperOff,
     Pause,
     End,
+    LaserOn,
+    LaserOff,
+    SpindleOn,
+    SpindleOff,
+    PenDown,
+    PenUp,
+    Code,
 }
 
 impl Tag {
@@ -152,6 +252,13 @@ impl Tag {
             Tag::GripperOff => "gripper_off",
             Tag::Pause => "pause",
             Tag::End => "end",
+            Tag::LaserOn => "laser_on",
+            Tag::LaserOff => "laser_off",
+            Tag::SpindleOn => "spindle_on",
+            Tag::SpindleOff => "spindle_off",
+            Tag::PenDown => "pen_down",
+            Tag::PenUp => "pen_up",
+            Tag::Code => "code",
         }
     }
 }
@@ -178,6 +285,16 @@ struct Record {
     inverse_time: Option<bool>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     seconds: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    extrude: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    power: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dynamic: Option<bool>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    rpm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    code: Option<String>,
 }
 
 impl From<Motion> for Record {
@@ -193,6 +310,11 @@ impl From<Motion> for Record {
             feed: None,
             inverse_time: None,
             seconds: None,
+            extrude: motion.extrude,
+            power: None,
+            dynamic: None,
+            rpm: None,
+            code: None,
         };
         match motion.kind {
             MotionKind::Linear { feed, .. } => record.set_feed(feed),
@@ -204,6 +326,15 @@ impl From<Motion> for Record {
                 record.set_feed(feed);
             }
             MotionKind::Dwell { seconds } => record.seconds = Some(seconds),
+            MotionKind::LaserOn { power, dynamic } => {
+                record.power = Some(power);
+                record.dynamic = Some(dynamic);
+            }
+            MotionKind::SpindleOn { rpm, clockwise } => {
+                record.rpm = Some(rpm);
+                record.clockwise = Some(clockwise);
+            }
+            MotionKind::Code { code } => record.code = Some(code.as_str().to_owned()),
             _ => {}
         }
         record
@@ -228,10 +359,12 @@ impl TryFrom<Record> for Motion {
         let kind = match record.kind {
             Tag::Rapid => {
                 take("end");
+                take("extrude");
                 MotionKind::Rapid { end: record.end.ok_or_else(|| missing("end"))? }
             }
             Tag::Linear => {
                 take("end");
+                take("extrude");
                 take("feed");
                 take("inverse_time");
                 MotionKind::Linear {
@@ -243,8 +376,16 @@ impl TryFrom<Record> for Motion {
                 }
             }
             Tag::Arc => {
-                for key in ["end", "center", "plane", "clockwise", "turns", "feed", "inverse_time"]
-                {
+                for key in [
+                    "end",
+                    "center",
+                    "plane",
+                    "clockwise",
+                    "turns",
+                    "feed",
+                    "inverse_time",
+                    "extrude",
+                ] {
                     take(key);
                 }
                 MotionKind::Arc {
@@ -268,6 +409,38 @@ impl TryFrom<Record> for Motion {
             Tag::GripperOff => MotionKind::GripperOff,
             Tag::Pause => MotionKind::Pause,
             Tag::End => MotionKind::End,
+            Tag::LaserOn => {
+                take("power");
+                take("dynamic");
+                MotionKind::LaserOn {
+                    power: record.power.ok_or_else(|| missing("power"))?,
+                    dynamic: record.dynamic.unwrap_or(false),
+                }
+            }
+            Tag::LaserOff => MotionKind::LaserOff,
+            Tag::SpindleOn => {
+                take("rpm");
+                take("clockwise");
+                MotionKind::SpindleOn {
+                    rpm: record.rpm.ok_or_else(|| missing("rpm"))?,
+                    clockwise: record.clockwise.unwrap_or(true),
+                }
+            }
+            Tag::SpindleOff => MotionKind::SpindleOff,
+            Tag::PenDown => MotionKind::PenDown,
+            Tag::PenUp => MotionKind::PenUp,
+            Tag::Code => {
+                take("code");
+                let name = record.code.as_deref().ok_or_else(|| missing("code"))?;
+                let code = CodeName::new(name).ok_or_else(|| {
+                    format!(
+                        "\"code\" must be 1 to {} printable ASCII characters without spaces, got \
+                         {name:?}",
+                        CodeName::MAX
+                    )
+                })?;
+                MotionKind::Code { code }
+            }
         };
         let present = [
             ("end", record.end.is_some()),
@@ -278,10 +451,15 @@ impl TryFrom<Record> for Motion {
             ("feed", record.feed.is_some()),
             ("inverse_time", record.inverse_time.is_some()),
             ("seconds", record.seconds.is_some()),
+            ("extrude", record.extrude.is_some()),
+            ("power", record.power.is_some()),
+            ("dynamic", record.dynamic.is_some()),
+            ("rpm", record.rpm.is_some()),
+            ("code", record.code.is_some()),
         ];
         if let Some((key, _)) = present.iter().find(|(key, here)| *here && !used.contains(key)) {
             return Err(format!("field `{key}` does not belong to a {kind_name} motion"));
         }
-        Ok(Motion { line: record.line, kind })
+        Ok(Motion { line: record.line, kind, extrude: record.extrude })
     }
 }

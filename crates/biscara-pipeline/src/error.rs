@@ -1,8 +1,10 @@
 //! The pipeline's errors and notes.
 
+use std::collections::BTreeMap;
 use std::fmt;
 use std::io;
 
+use biscara_gcode::{Detection, Dialect};
 use biscara_interpolate::SlowDown;
 use biscara_robot::{Fit, VirtualRobotError};
 use biscara_text::fixed;
@@ -90,6 +92,31 @@ pub enum Note {
         /// The placement.
         fit: Fit,
     },
+    /// `--dialect auto` chose a dialect (only when something in the program told).
+    Dialect {
+        /// The program's name.
+        file: String,
+        /// The dialect and why.
+        detection: Detection,
+    },
+    /// The program used codes with no motion here (temperatures, fans, `$` lines, …), recorded
+    /// as events; one note with their counts.
+    Codes {
+        /// The program's name.
+        file: String,
+        /// Each code and how many times it occurs.
+        codes: BTreeMap<String, usize>,
+    },
+    /// The program used codes its firmware does not know and skips (Marlin's "Unknown
+    /// command"), recorded as events; one note with their counts.
+    UnknownCodes {
+        /// The program's name.
+        file: String,
+        /// The dialect the program was read in.
+        dialect: Dialect,
+        /// Each code and how many times it occurs.
+        codes: BTreeMap<String, usize>,
+    },
     /// A motion runs slower than programmed (a joint or C speed limit).
     SlowedDown {
         /// The program's name.
@@ -125,6 +152,28 @@ impl fmt::Display for Note {
                     n(dy)
                 )
             }
+            Note::Dialect { file, detection } => write!(
+                f,
+                "{file}: read as {} G-code (--dialect auto): {}{}",
+                detection.dialect,
+                detection.reason,
+                if detection.makerbot {
+                    "; MakerBot flavour: the A word is the extruder"
+                } else {
+                    ""
+                }
+            ),
+            Note::Codes { file, codes } => write!(
+                f,
+                "{file}: codes with no motion here, recorded as events: {}",
+                Counted(codes)
+            ),
+            Note::UnknownCodes { file, dialect, codes } => write!(
+                f,
+                "{file}: codes {dialect} does not know, skipped as it does (\"Unknown command\"), \
+                 recorded as events: {}",
+                Counted(codes)
+            ),
             Note::SlowedDown { file, slow } => write!(
                 f,
                 "{file}:{}: slowed to {:.1}% of the programmed speed ({} limit)",
@@ -133,5 +182,18 @@ impl fmt::Display for Note {
                 slow.cause
             ),
         }
+    }
+}
+
+/// Codes with their counts: `M104 ×2, M140 ×1`.
+struct Counted<'a>(&'a BTreeMap<String, usize>);
+
+impl fmt::Display for Counted<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (index, (code, count)) in self.0.iter().enumerate() {
+            let separator = if index == 0 { "" } else { ", " };
+            write!(f, "{separator}{code} ×{count}")?;
+        }
+        Ok(())
     }
 }

@@ -37,6 +37,7 @@
 mod error;
 mod generate;
 mod kind;
+mod motions;
 mod pipeline;
 mod placement;
 mod source;
@@ -46,6 +47,6 @@ pub use biscara_kinematics::RobotModel;
 pub use error::{Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
-pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig};
+pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes};
 pub use placement::{Placement, place};
 pub use source::{ProgramSource, TextSource};

@@ -1,5 +1,6 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
+use biscara_gcode::Dialect;
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -11,7 +12,7 @@ use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 use biscara_robot::shift_motion;
 
-use crate::placement::{MotionReader, read_motions};
+use crate::motions::{MotionReader, NoteSink, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
@@ -28,10 +29,13 @@ pub struct SamplingConfig {
     pub origin: Option<Position>,
     /// Centre the program's XY extent in the workspace rectangle (`--fit`).
     pub fit: bool,
+    /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
+    pub dialect: Dialect,
 }
 
 impl Default for SamplingConfig {
-    /// The defaults of the command line: 1 ms, trapezoid, no grip time, no origin, no fit.
+    /// The defaults of the command line: 1 ms, trapezoid, no grip time, no origin, no fit, the
+    /// dialect decided from the program.
     fn default() -> SamplingConfig {
         SamplingConfig {
             dt: 0.001,
@@ -39,9 +43,14 @@ impl Default for SamplingConfig {
             grip_time: 0.0,
             origin: None,
             fit: false,
+            dialect: Dialect::Auto,
         }
     }
 }
+
+/// Where the interpolator reports slowed motions: into the notes (called once per slowed motion,
+/// so a boxed function costs nothing measurable).
+pub type SlowDownNotes = Box<dyn FnMut(&SlowDown)>;
 
 /// A program's motions, placed, errors located.
 pub type Motions = MotionReader;
@@ -75,11 +84,22 @@ impl<'m> Pipeline<'m> {
         &self,
         source: &dyn ProgramSource,
         kind: ProgramKind,
-        notes: &mut dyn FnMut(Note),
+        notes: impl FnMut(Note) + 'static,
     ) -> Result<Motions, PipelineError> {
+        self.placed_motions(source, kind, &NoteSink::new(notes))
+    }
+
+    fn placed_motions(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: &NoteSink,
+    ) -> Result<Motions, PipelineError> {
+        let SamplingConfig { origin, fit, dialect, .. } = self.config;
         let placement =
-            place(self.model, source, kind, self.config.origin, self.config.fit, notes)?;
-        let motions = read_motions(self.model, source, kind, placement.origin)?;
+            place(self.model, source, kind, origin, fit, dialect, &mut |note| notes.say(note))?;
+        let motions =
+            read_motions(self.model, source, kind, placement.origin, dialect, notes.clone())?;
         Ok(match placement.shift {
             None => motions,
             Some(offset) => {
@@ -92,12 +112,13 @@ impl<'m> Pipeline<'m> {
     /// The program's Cartesian samples: a path CSV read as it is, or the motions interpolated
     /// with the configuration's profile, the robot's Cartesian limits and its joint speed limit.
     /// Every slowed motion is reported to `notes` as a [`Note::SlowedDown`].
-    pub fn samples<N: FnMut(Note)>(
+    pub fn samples(
         &self,
         source: &dyn ProgramSource,
         kind: ProgramKind,
-        mut notes: N,
-    ) -> Result<Samples<impl FnMut(&SlowDown) + use<N>>, PipelineError> {
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<Samples, PipelineError> {
+        let notes = NoteSink::new(notes);
         let file = source.name().to_owned();
         if kind == ProgramKind::Path {
             if self.config.fit {
@@ -110,7 +131,7 @@ impl<'m> Pipeline<'m> {
                 source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
             return Ok(Samples::Path { reader: read_path_csv(input), file });
         }
-        let motions = self.motions(source, kind, &mut notes)?;
+        let motions = self.placed_motions(source, kind, &notes)?;
         let robot = self.model.robot();
         let config = InterpolationConfig {
             dt: self.config.dt,
@@ -121,8 +142,8 @@ impl<'m> Pipeline<'m> {
         };
         let limit = JointSpeedLimit::new(self.model.kinematics(), robot);
         let name = file.clone();
-        let on_slow =
-            move |slow: &SlowDown| notes(Note::SlowedDown { file: name.clone(), slow: *slow });
+        let on_slow: SlowDownNotes =
+            Box::new(move |slow| notes.say(Note::SlowedDown { file: name.clone(), slow: *slow }));
         let interpolator = Box::new(Interpolator::new(motions, config, limit, on_slow));
         Ok(Samples::Program { interpolator, file })
     }
@@ -130,12 +151,12 @@ impl<'m> Pipeline<'m> {
     /// The program's joint samples: [`Pipeline::samples`] solved by IK in the robot's working
     /// and assembly mode, θ3 continuous, with velocities and accelerations; stops at the first
     /// sample the robot cannot take.
-    pub fn joints<N: FnMut(Note)>(
+    pub fn joints(
         &self,
         source: &dyn ProgramSource,
         kind: ProgramKind,
-        notes: N,
-    ) -> Result<JointSamples<impl FnMut(&SlowDown) + use<N>>, PipelineError> {
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<JointSamples, PipelineError> {
         let file = source.name().to_owned();
         let samples = self.samples(source, kind, notes)?;
         Ok(JointSamples {
@@ -151,7 +172,7 @@ impl<'m> Pipeline<'m> {
 /// sample to the next: a sample passed through a `dyn Iterator` and a `map` was stored and
 /// loaded back twice, with a store-forwarding stall each time (with `Interpolator::next`
 /// inlined as well: 0.429 → 0.423 s for `joints` on the engraving program).
-pub enum Samples<F> {
+pub enum Samples {
     /// A path CSV.
     Path {
         /// The reader.
@@ -162,13 +183,13 @@ pub enum Samples<F> {
     /// A program's motions, interpolated.
     Program {
         /// The interpolator.
-        interpolator: Box<Interpolator<Motions, JointSpeedLimit, F>>,
+        interpolator: Box<Interpolator<Motions, JointSpeedLimit, SlowDownNotes>>,
         /// The program's name.
         file: String,
     },
 }
 
-impl<F: FnMut(&SlowDown)> Iterator for Samples<F> {
+impl Iterator for Samples {
     type Item = Result<CartesianSample, PipelineError>;
 
     #[inline(always)]
@@ -188,12 +209,12 @@ impl<F: FnMut(&SlowDown)> Iterator for Samples<F> {
 }
 
 /// A program's joint samples, errors located (see [`Pipeline::joints`]).
-pub struct JointSamples<F> {
-    trajectory: JointTrajectory<Samples<F>>,
+pub struct JointSamples {
+    trajectory: JointTrajectory<Samples>,
     file: String,
 }
 
-impl<F: FnMut(&SlowDown)> JointSamples<F> {
+impl JointSamples {
     /// The next sample, borrowed: [`Iterator::next`] without copying the sample out (returning
     /// the 152-byte sample inside an `Option<Result<…>>`, then moving it out, cost 5 % of
     /// `joints` on the engraving program).
@@ -208,7 +229,7 @@ impl<F: FnMut(&SlowDown)> JointSamples<F> {
     }
 }
 
-impl<F: FnMut(&SlowDown)> Iterator for JointSamples<F> {
+impl Iterator for JointSamples {
     type Item = Result<JointSample, PipelineError>;
 
     fn next(&mut self) -> Option<Self::Item> {

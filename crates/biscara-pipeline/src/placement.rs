@@ -1,11 +1,12 @@
 //! Where a program runs: its G54 origin and, with `--fit`, the offset that centres it in the
 //! workspace rectangle (SPEC §4.2, §8.2).
 
-use biscara_gcode::{Config as GcodeConfig, interpret};
+use biscara_gcode::Dialect;
 use biscara_kinematics::RobotModel;
-use biscara_motion::{Motion, Position, read_jsonl};
+use biscara_motion::Position;
 use biscara_robot::{Bounds, Workspace, fit};
 
+use crate::motions::{NoteSink, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource};
 
 /// Grid step of the workspace rectangle `--fit` centres programs in, millimetres (the default
@@ -33,6 +34,7 @@ pub fn place(
     kind: ProgramKind,
     origin: Option<Position>,
     fit_program: bool,
+    dialect: Dialect,
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
     let mut origin = origin.unwrap_or([0.0; 4]);
@@ -53,7 +55,7 @@ pub fn place(
         });
     }
     let mut bounds = Bounds::new(model.home_position());
-    for motion in read_motions(model, source, kind, origin)? {
+    for motion in read_motions(model, source, kind, origin, dialect, NoteSink::silent())? {
         bounds.push(&motion?);
     }
     let workspace =
@@ -68,39 +70,5 @@ pub fn place(
         Ok(Placement { origin, shift: None })
     } else {
         Ok(Placement { origin, shift: Some(placed.offset) })
-    }
-}
-
-/// A program's motions as read, with errors located in the file.
-pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
-
-/// The motions of a G-code program (with `origin` as its G54 offset) or an inter-file.
-pub(crate) fn read_motions(
-    model: &RobotModel,
-    source: &dyn ProgramSource,
-    kind: ProgramKind,
-    origin: Position,
-) -> Result<MotionReader, PipelineError> {
-    let file = source.name().to_owned();
-    let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
-    match kind {
-        ProgramKind::Jsonl => Ok(Box::new(
-            read_jsonl(input)
-                .map(move |result| result.map_err(|err| PipelineError::program(&file, err))),
-        )),
-        ProgramKind::Gcode => {
-            let config =
-                GcodeConfig { home: model.home_position(), origin, ..GcodeConfig::default() };
-            Ok(Box::new(interpret(input, &config).map(move |result| {
-                result.map_err(|err| {
-                    let snippet = err.location().map(|location| location.snippet());
-                    PipelineError::Program { file: file.clone(), error: Box::new(err), snippet }
-                })
-            })))
-        }
-        ProgramKind::Path => Err(PipelineError::Unsupported {
-            file,
-            message: "a path CSV holds samples, not motions".to_owned(),
-        }),
     }
 }

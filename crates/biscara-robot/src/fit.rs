@@ -163,7 +163,7 @@ pub fn shift_motion(motion: Motion, offset: [f64; 2], home: [f64; 2]) -> Motion 
         }
         other => other,
     };
-    Motion { line: motion.line, kind }
+    Motion { kind, ..motion }
 }
 
 #[cfg(test)]
@@ -177,7 +177,7 @@ mod tests {
     const FEED: Feed = Feed { mm_per_min: 600.0, inverse_time: false };
 
     fn linear(line: usize, end: [f64; 4]) -> Motion {
-        Motion { line, kind: MotionKind::Linear { end, feed: FEED } }
+        Motion::new(line, MotionKind::Linear { end, feed: FEED })
     }
 
     fn arc(line: usize, end: [f64; 4], center: [f64; 2], clockwise: bool) -> Motion {
@@ -191,6 +191,7 @@ mod tests {
                 turns: 1,
                 feed: FEED,
             },
+            extrude: None,
         }
     }
 
@@ -268,6 +269,7 @@ mod tests {
                     turns: 1,
                     feed: FEED,
                 },
+                extrude: None,
             },
         ];
         let offset = [3.0, 4.0];

@@ -1,5 +1,6 @@
 //! Integration tests of the G-code interpreter: one test binary, one module per feature.
 
+mod dialects;
 mod features;
 mod no_panic;
 mod strategies;

@@ -1,7 +1,7 @@
 //! No input makes the interpreter panic or run away: every outcome is motions, then at most one
 //! error, then the end.
 
-use biscara_gcode::{Config, interpret};
+use biscara_gcode::{Config, Dialect, Tool, interpret};
 use proptest::prelude::*;
 
 use crate::strategies;
@@ -9,7 +9,11 @@ use crate::strategies;
 /// Interprets `input`, checking that the iterator stops after the first error and that every
 /// motion is finite.
 fn run(input: &[u8]) -> Result<usize, String> {
-    let config = Config { home: [0.0, 400.0, 100.0, 0.0], ..Config::default() };
+    run_as(input, Dialect::Linuxcnc, Tool::Gripper)
+}
+
+fn run_as(input: &[u8], dialect: Dialect, tool: Tool) -> Result<usize, String> {
+    let config = Config { home: [0.0, 400.0, 100.0, 0.0], dialect, tool, ..Config::default() };
     let mut iterator = interpret(input, &config);
     let mut count = 0;
     for result in iterator.by_ref() {
@@ -18,6 +22,7 @@ fn run(input: &[u8]) -> Result<usize, String> {
                 if let Some(end) = motion.kind.end() {
                     assert!(end.iter().all(|v| v.is_finite()), "{motion:?}");
                 }
+                assert!(motion.extrude.is_none_or(f64::is_finite), "{motion:?}");
                 count += 1;
             }
             Err(err) => {
@@ -41,6 +46,20 @@ proptest! {
     #[test]
     fn token_soups_never_panic(input in strategies::token_soup()) {
         let _ = run(input.as_bytes());
+    }
+
+    #[test]
+    fn every_dialect_survives_token_soups_and_bytes(
+        input in strategies::token_soup(),
+        bytes in strategies::bytes(),
+        dialect in 0..Dialect::ALL.len(),
+        tool in 0..5usize,
+    ) {
+        let dialect = Dialect::ALL[dialect];
+        let tool = [Tool::Gripper, Tool::Laser, Tool::Spindle, Tool::Extruder, Tool::Pen][tool];
+        let printer = format!("M83\nG92 E0\n{input}\nG1 X1 E2\nG28 X\nG4 S1\n$H\nO0001\n");
+        let _ = run_as(printer.as_bytes(), dialect, tool);
+        let _ = run_as(&bytes, dialect, tool);
     }
 
     #[test]

@@ -48,7 +48,7 @@ fn feed(mm_per_min: f64) -> Feed {
 }
 
 fn linear(line: usize, end: [f64; 4], mm_per_min: f64) -> Motion {
-    Motion { line, kind: MotionKind::Linear { end, feed: feed(mm_per_min) } }
+    Motion::new(line, MotionKind::Linear { end, feed: feed(mm_per_min) })
 }
 
 #[test]
@@ -81,8 +81,8 @@ fn durations_round_up_to_whole_steps_and_speed_drops() {
 fn rapids_use_the_rapid_limits() {
     // 250 mm at 500 mm/s = 0.5 s; a C turn of 270° at 360°/s = 0.75 s wins.
     let motions = [
-        Motion { line: 1, kind: MotionKind::Rapid { end: [250.0, 400.0, 50.0, 0.0] } },
-        Motion { line: 2, kind: MotionKind::Rapid { end: [250.0, 400.0, 50.0, 270.0] } },
+        Motion::new(1, MotionKind::Rapid { end: [250.0, 400.0, 50.0, 0.0] }),
+        Motion::new(2, MotionKind::Rapid { end: [250.0, 400.0, 50.0, 270.0] }),
     ];
     let (samples, slow) = run(&motions, config(Profile::Constant, 0.001));
     assert_eq!(samples.len(), 1 + 500 + 750);
@@ -153,6 +153,7 @@ fn arcs_follow_the_circle() {
                 turns: 1,
                 feed: feed(1200.0),
             },
+            extrude: None,
         },
     ];
     let (samples, _) = run(&motions, config(Profile::Trapezoid, 0.001));
@@ -175,12 +176,12 @@ fn arcs_follow_the_circle() {
 #[test]
 fn dwell_grip_time_and_gripper_events() {
     let motions = [
-        Motion { line: 1, kind: MotionKind::Pick },
-        Motion { line: 2, kind: MotionKind::Dwell { seconds: 0.3 } },
+        Motion::new(1, MotionKind::Pick),
+        Motion::new(2, MotionKind::Dwell { seconds: 0.3 }),
         linear(3, [1.0, 400.0, 50.0, 0.0], 60.0),
-        Motion { line: 4, kind: MotionKind::Place },
-        Motion { line: 5, kind: MotionKind::Pause },
-        Motion { line: 6, kind: MotionKind::End },
+        Motion::new(4, MotionKind::Place),
+        Motion::new(5, MotionKind::Pause),
+        Motion::new(6, MotionKind::End),
         linear(7, [99.0, 400.0, 50.0, 0.0], 60.0),
     ];
     let mut settings = config(Profile::Constant, 0.1);

@@ -49,7 +49,7 @@ pub fn program(len: usize) -> impl Strategy<Value = Vec<Motion>> {
             if let Some(end) = kind.end() {
                 pose = end;
             }
-            motions.push(Motion { line: index + 1, kind });
+            motions.push(Motion::new(index + 1, kind));
         }
         motions
     })

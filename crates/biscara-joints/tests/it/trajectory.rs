@@ -58,7 +58,7 @@ fn program() -> Vec<Motion> {
         MotionKind::Place,
         MotionKind::Rapid { end: [0.0, 400.0, 100.0, 0.0] },
     ];
-    kinds.into_iter().enumerate().map(|(index, kind)| Motion { line: index + 1, kind }).collect()
+    kinds.into_iter().enumerate().map(|(index, kind)| Motion::new(index + 1, kind)).collect()
 }
 
 fn joints_of(motions: &[Motion], robot: &Robot, profile: Profile, dt: f64) -> Vec<JointSample> {
@@ -152,8 +152,7 @@ fn joint_velocity_limits_slow_fast_moves_down() {
     // A slow θ1 makes the long rapid exceed it unless slowed.
     let mut robot = Robot::default();
     robot.joint_max_velocity.theta1 = 30.0;
-    let motions =
-        [Motion { line: 5, kind: MotionKind::Rapid { end: [-200.0, 300.0, 100.0, 0.0] } }];
+    let motions = [Motion::new(5, MotionKind::Rapid { end: [-200.0, 300.0, 100.0, 0.0] })];
     let model = Kinematics::new(&robot).expect("robot");
     let dt = 0.001;
     let run = |limited: bool| -> (Vec<JointSample>, Vec<SlowDown>) {
@@ -190,10 +189,11 @@ fn joint_velocity_limits_slow_fast_moves_down() {
 #[test]
 fn an_unreachable_sample_names_its_line_and_time() {
     let motions = [
-        Motion { line: 1, kind: MotionKind::Rapid { end: [0.0, 400.0, 50.0, 0.0] } },
+        Motion::new(1, MotionKind::Rapid { end: [0.0, 400.0, 50.0, 0.0] }),
         Motion {
             line: 2,
             kind: MotionKind::Linear { end: [0.0, 600.0, 50.0, 0.0], feed: feed(6000.0) },
+            extrude: None,
         },
     ];
     let robot = Robot::default();
@@ -245,7 +245,7 @@ fn random_program() -> impl Strategy<Value = Vec<Motion>> {
                 MotionKind::Linear { end, feed }
             };
             pose = end;
-            motions.push(Motion { line: index + 1, kind });
+            motions.push(Motion::new(index + 1, kind));
         }
         motions
     })

@@ -18,7 +18,7 @@ fn gcode_and_its_inter_file_give_the_same_samples() {
     let pipeline = pipeline(&model, SamplingConfig::default());
     let gcode = TextSource::new("job.ngc", PROGRAM);
     let mut jsonl = Vec::new();
-    for motion in pipeline.motions(&gcode, ProgramKind::Gcode, &mut |_| {}).unwrap() {
+    for motion in pipeline.motions(&gcode, ProgramKind::Gcode, |_| {}).unwrap() {
         biscara_motion::write_jsonl(&mut jsonl, &motion.unwrap()).unwrap();
     }
     let jsonl = TextSource::new("job.jsonl", String::from_utf8(jsonl).unwrap());
@@ -88,14 +88,16 @@ fn fit_places_the_program_and_says_so() {
     // A part drawn about its own zero: (0, 0) is not reachable by the robot.
     let part = "G0 X0 Y0 Z50\nG1 X40 F3000\nG1 Y30\nG1 X0\nG1 Y0\nM2\n";
     let source = TextSource::new("part.ngc", part);
-    let mut notes = Vec::new();
+    let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    let heard = std::rc::Rc::clone(&notes);
     let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
     let rows: Vec<_> = pipeline(&model, config)
-        .joints(&source, ProgramKind::Gcode, |note| notes.push(note))
+        .joints(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
         .unwrap()
         .collect::<Result<_, _>>()
         .unwrap();
     assert!(rows.len() > 100);
+    let notes = notes.borrow();
     let [Note::Placed { file, fit }] = notes.as_slice() else { panic!("{notes:?}") };
     assert_eq!(file, "part.ngc");
     assert!(fit.offset[1] > 100.0, "{fit:?}");

@@ -1,0 +1,663 @@
+//! Dialects: the firmware a program was written for (SPEC §4.3), and what each reads
+//! differently from LinuxCNC.
+//!
+//! The interpreter is LinuxCNC's; a dialect only adds hooks around it: lines it reads before
+//! LinuxCNC's reader sees them (Grbl's `$` lines, Marlin's no-motion codes, Mach3's program
+//! numbers), words it takes out of a block (Marlin's E) and rules it changes (program end,
+//! line length, nested comments, Marlin's G4 and G28, Grbl's K in G17). [`Dialect::Linuxcnc`]
+//! has no hook at all.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::str::FromStr;
+
+/// The firmware whose reading of G-code the interpreter follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Dialect {
+    /// Decide from the program's content (see [`detect_dialect`]).
+    Auto,
+    /// LinuxCNC's RS274/NGC, exactly (SPEC §4.2): conformance with `rs274` holds here.
+    Linuxcnc,
+    /// Grbl 1.1 (also for LaserGRBL, LightBurn, LaserWeb, bCNC output).
+    Grbl,
+    /// Marlin and the RepRap family of printer firmware (slicer output).
+    Marlin,
+    /// Mach3 (Fanuc-style posts: `O0001` program numbers, nested comments).
+    Mach3,
+}
+
+impl Dialect {
+    /// Every dialect, `auto` first, as the command line lists them.
+    pub const ALL: [Dialect; 5] =
+        [Dialect::Auto, Dialect::Linuxcnc, Dialect::Grbl, Dialect::Marlin, Dialect::Mach3];
+
+    /// The dialect's name on the command line (`linuxcnc`, `grbl`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::Auto => "auto",
+            Dialect::Linuxcnc => "linuxcnc",
+            Dialect::Grbl => "grbl",
+            Dialect::Marlin => "marlin",
+            Dialect::Mach3 => "mach3",
+        }
+    }
+}
+
+impl fmt::Display for Dialect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A dialect name that is not one of [`Dialect::ALL`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, mach3")]
+pub struct UnknownDialect(pub String);
+
+impl FromStr for Dialect {
+    type Err = UnknownDialect;
+
+    fn from_str(text: &str) -> Result<Dialect, UnknownDialect> {
+        Dialect::ALL
+            .into_iter()
+            .find(|dialect| dialect.name().eq_ignore_ascii_case(text.trim()))
+            .ok_or_else(|| UnknownDialect(text.to_owned()))
+    }
+}
+
+/// Which dialect `auto` chose, and why: a value for the caller to show (libraries never print).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Detection {
+    /// The dialect chosen (never [`Dialect::Auto`]).
+    pub dialect: Dialect,
+    /// Why, in words: the evidence and where it is ("line 1: `;FLAVOR:Marlin` (Cura)").
+    pub reason: String,
+    /// The 1-based line of the evidence, when there is one.
+    pub line: Option<usize>,
+    /// MakerBot's flavour of printer G-code: the A word is the extruder (absolute, mm).
+    pub makerbot: bool,
+}
+
+/// What a program did besides moving, for one note at the end: the no-motion codes it used
+/// (each with how many times), as the dialect accepted them.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Summary {
+    /// Codes the dialect knows and that have no motion here (`M104`, `G29`, `$H`, `O0001`), with
+    /// their counts, in code order.
+    pub codes: BTreeMap<String, usize>,
+    /// Codes the firmware does not know and skips (Marlin answers "Unknown command" and goes
+    /// on), with their counts.
+    pub unknown: BTreeMap<String, usize>,
+}
+
+impl Summary {
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.codes.is_empty() && self.unknown.is_empty()
+    }
+
+    pub(crate) fn count(&mut self, code: &str, known: bool) {
+        let map = if known { &mut self.codes } else { &mut self.unknown };
+        match map.get_mut(code) {
+            Some(count) => *count += 1,
+            None => {
+                map.insert(code.to_owned(), 1);
+            }
+        }
+    }
+}
+
+/// How many bytes `auto` reads ahead for evidence before the first line is interpreted.
+pub const LOOKAHEAD_BYTES: usize = 64 * 1024;
+
+/// The longest line the dialects other than LinuxCNC accept (a thumbnail or a long comment),
+/// bytes; LinuxCNC's own limit is 252 characters.
+pub const MAX_LONG_LINE: usize = 65_535;
+
+/// Decides the dialect of a program from its first bytes (`auto`): the first generator comment
+/// that names a firmware or a program written for one wins; otherwise the first line only one
+/// dialect can read (E words or printer M-codes → Marlin, `$` lines or K in an XY arc → Grbl,
+/// nested comments or an `O0001` program number → Mach3, LinuxCNC's O-words or named parameters
+/// → LinuxCNC). Only complete lines are looked at (all of them when `complete` says the text is
+/// the whole program). `None` when nothing decides.
+pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
+    let end = if complete {
+        text.len()
+    } else {
+        text.iter().rposition(|&byte| byte == b'\n').map_or(0, |index| index + 1)
+    };
+    let makerbot = contains_any(&text[..end], MAKERBOT_NAMES);
+    let mut content: Option<Detection> = None;
+    let mut plane_xy = true;
+    for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
+        let line = index + 1;
+        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+        let lower = raw.to_ascii_lowercase();
+        let (code, comment) = split_comment(&lower);
+        if let Some((dialect, name)) = generator(&comment) {
+            let shown = String::from_utf8_lossy(raw.trim_ascii());
+            return Some(Detection {
+                dialect,
+                reason: format!("line {line} names {name}: `{}`", shorten(&shown)),
+                line: Some(line),
+                makerbot: makerbot && dialect == Dialect::Marlin,
+            });
+        }
+        // Content evidence comes from text lines only (binary garbage proves nothing).
+        let text = std::str::from_utf8(raw)
+            .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t'));
+        if content.is_none() && text {
+            let found = evidence(raw, &code, &mut plane_xy);
+            content = found.map(|(dialect, why)| Detection {
+                dialect,
+                reason: format!(
+                    "line {line}: {why}: `{}`",
+                    shorten(&String::from_utf8_lossy(raw.trim_ascii()))
+                ),
+                line: Some(line),
+                makerbot: makerbot && dialect == Dialect::Marlin,
+            });
+        }
+    }
+    content
+}
+
+const MAKERBOT_NAMES: &[&str] = &["makerbot", "replicatorg", "miracle-grue", "sailfish"];
+
+/// Generator names (lower case) and the dialect their output is written for.
+const GENERATORS: &[(&str, Dialect, &str)] = &[
+    ("flavor:marlin", Dialect::Marlin, "Cura's Marlin flavour"),
+    ("flavor:reprap", Dialect::Marlin, "Cura's RepRap flavour"),
+    ("flavor:griffin", Dialect::Marlin, "Cura's Griffin (Ultimaker) flavour"),
+    ("flavor:ultigcode", Dialect::Marlin, "Cura's UltiGCode flavour"),
+    ("cura_steamengine", Dialect::Marlin, "the Cura slicer"),
+    ("cura_profile_string", Dialect::Marlin, "the Cura slicer"),
+    ("prusaslicer", Dialect::Marlin, "the PrusaSlicer slicer"),
+    ("superslicer", Dialect::Marlin, "the SuperSlicer slicer"),
+    ("slic3r", Dialect::Marlin, "the Slic3r slicer"),
+    ("bambustudio", Dialect::Marlin, "the BambuStudio slicer"),
+    ("orcaslicer", Dialect::Marlin, "the OrcaSlicer slicer"),
+    ("kisslicer", Dialect::Marlin, "the KISSlicer slicer"),
+    ("simplify3d", Dialect::Marlin, "the Simplify3D slicer"),
+    ("skeinforge", Dialect::Marlin, "the Skeinforge slicer"),
+    ("miracle-grue", Dialect::Marlin, "the Miracle-Grue slicer (MakerBot)"),
+    ("makerbot", Dialect::Marlin, "MakerBot"),
+    ("ideamaker", Dialect::Marlin, "the ideaMaker slicer"),
+    ("marlin", Dialect::Marlin, "Marlin"),
+    ("lasergrbl", Dialect::Grbl, "LaserGRBL"),
+    ("lightburn", Dialect::Grbl, "LightBurn"),
+    ("laserweb", Dialect::Grbl, "LaserWeb"),
+    ("grbl", Dialect::Grbl, "Grbl"),
+    ("bcnc", Dialect::Grbl, "bCNC"),
+    ("mach3", Dialect::Mach3, "Mach3"),
+    ("mach4", Dialect::Mach3, "Mach4"),
+    ("linuxcnc", Dialect::Linuxcnc, "LinuxCNC"),
+    ("emc2", Dialect::Linuxcnc, "EMC2 (LinuxCNC)"),
+];
+
+fn contains(haystack: &[u8], needle: &str) -> bool {
+    haystack.windows(needle.len()).any(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
+}
+
+fn contains_any(haystack: &[u8], needles: &[&str]) -> bool {
+    haystack.split(|&byte| byte == b'\n').any(|line| {
+        let lower = line.to_ascii_lowercase();
+        let (_, comment) = split_comment(&lower);
+        needles.iter().any(|needle| contains(&comment, needle))
+    })
+}
+
+fn generator(comment: &[u8]) -> Option<(Dialect, &'static str)> {
+    if comment.is_empty() {
+        return None;
+    }
+    GENERATORS
+        .iter()
+        .find(|(needle, _, _)| contains(comment, needle))
+        .map(|&(_, dialect, name)| (dialect, name))
+}
+
+fn shorten(text: &str) -> String {
+    const SHOWN: usize = 60;
+    if text.chars().count() <= SHOWN {
+        text.to_owned()
+    } else {
+        format!("{}…", text.chars().take(SHOWN).collect::<String>())
+    }
+}
+
+/// A lower-cased line split into its code (outside comments) and its comments' text.
+fn split_comment(lower: &[u8]) -> (Vec<u8>, Vec<u8>) {
+    let mut code = Vec::with_capacity(lower.len());
+    let mut comment = Vec::new();
+    let mut depth = 0usize;
+    for (index, &byte) in lower.iter().enumerate() {
+        if depth > 0 {
+            match byte {
+                b'(' => depth += 1,
+                b')' => depth -= 1,
+                _ => {}
+            }
+            comment.push(byte);
+            continue;
+        }
+        match byte {
+            b'(' => depth = 1,
+            b';' => {
+                comment.extend_from_slice(&lower[index + 1..]);
+                break;
+            }
+            _ => code.push(byte),
+        }
+    }
+    (code, comment)
+}
+
+/// M-codes no LinuxCNC program uses and Marlin (or another printer firmware) does: evidence
+/// for Marlin.
+fn printer_m_code(code: u32) -> bool {
+    // Not M100–M199 in general: those are LinuxCNC's user M-codes too.
+    matches!(code, 17 | 18 | 82 | 83 | 84 | 104..=107 | 109 | 117 | 140 | 141 | 190 | 191 | 200..)
+}
+
+/// The number after a letter at `at` in `code` (digits only).
+fn number_after(code: &[u8], at: usize) -> Option<u32> {
+    let digits: Vec<u8> = code[at + 1..]
+        .iter()
+        .copied()
+        .skip_while(|&b| b == b' ')
+        .take_while(u8::is_ascii_digit)
+        .collect();
+    if digits.is_empty() {
+        return None;
+    }
+    std::str::from_utf8(&digits).ok()?.parse().ok()
+}
+
+/// Content that only one dialect reads, on one line: `code` is the lower-case text outside
+/// comments.
+fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'static str)> {
+    let trimmed = code.trim_ascii();
+    if trimmed.first() == Some(&b'$') {
+        return Some((Dialect::Grbl, "a Grbl `$` system line"));
+    }
+    let mut raw_depth = 0usize;
+    for &byte in raw {
+        match byte {
+            b'(' if raw_depth > 0 => return Some((Dialect::Mach3, "a nested comment")),
+            b'(' => raw_depth = 1,
+            b')' => raw_depth = raw_depth.saturating_sub(1),
+            b';' if raw_depth == 0 => break,
+            _ => {}
+        }
+    }
+    let squeezed: Vec<u8> = trimmed.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
+    if squeezed.first() == Some(&b'o') {
+        if squeezed.len() > 1 && squeezed[1..].iter().all(u8::is_ascii_digit) {
+            return Some((Dialect::Mach3, "an `O` program number"));
+        }
+        return Some((Dialect::Linuxcnc, "a LinuxCNC O-word"));
+    }
+    if contains(&squeezed, "#<") {
+        return Some((Dialect::Linuxcnc, "a LinuxCNC named parameter"));
+    }
+    // An E word stands after a space or at the start (`X1E2` could be a number's exponent).
+    let e_word = code.iter().enumerate().any(|(at, &byte)| {
+        byte == b'e'
+            && (at == 0 || code[at - 1] == b' ' || code[at - 1] == b'\t')
+            && code.get(at + 1).is_some_and(|b| b.is_ascii_digit() || matches!(*b, b'-' | b'.'))
+    });
+    let mut motion_arc = false;
+    let mut k_word = false;
+    let mut g_motion = false;
+    for (at, &byte) in squeezed.iter().enumerate() {
+        let previous = if at == 0 { b' ' } else { squeezed[at - 1] };
+        if previous.is_ascii_alphabetic() {
+            continue;
+        }
+        match byte {
+            b'm' => {
+                if let Some(number) = number_after(&squeezed, at)
+                    && printer_m_code(number) {
+                        return Some((Dialect::Marlin, "a printer firmware M-code"));
+                    }
+            }
+            b'g' => match number_after(&squeezed, at) {
+                Some(0 | 1) => g_motion = true,
+                Some(2 | 3) => {
+                    g_motion = true;
+                    motion_arc = true;
+                }
+                Some(17) => *plane_xy = true,
+                Some(18 | 19) => *plane_xy = false,
+                Some(29) => return Some((Dialect::Marlin, "Marlin's G29 (bed levelling)")),
+                Some(92) => g_motion = true,
+                _ => {}
+            },
+            b'k' => k_word = true,
+            _ => {}
+        }
+    }
+    if e_word && g_motion {
+        return Some((Dialect::Marlin, "an E (extruder) word"));
+    }
+    if k_word && motion_arc && *plane_xy {
+        return Some((Dialect::Grbl, "a K word in an XY-plane arc (Grbl ignores it)"));
+    }
+    None
+}
+
+/// What a dialect makes of a line before LinuxCNC's reader sees it.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Prelude {
+    /// An ordinary block: LinuxCNC's reader reads it (with the dialect's hooks).
+    Block,
+    /// A code with no motion: recorded as an event and counted; `known` is whether the
+    /// firmware knows it (Marlin skips a code it does not know, with "Unknown command").
+    Event { name: String, known: bool },
+    /// Marlin's M82 (E absolute) or M83 (E relative), also recorded as an event.
+    ExtruderMode { name: String, relative: bool },
+    /// Marlin's G28: home the named axes (`[x, y, z, c]`), all of them when none is named; the
+    /// values after the letters do not matter (`G28 X0 Y0` and `G28 X Y` are the same).
+    Home { axes: [bool; 4] },
+    /// A code the dialect has but this robot cannot do: refused (`start..end` in the line).
+    Refuse { start: usize, end: usize, code: String, note: &'static str },
+}
+
+/// Reads the line's first command (after spaces and an N number): its letter (upper case), its
+/// number as written (`29`, `862.3`), and the byte range it covers.
+fn first_command(raw: &[u8]) -> Option<(u8, &[u8], usize, usize)> {
+    let mut at = 0;
+    let skip_spaces = |at: &mut usize| {
+        while raw.get(*at).is_some_and(|b| *b == b' ' || *b == b'\t') {
+            *at += 1;
+        }
+    };
+    skip_spaces(&mut at);
+    if raw.get(at).is_some_and(|b| b.eq_ignore_ascii_case(&b'n')) {
+        at += 1;
+        while raw.get(at).is_some_and(u8::is_ascii_digit) {
+            at += 1;
+        }
+        skip_spaces(&mut at);
+    }
+    let start = at;
+    let letter = raw.get(at)?.to_ascii_uppercase();
+    at += 1;
+    skip_spaces(&mut at);
+    let digits = at;
+    while raw.get(at).is_some_and(|b| b.is_ascii_digit() || *b == b'.') {
+        at += 1;
+    }
+    if at == digits {
+        return None;
+    }
+    Some((letter, &raw[digits..at], start, at))
+}
+
+/// The number part of a code as an integer and its fraction digit (`862.3` → 862, Some(3)).
+fn code_number(number: &[u8]) -> Option<(u32, bool)> {
+    let text = std::str::from_utf8(number).ok()?;
+    let (whole, fraction) = match text.split_once('.') {
+        Some((whole, fraction)) => (whole, !fraction.trim_end_matches('0').is_empty()),
+        None => (text, false),
+    };
+    Some((whole.parse().ok()?, fraction))
+}
+
+fn code_name(letter: u8, number: &[u8]) -> String {
+    let text = String::from_utf8_lossy(number);
+    let trimmed = text.trim_start_matches('0');
+    let shown = if trimmed.is_empty() || trimmed.starts_with('.') {
+        format!("0{trimmed}")
+    } else {
+        trimmed.to_owned()
+    };
+    let mut name = format!("{}{shown}", char::from(letter));
+    name.truncate(15);
+    name
+}
+
+/// M-codes in Marlin's G-code reference (marlinfw.org/meta/gcode) that have no motion here.
+fn marlin_knows_m(code: u32) -> bool {
+    matches!(
+        code,
+        10 | 11 | 16 | 17 | 18 | 20..=34 | 42 | 43 | 48 | 73 | 75..=78 | 80 | 81 | 84 | 85 | 86
+            | 87 | 92 | 100 | 102 | 104..=129 | 140 | 141 | 143 | 145 | 149 | 150 | 154 | 155
+            | 163..=166 | 190..=193 | 200..=209 | 211 | 217 | 218 | 220 | 221 | 226 | 240 | 250
+            | 255 | 256 | 260 | 261 | 280..=282 | 290 | 300..=306 | 350 | 351 | 355 | 360..=364
+            | 380 | 381 | 400..=407 | 410 | 412 | 413 | 420..=423 | 425 | 428 | 430 | 486 | 493
+            | 500..=504 | 510..=512 | 524 | 540 | 569 | 575 | 592 | 593 | 600 | 603 | 605 | 665
+            | 666 | 672 | 701 | 702 | 710 | 808 | 851 | 852 | 860..=869 | 871 | 876 | 900
+            | 906..=919 | 928 | 951 | 993..=995 | 997 | 999 | 7219
+    )
+}
+
+/// The line as Grbl, Marlin or Mach3 reads it before the block reader (LinuxCNC: always a block).
+pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
+    match dialect {
+        Dialect::Grbl => grbl_prelude(raw),
+        Dialect::Marlin => marlin_prelude(raw),
+        Dialect::Mach3 => mach3_prelude(raw),
+        Dialect::Auto | Dialect::Linuxcnc => Prelude::Block,
+    }
+}
+
+/// Grbl's `$` system commands (Grbl wiki, "Grbl v1.1 Commands"): settings, homing, unlock,
+/// reports. `$J=` jogging is motion, refused.
+fn grbl_prelude(raw: &[u8]) -> Prelude {
+    let start = raw.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(raw.len());
+    if raw.get(start) != Some(&b'$') {
+        return Prelude::Block;
+    }
+    let rest = &raw[start..];
+    let end = rest.iter().position(|b| *b == b'=' || b.is_ascii_whitespace()).unwrap_or(rest.len());
+    let mut name = String::from_utf8_lossy(&rest[..end]).to_ascii_uppercase();
+    if name == "$J" {
+        return Prelude::Refuse {
+            start,
+            end: raw.len(),
+            code: "$J= (jogging)".to_owned(),
+            note: "a jog is an operator's move, not part of a program",
+        };
+    }
+    name.truncate(15);
+    Prelude::Event { name, known: true }
+}
+
+/// Mach3's `O0001` program number on a line of its own (Mach3 manual, "O-word: program number").
+fn mach3_prelude(raw: &[u8]) -> Prelude {
+    let Some((letter, number, _, end)) = first_command(raw) else { return Prelude::Block };
+    let rest = raw[end..].trim_ascii();
+    if letter == b'O'
+        && !number.contains(&b'.')
+        && (rest.is_empty() || rest[0] == b'(' || rest[0] == b';')
+    {
+        let mut name = format!("O{}", String::from_utf8_lossy(number));
+        name.truncate(15);
+        return Prelude::Event { name, known: true };
+    }
+    Prelude::Block
+}
+
+/// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line
+/// that starts with anything else (text without a `;`) is an unknown command, skipped.
+fn marlin_prelude(raw: &[u8]) -> Prelude {
+    let Some((letter, number, start, end)) = first_command(raw) else {
+        return unknown_text(raw);
+    };
+    let Some((code, fraction)) = code_number(number) else { return Prelude::Block };
+    match letter {
+        b'M' => match code {
+            82 | 83 if !fraction => {
+                Prelude::ExtruderMode { name: code_name(letter, number), relative: code == 83 }
+            }
+            0..=9 | 30 if !fraction => Prelude::Block,
+            _ => Prelude::Event { name: code_name(letter, number), known: marlin_knows_m(code) },
+        },
+        b'G' => match code {
+            28 if !fraction => {
+                let mut axes = [false; 4];
+                let mut depth = 0usize;
+                for &byte in &raw[end..] {
+                    match byte {
+                        b';' if depth == 0 => break,
+                        b'(' => depth += 1,
+                        b')' => depth = depth.saturating_sub(1),
+                        _ if depth > 0 => {}
+                        _ => {
+                            if let Some(axis) =
+                                b"xyzc".iter().position(|l| l.eq_ignore_ascii_case(&byte))
+                            {
+                                axes[axis] = true;
+                            }
+                        }
+                    }
+                }
+                if !axes.iter().any(|&axis| axis) {
+                    axes = [true; 4];
+                }
+                Prelude::Home { axes }
+            }
+            // Firmware retract and recover, mesh and probe codes, nozzle park, calibrations,
+            // save position: no motion of the program's own.
+            10 | 11 | 26 | 27 | 29 | 30..=35 | 60 | 76 | 425 => {
+                Prelude::Event { name: code_name(letter, number), known: true }
+            }
+            5 | 6 | 12 | 38 | 42 | 61 => Prelude::Refuse {
+                start,
+                end,
+                code: code_name(letter, number),
+                note: match code {
+                    5 => "Marlin's Bézier curve",
+                    6 => "Marlin's direct stepper move",
+                    12 => "Marlin's nozzle cleaning moves",
+                    38 => "probing",
+                    42 => "Marlin's move to a mesh point",
+                    _ => "Marlin's return to a saved position",
+                },
+            },
+            // A G-code neither Marlin nor LinuxCNC knows (Ultimaker's G280 prime): skipped.
+            _ if code > 99 || crate::parser::g_group(code as u16 * 10).is_none() => {
+                Prelude::Event { name: code_name(letter, number), known: false }
+            }
+            _ => Prelude::Block,
+        },
+        b'T' => Prelude::Block,
+        // No command letter (Marlin has no modal motion by default): "Unknown command".
+        _ => Prelude::Event { name: code_name(letter, number), known: false },
+    }
+}
+
+/// A line that does not start with a command: an empty or comment line is a block (nothing to
+/// do); text starting with a letter is Marlin's "Unknown command", recorded by its first word.
+fn unknown_text(raw: &[u8]) -> Prelude {
+    let text = raw.trim_ascii_start();
+    let Some(&first) = text.first() else { return Prelude::Block };
+    if !first.is_ascii_alphabetic() {
+        return Prelude::Block;
+    }
+    if first_command(raw).is_some_and(|(letter, ..)| matches!(letter, b'G' | b'M' | b'T')) {
+        return Prelude::Block;
+    }
+    let word: String = text
+        .iter()
+        .take_while(|b| b.is_ascii_graphic() && **b != b';' && **b != b'(')
+        .take(15)
+        .map(|&b| char::from(b))
+        .collect();
+    Prelude::Event { name: word, known: false }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[track_caller]
+    fn check(text: &str, expected: Option<Dialect>) {
+        let found = detect_dialect(text.as_bytes(), true);
+        assert_eq!(found.as_ref().map(|d| d.dialect), expected, "{found:?}");
+    }
+
+    #[test]
+    fn names_parse_and_print() {
+        for dialect in Dialect::ALL {
+            assert_eq!(dialect.name().parse::<Dialect>(), Ok(dialect));
+        }
+        assert_eq!("MARLIN".parse::<Dialect>(), Ok(Dialect::Marlin));
+        assert!("fanuc".parse::<Dialect>().unwrap_err().to_string().contains("fanuc"));
+    }
+
+    #[test]
+    fn generator_comments_decide_first() {
+        check(";FLAVOR:Marlin\nG1 X1\n", Some(Dialect::Marlin));
+        check("; generated by PrusaSlicer 2.7.3\n", Some(Dialect::Marlin));
+        check("(Post Processor: grbl_post)\nG0 X1\nM2\n", Some(Dialect::Grbl));
+        check("(Made for Mach3)\n", Some(Dialect::Mach3));
+        // A generator comment later wins over content earlier.
+        check("G1 X1 E2\n; LaserGRBL\n", Some(Dialect::Grbl));
+        // Words outside comments are not generator names.
+        check("G0 X1\nM2\n", None);
+    }
+
+    #[test]
+    fn content_decides_when_no_generator_says() {
+        check("G21\nG1 X1 E0.5 F100\n", Some(Dialect::Marlin));
+        check("M104 S200\n", Some(Dialect::Marlin));
+        check("M793 S4\n", Some(Dialect::Marlin));
+        check("$H\nG0 X1\n", Some(Dialect::Grbl));
+        check("G2 X1 Y1 I1 J0 K0 F100\n", Some(Dialect::Grbl));
+        check("G18\nG2 X1 Z1 I1 K0 F100\n", None);
+        check("(a (b) c)\n", Some(Dialect::Mach3));
+        check("O0001\n", Some(Dialect::Mach3));
+        check("o100 sub\n", Some(Dialect::Linuxcnc));
+        check("#<depth> = 2\n", Some(Dialect::Linuxcnc));
+        // An E inside a comment, or a word such as G92 X0 alone, decides nothing.
+        check("G0 X1 (E5)\nG92 X0\nM3 S100\nM2\n", None);
+        check("G0 X1e400 Y400\n", None);
+        check("G0 X1 (a (b) c)\x01\n", None);
+    }
+
+    #[test]
+    fn preludes_sort_lines_per_dialect() {
+        let event = |name: &str, known: bool| Prelude::Event { name: name.to_owned(), known };
+        assert_eq!(prelude(Dialect::Marlin, b"M104 S200 ; hot"), event("M104", true));
+        assert_eq!(prelude(Dialect::Marlin, b"N12 M117 Printing (50%)"), event("M117", true));
+        assert_eq!(prelude(Dialect::Marlin, b"M2000"), event("M2000", false));
+        assert_eq!(prelude(Dialect::Marlin, b"G29"), event("G29", true));
+        assert_eq!(prelude(Dialect::Marlin, b"G280"), event("G280", false));
+        assert_eq!(prelude(Dialect::Marlin, b" Total estimated: 0.99"), event("Total", false));
+        assert_eq!(prelude(Dialect::Marlin, b"T1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
+        let home = |axes: [bool; 4]| Prelude::Home { axes };
+        assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));
+        assert_eq!(prelude(Dialect::Marlin, b"G28 X0 Y0 (Z)"), home([true, true, false, false]));
+        assert_eq!(prelude(Dialect::Marlin, b"G28"), home([true; 4]));
+        assert_eq!(prelude(Dialect::Marlin, b"(comment)"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"G1 X1 E2"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"M3 S100"), Prelude::Block);
+        assert_eq!(
+            prelude(Dialect::Marlin, b"M83"),
+            Prelude::ExtruderMode { name: "M83".to_owned(), relative: true }
+        );
+        assert!(matches!(
+            prelude(Dialect::Marlin, b"G5 I1"),
+            Prelude::Refuse { start: 0, end: 2, .. }
+        ));
+        assert_eq!(prelude(Dialect::Grbl, b"$H"), event("$H", true));
+        assert_eq!(prelude(Dialect::Grbl, b"  $32=1"), event("$32", true));
+        assert!(matches!(prelude(Dialect::Grbl, b"$J=G91 X1 F100"), Prelude::Refuse { .. }));
+        assert_eq!(prelude(Dialect::Grbl, b"G0 X1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), event("O0001", true));
+        assert_eq!(prelude(Dialect::Mach3, b"O100 sub"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Linuxcnc, b"M104"), Prelude::Block);
+    }
+
+    #[test]
+    fn only_complete_lines_count_unless_the_text_is_complete() {
+        assert_eq!(detect_dialect(b"G0 X1\nM104 S2", false), None);
+        assert!(detect_dialect(b"G0 X1\nM104 S2", true).is_some());
+        let found = detect_dialect(b"(Miracle-Grue)\nG1 X1 A2\n", true).unwrap();
+        assert!(found.makerbot && found.dialect == Dialect::Marlin && found.line == Some(1));
+    }
+}

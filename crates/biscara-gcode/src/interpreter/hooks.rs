@@ -1,0 +1,277 @@
+//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6):
+//! `auto`'s look-ahead, what a dialect makes of a line before the block reader and of a block
+//! after it, the end of the input, and what M3/M4/M5/S emit for each tool. None of them runs in
+//! [`Dialect::Linuxcnc`] except [`Interpreter::tool_event`] (the gripper's pick, place, off).
+
+use std::io::BufRead;
+
+use biscara_motion::{CodeName, MotionKind};
+
+use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Percent};
+use crate::dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+};
+use crate::error::GcodeError;
+use crate::lexer::Fault;
+use crate::params::{G28_HOME, axis_slot};
+use crate::parser::Word;
+use crate::tool::Tool;
+
+/// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
+const MARLIN_DEFAULT_FEED: f64 = 4000.0;
+/// The largest extruder position (E word) accepted, mm.
+const MAX_EXTRUSION: f64 = 1e9;
+
+impl<R: BufRead> Interpreter<R> {
+    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
+    /// with its decision).
+    pub(super) fn with_line_limit(mut self) -> Self {
+        self.apply_dialect();
+        self
+    }
+
+    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
+    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
+    pub(super) fn apply_dialect(&mut self) {
+        self.lines.max = if self.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
+        if self.dialect == Dialect::Marlin && self.state.feed_rate == 0.0 {
+            self.state.feed_rate = MARLIN_DEFAULT_FEED;
+            self.state.feed_mm = MARLIN_DEFAULT_FEED;
+        }
+    }
+
+    /// The dialect being read: the configured one, or what `auto` chose so far.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
+    /// when the dialect was given. A program in which nothing tells the dialects apart is read
+    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
+    /// then it is Grbl, decided at its last line (the detection changes at the end).
+    pub fn detection(&self) -> Option<Detection> {
+        if let Some(detection) = &self.detection {
+            return Some(detection.clone());
+        }
+        self.provisional.then(|| Detection {
+            dialect: Dialect::Linuxcnc,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
+                 word, printer M-code, `$` line, nested comment or program number)",
+                LOOKAHEAD_BYTES / 1024
+            ),
+            line: None,
+            makerbot: false,
+        })
+    }
+
+    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
+    pub fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
+    pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
+        self.undecided = false;
+        let complete = self
+            .lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        match detect_dialect(self.lines.source().head(), complete) {
+            Some(detection) => {
+                self.dialect = detection.dialect;
+                self.makerbot = detection.makerbot;
+                self.detection = Some(detection);
+                self.apply_dialect();
+            }
+            None => self.provisional = true,
+        }
+        Ok(())
+    }
+
+    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
+    /// need no program end.
+    pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
+        self.finished = true;
+        if self.provisional && self.moved {
+            self.provisional = false;
+            self.dialect = Dialect::Grbl;
+            self.detection = Some(Detection {
+                dialect: Dialect::Grbl,
+                reason: format!(
+                    "nothing tells the dialects apart, and the program ends at line {} without \
+                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
+                     reads the same in both)",
+                    self.lines.number
+                ),
+                line: None,
+                makerbot: false,
+            });
+        }
+        if self.dialect != Dialect::Linuxcnc {
+            return Ok(());
+        }
+        Err(match self.percent {
+            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
+            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
+        })
+    }
+
+    /// Records a no-motion code as an event.
+    pub(super) fn record(&mut self, name: &str, known: bool) {
+        self.summary.count(name, known);
+        if let Some(code) = CodeName::new(name) {
+            self.emit(MotionKind::Code { code });
+        }
+    }
+
+    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
+    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
+        match prelude(self.dialect, &self.lines.line) {
+            Prelude::Block => Ok(false),
+            Prelude::Event { name, known } => {
+                self.record(&name, known);
+                Ok(true)
+            }
+            Prelude::ExtruderMode { name, relative } => {
+                self.e_relative = relative;
+                self.record(&name, true);
+                Ok(true)
+            }
+            Prelude::Home { axes } => {
+                // One rapid of the named axes to the home pose (G28's stored position), with no
+                // intermediate point.
+                let mut end = self.state.current;
+                for axis in (0..4).filter(|&axis| axes[axis]) {
+                    let machine = self
+                        .state
+                        .mm_to_program(axis, self.state.params.get(G28_HOME + axis_slot(axis)));
+                    end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+                }
+                self.move_to(end, None);
+                self.state.publish_position();
+                Ok(true)
+            }
+            Prelude::Refuse { start, end, code, note } => {
+                Err(self.error(Fault::not_supported(start, end, code, note)))
+            }
+        }
+    }
+
+    /// A dialect's changes to the block just read; `Ok(true)` when the block is done with.
+    pub(super) fn adapt_block(&mut self) -> Result<bool, Fault> {
+        if self.dialect != Dialect::Marlin {
+            return Ok(false);
+        }
+        // One command per line: later G and M words are the command's parameters.
+        let first =
+            self.block.g.iter().chain(self.block.m.iter()).flatten().map(|code| code.at).min();
+        if let Some(first) = first {
+            for slot in self.block.g.iter_mut().chain(self.block.m.iter_mut()) {
+                if slot.is_some_and(|code| code.at != first) {
+                    *slot = None;
+                }
+            }
+        }
+        if let Some(code) = self.block.g[3] {
+            self.e_relative = code.code == 910;
+        }
+        let group0 = self.block.g[0].map(|code| code.code);
+        if self.block.g[1].is_none() && group0 != Some(920) {
+            // Axis words of a command that is not a move are its parameters: no modal motion.
+            for &letter in &AXES {
+                self.block.letters[usize::from(letter - b'a')] = None;
+            }
+        }
+        let factor = if self.block.g[6].map_or(self.state.metric, |code| code.code == 210) {
+            1.0
+        } else {
+            MM_PER_INCH
+        };
+        let e = self.block.letters[usize::from(b'e' - b'a')].take();
+        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        if e.is_none() && !axis_words && self.block.g[1].is_some_and(|code| code.code <= 30) {
+            // `G1 F1500`: a feed rate, no move (LinuxCNC would make a move of no length).
+            self.block.g[1] = None;
+        }
+        if group0 == Some(40) {
+            // G4: S seconds, else P milliseconds, else no wait.
+            let s = self.block.letters[usize::from(b's' - b'a')].take();
+            let p = self.block.word(b'p');
+            let (seconds, word) = match (s, p) {
+                (Some(s), _) => (s.value, s),
+                (None, Some(p)) => (p.value / 1000.0, p),
+                (None, None) => {
+                    let code = self.block.g[0].map_or((0, 1), |code| (code.at, code.end));
+                    (0.0, Word { value: 0.0, at: code.0, end: code.1 })
+                }
+            };
+            self.block.letters[usize::from(b'p' - b'a')] = Some(Word { value: seconds, ..word });
+        }
+        if let Some(e) = e {
+            let value = e.value * factor;
+            if value.is_nan() || value.abs() > MAX_EXTRUSION {
+                return Err(self.word_fault(
+                    e,
+                    format!("{value:e} is out of range: E must lie within ±{MAX_EXTRUSION:e} mm"),
+                ));
+            }
+            if group0 == Some(920) {
+                self.e_position = value;
+                if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
+                    return Ok(true);
+                }
+            } else if self.block.g[1].is_some()
+                || (self.state.motion.is_some()
+                    && AXES.iter().any(|&letter| self.block.word(letter).is_some()))
+            {
+                let delta = if self.e_relative { value } else { value - self.e_position };
+                self.e_position += delta;
+                self.pending_extrude = Some(delta);
+            }
+        }
+        Ok(false)
+    }
+
+    /// MakerBot's flavour: an A word is the extruder's E.
+    pub(super) fn rename_makerbot_a(&mut self) {
+        let bytes = self.compact.bytes_mut();
+        for index in 0..bytes.len() {
+            let before = if index == 0 { b'(' } else { bytes[index - 1] };
+            let after = bytes.get(index + 1).copied().unwrap_or(0);
+            if bytes[index] == b'a'
+                && !before.is_ascii_alphabetic()
+                && (after.is_ascii_digit() || matches!(after, b'-' | b'+' | b'.'))
+            {
+                bytes[index] = b'e';
+            }
+        }
+    }
+
+    /// The tool's event for M3, M4 or M5 (`code`), or for a new S while on.
+    pub(super) fn tool_event(&mut self, code: u16) {
+        self.tool_on = code != 5;
+        let speed = self.state.speed;
+        let kind = match (self.tool, code) {
+            (Tool::Gripper, 3) => MotionKind::Pick,
+            (Tool::Gripper, 4) => MotionKind::Place,
+            (Tool::Gripper, _) => MotionKind::GripperOff,
+            (Tool::Laser, 3 | 4) => MotionKind::LaserOn { power: speed, dynamic: code == 4 },
+            (Tool::Laser, _) => MotionKind::LaserOff,
+            (Tool::Spindle, 3 | 4) => MotionKind::SpindleOn { rpm: speed, clockwise: code == 3 },
+            (Tool::Spindle, _) => MotionKind::SpindleOff,
+            (Tool::Pen, 3 | 4) => MotionKind::PenDown,
+            (Tool::Pen, _) => MotionKind::PenUp,
+            (Tool::Extruder, _) => {
+                let name = format!("M{code}");
+                self.summary.count(&name, true);
+                match CodeName::new(&name) {
+                    Some(code) => MotionKind::Code { code },
+                    None => return,
+                }
+            }
+        };
+        self.emit(kind);
+    }
+}

@@ -1,0 +1,267 @@
+//! Dialects through the library (SPEC §4.3): each dialect's rules where it differs from
+//! LinuxCNC, `auto` detection and its reasons, the summary of no-motion codes, and the tool
+//! events of SPEC §1.6.
+
+use biscara_gcode::{Config, Dialect, GcodeError, Tool, interpret};
+use biscara_motion::{Motion, MotionKind};
+
+const HOME: [f64; 4] = [0.0, 400.0, 100.0, 0.0];
+
+fn config(dialect: Dialect) -> Config {
+    Config { home: HOME, dialect, ..Config::default() }
+}
+
+/// The motions of `program` read as `dialect`.
+#[track_caller]
+fn read(program: &str, dialect: Dialect) -> Vec<Motion> {
+    interpret(program.as_bytes(), &config(dialect))
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|err| panic!("{err}"))
+}
+
+/// The error of `program` read as `dialect`.
+#[track_caller]
+fn refused(program: &str, dialect: Dialect) -> GcodeError {
+    interpret(program.as_bytes(), &config(dialect))
+        .find_map(Result::err)
+        .unwrap_or_else(|| panic!("no error for {program:?} as {dialect}"))
+}
+
+fn ends(motions: &[Motion]) -> Vec<[f64; 4]> {
+    motions.iter().filter_map(|motion| motion.kind.end()).collect()
+}
+
+fn codes(motions: &[Motion]) -> Vec<String> {
+    motions
+        .iter()
+        .filter_map(|motion| match motion.kind {
+            MotionKind::Code { code } => Some(code.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn linuxcnc_is_unchanged_and_the_library_default() {
+    assert_eq!(Config::default().dialect, Dialect::Linuxcnc);
+    let err = refused("G1 X1 E2 F100\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("E word with no G70"), "{err}");
+    let err = refused("G0 X1\n", Dialect::Linuxcnc);
+    assert!(matches!(err, GcodeError::NoProgramEnd { line: 1 }), "{err}");
+    let err = refused(&format!("; {}\nM2\n", "c".repeat(300)), Dialect::Linuxcnc);
+    assert!(matches!(err, GcodeError::LineTooLong { max: 252, .. }), "{err}");
+    let err = refused("G0 (a (b))\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("Nested comment found"), "{err}");
+}
+
+#[test]
+fn every_other_dialect_needs_no_program_end_and_reads_long_comment_lines() {
+    let long = format!("; {}\nG0 X1\n", "thumbnail ".repeat(2000));
+    for dialect in [Dialect::Grbl, Dialect::Marlin, Dialect::Mach3] {
+        let motions = read(&long, dialect);
+        assert_eq!(ends(&motions), [[1.0, 400.0, 100.0, 0.0]], "{dialect}");
+        let err = refused(&format!("G1 X{}\n", "1".repeat(300)), dialect);
+        assert!(err.to_string().contains("Command too long"), "{dialect}: {err}");
+    }
+}
+
+#[test]
+fn marlin_extrudes_on_the_move_absolute_or_relative() {
+    let program = "G21\nG1 X10 E2 F600\nG1 X20 E5\nG92 E0\nG1 X30 E1\nM83\nG1 X40 E0.5\n\
+                   G1 E-2 F2400\nM82\nG90\nG1 X50 E3\n";
+    let motions = read(program, Dialect::Marlin);
+    let extrusions: Vec<(usize, Option<f64>)> =
+        motions.iter().filter(|m| m.kind.end().is_some()).map(|m| (m.line, m.extrude)).collect();
+    assert_eq!(
+        extrusions,
+        [
+            (2, Some(2.0)),
+            (3, Some(3.0)),
+            (5, Some(1.0)),
+            (7, Some(0.5)),
+            // A retraction: a move without length that carries its extrusion.
+            (8, Some(-2.0)),
+            // Absolute again, from the position E reached: 1 + 0.5 − 2.
+            (11, Some(3.0 - -0.5)),
+        ]
+    );
+    assert_eq!(codes(&motions), ["M83", "M82"]);
+}
+
+#[test]
+fn marlin_dwells_s_in_seconds_p_in_milliseconds() {
+    let motions = read("G4 P500\nG4 S2\nG4 S1 P9000\nG4\n", Dialect::Marlin);
+    let seconds: Vec<f64> = motions
+        .iter()
+        .filter_map(|m| match m.kind {
+            MotionKind::Dwell { seconds } => Some(seconds),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(seconds, [0.5, 2.0, 1.0, 0.0]);
+    // Grbl and LinuxCNC: P is seconds.
+    let grbl = read("G4 P1.5\n", Dialect::Grbl);
+    assert_eq!(grbl[0].kind, MotionKind::Dwell { seconds: 1.5 });
+}
+
+#[test]
+fn marlin_homes_only_the_named_axes_with_no_intermediate_point() {
+    let motions = read("G0 X10 Y20 Z30\nG28 X\nG28 Z0\nG0 X5\nG28\n", Dialect::Marlin);
+    assert_eq!(
+        ends(&motions),
+        [
+            [10.0, 20.0, 30.0, 0.0],
+            [0.0, 20.0, 30.0, 0.0],
+            [0.0, 20.0, 100.0, 0.0],
+            [5.0, 20.0, 100.0, 0.0],
+            HOME,
+        ]
+    );
+    // LinuxCNC: G28 Z0 goes through Z0 first.
+    let linuxcnc = read("G0 X10 Y20 Z30\nG28 Z0\nM2\n", Dialect::Linuxcnc);
+    assert_eq!(ends(&linuxcnc)[1], [10.0, 20.0, 0.0, 0.0]);
+}
+
+#[test]
+fn marlin_reads_one_command_a_line_and_records_the_others() {
+    let program = "M104 S200\nM109 S200 ; wait\nM117 Printing (1/2)\nG29\nM2000\nG280\n\
+                   G91 G0 Z5\nG90\nM107\nM104 S0\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    let motions: Vec<Motion> = (&mut interpreter).collect::<Result<_, _>>().expect("read");
+    // G91 is the command of line 7: G0 and Z5 are its parameters (no move).
+    assert!(ends(&motions).is_empty(), "{motions:?}");
+    assert_eq!(codes(&motions), ["M104", "M109", "M117", "G29", "M2000", "G280", "M107", "M104"]);
+    let summary = interpreter.summary();
+    let known: Vec<(&str, usize)> = summary.codes.iter().map(|(c, n)| (c.as_str(), *n)).collect();
+    assert_eq!(known, [("G29", 1), ("M104", 2), ("M107", 1), ("M109", 1), ("M117", 1)]);
+    let unknown: Vec<&str> = summary.unknown.keys().map(String::as_str).collect();
+    assert_eq!(unknown, ["G280", "M2000"]);
+    // What Marlin has and this robot cannot do is refused with its place.
+    let err = refused("G1 X1 F100\nG5 I1 J1 P1 Q1 X2 Y2\n", Dialect::Marlin);
+    assert_eq!(err.location().map(|at| (at.line, at.column)), Some((2, 1)), "{err}");
+    assert!(err.to_string().contains("G5 is not supported yet"), "{err}");
+}
+
+#[test]
+fn marlin_feeds_at_its_default_before_the_first_f() {
+    let motions = read("G1 X10\nG1 F1500\nG1 X20\n", Dialect::Marlin);
+    assert!(
+        matches!(motions[0].kind, MotionKind::Linear { feed, .. } if feed.mm_per_min == 4000.0)
+    );
+    // `G1 F1500` sets the feed rate and does not move (LinuxCNC makes a move of no length).
+    assert_eq!(motions.len(), 2);
+    assert!(
+        matches!(motions[1].kind, MotionKind::Linear { feed, .. } if feed.mm_per_min == 1500.0)
+    );
+    assert_eq!(read("G1 X10 F100\nG1 F1500\nM2\n", Dialect::Linuxcnc).len(), 3);
+}
+
+#[test]
+fn grbl_reads_dollar_lines_and_ignores_k_in_xy_arcs() {
+    let motions = read("$H\n$32=1\nG1 X0 Y400 F100\nG2 X10 Y400 I5 J0 K7\n", Dialect::Grbl);
+    assert_eq!(codes(&motions), ["$H", "$32"]);
+    let arc = motions.iter().find(|m| matches!(m.kind, MotionKind::Arc { .. })).expect("arc");
+    assert!(matches!(arc.kind, MotionKind::Arc { center, .. } if center == [5.0, 400.0]));
+    let err = refused("G1 X0 Y400 F100\nG2 X10 Y400 I5 J0 K7\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("K word given for arc in xy plane"), "{err}");
+    let err = refused("$J=G91 X10 F100\n", Dialect::Grbl);
+    assert!(err.to_string().starts_with("1:1: $J= (jogging) is not supported yet"), "{err}");
+}
+
+#[test]
+fn mach3_reads_nested_comments_and_program_numbers() {
+    let motions = read("O0001 (PART)\n(tool (R) 1mm)\nG0 X1\nM30\n", Dialect::Mach3);
+    assert_eq!(codes(&motions), ["O0001"]);
+    assert_eq!(ends(&motions), [[1.0, 400.0, 100.0, 0.0]]);
+    let err = refused("(a (b)\n", Dialect::Mach3);
+    assert!(err.to_string().contains("Unclosed comment found"), "{err}");
+}
+
+#[test]
+fn auto_decides_from_the_first_lines_and_says_why() {
+    let program = ";FLAVOR:Marlin\nM82\nG1 X1 E1 F100\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
+    assert_eq!(interpreter.detection(), None);
+    let first = interpreter.next().expect("a motion").expect("read");
+    assert_eq!(first.line, 2);
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Marlin, Some(1)));
+    assert!(detection.reason.contains("FLAVOR:Marlin"), "{}", detection.reason);
+    // Given, not detected: no detection.
+    let mut given = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    given.next();
+    assert_eq!(given.detection(), None);
+}
+
+#[test]
+fn auto_without_evidence_is_linuxcnc_and_grbl_when_the_end_is_missing() {
+    let mut ended = interpret("G0 X1\nM2\n".as_bytes(), &config(Dialect::Auto));
+    assert!(ended.by_ref().all(|result| result.is_ok()));
+    let detection = ended.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Linuxcnc, None));
+    let mut open = interpret("G0 X1\nG0 X2\n".as_bytes(), &config(Dialect::Auto));
+    assert!(open.by_ref().all(|result| result.is_ok()));
+    let detection = open.detection().expect("decided");
+    assert_eq!(detection.dialect, Dialect::Grbl);
+    assert!(detection.reason.contains("without M2 or M30"), "{}", detection.reason);
+    // An empty program is not a program in any dialect.
+    let err = refused("(nothing)\n", Dialect::Auto);
+    assert!(matches!(err, GcodeError::NoProgramEnd { .. }), "{err}");
+}
+
+#[test]
+fn auto_reads_ahead_64_kib_at_most() {
+    let mut program = "G0 X1\n".repeat(20_000);
+    program.push_str("M104 S200\nM2\n");
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
+    interpreter.next();
+    // The M104 lies beyond the look-ahead: LinuxCNC, which then refuses it.
+    assert_eq!(interpreter.dialect(), Dialect::Linuxcnc);
+    let err = interpreter.find_map(Result::err).expect("refused");
+    assert!(err.to_string().contains("Unknown m code used: M104"), "{err}");
+}
+
+#[test]
+fn the_tool_decides_what_m3_m4_m5_and_s_mean() {
+    let program = "S300 M3\nG1 X1 F100 S500\nM4\nM5\nM2\n";
+    let events = |tool: Tool| -> Vec<MotionKind> {
+        let config = Config { home: HOME, tool, ..Config::default() };
+        interpret(program.as_bytes(), &config)
+            .filter_map(|result| result.ok())
+            .map(|motion| motion.kind)
+            .filter(|kind| kind.end().is_none() && *kind != MotionKind::End)
+            .collect()
+    };
+    assert_eq!(
+        events(Tool::Gripper),
+        [MotionKind::Pick, MotionKind::Place, MotionKind::GripperOff]
+    );
+    assert_eq!(
+        events(Tool::Laser),
+        [
+            MotionKind::LaserOn { power: 300.0, dynamic: false },
+            MotionKind::LaserOn { power: 500.0, dynamic: false },
+            MotionKind::LaserOn { power: 500.0, dynamic: true },
+            MotionKind::LaserOff,
+        ]
+    );
+    assert_eq!(
+        events(Tool::Spindle),
+        [
+            MotionKind::SpindleOn { rpm: 300.0, clockwise: true },
+            MotionKind::SpindleOn { rpm: 500.0, clockwise: true },
+            MotionKind::SpindleOn { rpm: 500.0, clockwise: false },
+            MotionKind::SpindleOff,
+        ]
+    );
+    assert_eq!(events(Tool::Pen), [MotionKind::PenDown, MotionKind::PenDown, MotionKind::PenUp]);
+    assert_eq!(events(Tool::Extruder).len(), 3);
+}
+
+#[test]
+fn dialect_names_round_trip() {
+    for dialect in Dialect::ALL {
+        assert_eq!(dialect.to_string().parse::<Dialect>(), Ok(dialect));
+    }
+    assert!("fanuc".parse::<Dialect>().is_err());
+}

@@ -1,0 +1,150 @@
+//! A program's motions: the G-code interpreter or the inter-file reader, errors located, and
+//! what the interpreter has to say (the dialect it chose, the codes it recorded) as notes.
+
+use std::cell::RefCell;
+use std::io::BufRead;
+use std::rc::Rc;
+
+use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, interpret};
+use biscara_kinematics::RobotModel;
+use biscara_motion::{Motion, Position, read_jsonl};
+
+use crate::{Note, PipelineError, ProgramKind, ProgramSource};
+
+/// A program's motions as read, with errors located in the file.
+pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
+
+/// Where notes go: the caller's function, shared by the stages that speak (the interpreter's
+/// wrapper and the interpolator's slow-down callback).
+#[derive(Clone)]
+pub(crate) struct NoteSink(Option<SharedNotes>);
+
+/// The caller's note function, shared.
+type SharedNotes = Rc<RefCell<dyn FnMut(Note)>>;
+
+impl NoteSink {
+    /// The caller's function.
+    pub(crate) fn new(notes: impl FnMut(Note) + 'static) -> NoteSink {
+        NoteSink(Some(Rc::new(RefCell::new(notes))))
+    }
+
+    /// Nowhere: for a second reading of the same program (`--fit`'s extent).
+    pub(crate) fn silent() -> NoteSink {
+        NoteSink(None)
+    }
+
+    /// Tells the caller.
+    pub(crate) fn say(&self, note: Note) {
+        if let Some(notes) = &self.0 {
+            (notes.borrow_mut())(note);
+        }
+    }
+}
+
+/// The motions of a G-code program (read in `dialect`, with `origin` as its G54 offset) or an
+/// inter-file.
+pub(crate) fn read_motions(
+    model: &RobotModel,
+    source: &dyn ProgramSource,
+    kind: ProgramKind,
+    origin: Position,
+    dialect: Dialect,
+    notes: NoteSink,
+) -> Result<MotionReader, PipelineError> {
+    let file = source.name().to_owned();
+    let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
+    match kind {
+        ProgramKind::Jsonl => Ok(Box::new(
+            read_jsonl(input)
+                .map(move |result| result.map_err(|err| PipelineError::program(&file, err))),
+        )),
+        ProgramKind::Gcode => {
+            let config = GcodeConfig {
+                home: model.home_position(),
+                origin,
+                dialect,
+                ..GcodeConfig::default()
+            };
+            let interpreter = interpret(input, &config);
+            Ok(Box::new(GcodeMotions { interpreter, file, notes, finished: false }))
+        }
+        ProgramKind::Path => Err(PipelineError::Unsupported {
+            file,
+            message: "a path CSV holds samples, not motions".to_owned(),
+        }),
+    }
+}
+
+/// The interpreter's motions, errors located; at the end, the dialect `auto` chose and the
+/// no-motion codes it recorded go to the notes.
+struct GcodeMotions<R> {
+    interpreter: Interpreter<R>,
+    file: String,
+    notes: NoteSink,
+    finished: bool,
+}
+
+impl<R: BufRead> GcodeMotions<R> {
+    /// The error, located, with the line and a caret, and with the dialect `auto` chose when it
+    /// is not LinuxCNC's (the error may be the dialect's, not the program's).
+    fn located(&self, err: GcodeError) -> PipelineError {
+        let mut snippet = err.location().map(|location| location.snippet());
+        if let Some(detection) =
+            self.interpreter.detection().filter(|d| d.dialect != Dialect::Linuxcnc)
+        {
+            let why = format!(
+                "(read as {} G-code by --dialect auto: {}; give --dialect to choose another)",
+                detection.dialect, detection.reason
+            );
+            snippet = Some(match snippet {
+                Some(snippet) => format!("{snippet}\n{why}"),
+                None => why,
+            });
+        }
+        PipelineError::Program { file: self.file.clone(), error: Box::new(err), snippet }
+    }
+
+    /// The notes of a finished program.
+    fn announce(&self) {
+        // A program in which nothing tells the dialects apart is LinuxCNC's, as before the
+        // dialects existed: no note.
+        if let Some(detection) = self
+            .interpreter
+            .detection()
+            .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
+        {
+            self.notes.say(Note::Dialect { file: self.file.clone(), detection });
+        }
+        let summary = self.interpreter.summary();
+        if !summary.codes.is_empty() {
+            self.notes.say(Note::Codes { file: self.file.clone(), codes: summary.codes.clone() });
+        }
+        if !summary.unknown.is_empty() {
+            let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
+            self.notes.say(Note::UnknownCodes { file, dialect, codes: summary.unknown.clone() });
+        }
+    }
+}
+
+impl<R: BufRead> Iterator for GcodeMotions<R> {
+    type Item = Result<Motion, PipelineError>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.finished {
+            return None;
+        }
+        match self.interpreter.next() {
+            Some(Ok(motion)) => Some(Ok(motion)),
+            Some(Err(err)) => {
+                self.finished = true;
+                Some(Err(self.located(err)))
+            }
+            None => {
+                self.finished = true;
+                self.announce();
+                None
+            }
+        }
+    }
+}
