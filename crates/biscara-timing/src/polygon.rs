@@ -1,0 +1,178 @@
+//! The two-variable linear programmes of one TOPP-RA stage, in (u, x) = (s̈, ṡ²), solved exactly.
+
+/// Below this, a normalised half-plane's coefficient of u counts as zero.
+const ZERO: f64 = 1e-12;
+
+/// The half-plane `alpha · u + beta · x ≤ gamma`, with `(alpha, beta)` of unit length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct HalfPlane {
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+}
+
+/// The half-planes of one stage.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Polygon {
+    planes: Vec<HalfPlane>,
+}
+
+impl Polygon {
+    /// Empties it.
+    pub(crate) fn clear(&mut self) {
+        self.planes.clear();
+    }
+
+    /// Adds `alpha · u + beta · x ≤ gamma`; a bound of +∞ bounds nothing, and a zero row is
+    /// dropped (its feasibility is the caller's to check).
+    pub(crate) fn push(&mut self, alpha: f64, beta: f64, gamma: f64) {
+        if gamma == f64::INFINITY {
+            return;
+        }
+        let norm = alpha.hypot(beta);
+        if norm == 0.0 {
+            return;
+        }
+        self.planes.push(HalfPlane { alpha: alpha / norm, beta: beta / norm, gamma: gamma / norm });
+    }
+
+    /// Adds `lo ≤ alpha · u + beta · x ≤ hi`.
+    pub(crate) fn push_range(&mut self, alpha: f64, beta: f64, lo: f64, hi: f64) {
+        self.push(alpha, beta, hi);
+        self.push(-alpha, -beta, -lo);
+    }
+
+    /// The range of x over the polygon intersected with `lo ≤ x ≤ hi`, by Fourier–Motzkin
+    /// elimination of u: `None` when it is empty.
+    ///
+    /// Each half-plane with α > 0 bounds u from above by `p + r·x`, each with α < 0 from below;
+    /// u exists iff every lower bound is at most every upper bound, a linear condition on x per
+    /// pair. With m half-planes that is at most m²/4 pairs of a few flops each.
+    pub(crate) fn x_range(&self, mut lo: f64, mut hi: f64) -> Option<(f64, f64)> {
+        for plane in &self.planes {
+            if plane.alpha.abs() <= ZERO {
+                if plane.beta > 0.0 {
+                    hi = hi.min(plane.gamma / plane.beta);
+                } else {
+                    lo = lo.max(plane.gamma / plane.beta);
+                }
+            }
+        }
+        for upper in self.planes.iter().filter(|plane| plane.alpha > ZERO) {
+            let (p_upper, r_upper) = (upper.gamma / upper.alpha, -upper.beta / upper.alpha);
+            for lower in self.planes.iter().filter(|plane| plane.alpha < -ZERO) {
+                let (p_lower, r_lower) = (lower.gamma / lower.alpha, -lower.beta / lower.alpha);
+                // p_lower + r_lower·x ≤ p_upper + r_upper·x
+                let coefficient = r_lower - r_upper;
+                let bound = p_upper - p_lower;
+                if coefficient > 0.0 {
+                    hi = hi.min(bound / coefficient);
+                } else if coefficient < 0.0 {
+                    lo = lo.max(bound / coefficient);
+                } else if bound < 0.0 {
+                    return None;
+                }
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// The largest u at the given x (`+∞` when nothing bounds it from above) and the smallest
+    /// (`−∞` likewise).
+    pub(crate) fn u_range(&self, x: f64) -> (f64, f64) {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for plane in &self.planes {
+            let bound = (plane.gamma - plane.beta * x) / plane.alpha;
+            if plane.alpha > ZERO {
+                hi = hi.min(bound);
+            } else if plane.alpha < -ZERO {
+                lo = lo.max(bound);
+            }
+        }
+        (lo, hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use proptest::prelude::*;
+
+    use super::*;
+
+    #[test]
+    fn a_box_and_a_slanted_bound() {
+        // |u| ≤ 2, x + u ≤ 3 → largest x is 5 (u = −2), and x ≤ 10 from the caller.
+        let mut polygon = Polygon::default();
+        polygon.push_range(1.0, 0.0, -2.0, 2.0);
+        polygon.push(1.0, 1.0, 3.0);
+        let (lo, hi) = polygon.x_range(0.0, 10.0).unwrap();
+        assert_eq!(lo, 0.0);
+        assert_relative_eq!(hi, 5.0, epsilon = 1e-12);
+        let (u_lo, u_hi) = polygon.u_range(4.0);
+        assert_relative_eq!(u_lo, -2.0, epsilon = 1e-12);
+        assert_relative_eq!(u_hi, -1.0, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn an_empty_polygon_is_reported() {
+        let mut polygon = Polygon::default();
+        polygon.push(1.0, 1.0, -1.0); // u + x ≤ −1
+        polygon.push(-1.0, 0.0, 0.0); // u ≥ 0
+        assert_eq!(polygon.x_range(0.0, 10.0), None);
+    }
+
+    proptest! {
+        /// The exact range matches a brute-force scan of (u, x) on a fine grid: every scanned
+        /// feasible point lies within it, and its ends are feasible for some scanned u.
+        #[test]
+        fn range_matches_a_scan(
+            planes in proptest::collection::vec((-3.0..3.0f64, -3.0..3.0f64, 0.1..4.0f64), 1..6),
+        ) {
+            let mut polygon = Polygon::default();
+            // A box keeps u bounded, and every γ > 0 keeps (0, 0) feasible.
+            polygon.push_range(1.0, 0.0, -5.0, 5.0);
+            for &(alpha, beta, gamma) in &planes {
+                polygon.push(alpha, beta, gamma);
+            }
+            let (lo, hi) = polygon.x_range(0.0, 8.0).expect("(0, 0) is feasible");
+            let feasible = |u: f64, x: f64| {
+                u.abs() <= 5.0 + 1e-9
+                    && planes.iter().all(|&(a, b, g)| a * u + b * x <= g + 1e-9)
+            };
+            let mut seen_hi = 0.0f64;
+            for i in 0..=200 {
+                let x = 8.0 * f64::from(i) / 200.0;
+                for j in 0..=200 {
+                    let u = -5.0 + 10.0 * f64::from(j) / 200.0;
+                    if feasible(u, x) {
+                        prop_assert!(x >= lo - 1e-9 && x <= hi + 1e-9, "x {x} outside [{lo}, {hi}]");
+                        seen_hi = seen_hi.max(x);
+                    }
+                }
+            }
+            // The top is feasible for some u, and a little above it none is: u's bounds from
+            // each half-plane directly, at the midpoint of the range u_range gives.
+            let u_bounds = |x: f64| {
+                let (mut low, mut high) = (-5.0f64, 5.0f64);
+                for &(a, b, g) in &planes {
+                    if a > 1e-9 {
+                        high = high.min((g - b * x) / a);
+                    } else if a < -1e-9 {
+                        low = low.max((g - b * x) / a);
+                    } else if b * x > g + 1e-9 {
+                        return (1.0, -1.0);
+                    }
+                }
+                (low, high)
+            };
+            let (u_lo, u_hi) = polygon.u_range(hi);
+            prop_assert!(feasible(0.5 * (u_lo.max(-5.0) + u_hi.min(5.0)), hi));
+            prop_assert!(hi >= seen_hi - 1e-9);
+            if hi < 8.0 - 1e-3 {
+                let (low, high) = u_bounds(hi + 1e-3);
+                prop_assert!(low > high, "x = {} is still feasible", hi + 1e-3);
+            }
+        }
+    }
+}
