@@ -43,6 +43,9 @@ pub(crate) enum ProfileArg {
     Constant,
     /// Accelerate, cruise, decelerate: an exact stop at every corner.
     Trapezoid,
+    /// Time-optimal under every joint's velocity and acceleration limits (TOPP-RA), with an
+    /// exact stop at every corner.
+    Optimal,
 }
 
 /// The angle unit of the joint CSV, as named on the command line.
@@ -59,6 +62,7 @@ impl From<ProfileArg> for Profile {
         match profile {
             ProfileArg::Constant => Profile::Constant,
             ProfileArg::Trapezoid => Profile::Trapezoid,
+            ProfileArg::Optimal => Profile::Optimal,
         }
     }
 }

@@ -5,28 +5,28 @@
 //!
 //! TOPP-RA, the reachability analysis of H. Pham and Q.-C. Pham, "A New Approach to
 //! Time-Optimal Path Parameterization Based on Reachability Analysis", IEEE Transactions on
-//! Robotics 34(3), 2018. The path is cut into `N` equal intervals of s (grid points
-//! s_i = i / N). The unknowns are x = ṡ² at each grid point and u = s̈, constant over each
-//! interval, so that x_{i+1} = x_i + 2 Δ u_i with Δ = 1 / N. Every bound is a [`Constraint`]
+//! Robotics 34(3), 2018. The path is cut into intervals of s by a [`Grid`]: equal ones, with the
+//! first and last refined geometrically towards the ends. The unknowns are x = ṡ² at each grid point and u = s̈, constant over each
+//! interval, so that x_{i+1} = x_i + 2 Δ_i u_i with Δ_i = s_{i+1} − s_i. Every bound is a [`Constraint`]
 //! of the form
 //!
 //! `lo ≤ a(s) · s̈ + b(s) · ṡ² + c(s) ≤ hi`
 //!
 //! (a joint with q(s): velocity bounds are folded into the largest ṡ² allowed at each point,
 //! acceleration bounds have a = q′(s), b = q″(s), c = 0). This crate enforces each constraint at
-//! **both ends** of every interval (at s_{i+1} with x_{i+1} = x_i + 2 Δ u_i, which is still
+//! **both ends** of every interval (at s_{i+1} with x_{i+1} = x_i + 2 Δ_i u_i, which is still
 //! linear in (u_i, x_i)), so that the piecewise-constant s̈ meets the bounds on either side of
 //! each grid point, not only where the interval starts as in the paper's collocation.
 //!
 //! 1. **Backward pass**: the controllable sets K_i (the ṡ² at s_i from which the end can be
 //!    reached at rest) from K_N = {0}: K_i is the projection on x of the polygon
-//!    {(u, x) : the constraints at stage i hold and x + 2 Δ u ∈ K_{i+1}}. With two unknowns
+//!    {(u, x) : the constraints at stage i hold and x + 2 Δ_i u ∈ K_{i+1}}. With two unknowns
 //!    that linear programme is solved exactly, in closed form, by Fourier–Motzkin elimination of
 //!    u (every pair of an upper and a lower bound on u gives a bound on x): no LP solver.
 //! 2. **Forward pass**: from x_0 = 0, the greedy choice of the largest u_i that keeps
 //!    x_{i+1} in K_{i+1} — optimal by the paper's Theorem 2.
 //!
-//! The time of each interval is 2 Δ / (√x_i + √x_{i+1}), and s(t) is a parabola inside it.
+//! The time of each interval is 2 Δ_i / (√x_i + √x_{i+1}), and s(t) is a parabola inside it.
 //!
 //! # Streaming
 //!
@@ -46,7 +46,7 @@
 //! [`PathConstraints`].
 //!
 //! ```
-//! use biscara_timing::{Constraint, PathConstraints, TimeOptimal};
+//! use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal};
 //!
 //! /// s̈ within ±4 /s², ṡ at most 1 /s: a trapezoid of 1/1 + 1/4 = 1.25 s.
 //! struct Box;
@@ -57,7 +57,7 @@
 //!         1.0
 //!     }
 //! }
-//! let plan = TimeOptimal::new(&mut Box, 1000, 4096)?;
+//! let plan = TimeOptimal::new(&mut Box, Grid::uniform(1000), 4096)?;
 //! assert!((plan.duration() - 1.25).abs() < 0.01);
 //! # Ok::<(), biscara_timing::TimingError>(())
 //! ```
@@ -67,7 +67,7 @@
 mod planner;
 mod polygon;
 
-pub use planner::{Interval, TimeOptimal};
+pub use planner::{Grid, Interval, TimeOptimal};
 
 /// One bound along the path: `lo ≤ a · s̈ + b · ṡ² + c ≤ hi` at one grid point.
 ///

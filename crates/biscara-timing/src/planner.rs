@@ -29,6 +29,66 @@ impl Interval {
     }
 }
 
+/// The grid points s_0 = 0 < s_1 < … < s_M = 1: `intervals` equal intervals of length Δ, the
+/// first and the last of them each cut geometrically towards the path's end, at
+/// Δ·ratio, Δ·ratio², …, Δ·ratio^refine from it (M = `intervals` + 2 · `refine`), so that the
+/// short ramps from and to rest are resolved without a fine grid all along.
+///
+/// TOPP-RA loses time in the interval where the optimum switches from accelerating to cruising
+/// (x = ṡ² is linear in s there, below the optimum's corner): a fraction of that interval's
+/// traversal time. A ramp shorter than one interval of a uniform grid would lose most of an
+/// interval per stop; with the ends refined, the switch falls in an interval of about
+/// (1/ratio − 1) times the ramp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// Number of equal intervals (≥ 1; ≥ 2 when `refine` > 0).
+    pub intervals: usize,
+    /// Number of points added between each end and its nearest equal interval's point.
+    pub refine: u32,
+    /// Ratio of consecutive refined points' distances to the end, in (0, 1).
+    pub ratio: f64,
+}
+
+impl Grid {
+    /// `intervals` equal intervals.
+    pub fn uniform(intervals: usize) -> Grid {
+        Grid { intervals, refine: 0, ratio: 0.5 }
+    }
+
+    /// Number of intervals, M.
+    pub fn len(&self) -> usize {
+        self.intervals + 2 * self.refine as usize
+    }
+
+    /// Whether it has no interval.
+    pub fn is_empty(&self) -> bool {
+        self.intervals == 0
+    }
+
+    /// Grid point `index` (0 ..= M).
+    pub fn s(&self, index: usize) -> f64 {
+        let refine = self.refine as usize;
+        let last = self.len();
+        let step = 1.0 / self.intervals as f64;
+        // From an end: 0, Δ·ratio^r, …, Δ·ratio, Δ at 0, 1, …, r + 1.
+        let from_end = |k: usize| {
+            if k == 0 { 0.0 } else { step * self.ratio.powi((refine + 1 - k) as i32) }
+        };
+        if index <= refine {
+            from_end(index)
+        } else if index + refine >= last {
+            1.0 - from_end(last - index)
+        } else {
+            (index - refine) as f64 * step
+        }
+    }
+
+    fn is_valid(&self) -> bool {
+        let refined = self.refine == 0 || (self.intervals >= 2 && self.refine <= 1000);
+        self.intervals > 0 && refined && self.ratio > 0.0 && self.ratio < 1.0
+    }
+}
+
 /// The time-optimal time scaling of a path under [`PathConstraints`] (see the crate's
 /// documentation for the method), streamed: at most `2 · window + 1` grid points are held.
 ///
@@ -36,6 +96,8 @@ impl Interval {
 /// duration pass and the sampling pass).
 #[derive(Debug, Clone)]
 pub struct TimeOptimal {
+    grid: Grid,
+    /// Number of grid intervals.
     intervals: usize,
     window: usize,
     count: usize,
@@ -58,18 +120,19 @@ pub struct TimeOptimal {
 }
 
 impl TimeOptimal {
-    /// Plans `path` over a grid of `intervals` equal steps of s, holding windows of `window`
-    /// intervals plus as many of look-ahead; learns the duration.
+    /// Plans `path` over `grid`, holding windows of `window` intervals plus as many of
+    /// look-ahead; learns the duration.
     pub fn new<P: PathConstraints + ?Sized>(
         path: &mut P,
-        intervals: usize,
+        grid: Grid,
         window: usize,
     ) -> Result<TimeOptimal, TimingError> {
-        if intervals == 0 {
+        if !grid.is_valid() {
             return Err(TimingError::NoIntervals);
         }
         let mut plan = TimeOptimal {
-            intervals,
+            grid,
+            intervals: grid.len(),
             window: window.max(1),
             count: path.count(),
             duration: 0.0,
@@ -98,9 +161,9 @@ impl TimeOptimal {
         self.duration
     }
 
-    /// Number of grid intervals.
-    pub fn intervals(&self) -> usize {
-        self.intervals
+    /// The grid.
+    pub fn grid(&self) -> Grid {
+        self.grid
     }
 
     /// Goes back to the start of the path (re-planning the first window unless the whole grid
@@ -158,7 +221,7 @@ impl TimeOptimal {
         let local = self.index - self.first;
         self.build_stage(local);
         let (_, u_max) = self.polygon.u_range(self.x);
-        let step = self.step();
+        let step = self.step(self.index);
         let mut x_end = (self.x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
         if self.index + 1 == self.intervals || x_end.is_nan() {
             x_end = 0.0;
@@ -180,12 +243,13 @@ impl TimeOptimal {
         Ok(Some(interval))
     }
 
-    fn step(&self) -> f64 {
-        1.0 / self.intervals as f64
+    /// Length of interval `index`.
+    fn step(&self, index: usize) -> f64 {
+        self.s(index + 1) - self.s(index)
     }
 
     fn s(&self, index: usize) -> f64 {
-        index as f64 / self.intervals as f64
+        self.grid.s(index)
     }
 
     /// Holds grid points `from` to `from + 2·window` (or the end), evaluating those not held
@@ -261,7 +325,7 @@ impl TimeOptimal {
     /// The half-planes in (u, x) of the stage from held point `local` to the next: every
     /// constraint at both ends of the interval, and the next point in its controllable set.
     fn build_stage(&mut self, local: usize) {
-        let step = self.step();
+        let step = self.step(self.first + local);
         let count = self.count;
         self.polygon.clear();
         for row in &self.rows[local * count..(local + 1) * count] {
@@ -322,7 +386,9 @@ mod tests {
     #[test]
     fn a_box_gives_the_trapezoid() {
         for (rate, acceleration) in [(1.0, 4.0), (3.0, 4.0), (0.2, 50.0)] {
-            let plan = TimeOptimal::new(&mut trapezoid(rate, acceleration), 2000, 4096).unwrap();
+            let plan =
+                TimeOptimal::new(&mut trapezoid(rate, acceleration), Grid::uniform(2000), 4096)
+                    .unwrap();
             let shortest = exact(rate, acceleration);
             // The plan is feasible for the continuous problem, so never shorter; the switch from
             // accelerating to cruising falls on the grid, which costs at most a little.
@@ -332,9 +398,29 @@ mod tests {
     }
 
     #[test]
+    fn refined_ends_resolve_short_ramps() {
+        // A ramp of s = 1/2000 (ṡ = 1 at 1000 /s²) on a grid of 10 intervals: uniform, each stop
+        // costs most of an interval at cruise speed; refined, almost nothing.
+        let shortest = exact(1.0, 1000.0);
+        let uniform =
+            TimeOptimal::new(&mut trapezoid(1.0, 1000.0), Grid::uniform(10), 4096).unwrap();
+        assert!(uniform.duration() > shortest + 0.1, "{}", uniform.duration());
+        let grid = Grid { intervals: 10, refine: 11, ratio: 0.5 };
+        assert_eq!(grid.s(0), 0.0);
+        assert_eq!(grid.s(1), 0.1 / 2048.0);
+        assert_eq!(grid.s(12), 0.1);
+        assert_eq!(grid.s(13), 0.2);
+        assert_relative_eq!(grid.s(grid.len() - 1), 1.0 - 0.1 / 2048.0, epsilon = 1e-15);
+        assert_eq!(grid.s(grid.len()), 1.0);
+        let refined = TimeOptimal::new(&mut trapezoid(1.0, 1000.0), grid, 4096).unwrap();
+        assert!(refined.duration() >= shortest * (1.0 - 1e-12));
+        assert_relative_eq!(refined.duration(), shortest, max_relative = 2e-4);
+    }
+
+    #[test]
     fn samples_follow_the_plan_and_end_at_one() {
         let mut path = trapezoid(1.0, 4.0);
-        let mut plan = TimeOptimal::new(&mut path, 500, 4096).unwrap();
+        let mut plan = TimeOptimal::new(&mut path, Grid::uniform(500), 4096).unwrap();
         let duration = plan.duration();
         let mut previous = 0.0;
         for k in 0..=1000 {
@@ -352,17 +438,17 @@ mod tests {
     #[test]
     fn short_windows_stay_feasible_and_long_ones_are_optimal() {
         // Braking from ṡ = 1 at 4 /s² takes s = 1/8: 125 of 1000 intervals.
-        let whole = TimeOptimal::new(&mut trapezoid(1.0, 4.0), 1000, 4096).unwrap();
+        let whole = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 4096).unwrap();
         let mut path = trapezoid(1.0, 4.0);
-        let long = TimeOptimal::new(&mut path, 1000, 150).unwrap();
+        let long = TimeOptimal::new(&mut path, Grid::uniform(1000), 150).unwrap();
         assert_relative_eq!(long.duration(), whole.duration(), max_relative = 1e-12);
         // Windows of 150 + 150 intervals: the grid is evaluated twice (duration, then samples),
         // each time with the 150 look-ahead points of every window after the first held over.
         assert!(path.calls <= 2 * 1001 + 2, "{} evaluations", path.calls);
-        let short = TimeOptimal::new(&mut trapezoid(1.0, 4.0), 1000, 20).unwrap();
+        let short = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 20).unwrap();
         assert!(short.duration() > whole.duration());
         let mut path = trapezoid(1.0, 4.0);
-        let mut short = TimeOptimal::new(&mut path, 1000, 20).unwrap();
+        let mut short = TimeOptimal::new(&mut path, Grid::uniform(1000), 20).unwrap();
         while let Some(interval) = short.next_interval(&mut path).unwrap() {
             assert!(interval.u.abs() <= 4.0 * (1.0 + 1e-9));
             assert!(interval.x_end <= 1.0 + 1e-12);
@@ -395,19 +481,19 @@ mod tests {
     fn paths_that_cannot_be_timed_are_errors() {
         // One point where ṡ must be 0 is a stop on the way; two in a row block the path.
         assert_eq!(
-            TimeOptimal::new(&mut Blocked, 10, 100).unwrap_err(),
+            TimeOptimal::new(&mut Blocked, Grid::uniform(10), 100).unwrap_err(),
             TimingError::Stuck { s: 0.4 }
         );
         assert_eq!(
-            TimeOptimal::new(&mut Pushed, 10, 100).unwrap_err(),
+            TimeOptimal::new(&mut Pushed, Grid::uniform(10), 100).unwrap_err(),
             TimingError::RestForbidden { s: 0.0, index: 0 }
         );
         assert_eq!(
-            TimeOptimal::new(&mut trapezoid(1.0, 1.0), 0, 100).unwrap_err(),
+            TimeOptimal::new(&mut trapezoid(1.0, 1.0), Grid::uniform(0), 100).unwrap_err(),
             TimingError::NoIntervals
         );
         assert!(matches!(
-            TimeOptimal::new(&mut trapezoid(f64::INFINITY, f64::INFINITY), 10, 100),
+            TimeOptimal::new(&mut trapezoid(f64::INFINITY, f64::INFINITY), Grid::uniform(10), 100),
             Err(TimingError::Unbounded { .. })
         ));
     }
@@ -470,15 +556,15 @@ mod tests {
         /// Every bound holds at both ends of every interval, the plan starts and ends at rest,
         /// and a windowed plan is never faster than the whole one.
         #[test]
-        fn plans_keep_every_bound(path in joints(), window in 5usize..300) {
-            let intervals = 400;
-            let step = 1.0 / intervals as f64;
+        fn plans_keep_every_bound(path in joints(), window in 5usize..300, refine in 0u32..12) {
+            let grid = Grid { intervals: 400, refine, ratio: 0.7 };
+            let intervals = grid.len();
             let mut whole_path = path.clone();
-            let whole = TimeOptimal::new(&mut whole_path, intervals, 4096);
+            let whole = TimeOptimal::new(&mut whole_path, grid, 4096);
             prop_assume!(whole.is_ok());
             let whole = whole.unwrap();
             let mut windowed_path = path.clone();
-            let mut plan = TimeOptimal::new(&mut windowed_path, intervals, window).unwrap();
+            let mut plan = TimeOptimal::new(&mut windowed_path, grid, window).unwrap();
             prop_assert!(plan.duration() >= whole.duration() * (1.0 - 1e-9));
             let mut total = 0.0;
             let mut count = 0;
@@ -496,7 +582,9 @@ mod tests {
                         prop_assert!(value.abs() <= row.hi + slack, "joint {j} at {s}: {value} > {}", row.hi);
                     }
                 }
-                prop_assert!((interval.s_end - interval.s_start - step).abs() < 1e-12);
+                prop_assert_eq!(interval.s_start, grid.s(count));
+                prop_assert_eq!(interval.s_end, grid.s(count + 1));
+                prop_assert!(interval.s_end > interval.s_start);
                 total += interval.duration;
                 count += 1;
                 if count == intervals {
