@@ -12,6 +12,7 @@ mod mujoco;
 mod programming;
 mod robustness;
 mod rs274;
+mod toppra;
 mod util;
 mod view_cli;
 mod virtual_robot;
