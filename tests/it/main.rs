@@ -9,6 +9,7 @@ mod interpret;
 mod linuxcnc;
 mod motion_cli;
 mod mujoco;
+mod optimal_profile;
 mod programming;
 mod robustness;
 mod rs274;
