@@ -277,3 +277,42 @@ proptest! {
         }
     }
 }
+
+/// A helix of 5 turns (942 mm, about 5,600 grid intervals) is planned in several windows of the
+/// planner: the trajectory still keeps every limit, ends on the programmed point, and takes the
+/// time of the feed (plus the ramps, a few ms).
+#[test]
+fn a_long_helix_is_planned_in_windows() {
+    let robot = robot(true);
+    let model = Kinematics::new(&robot).expect("robot");
+    let start = [30.0, 350.0, 90.0, 0.0];
+    let motions = [
+        Motion { line: 1, kind: MotionKind::Rapid { end: start } },
+        Motion {
+            line: 2,
+            kind: MotionKind::Arc {
+                end: [30.0, 350.0, 10.0, 90.0],
+                center: [0.0, 350.0],
+                plane: Plane::Xy,
+                clockwise: true,
+                turns: 5,
+                feed: feed(600.0),
+            },
+        },
+    ];
+    let rows = trajectory(&motions, &robot, Profile::Optimal).expect("trajectory");
+    let (velocity, acceleration) = peak_ratios(&rows, &robot);
+    for j in 0..4 {
+        assert!(velocity[j] <= 1.0 + TOLERANCE, "joint {j}: {velocity:?}");
+        assert!(acceleration[j] <= 1.0 + TOLERANCE, "joint {j}: {acceleration:?}");
+    }
+    let last = rows.last().expect("rows");
+    assert_eq!(last.pose, [30.0, 350.0, 10.0, 90.0]);
+    let helix = rows.iter().filter(|row| row.line == 2).count() as f64 * 0.001;
+    let length = (5.0 * std::f64::consts::TAU * 30.0f64).hypot(80.0);
+    let at_feed = length / 10.0;
+    assert!(
+        helix >= at_feed && helix <= at_feed + 0.05,
+        "{helix} s against {at_feed} s at the feed"
+    );
+}
