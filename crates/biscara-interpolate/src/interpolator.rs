@@ -145,20 +145,20 @@ pub enum InterpolateError<E> {
 /// Below this, a length (mm) or rotation (degrees) counts as no movement.
 const NO_MOVEMENT: f64 = 1e-12;
 
-/// The optimal profile's grid along a move: an interval per 0.25 mm of path, per 0.25° of C and
-/// per degree the path turns, and at least [`MIN_INTERVALS`]. TOPP-RA keeps every bound at the
-/// grid points; between them a joint's q′ and q″ change by a little, which the margins of the
-/// [`SpeedLimit`] cover (see the property tests of `biscara-joints`).
-const GRID_MM: f64 = 0.25;
-const GRID_DEGREES: f64 = 0.25;
-const GRID_TURN_DEGREES: f64 = 1.0;
+/// The optimal profile's grid along a move: an interval per 0.5 mm of path and per 2° the path
+/// turns, and at least [`MIN_INTERVALS`]. C needs none: it moves in proportion to s, so it adds a
+/// constant to θ3's q′ and nothing to any q″. TOPP-RA keeps every bound at the grid points;
+/// between them a joint's q′ and q″ change by a little, which the margins of the [`SpeedLimit`]
+/// cover (see the property tests of `biscara-joints`).
+const GRID_MM: f64 = 0.5;
+const GRID_TURN_DEGREES: f64 = 2.0;
 const MIN_INTERVALS: f64 = 4.0;
 /// The first and last interval are refined geometrically (see `biscara_timing::Grid`) by this
 /// ratio, down to an eighth of the ramp from rest to the Cartesian speed limit (`ṡ²/2s̈` in s):
 /// the interval where the ramp ends is then about 0.4 ramps long. At most `MAX_REFINE` points.
 const REFINE_RATIO: f64 = 0.7;
 const MAX_REFINE: f64 = 100.0;
-/// Intervals planned at a time (and as many of look-ahead): 256 mm at 0.25 mm, far more than the
+/// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
 /// braking distance from any speed a robot file allows (500 mm/s at 5000 mm/s² brakes in
 /// 25 mm). Holds 2049 grid points of at most 9 constraints: about 200 KB.
 const WINDOW: usize = 1024;
@@ -388,9 +388,7 @@ where
             message: "the move is too slow to count in time steps".to_owned(),
         };
         if self.config.profile == Profile::Optimal {
-            let intervals = (length / GRID_MM
-                + rotation / GRID_DEGREES
-                + segment.turning() / GRID_TURN_DEGREES)
+            let intervals = (length / GRID_MM + segment.turning() / GRID_TURN_DEGREES)
                 .ceil()
                 .max(MIN_INTERVALS);
             if intervals.is_nan() || intervals >= 1e12 {

@@ -1,39 +1,67 @@
 //! The two-variable linear programmes of one TOPP-RA stage, in (u, x) = (s̈, ṡ²), solved exactly.
 
-/// Below this, a normalised half-plane's coefficient of u counts as zero.
+/// Below this, a half-plane's coefficient of u, relative to the larger of its two coefficients,
+/// counts as zero.
 const ZERO: f64 = 1e-12;
 
-/// The half-plane `alpha · u + beta · x ≤ gamma`, with `(alpha, beta)` of unit length.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct HalfPlane {
-    alpha: f64,
-    beta: f64,
-    gamma: f64,
+/// The half-planes of one stage, kept as what they say: bounds on x alone, constant bounds on
+/// u, and bounds `u ≤ p + r·x` (upper) or `u ≥ p + r·x` (lower).
+#[derive(Debug, Clone)]
+pub(crate) struct Polygon {
+    x_lo: f64,
+    x_hi: f64,
+    u_lo: f64,
+    u_hi: f64,
+    uppers: Vec<(f64, f64)>,
+    lowers: Vec<(f64, f64)>,
 }
 
-/// The half-planes of one stage.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Polygon {
-    planes: Vec<HalfPlane>,
+impl Default for Polygon {
+    fn default() -> Polygon {
+        Polygon {
+            x_lo: f64::NEG_INFINITY,
+            x_hi: f64::INFINITY,
+            u_lo: f64::NEG_INFINITY,
+            u_hi: f64::INFINITY,
+            uppers: Vec::new(),
+            lowers: Vec::new(),
+        }
+    }
 }
 
 impl Polygon {
     /// Empties it.
     pub(crate) fn clear(&mut self) {
-        self.planes.clear();
+        self.x_lo = f64::NEG_INFINITY;
+        self.x_hi = f64::INFINITY;
+        self.u_lo = f64::NEG_INFINITY;
+        self.u_hi = f64::INFINITY;
+        self.uppers.clear();
+        self.lowers.clear();
     }
 
     /// Adds `alpha · u + beta · x ≤ gamma`; a bound of +∞ bounds nothing, and a zero row is
     /// dropped (its feasibility is the caller's to check).
     pub(crate) fn push(&mut self, alpha: f64, beta: f64, gamma: f64) {
-        if gamma == f64::INFINITY {
+        let scale = alpha.abs().max(beta.abs());
+        if gamma == f64::INFINITY || scale == 0.0 {
             return;
         }
-        let norm = alpha.hypot(beta);
-        if norm == 0.0 {
+        if alpha.abs() <= ZERO * scale {
+            if beta > 0.0 {
+                self.x_hi = self.x_hi.min(gamma / beta);
+            } else {
+                self.x_lo = self.x_lo.max(gamma / beta);
+            }
             return;
         }
-        self.planes.push(HalfPlane { alpha: alpha / norm, beta: beta / norm, gamma: gamma / norm });
+        let (p, r) = (gamma / alpha, -beta / alpha);
+        match (alpha > 0.0, r == 0.0) {
+            (true, true) => self.u_hi = self.u_hi.min(p),
+            (false, true) => self.u_lo = self.u_lo.max(p),
+            (true, false) => self.uppers.push((p, r)),
+            (false, false) => self.lowers.push((p, r)),
+        }
     }
 
     /// Adds `lo ≤ alpha · u + beta · x ≤ hi`.
@@ -45,34 +73,33 @@ impl Polygon {
     /// The range of x over the polygon intersected with `lo ≤ x ≤ hi`, by Fourier–Motzkin
     /// elimination of u: `None` when it is empty.
     ///
-    /// Each half-plane with α > 0 bounds u from above by `p + r·x`, each with α < 0 from below;
-    /// u exists iff every lower bound is at most every upper bound, a linear condition on x per
-    /// pair. With m half-planes that is at most m²/4 pairs of a few flops each.
-    pub(crate) fn x_range(&self, mut lo: f64, mut hi: f64) -> Option<(f64, f64)> {
-        for plane in &self.planes {
-            if plane.alpha.abs() <= ZERO {
-                if plane.beta > 0.0 {
-                    hi = hi.min(plane.gamma / plane.beta);
-                } else {
-                    lo = lo.max(plane.gamma / plane.beta);
-                }
-            }
-        }
-        for upper in self.planes.iter().filter(|plane| plane.alpha > ZERO) {
-            let (p_upper, r_upper) = (upper.gamma / upper.alpha, -upper.beta / upper.alpha);
-            for lower in self.planes.iter().filter(|plane| plane.alpha < -ZERO) {
-                let (p_lower, r_lower) = (lower.gamma / lower.alpha, -lower.beta / lower.alpha);
+    /// u exists iff every lower bound `p_l + r_l·x` is at most every upper bound `p_u + r_u·x`,
+    /// a linear condition on x per pair: with m half-planes, at most m²/4 pairs of a
+    /// multiplication and a comparison (a division only where the range shrinks).
+    pub(crate) fn x_range(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = (lo.max(self.x_lo), hi.min(self.x_hi));
+        let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
+        let constant_lower = (self.u_lo > f64::NEG_INFINITY).then_some((self.u_lo, 0.0));
+        for &(p_upper, r_upper) in self.uppers.iter().chain(&constant_upper) {
+            for &(p_lower, r_lower) in self.lowers.iter().chain(&constant_lower) {
                 // p_lower + r_lower·x ≤ p_upper + r_upper·x
                 let coefficient = r_lower - r_upper;
                 let bound = p_upper - p_lower;
                 if coefficient > 0.0 {
-                    hi = hi.min(bound / coefficient);
+                    if bound < hi * coefficient {
+                        hi = bound / coefficient;
+                    }
                 } else if coefficient < 0.0 {
-                    lo = lo.max(bound / coefficient);
+                    if bound < lo * coefficient {
+                        lo = bound / coefficient;
+                    }
                 } else if bound < 0.0 {
                     return None;
                 }
             }
+        }
+        if self.u_lo > self.u_hi {
+            return None;
         }
         (lo <= hi).then_some((lo, hi))
     }
@@ -80,15 +107,8 @@ impl Polygon {
     /// The largest u at the given x (`+∞` when nothing bounds it from above) and the smallest
     /// (`−∞` likewise).
     pub(crate) fn u_range(&self, x: f64) -> (f64, f64) {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for plane in &self.planes {
-            let bound = (plane.gamma - plane.beta * x) / plane.alpha;
-            if plane.alpha > ZERO {
-                hi = hi.min(bound);
-            } else if plane.alpha < -ZERO {
-                lo = lo.max(bound);
-            }
-        }
+        let hi = self.uppers.iter().fold(self.u_hi, |hi, &(p, r)| hi.min(p + r * x));
+        let lo = self.lowers.iter().fold(self.u_lo, |lo, &(p, r)| lo.max(p + r * x));
         (lo, hi)
     }
 }
