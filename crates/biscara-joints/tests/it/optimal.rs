@@ -284,7 +284,6 @@ proptest! {
 #[test]
 fn a_long_helix_is_planned_in_windows() {
     let robot = robot(true);
-    let model = Kinematics::new(&robot).expect("robot");
     let start = [30.0, 350.0, 90.0, 0.0];
     let motions = [
         Motion { line: 1, kind: MotionKind::Rapid { end: start } },
