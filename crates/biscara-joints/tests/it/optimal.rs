@@ -278,8 +278,8 @@ proptest! {
     }
 }
 
-/// A helix of 5 turns (942 mm, about 5,600 grid intervals) is planned in several windows of the
-/// planner: the trajectory still keeps every limit, ends on the programmed point, and takes the
+/// A helix of 5 turns (942 mm, about 2,800 grid intervals) is planned in more than one window of
+/// the planner (1,024 intervals + 1,024 of look-ahead): the trajectory still keeps every limit, ends on the programmed point, and takes the
 /// time of the feed (plus the ramps, a few ms).
 #[test]
 fn a_long_helix_is_planned_in_windows() {
