@@ -219,7 +219,7 @@ impl TimeOptimal {
             self.fill(path, self.index)?;
         }
         let local = self.index - self.first;
-        self.build_stage(local);
+        self.build_stage(local, true);
         let (_, u_max) = self.polygon.u_range(self.x);
         let step = self.step(self.index);
         let mut x_end = (self.x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
@@ -310,7 +310,7 @@ impl TimeOptimal {
         self.k_max.clear();
         self.k_max.resize(held, 0.0);
         for local in (0..held - 1).rev() {
-            self.build_stage(local);
+            self.build_stage(local, false);
             // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
             // range is empty only by rounding: then only rest is controllable.
             let (_, top) = self.polygon.x_range(0.0, self.x_max[local]).unwrap_or((0.0, 0.0));
@@ -323,11 +323,12 @@ impl TimeOptimal {
     }
 
     /// The half-planes in (u, x) of the stage from held point `local` to the next: every
-    /// constraint at both ends of the interval, and the next point in its controllable set.
-    fn build_stage(&mut self, local: usize) {
+    /// constraint at both ends of the interval, and the next point in its controllable set (only
+    /// the upper bounds on u with `uppers_only`).
+    fn build_stage(&mut self, local: usize, uppers_only: bool) {
         let step = self.step(self.first + local);
         let count = self.count;
-        self.polygon.clear();
+        self.polygon.reset(uppers_only);
         for row in &self.rows[local * count..(local + 1) * count] {
             self.polygon.push_range(row.a, row.b, row.lo - row.c, row.hi - row.c);
         }

@@ -14,6 +14,8 @@ pub(crate) struct Polygon {
     u_hi: f64,
     uppers: Vec<(f64, f64)>,
     lowers: Vec<(f64, f64)>,
+    /// Keep only the upper bounds on u (all the forward pass needs).
+    uppers_only: bool,
 }
 
 impl Default for Polygon {
@@ -25,11 +27,19 @@ impl Default for Polygon {
             u_hi: f64::INFINITY,
             uppers: Vec::new(),
             lowers: Vec::new(),
+            uppers_only: false,
         }
     }
 }
 
 impl Polygon {
+    /// Empties it; with `uppers_only`, it then keeps only the upper bounds on u: `u_range`'s
+    /// upper end stays right, nothing else does.
+    pub(crate) fn reset(&mut self, uppers_only: bool) {
+        self.clear();
+        self.uppers_only = uppers_only;
+    }
+
     /// Empties it.
     pub(crate) fn clear(&mut self) {
         self.x_lo = f64::NEG_INFINITY;
@@ -43,8 +53,11 @@ impl Polygon {
     /// Adds `alpha · u + beta · x ≤ gamma`; a bound of +∞ bounds nothing, and a zero row is
     /// dropped (its feasibility is the caller's to check).
     pub(crate) fn push(&mut self, alpha: f64, beta: f64, gamma: f64) {
+        if gamma == f64::INFINITY || self.uppers_only && alpha <= 0.0 {
+            return;
+        }
         let scale = alpha.abs().max(beta.abs());
-        if gamma == f64::INFINITY || scale == 0.0 {
+        if scale == 0.0 {
             return;
         }
         if alpha.abs() <= ZERO * scale {
