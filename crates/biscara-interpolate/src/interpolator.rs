@@ -152,7 +152,7 @@ const NO_MOVEMENT: f64 = 1e-12;
 /// cover (see the property tests of `biscara-joints`).
 const GRID_MM: f64 = 0.5;
 const GRID_TURN_DEGREES: f64 = 2.0;
-const MIN_INTERVALS: f64 = 4.0;
+const MIN_INTERVALS: f64 = 2.0;
 /// The first and last interval are refined geometrically (see `biscara_timing::Grid`) by this
 /// ratio, down to half the ramp from rest to the Cartesian speed limit (`ṡ²/2s̈` in s): the
 /// interval where the ramp ends is then about 0.4 ramps long (closer to the end, x = ṡ² is

@@ -77,10 +77,34 @@ impl Polygon {
         }
     }
 
-    /// Adds `lo ≤ alpha · u + beta · x ≤ hi`.
+    /// Adds `lo ≤ alpha · u + beta · x ≤ hi`: one division for both sides.
     pub(crate) fn push_range(&mut self, alpha: f64, beta: f64, lo: f64, hi: f64) {
-        self.push(alpha, beta, hi);
-        self.push(-alpha, -beta, -lo);
+        let scale = alpha.abs().max(beta.abs());
+        if scale == 0.0 || alpha.abs() <= ZERO * scale {
+            self.push(alpha, beta, hi);
+            self.push(-alpha, -beta, -lo);
+            return;
+        }
+        let inverse = 1.0 / alpha;
+        let r = -beta * inverse;
+        // α > 0: u ≤ (hi − βx)/α and u ≥ (lo − βx)/α; α < 0: the other way round.
+        let (upper, lower) = if alpha > 0.0 { (hi, lo) } else { (lo, hi) };
+        if upper.is_finite() {
+            let p = upper * inverse;
+            if r == 0.0 {
+                self.u_hi = self.u_hi.min(p);
+            } else {
+                self.uppers.push((p, r));
+            }
+        }
+        if lower.is_finite() && !self.uppers_only {
+            let p = lower * inverse;
+            if r == 0.0 {
+                self.u_lo = self.u_lo.max(p);
+            } else {
+                self.lowers.push((p, r));
+            }
+        }
     }
 
     /// The range of x over the polygon intersected with `lo ≤ x ≤ hi`, by Fourier–Motzkin
