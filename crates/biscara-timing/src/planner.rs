@@ -311,9 +311,16 @@ impl TimeOptimal {
         self.k_max.resize(held, 0.0);
         for local in (0..held - 1).rev() {
             self.build_stage(local, false);
+            // Where the speed limit itself is controllable (cruising, far from a stop), it is the
+            // top: the feasible x form an interval that holds 0, so one O(m) test settles it.
+            let x_max = self.x_max[local];
+            if x_max.is_finite() && self.polygon.contains_x(x_max) {
+                self.k_max[local] = x_max;
+                continue;
+            }
             // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
             // range is empty only by rounding: then only rest is controllable.
-            let (_, top) = self.polygon.x_range(0.0, self.x_max[local]).unwrap_or((0.0, 0.0));
+            let (_, top) = self.polygon.x_range(0.0, x_max).unwrap_or((0.0, 0.0));
             if top.is_infinite() {
                 return Err(TimingError::Unbounded { s: self.s(self.first + local) });
             }

@@ -141,6 +141,12 @@ impl Polygon {
         (lo <= hi).then_some((lo, hi))
     }
 
+    /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)).
+    pub(crate) fn contains_x(&self, x: f64) -> bool {
+        let (lo, hi) = self.u_range(x);
+        x >= self.x_lo && x <= self.x_hi && lo <= hi
+    }
+
     /// The largest u at the given x (`+∞` when nothing bounds it from above) and the smallest
     /// (`−∞` likewise).
     pub(crate) fn u_range(&self, x: f64) -> (f64, f64) {
@@ -229,7 +235,10 @@ mod tests {
             if hi < 8.0 - 1e-3 {
                 let (low, high) = u_bounds(hi + 1e-3);
                 prop_assert!(low > high, "x = {} is still feasible", hi + 1e-3);
+                prop_assert!(!polygon.contains_x(hi + 1e-3));
             }
+            prop_assert!(polygon.contains_x(0.0));
+            prop_assert!(polygon.contains_x((hi - 1e-6).max(0.0)));
         }
     }
 }
