@@ -154,9 +154,9 @@ const GRID_MM: f64 = 0.5;
 const GRID_TURN_DEGREES: f64 = 2.0;
 const MIN_INTERVALS: f64 = 2.0;
 /// The first and last interval are refined geometrically (see `biscara_timing::Grid`) by this
-/// ratio, down to half the ramp from rest to the Cartesian speed limit (`ṡ²/2s̈` in s): the
-/// interval where the ramp ends is then about 0.4 ramps long (closer to the end, x = ṡ² is
-/// linear in s and any grid holds it exactly). At most `MAX_REFINE` points.
+/// ratio, down to an eighth of the ramp from rest to the Cartesian speed limit (`ṡ²/2s̈` in s):
+/// the interval where the ramp ends is then about 0.4 ramps long, even where a joint limit makes
+/// the ramp shorter than the Cartesian one. At most `MAX_REFINE` points.
 const REFINE_RATIO: f64 = 0.7;
 const MAX_REFINE: f64 = 100.0;
 /// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
