@@ -37,6 +37,9 @@ pub(crate) enum ProfileArg {
     Constant,
     /// Accelerate, cruise, decelerate: an exact stop at every corner.
     Trapezoid,
+    /// Time-optimal under every joint's velocity and acceleration limits (TOPP-RA), with an
+    /// exact stop at every corner.
+    Optimal,
 }
 
 impl From<ProfileArg> for Profile {
@@ -44,6 +47,7 @@ impl From<ProfileArg> for Profile {
         match profile {
             ProfileArg::Constant => Profile::Constant,
             ProfileArg::Trapezoid => Profile::Trapezoid,
+            ProfileArg::Optimal => Profile::Optimal,
         }
     }
 }

@@ -164,8 +164,29 @@ pub(crate) fn write_output(
     match path {
         None => write_stdout(write),
         Some(path) if path == Path::new("-") => write_stdout(write),
+        Some(path) if is_special(path) => write_special(path, write),
         Some(path) => write_file_atomically(path, write),
     }
+}
+
+/// Whether `path` exists and is not a regular file (`/dev/null`, a FIFO, a terminal): renaming a
+/// temporary file over it would replace the device with a file, so it is written in place.
+fn is_special(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|metadata| !metadata.is_file() && !metadata.is_dir())
+}
+
+fn write_special(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    let mut out = BufWriter::new(file);
+    write(&mut out)?;
+    out.flush()?;
+    Ok(())
 }
 
 fn write_stdout(write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>) -> anyhow::Result<()> {

@@ -80,3 +80,28 @@ fn a_closed_pipe_ends_the_run_quietly_with_success() {
     assert_eq!(output.status.code(), Some(0), "stderr: {stderr}");
     assert!(!stderr.contains("error"), "a broken pipe is not reported: {stderr}");
 }
+
+/// `-o` naming a FIFO (or `/dev/null`, a device) writes into it: renaming a temporary file over
+/// it would replace the device or pipe with a regular file (as root, even `/dev/null`).
+#[test]
+fn an_output_that_is_not_a_regular_file_is_written_in_place() {
+    let dir = temp_dir("fifo-output");
+    std::fs::write(dir.join("job.ngc"), "G0 X0 Y400 Z50\nG1 X10 F600\nM2\n").expect("write");
+    let fifo = dir.join("out.fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo (coreutils)");
+    assert!(made.success());
+    let reader_path = fifo.clone();
+    let reader = std::thread::spawn(move || std::fs::read_to_string(reader_path).expect("read"));
+    let output = Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(["interpret", "job.ngc", "-o", "out.fifo"])
+        .current_dir(&dir)
+        .output()
+        .expect("run biscara");
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    // Checked before waiting for the reader, which would wait forever on a replaced FIFO.
+    use std::os::unix::fs::FileTypeExt;
+    let kind = std::fs::symlink_metadata(&fifo).expect("fifo").file_type();
+    assert!(kind.is_fifo(), "the FIFO was replaced: {kind:?}");
+    let written = reader.join().expect("reader");
+    assert_eq!(written.lines().count(), 3, "{written}");
+}

@@ -318,9 +318,10 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
         match byte {
             b'm' => {
                 if let Some(number) = number_after(&squeezed, at)
-                    && printer_m_code(number) {
-                        return Some((Dialect::Marlin, "a printer firmware M-code"));
-                    }
+                    && printer_m_code(number)
+                {
+                    return Some((Dialect::Marlin, "a printer firmware M-code"));
+                }
             }
             b'g' => match number_after(&squeezed, at) {
                 Some(0 | 1) => g_motion = true,

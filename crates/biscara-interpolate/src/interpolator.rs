@@ -1,6 +1,7 @@
 //! The interpolator: an iterator of motions in, an iterator of Cartesian samples out.
 
 use biscara_motion::{Motion, MotionKind, Position};
+use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal};
 
 use crate::{Profile, Segment, Timing};
 
@@ -46,11 +47,51 @@ pub struct CartesianSample {
 }
 
 /// A bound on how fast a move may be traversed, from outside the Cartesian world (the joint
-/// velocity limits, computed by the joint-trajectory stage).
+/// limits, computed by the joint-trajectory stage).
+///
+/// The trapezoid profile asks for one rate per move ([`max_rate`](Self::max_rate)); the optimal
+/// profile asks for the joints' limits ([`joint_bounds`](Self::joint_bounds)) and their
+/// derivatives along the move ([`joint_derivatives`](Self::joint_derivatives)).
 pub trait SpeedLimit {
     /// The largest path-parameter rate ds/dt (1/s) allowed on `segment`, with what limits it;
     /// `None` when nothing does.
     fn max_rate(&mut self, segment: &Segment) -> Option<RateLimit>;
+
+    /// The joints whose velocity and acceleration the optimal profile keeps within bounds (at
+    /// most [`MAX_JOINTS`]; the first `MAX_JOINTS` are used). None by default.
+    fn joint_bounds(&self) -> &[JointBound] {
+        &[]
+    }
+
+    /// Writes `dq/ds` into `first` and `d²q/ds²` into `second` for every joint of
+    /// [`joint_bounds`](Self::joint_bounds), at path parameter `s` of `segment`; `false` where
+    /// the robot cannot take the pose (no joint bound applies there: the joint-trajectory stage
+    /// reports such poses). `false` by default.
+    fn joint_derivatives(
+        &mut self,
+        segment: &Segment,
+        s: f64,
+        first: &mut [f64],
+        second: &mut [f64],
+    ) -> bool {
+        let _ = (segment, s, first, second);
+        false
+    }
+}
+
+/// Most joints a [`SpeedLimit`] may bound for the optimal profile.
+pub const MAX_JOINTS: usize = 8;
+
+/// One joint's limits for the optimal profile, in the units of
+/// [`SpeedLimit::joint_derivatives`] (radians or mm, seconds), margins included.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointBound {
+    /// Name, for reports (`theta1`, …).
+    pub name: &'static str,
+    /// Largest |dq/dt|.
+    pub max_velocity: f64,
+    /// Largest |d²q/dt²|.
+    pub max_acceleration: f64,
 }
 
 /// A rate bound and its cause.
@@ -104,6 +145,103 @@ pub enum InterpolateError<E> {
 /// Below this, a length (mm) or rotation (degrees) counts as no movement.
 const NO_MOVEMENT: f64 = 1e-12;
 
+/// The optimal profile's grid along a move: an interval per 0.5 mm of path and per 2° the path
+/// turns, and at least [`MIN_INTERVALS`]. C needs none: it moves in proportion to s, so it adds a
+/// constant to θ3's q′ and nothing to any q″. TOPP-RA keeps every bound at the grid points;
+/// between them a joint's q′ and q″ change by a little, which the margins of the [`SpeedLimit`]
+/// cover (see the property tests of `biscara-joints`).
+const GRID_MM: f64 = 0.5;
+const GRID_TURN_DEGREES: f64 = 2.0;
+const MIN_INTERVALS: f64 = 2.0;
+/// The first and last interval are refined geometrically (see `biscara_timing::Grid`) by this
+/// ratio, down to an eighth of the ramp from rest to the Cartesian speed limit (`ṡ²/2s̈` in s):
+/// the interval where the ramp ends is then about 0.4 ramps long, even where a joint limit makes
+/// the ramp shorter than the Cartesian one. At most `MAX_REFINE` points.
+const REFINE_RATIO: f64 = 0.7;
+const MAX_REFINE: f64 = 100.0;
+/// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
+/// braking distance from any speed a robot file allows (500 mm/s at 5000 mm/s² brakes in
+/// 25 mm). Holds 2049 grid points of at most 9 constraints: about 200 KB.
+const WINDOW: usize = 1024;
+
+/// How a move advances in time.
+#[derive(Debug, Clone)]
+enum Schedule {
+    /// Constant or trapezoid: a closed form.
+    Closed(Timing),
+    /// The optimal profile, planned as it is sampled.
+    Optimal(Box<OptimalSchedule>),
+}
+
+#[derive(Debug, Clone)]
+struct OptimalSchedule {
+    plan: TimeOptimal,
+    steps: u64,
+    /// Plan time per sampled time (≤ 1: the duration rounded up to whole steps).
+    scale: f64,
+    /// The Cartesian bounds of the move: largest ds/dt and |d²s/dt²|.
+    rate: f64,
+    acceleration: f64,
+}
+
+impl Schedule {
+    fn steps(&self) -> u64 {
+        match self {
+            Schedule::Closed(timing) => timing.steps(),
+            Schedule::Optimal(optimal) => optimal.steps,
+        }
+    }
+}
+
+/// The bounds of one move for [`TimeOptimal`]: |d²s/dt²| (the path and C accelerations), the
+/// largest ds/dt (feed, rapid speed, C), and every joint's velocity and acceleration.
+struct MoveBounds<'a, L> {
+    segment: &'a Segment,
+    limit: &'a mut L,
+    rate: f64,
+    acceleration: f64,
+    /// The lowest rate a joint velocity allows at a grid point, and that joint.
+    slowest: Option<RateLimit>,
+}
+
+impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
+    fn count(&self) -> usize {
+        1 + self.limit.joint_bounds().len().min(MAX_JOINTS)
+    }
+
+    fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+        let acceleration = self.acceleration;
+        out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
+        let joints = out.len() - 1;
+        let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
+        let known =
+            self.limit.joint_derivatives(
+                self.segment,
+                s,
+                &mut first[..joints],
+                &mut second[..joints],
+            ) && first[..joints].iter().chain(&second[..joints]).all(|value| value.is_finite());
+        let mut rate = self.rate;
+        for (j, bound) in self.limit.joint_bounds()[..joints].iter().enumerate() {
+            if !known {
+                // Nothing bounds the joints where the robot cannot be (an unbounded row).
+                out[1 + j] = Constraint { lo: f64::NEG_INFINITY, hi: f64::INFINITY, ..out[0] };
+                continue;
+            }
+            let a = bound.max_acceleration;
+            out[1 + j] = Constraint { a: first[j], b: second[j], c: 0.0, lo: -a, hi: a };
+            let joint_rate = bound.max_velocity / first[j].abs();
+            if joint_rate < rate {
+                rate = joint_rate;
+            }
+            if self.slowest.is_none_or(|slowest| joint_rate < slowest.rate) {
+                self.slowest = Some(RateLimit { rate: joint_rate, cause: bound.name });
+            }
+        }
+        rate * rate
+    }
+}
+
 /// Turns motions into Cartesian samples at a fixed time step (SPEC §6).
 ///
 /// The first sample is the start pose at t = 0; every programmed end point is hit exactly by a
@@ -122,9 +260,9 @@ pub struct Interpolator<I, L, F> {
     finished: bool,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 enum Active {
-    Move { segment: Segment, timing: Timing, done: u64, line: usize },
+    Move { segment: Segment, schedule: Schedule, done: u64, line: usize },
     Hold { remaining: u64, line: usize },
 }
 
@@ -175,8 +313,8 @@ where
                 if segment.end().iter().any(|value| !value.is_finite()) {
                     return Err(fail("the end point is not a finite number".to_owned()));
                 }
-                if let Some(timing) = self.plan(line, &motion.kind, &segment)? {
-                    self.active = Some(Active::Move { segment, timing, done: 0, line });
+                if let Some(schedule) = self.plan(line, &motion.kind, &segment)? {
+                    self.active = Some(Active::Move { segment, schedule, done: 0, line });
                 }
                 self.pose = segment.end();
             }
@@ -213,7 +351,7 @@ where
         line: usize,
         kind: &MotionKind,
         segment: &Segment,
-    ) -> Result<Option<Timing>, InterpolateError<E>> {
+    ) -> Result<Option<Schedule>, InterpolateError<E>> {
         let length = segment.length();
         let rotation = segment.rotation().abs();
         if length < NO_MOVEMENT && rotation < NO_MOVEMENT {
@@ -240,15 +378,52 @@ where
             _ => ((limits.rapid_velocity / length).min(limits.rapid_rotation / rotation), false),
         };
         let mut rate = programmed;
-        if self.config.profile != Profile::Constant {
-            let mut cause = None;
-            if is_feed {
-                let cap = limits.rapid_rotation / rotation;
-                if cap < rate {
-                    rate = cap;
-                    cause = Some("C rotation");
-                }
+        let mut cause = None;
+        if self.config.profile != Profile::Constant && is_feed {
+            let cap = limits.rapid_rotation / rotation;
+            if cap < rate {
+                rate = cap;
+                cause = Some("C rotation");
             }
+        }
+        let too_long = || InterpolateError::Motion {
+            line,
+            message: "the move is too slow to count in time steps".to_owned(),
+        };
+        if self.config.profile == Profile::Optimal {
+            let intervals = (length / GRID_MM + segment.turning() / GRID_TURN_DEGREES)
+                .ceil()
+                .max(MIN_INTERVALS);
+            if intervals.is_nan() || intervals >= 1e12 {
+                return Err(too_long());
+            }
+            let ramp = rate * rate / (2.0 * acceleration);
+            let refine =
+                ((ramp * intervals / 8.0).ln() / REFINE_RATIO.ln()).ceil().clamp(0.0, MAX_REFINE);
+            let grid =
+                Grid { intervals: intervals as usize, refine: refine as u32, ratio: REFINE_RATIO };
+            let mut bounds =
+                MoveBounds { segment, limit: &mut self.limit, rate, acceleration, slowest: None };
+            let plan = TimeOptimal::new(&mut bounds, grid, WINDOW).map_err(|err| {
+                InterpolateError::Motion { line, message: format!("cannot time the move: {err}") }
+            })?;
+            if let Some(slowest) = bounds.slowest.filter(|slowest| slowest.rate < rate) {
+                rate = slowest.rate;
+                cause = Some(slowest.cause);
+            }
+            if let Some(cause) = cause {
+                (self.on_slow)(&SlowDown { line, cause, factor: rate / programmed });
+            }
+            let duration = plan.duration();
+            if !duration.is_finite() || duration / self.config.dt > 1e15 {
+                return Err(too_long());
+            }
+            let steps = crate::profile::steps_for(duration, self.config.dt);
+            let scale = duration / (steps as f64 * self.config.dt);
+            let optimal = OptimalSchedule { plan, steps, scale, rate: bounds.rate, acceleration };
+            return Ok(Some(Schedule::Optimal(Box::new(optimal))));
+        }
+        if self.config.profile != Profile::Constant {
             if let Some(limit) = self.limit.max_rate(segment)
                 && limit.rate < rate
             {
@@ -261,12 +436,9 @@ where
         }
         let timing = Timing::new(self.config.profile, rate, acceleration, self.config.dt);
         if timing.duration() / self.config.dt > 1e15 || !timing.duration().is_finite() {
-            return Err(InterpolateError::Motion {
-                line,
-                message: "the move is too slow to count in time steps".to_owned(),
-            });
+            return Err(too_long());
         }
-        Ok(Some(timing))
+        Ok(Some(Schedule::Closed(timing)))
     }
 }
 
@@ -286,12 +458,37 @@ where
         }
         loop {
             match &mut self.active {
-                Some(Active::Move { segment, timing, done, line }) if *done < timing.steps() => {
+                Some(Active::Move { segment, schedule, done, line })
+                    if *done < schedule.steps() =>
+                {
                     *done += 1;
-                    let pose = if *done == timing.steps() {
+                    let t = *done as f64 * self.config.dt;
+                    let pose = if *done == schedule.steps() {
                         segment.end()
                     } else {
-                        segment.point(timing.s_at(*done as f64 * self.config.dt))
+                        match schedule {
+                            Schedule::Closed(timing) => segment.point(timing.s_at(t)),
+                            Schedule::Optimal(optimal) => {
+                                let mut bounds = MoveBounds {
+                                    segment,
+                                    limit: &mut self.limit,
+                                    rate: optimal.rate,
+                                    acceleration: optimal.acceleration,
+                                    slowest: None,
+                                };
+                                match optimal.plan.s_at(&mut bounds, t * optimal.scale) {
+                                    Ok(s) => segment.point(s),
+                                    Err(err) => {
+                                        let line = *line;
+                                        self.finished = true;
+                                        return Some(Err(InterpolateError::Motion {
+                                            line,
+                                            message: format!("cannot time the move: {err}"),
+                                        }));
+                                    }
+                                }
+                            }
+                        }
                     };
                     let line = *line;
                     self.step += 1;

@@ -2,9 +2,10 @@
 //! [`CartesianSample`]s at a fixed time step, as the paper's `interpolation` did, and writes and
 //! reads the path CSV.
 //!
-//! Lines, true arcs and helices ([`Segment`]); C in proportion to the path parameter; two
-//! velocity profiles ([`Profile`]): the paper's constant speed and a trapezoid with an exact stop
-//! at every corner. Every programmed end point is hit exactly by a sample, because each motion's
+//! Lines, true arcs and helices ([`Segment`]); C in proportion to the path parameter; three
+//! velocity profiles ([`Profile`]): the paper's constant speed, a trapezoid with an exact stop
+//! at every corner, and the time-optimal one under the joints' velocity and acceleration limits
+//! (TOPP-RA, from `biscara-timing`), also from rest to rest. Every programmed end point is hit exactly by a sample, because each motion's
 //! duration is rounded up to whole steps (its speed lowered, never raised). A [`SpeedLimit`]
 //! lets a later stage (the joint velocities) slow a move down.
 //!
@@ -48,7 +49,7 @@ pub use biscara_motion::Motion;
 pub use csv::{PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, read_path_csv};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
-    NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,
+    JointBound, MAX_JOINTS, NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,
 };
 pub use profile::{Profile, Timing};
 pub use segment::Segment;

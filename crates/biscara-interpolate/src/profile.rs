@@ -8,6 +8,13 @@ pub enum Profile {
     /// Accelerate from rest, cruise, decelerate to rest: an exact stop at every corner.
     #[default]
     Trapezoid,
+    /// The fastest time scaling of each motion under the path speed and acceleration, C's
+    /// limits and every joint's velocity and acceleration limits (from the [`SpeedLimit`]),
+    /// from rest to rest (TOPP-RA, `biscara-timing`). Not a closed form: the interpolator plans
+    /// it; [`Timing`] times it as a trapezoid.
+    ///
+    /// [`SpeedLimit`]: crate::SpeedLimit
+    Optimal,
 }
 
 /// Relative slack when rounding a duration up to whole steps, so that a duration that is a whole
@@ -30,11 +37,12 @@ pub struct Timing {
 }
 
 impl Timing {
-    /// The timing of a motion under `profile` at step `dt` (s).
+    /// The timing of a motion under `profile` at step `dt` (s) ([`Profile::Optimal`] is timed as
+    /// a trapezoid here).
     pub fn new(profile: Profile, max_rate: f64, max_acceleration: f64, dt: f64) -> Timing {
         let shortest = match profile {
             Profile::Constant => 1.0 / max_rate,
-            Profile::Trapezoid => {
+            Profile::Trapezoid | Profile::Optimal => {
                 if max_rate * max_rate >= max_acceleration {
                     // Triangle: accelerate over half the path, decelerate over the other half.
                     2.0 / max_acceleration.sqrt()
@@ -47,7 +55,7 @@ impl Timing {
         let duration = steps as f64 * dt;
         let (rate, accelerating_for) = match profile {
             Profile::Constant => (1.0 / duration, 0.0),
-            Profile::Trapezoid => {
+            Profile::Trapezoid | Profile::Optimal => {
                 // Cruise rate v with acceleration a covering s = 1 in T: v² − aTv + a = 0.
                 let a = max_acceleration;
                 let discriminant = (a * a * duration * duration - 4.0 * a).max(0.0);
@@ -80,7 +88,7 @@ impl Timing {
         }
         match self.profile {
             Profile::Constant => t * self.rate,
-            Profile::Trapezoid => {
+            Profile::Trapezoid | Profile::Optimal => {
                 let ramp = self.accelerating_for;
                 if t < ramp {
                     0.5 * self.acceleration * t * t

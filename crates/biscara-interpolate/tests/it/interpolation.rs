@@ -242,8 +242,10 @@ proptest! {
     /// SPEC §6/§11: every programmed end point is hit exactly by a sample, times are whole steps,
     /// and no step moves faster than the programmed speed allows.
     #[test]
-    fn every_end_point_is_hit(motions in program(12), trapezoid in any::<bool>()) {
-        let profile = if trapezoid { Profile::Trapezoid } else { Profile::Constant };
+    fn every_end_point_is_hit(
+        motions in program(12),
+        profile in prop_oneof![Just(Profile::Constant), Just(Profile::Trapezoid), Just(Profile::Optimal)],
+    ) {
         let dt = 0.002;
         let (samples, _) = run(&motions, config(profile, dt));
         for (index, sample) in samples.iter().enumerate() {
@@ -320,12 +322,13 @@ proptest! {
         }
     }
 
-    /// `--profile trapezoid`: the path acceleration never exceeds `motion.acceleration`, and every
-    /// motion starts and ends at rest.
+    /// `--profile trapezoid` and `optimal`: the path acceleration never exceeds
+    /// `motion.acceleration`, and every motion starts and ends at rest.
     #[test]
-    fn trapezoid_acceleration_never_exceeds_the_limit(motions in program(8)) {
+    fn trapezoid_acceleration_never_exceeds_the_limit(motions in program(8), optimal in any::<bool>()) {
         let dt = 0.002;
-        let (samples, _) = run(&motions, config(Profile::Trapezoid, dt));
+        let profile = if optimal { Profile::Optimal } else { Profile::Trapezoid };
+        let (samples, _) = run(&motions, config(profile, dt));
         let moves = feed_moves(&motions);
         let segment_of = |line: usize| moves.iter().find(|(m, _)| m.line == line).map(|(_, s)| *s);
         // Path speed of each step, from the path parameter of the samples of one motion.
@@ -344,6 +347,29 @@ proptest! {
             let v2 = chord(&triple[2].pose, &triple[1].pose) / dt;
             // Chords of an arc are shorter than the arc: allow for it with the sagitta ratio.
             prop_assert!((v2 - v1).abs() / dt <= 5000.0 * 1.001 + 1e-6, "line {line}: {} mm/s²", (v2 - v1).abs() / dt);
+        }
+    }
+
+    /// Without joint limits, the optimal profile solves the trapezoid's problem (bounded path
+    /// speed and acceleration, rest to rest), whose exact optimum is the trapezoid: every motion
+    /// takes at least as many steps, and at most one more plus 0.2 % (the grid's loss where the
+    /// ramps end).
+    #[test]
+    fn optimal_without_joint_limits_is_the_trapezoid(motions in program(8)) {
+        let dt = 0.001;
+        let steps = |profile| {
+            let (samples, _) = run(&motions, config(profile, dt));
+            let mut per_line = std::collections::BTreeMap::new();
+            for sample in &samples[1..] {
+                *per_line.entry(sample.line).or_insert(0usize) += 1;
+            }
+            per_line
+        };
+        let (trapezoid, optimal) = (steps(Profile::Trapezoid), steps(Profile::Optimal));
+        prop_assert_eq!(trapezoid.len(), optimal.len());
+        for (line, &n) in &trapezoid {
+            let m = optimal[line];
+            prop_assert!(m >= n && m <= n + 1 + n / 500, "line {line}: trapezoid {n} steps, optimal {m}");
         }
     }
 }

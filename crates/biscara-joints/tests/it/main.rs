@@ -1,3 +1,4 @@
 //! Integration tests of the joint-trajectory builder.
 
+mod optimal;
 mod trajectory;

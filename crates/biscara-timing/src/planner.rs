@@ -1,0 +1,606 @@
+//! TOPP-RA's two passes over windows of the grid, and s(t) from the plan.
+
+use crate::polygon::Polygon;
+use crate::{Constraint, PathConstraints, TimingError};
+
+/// One interval of the plan: s̈ constant from `s_start` to `s_end`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    /// Path parameter where it starts.
+    pub s_start: f64,
+    /// Path parameter where it ends.
+    pub s_end: f64,
+    /// ṡ² at the start, 1/s².
+    pub x_start: f64,
+    /// ṡ² at the end, 1/s².
+    pub x_end: f64,
+    /// s̈ over the interval, 1/s².
+    pub u: f64,
+    /// Time it takes, s.
+    pub duration: f64,
+}
+
+impl Interval {
+    /// The path parameter `tau` seconds after the interval starts (clamped to the interval).
+    pub fn s_after(&self, tau: f64) -> f64 {
+        let tau = tau.clamp(0.0, self.duration);
+        let s = self.s_start + self.x_start.sqrt() * tau + 0.5 * self.u * tau * tau;
+        s.clamp(self.s_start, self.s_end)
+    }
+}
+
+/// The grid points s_0 = 0 < s_1 < … < s_M = 1: `intervals` equal intervals of length Δ, the
+/// first and the last of them each cut geometrically towards the path's end, at
+/// Δ·ratio, Δ·ratio², …, Δ·ratio^refine from it (M = `intervals` + 2 · `refine`), so that the
+/// short ramps from and to rest are resolved without a fine grid all along.
+///
+/// TOPP-RA loses time in the interval where the optimum switches from accelerating to cruising
+/// (x = ṡ² is linear in s there, below the optimum's corner): a fraction of that interval's
+/// traversal time. A ramp shorter than one interval of a uniform grid would lose most of an
+/// interval per stop; with the ends refined, the switch falls in an interval of about
+/// (1/ratio − 1) times the ramp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// Number of equal intervals (≥ 1; ≥ 2 when `refine` > 0).
+    pub intervals: usize,
+    /// Number of points added between each end and its nearest equal interval's point.
+    pub refine: u32,
+    /// Ratio of consecutive refined points' distances to the end, in (0, 1).
+    pub ratio: f64,
+}
+
+impl Grid {
+    /// `intervals` equal intervals.
+    pub fn uniform(intervals: usize) -> Grid {
+        Grid { intervals, refine: 0, ratio: 0.5 }
+    }
+
+    /// Number of intervals, M.
+    pub fn len(&self) -> usize {
+        self.intervals + 2 * self.refine as usize
+    }
+
+    /// Whether it has no interval.
+    pub fn is_empty(&self) -> bool {
+        self.intervals == 0
+    }
+
+    /// Grid point `index` (0 ..= M).
+    pub fn s(&self, index: usize) -> f64 {
+        let refine = self.refine as usize;
+        let last = self.len();
+        let step = 1.0 / self.intervals as f64;
+        // From an end: 0, Δ·ratio^r, …, Δ·ratio, Δ at 0, 1, …, r + 1.
+        let from_end = |k: usize| {
+            if k == 0 { 0.0 } else { step * self.ratio.powi((refine + 1 - k) as i32) }
+        };
+        if index <= refine {
+            from_end(index)
+        } else if index + refine >= last {
+            1.0 - from_end(last - index)
+        } else {
+            (index - refine) as f64 * step
+        }
+    }
+
+    fn is_valid(&self) -> bool {
+        let refined = self.refine == 0 || (self.intervals >= 2 && self.refine <= 1000);
+        self.intervals > 0 && refined && self.ratio > 0.0 && self.ratio < 1.0
+    }
+}
+
+/// The time-optimal time scaling of a path under [`PathConstraints`] (see the crate's
+/// documentation for the method), streamed: at most `2 · window + 1` grid points are held.
+///
+/// The same `path` must be passed to every call (its evaluations must not change between the
+/// duration pass and the sampling pass).
+#[derive(Debug, Clone)]
+pub struct TimeOptimal {
+    grid: Grid,
+    /// Number of grid intervals.
+    intervals: usize,
+    window: usize,
+    count: usize,
+    duration: f64,
+    /// Grid index of the first point held.
+    first: usize,
+    /// Largest ṡ² of every point held.
+    x_max: Vec<f64>,
+    /// `count` constraints of every point held.
+    rows: Vec<Constraint>,
+    /// Top of the controllable set of every point held (its bottom is 0: rest is allowed).
+    k_max: Vec<f64>,
+    polygon: Polygon,
+    /// Grid index of the next interval's start, and ṡ² there.
+    index: usize,
+    x: f64,
+    /// The interval `s_at` is in, and the time it starts.
+    current: Option<Interval>,
+    elapsed: f64,
+}
+
+impl TimeOptimal {
+    /// Plans `path` over `grid`, holding windows of `window` intervals plus as many of
+    /// look-ahead; learns the duration.
+    pub fn new<P: PathConstraints + ?Sized>(
+        path: &mut P,
+        grid: Grid,
+        window: usize,
+    ) -> Result<TimeOptimal, TimingError> {
+        if !grid.is_valid() {
+            return Err(TimingError::NoIntervals);
+        }
+        let mut plan = TimeOptimal {
+            grid,
+            intervals: grid.len(),
+            window: window.max(1),
+            count: path.count(),
+            duration: 0.0,
+            first: 0,
+            x_max: Vec::new(),
+            rows: Vec::new(),
+            k_max: Vec::new(),
+            polygon: Polygon::default(),
+            index: 0,
+            x: 0.0,
+            current: None,
+            elapsed: 0.0,
+        };
+        plan.fill(path, 0)?;
+        let mut duration = 0.0;
+        while let Some(interval) = plan.next_interval(path)? {
+            duration += interval.duration;
+        }
+        plan.duration = duration;
+        plan.restart(path)?;
+        Ok(plan)
+    }
+
+    /// The duration of the plan, s.
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// Goes back to the start of the path (re-planning the first window unless the whole grid
+    /// fits in one).
+    pub fn restart<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+    ) -> Result<(), TimingError> {
+        let whole = self.first == 0 && self.x_max.len() == self.intervals + 1;
+        if !whole {
+            self.x_max.clear();
+            self.rows.clear();
+            self.fill(path, 0)?;
+        }
+        self.index = 0;
+        self.x = 0.0;
+        self.current = None;
+        self.elapsed = 0.0;
+        Ok(())
+    }
+
+    /// The path parameter at time `t` (s) from the start; `t` must not decrease from one call to
+    /// the next (since the last [`restart`](Self::restart)). 1 from the end of the plan on.
+    pub fn s_at<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        t: f64,
+    ) -> Result<f64, TimingError> {
+        loop {
+            if let Some(interval) = self.current {
+                if t <= self.elapsed + interval.duration {
+                    return Ok(interval.s_after(t - self.elapsed));
+                }
+                self.elapsed += interval.duration;
+            }
+            self.current = self.next_interval(path)?;
+            if self.current.is_none() {
+                return Ok(1.0);
+            }
+        }
+    }
+
+    /// The next interval of the plan (the forward pass, one step), or `None` at the end.
+    pub fn next_interval<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+    ) -> Result<Option<Interval>, TimingError> {
+        if self.index >= self.intervals {
+            return Ok(None);
+        }
+        let last = self.first + self.x_max.len() - 1;
+        if last < self.intervals && self.index - self.first >= self.window {
+            self.fill(path, self.index)?;
+        }
+        let local = self.index - self.first;
+        self.build_stage(local, true);
+        let (_, u_max) = self.polygon.u_range(self.x);
+        let step = self.step(self.index);
+        let mut x_end = (self.x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
+        if self.index + 1 == self.intervals || x_end.is_nan() {
+            x_end = 0.0;
+        }
+        let duration = 2.0 * step / (self.x.sqrt() + x_end.sqrt());
+        if !duration.is_finite() {
+            return Err(TimingError::Stuck { s: self.s(self.index) });
+        }
+        let interval = Interval {
+            s_start: self.s(self.index),
+            s_end: self.s(self.index + 1),
+            x_start: self.x,
+            x_end,
+            u: (x_end - self.x) / (2.0 * step),
+            duration,
+        };
+        self.index += 1;
+        self.x = x_end;
+        Ok(Some(interval))
+    }
+
+    /// Length of interval `index`.
+    fn step(&self, index: usize) -> f64 {
+        self.s(index + 1) - self.s(index)
+    }
+
+    fn s(&self, index: usize) -> f64 {
+        self.grid.s(index)
+    }
+
+    /// Holds grid points `from` to `from + 2·window` (or the end), evaluating those not held
+    /// yet, and runs the backward pass over them.
+    fn fill<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        from: usize,
+    ) -> Result<(), TimingError> {
+        let last = (from + 2 * self.window).min(self.intervals);
+        let mut next = from;
+        if !self.x_max.is_empty() && from >= self.first {
+            let held_last = self.first + self.x_max.len() - 1;
+            let drop = (from - self.first).min(self.x_max.len());
+            self.x_max.drain(..drop);
+            self.rows.drain(..drop * self.count);
+            next = held_last + 1;
+        } else {
+            self.x_max.clear();
+            self.rows.clear();
+        }
+        self.first = from;
+        for index in next..=last {
+            self.evaluate(path, index)?;
+        }
+        self.backward()
+    }
+
+    /// Evaluates grid point `index` at the end of what is held.
+    fn evaluate<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        index: usize,
+    ) -> Result<(), TimingError> {
+        let s = self.s(index);
+        let start = self.rows.len();
+        self.rows.resize(start + self.count, Constraint::default());
+        let x_max = path.evaluate(s, &mut self.rows[start..]);
+        if x_max.is_nan() || x_max < 0.0 {
+            return Err(TimingError::NotFinite { s });
+        }
+        for (offset, row) in self.rows[start..].iter().enumerate() {
+            let finite = row.a.is_finite() && row.b.is_finite() && row.c.is_finite();
+            if !finite || row.lo.is_nan() || row.hi.is_nan() {
+                return Err(TimingError::NotFinite { s });
+            }
+            if !(row.lo <= row.c && row.c <= row.hi) {
+                return Err(TimingError::RestForbidden { s, index: offset });
+            }
+        }
+        self.x_max.push(x_max);
+        Ok(())
+    }
+
+    /// The controllable sets of the points held, from rest at the last one.
+    fn backward(&mut self) -> Result<(), TimingError> {
+        let held = self.x_max.len();
+        self.k_max.clear();
+        self.k_max.resize(held, 0.0);
+        for local in (0..held - 1).rev() {
+            self.build_stage(local, false);
+            // Where the speed limit itself is controllable (cruising, far from a stop), it is the
+            // top: the feasible x form an interval that holds 0, so one O(m) test settles it.
+            let x_max = self.x_max[local];
+            if x_max.is_finite() && self.polygon.contains_x(x_max) {
+                self.k_max[local] = x_max;
+                continue;
+            }
+            // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
+            // range is empty only by rounding: then only rest is controllable.
+            let (_, top) = self.polygon.x_range(0.0, x_max).unwrap_or((0.0, 0.0));
+            if top.is_infinite() {
+                return Err(TimingError::Unbounded { s: self.s(self.first + local) });
+            }
+            self.k_max[local] = top.max(0.0);
+        }
+        Ok(())
+    }
+
+    /// The half-planes in (u, x) of the stage from held point `local` to the next: every
+    /// constraint at both ends of the interval, and the next point in its controllable set (only
+    /// the upper bounds on u with `uppers_only`).
+    fn build_stage(&mut self, local: usize, uppers_only: bool) {
+        let step = self.step(self.first + local);
+        let count = self.count;
+        self.polygon.reset(uppers_only);
+        for row in &self.rows[local * count..(local + 1) * count] {
+            self.polygon.push_range(row.a, row.b, row.lo - row.c, row.hi - row.c);
+        }
+        // At the interval's end, x_{i+1} = x + 2Δu: a'·u + b'·(x + 2Δu).
+        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+            self.polygon.push_range(
+                row.a + 2.0 * step * row.b,
+                row.b,
+                row.lo - row.c,
+                row.hi - row.c,
+            );
+        }
+        self.polygon.push_range(2.0 * step, 1.0, 0.0, self.k_max[local + 1]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// |s̈| ≤ `acceleration`, ṡ ≤ `rate`.
+    struct Trapezoid {
+        rate: f64,
+        acceleration: f64,
+        calls: usize,
+    }
+
+    impl PathConstraints for Trapezoid {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, _s: f64, out: &mut [Constraint]) -> f64 {
+            self.calls += 1;
+            let a = self.acceleration;
+            out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -a, hi: a };
+            self.rate * self.rate
+        }
+    }
+
+    fn trapezoid(rate: f64, acceleration: f64) -> Trapezoid {
+        Trapezoid { rate, acceleration, calls: 0 }
+    }
+
+    /// The closed-form shortest time of a trapezoid (or triangle) over s ∈ [0, 1].
+    fn exact(rate: f64, acceleration: f64) -> f64 {
+        if rate * rate >= acceleration {
+            2.0 / acceleration.sqrt()
+        } else {
+            1.0 / rate + rate / acceleration
+        }
+    }
+
+    #[test]
+    fn a_box_gives_the_trapezoid() {
+        for (rate, acceleration) in [(1.0, 4.0), (3.0, 4.0), (0.2, 50.0)] {
+            let plan =
+                TimeOptimal::new(&mut trapezoid(rate, acceleration), Grid::uniform(2000), 4096)
+                    .unwrap();
+            let shortest = exact(rate, acceleration);
+            // The plan is feasible for the continuous problem, so never shorter; the switch from
+            // accelerating to cruising falls on the grid, which costs at most a little.
+            assert!(plan.duration() >= shortest * (1.0 - 1e-12), "{rate} {acceleration}");
+            assert_relative_eq!(plan.duration(), shortest, max_relative = 2e-3);
+        }
+    }
+
+    #[test]
+    fn refined_ends_resolve_short_ramps() {
+        // A ramp of s = 1/2000 (ṡ = 1 at 1000 /s²) on a grid of 10 intervals: uniform, each stop
+        // costs most of an interval at cruise speed; refined, almost nothing.
+        let shortest = exact(1.0, 1000.0);
+        let uniform =
+            TimeOptimal::new(&mut trapezoid(1.0, 1000.0), Grid::uniform(10), 4096).unwrap();
+        assert!(uniform.duration() > shortest + 0.1, "{}", uniform.duration());
+        let grid = Grid { intervals: 10, refine: 11, ratio: 0.5 };
+        assert_eq!(grid.s(0), 0.0);
+        assert_eq!(grid.s(1), 0.1 / 2048.0);
+        assert_eq!(grid.s(12), 0.1);
+        assert_eq!(grid.s(13), 0.2);
+        assert_relative_eq!(grid.s(grid.len() - 1), 1.0 - 0.1 / 2048.0, epsilon = 1e-15);
+        assert_eq!(grid.s(grid.len()), 1.0);
+        let refined = TimeOptimal::new(&mut trapezoid(1.0, 1000.0), grid, 4096).unwrap();
+        assert!(refined.duration() >= shortest * (1.0 - 1e-12));
+        assert_relative_eq!(refined.duration(), shortest, max_relative = 2e-4);
+    }
+
+    #[test]
+    fn samples_follow_the_plan_and_end_at_one() {
+        let mut path = trapezoid(1.0, 4.0);
+        let mut plan = TimeOptimal::new(&mut path, Grid::uniform(500), 4096).unwrap();
+        let duration = plan.duration();
+        let mut previous = 0.0;
+        for k in 0..=1000 {
+            let s = plan.s_at(&mut path, duration * f64::from(k) / 1000.0).unwrap();
+            assert!(s >= previous, "s went back at {k}");
+            previous = s;
+        }
+        assert_relative_eq!(previous, 1.0, epsilon = 1e-12);
+        // In the cruise, ṡ = 1: s(0.5) = 1/8 (the ramp, 0.25 s) + 0.25.
+        plan.restart(&mut path).unwrap();
+        assert_relative_eq!(plan.s_at(&mut path, 0.5).unwrap(), 0.375, epsilon = 2e-3);
+        assert_eq!(plan.s_at(&mut path, duration * 2.0).unwrap(), 1.0);
+    }
+
+    #[test]
+    fn short_windows_stay_feasible_and_long_ones_are_optimal() {
+        // Braking from ṡ = 1 at 4 /s² takes s = 1/8: 125 of 1000 intervals.
+        let whole = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 4096).unwrap();
+        let mut path = trapezoid(1.0, 4.0);
+        let long = TimeOptimal::new(&mut path, Grid::uniform(1000), 150).unwrap();
+        assert_relative_eq!(long.duration(), whole.duration(), max_relative = 1e-12);
+        // Windows of 150 + 150 intervals: the grid is evaluated twice (duration, then samples),
+        // each time with the 150 look-ahead points of every window after the first held over.
+        assert!(path.calls <= 2 * 1001 + 2, "{} evaluations", path.calls);
+        let short = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 20).unwrap();
+        assert!(short.duration() > whole.duration());
+        let mut path = trapezoid(1.0, 4.0);
+        let mut short = TimeOptimal::new(&mut path, Grid::uniform(1000), 20).unwrap();
+        while let Some(interval) = short.next_interval(&mut path).unwrap() {
+            assert!(interval.u.abs() <= 4.0 * (1.0 + 1e-9));
+            assert!(interval.x_end <= 1.0 + 1e-12);
+        }
+    }
+
+    struct Blocked;
+    impl PathConstraints for Blocked {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -1.0, hi: 1.0 };
+            if (0.35..0.65).contains(&s) { 0.0 } else { 1.0 }
+        }
+    }
+
+    struct Pushed;
+    impl PathConstraints for Pushed {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, _s: f64, out: &mut [Constraint]) -> f64 {
+            out[0] = Constraint { a: 1.0, b: 0.0, c: 2.0, lo: -1.0, hi: 1.0 };
+            1.0
+        }
+    }
+
+    #[test]
+    fn paths_that_cannot_be_timed_are_errors() {
+        // One point where ṡ must be 0 is a stop on the way; two in a row block the path.
+        assert_eq!(
+            TimeOptimal::new(&mut Blocked, Grid::uniform(10), 100).unwrap_err(),
+            TimingError::Stuck { s: 0.4 }
+        );
+        assert_eq!(
+            TimeOptimal::new(&mut Pushed, Grid::uniform(10), 100).unwrap_err(),
+            TimingError::RestForbidden { s: 0.0, index: 0 }
+        );
+        assert_eq!(
+            TimeOptimal::new(&mut trapezoid(1.0, 1.0), Grid::uniform(0), 100).unwrap_err(),
+            TimingError::NoIntervals
+        );
+        assert!(matches!(
+            TimeOptimal::new(&mut trapezoid(f64::INFINITY, f64::INFINITY), Grid::uniform(10), 100),
+            Err(TimingError::Unbounded { .. })
+        ));
+    }
+
+    /// Two "joints" q_j(s) with q′ and q″ from sums of sines, velocity and acceleration bounds.
+    #[derive(Debug, Clone)]
+    struct Joints {
+        waves: Vec<[f64; 3]>,
+        velocity: [f64; 2],
+        acceleration: [f64; 2],
+    }
+
+    impl Joints {
+        /// q′_j(s) and q″_j(s).
+        fn derivatives(&self, s: f64) -> [[f64; 2]; 2] {
+            let mut result = [[0.0; 2]; 2];
+            for (k, &[amplitude, frequency, phase]) in self.waves.iter().enumerate() {
+                let j = k % 2;
+                let angle = frequency * s + phase;
+                result[j][0] += amplitude * angle.cos() + 0.3;
+                result[j][1] -= amplitude * frequency * angle.sin();
+            }
+            result
+        }
+    }
+
+    impl PathConstraints for Joints {
+        fn count(&self) -> usize {
+            2
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            let mut x_max = f64::INFINITY;
+            for (j, [first, second]) in self.derivatives(s).into_iter().enumerate() {
+                let a = self.acceleration[j];
+                out[j] = Constraint { a: first, b: second, c: 0.0, lo: -a, hi: a };
+                if first != 0.0 {
+                    x_max = x_max.min((self.velocity[j] / first).powi(2));
+                }
+            }
+            x_max
+        }
+    }
+
+    fn joints() -> impl Strategy<Value = Joints> {
+        (
+            proptest::collection::vec((0.1..3.0f64, 0.5..20.0f64, 0.0..6.3f64), 2..6),
+            (0.5..5.0f64, 0.5..5.0f64),
+            (1.0..50.0f64, 1.0..50.0f64),
+        )
+            .prop_map(|(waves, velocity, acceleration)| Joints {
+                waves: waves.into_iter().map(|(a, f, p)| [a, f, p]).collect(),
+                velocity: [velocity.0, velocity.1],
+                acceleration: [acceleration.0, acceleration.1],
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+        /// Every bound holds at both ends of every interval, the plan starts and ends at rest,
+        /// and a windowed plan is never faster than the whole one.
+        #[test]
+        fn plans_keep_every_bound(path in joints(), window in 5usize..300, refine in 0u32..12) {
+            let grid = Grid { intervals: 400, refine, ratio: 0.7 };
+            let intervals = grid.len();
+            let mut whole_path = path.clone();
+            let whole = TimeOptimal::new(&mut whole_path, grid, 4096);
+            prop_assume!(whole.is_ok());
+            let whole = whole.unwrap();
+            let mut windowed_path = path.clone();
+            let mut plan = TimeOptimal::new(&mut windowed_path, grid, window).unwrap();
+            prop_assert!(plan.duration() >= whole.duration() * (1.0 - 1e-9));
+            let mut total = 0.0;
+            let mut count = 0;
+            while let Some(interval) = plan.next_interval(&mut windowed_path).unwrap() {
+                if count == 0 {
+                    prop_assert_eq!(interval.x_start, 0.0);
+                }
+                for (s, x) in [(interval.s_start, interval.x_start), (interval.s_end, interval.x_end)] {
+                    let mut rows = [Constraint::default(); 2];
+                    let x_max = path.clone().evaluate(s, &mut rows);
+                    prop_assert!(x <= x_max * (1.0 + 1e-9) + 1e-12, "ṡ² {x} > {x_max} at {s}");
+                    for (j, row) in rows.iter().enumerate() {
+                        let value = row.a * interval.u + row.b * x;
+                        let slack = 1e-9 * (row.hi + (row.a * interval.u).abs() + (row.b * x).abs());
+                        prop_assert!(value.abs() <= row.hi + slack, "joint {j} at {s}: {value} > {}", row.hi);
+                    }
+                }
+                prop_assert_eq!(interval.s_start, grid.s(count));
+                prop_assert_eq!(interval.s_end, grid.s(count + 1));
+                prop_assert!(interval.s_end > interval.s_start);
+                total += interval.duration;
+                count += 1;
+                if count == intervals {
+                    prop_assert_eq!(interval.x_end, 0.0);
+                }
+            }
+            prop_assert_eq!(count, intervals);
+            prop_assert!((total - plan.duration()).abs() <= 1e-9 * total);
+        }
+    }
+}
