@@ -86,9 +86,15 @@ pub(crate) struct PlacementArgs {
     )]
     pub(crate) origin: Option<[f64; 4]>,
     /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
-    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
-    /// The offset is reported on stderr; a program larger than the rectangle is an error.
-    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    /// included) is centred in the largest rectangle of `biscara workspace`, turned by 90° about
+    /// Z when it fits only that way, and its Z range centred in the Z stroke when it lies outside.
+    /// Programs that zero themselves with G92 at their start are placed too. The placement is
+    /// reported on stderr; a program that fits neither way is an error that says by how much.
+    #[arg(
+        long,
+        help = "Centre the program in the workspace rectangle, turned by 90° if only that fits, \
+                Z into the stroke (placement on stderr)"
+    )]
     pub(crate) fit: bool,
 }
 

@@ -47,6 +47,10 @@ pub struct Config {
     /// The G54 offset in force before the first line, `[x, y, z, c]` (mm, degrees): shifts the
     /// whole program (`--origin`).
     pub origin: [f64; 4],
+    /// Where the robot is before the first line when that is not `home` (`[x, y, z, c]`, mm and
+    /// degrees, base frame): a program that makes its start point its zero (`G92 X0 Y0`) is
+    /// placed by moving its start (`--fit`). `None`: at `home`. G28 and G30 still go to `home`.
+    pub start: Option<[f64; 4]>,
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
@@ -63,6 +67,7 @@ impl Default for Config {
         Config {
             home: [0.0; 4],
             origin: [0.0; 4],
+            start: None,
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
@@ -107,6 +112,9 @@ pub struct Interpreter<R> {
     pending_extrude: Option<f64>,
     /// Whether any motion was emitted (an empty program is not a program).
     moved: bool,
+    /// The axes (x y z c) a G92 named before the first motion: the program made its start
+    /// point its zero there.
+    zeroed_at_start: [bool; 4],
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -156,7 +164,8 @@ impl State {
             params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
         }
         params.set(COORDINATE_SYSTEM, 1.0);
-        let current = std::array::from_fn(|axis| config.home[axis] - config.origin[axis]);
+        let start = config.start.unwrap_or(config.home);
+        let current = std::array::from_fn(|axis| start[axis] - config.origin[axis]);
         let mut state = State {
             metric: true,
             incremental: false,
@@ -296,6 +305,7 @@ impl<R: BufRead> Interpreter<R> {
             e_relative: false,
             pending_extrude: None,
             moved: false,
+            zeroed_at_start: [false; 4],
         }
         .with_line_limit()
     }
@@ -902,6 +912,7 @@ impl<R: BufRead> Interpreter<R> {
         let mut offsets = self.state.axis_offset;
         for (axis, &letter) in AXES.iter().enumerate() {
             if let Some(word) = self.block.word(letter) {
+                self.zeroed_at_start[axis] |= !self.moved;
                 offsets[axis] =
                     self.state.current[axis] + self.state.axis_offset[axis] - word.value;
             }

@@ -1,11 +1,11 @@
 //! A program's motions: the G-code interpreter or the inter-file reader, errors located, and
 //! what the interpreter has to say (the dialect it chose, the codes it recorded) as notes.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::io::BufRead;
 use std::rc::Rc;
 
-use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, interpret};
+use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, Tool, interpret};
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, Position, read_jsonl};
 
@@ -41,16 +41,31 @@ impl NoteSink {
     }
 }
 
-/// The motions of a G-code program (read in `dialect`, with `origin` as its G54 offset) or an
-/// inter-file.
+/// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
+/// dialect and its tool.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reading {
+    pub(crate) origin: Position,
+    pub(crate) start: Option<Position>,
+    pub(crate) dialect: Dialect,
+    pub(crate) tool: Tool,
+}
+
+/// Where the axes a G-code program zeroed with G92 before its first motion are told, once the
+/// program is read (see [`Interpreter::zeroed_at_start`]).
+pub(crate) type Zeroed = Rc<Cell<[bool; 4]>>;
+
+/// The motions of a G-code program (read as `reading` says) or an inter-file; with `zeroed`, the
+/// axes the program zeroed with G92 at its start are stored there at its end.
 pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    origin: Position,
-    dialect: Dialect,
+    reading: Reading,
     notes: NoteSink,
+    zeroed: Option<Zeroed>,
 ) -> Result<MotionReader, PipelineError> {
+    let Reading { origin, start, dialect, tool } = reading;
     let file = source.name().to_owned();
     let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
     match kind {
@@ -62,11 +77,13 @@ pub(crate) fn read_motions(
             let config = GcodeConfig {
                 home: model.home_position(),
                 origin,
+                start,
                 dialect,
+                tool,
                 ..GcodeConfig::default()
             };
             let interpreter = interpret(input, &config);
-            Ok(Box::new(GcodeMotions { interpreter, file, notes, finished: false }))
+            Ok(Box::new(GcodeMotions { interpreter, file, notes, zeroed, finished: false }))
         }
         ProgramKind::Path => Err(PipelineError::Unsupported {
             file,
@@ -81,6 +98,7 @@ struct GcodeMotions<R> {
     interpreter: Interpreter<R>,
     file: String,
     notes: NoteSink,
+    zeroed: Option<Zeroed>,
     finished: bool,
 }
 
@@ -106,6 +124,9 @@ impl<R: BufRead> GcodeMotions<R> {
 
     /// The notes of a finished program.
     fn announce(&self) {
+        if let Some(zeroed) = &self.zeroed {
+            zeroed.set(self.interpreter.zeroed_at_start());
+        }
         // A program in which nothing tells the dialects apart is LinuxCNC's, as before the
         // dialects existed: no note.
         if let Some(detection) = self

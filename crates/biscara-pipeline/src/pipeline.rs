@@ -1,6 +1,6 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
-use biscara_gcode::Dialect;
+use biscara_gcode::{Dialect, Tool};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -10,9 +10,8 @@ use biscara_joints::{
 };
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
-use biscara_robot::shift_motion;
 
-use crate::motions::{MotionReader, NoteSink, read_motions};
+use crate::motions::{MotionReader, NoteSink, Reading, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
@@ -95,17 +94,19 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: &NoteSink,
     ) -> Result<Motions, PipelineError> {
-        let SamplingConfig { origin, fit, dialect, .. } = self.config;
-        let placement =
-            place(self.model, source, kind, origin, fit, dialect, &mut |note| notes.say(note))?;
-        let motions =
-            read_motions(self.model, source, kind, placement.origin, dialect, notes.clone())?;
-        Ok(match placement.shift {
-            None => motions,
-            Some(offset) => {
-                let [x, y, ..] = self.model.home_position();
-                Box::new(motions.map(move |m| m.map(|m| shift_motion(m, offset, [x, y]))))
+        let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
+        let reading = Reading {
+            origin: placement.origin,
+            start: placement.start,
+            dialect: self.config.dialect,
+            tool: Tool::default(),
+        };
+        let motions = read_motions(self.model, source, kind, reading, notes.clone(), None)?;
+        Ok(match placement.transform {
+            Some(transform) if !transform.is_identity() => {
+                Box::new(motions.map(move |m| m.map(|m| transform.motion(m))))
             }
+            _ => motions,
         })
     }
 

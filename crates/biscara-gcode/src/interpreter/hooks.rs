@@ -65,6 +65,13 @@ impl<R: BufRead> Interpreter<R> {
         })
     }
 
+    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
+    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
+    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
+    pub fn zeroed_at_start(&self) -> [bool; 4] {
+        self.zeroed_at_start
+    }
+
     /// The no-motion codes read so far, with their counts (complete once the iterator ends).
     pub fn summary(&self) -> &Summary {
         &self.summary

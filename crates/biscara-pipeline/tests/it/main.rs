@@ -98,7 +98,7 @@ fn fit_places_the_program_and_says_so() {
         .unwrap();
     assert!(rows.len() > 100);
     let notes = notes.borrow();
-    let [Note::Placed { file, fit }] = notes.as_slice() else { panic!("{notes:?}") };
+    let [Note::Placed { file, fit, .. }] = notes.as_slice() else { panic!("{notes:?}") };
     assert_eq!(file, "part.ngc");
     assert!(fit.offset[1] > 100.0, "{fit:?}");
 }
@@ -147,3 +147,5 @@ fn a_path_csv_is_read_as_it_is() {
     assert_eq!(samples[1].pose, [10.0, 400.0, 50.0, 0.0]);
     assert_eq!(samples[1].line, 3);
 }
+
+mod placement;
