@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use biscara::gcode::Dialect;
+use biscara::gcode::{Dialect, Tool};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -112,6 +112,21 @@ pub(crate) struct DialectArgs {
         help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
+    /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,
+    /// S and E mean. Without either, the tool is inferred from the program (noted on stderr),
+    /// the gripper when nothing tells.
+    #[arg(
+        long,
+        value_name = "KIND",
+        value_parser = parse_tool,
+        help = "gripper, laser, spindle, extruder or pen (default: the robot file's, else inferred)"
+    )]
+    pub(crate) tool: Option<Tool>,
+}
+
+fn parse_tool(text: &str) -> Result<Tool, String> {
+    Tool::from_name(text)
+        .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
@@ -149,6 +164,7 @@ impl SamplingArgs {
             origin: self.placement.origin,
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
+            tool: self.dialect.tool,
         }
     }
 }

@@ -59,6 +59,7 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         origin: placement.origin,
         fit: placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
         ..SamplingConfig::default()
     };
     let notes = NoteReporter::default();

@@ -94,6 +94,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         origin: args.placement.origin,
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

@@ -17,7 +17,7 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
-use crate::tool::Tool;
+use crate::tool::{Tool, ToolInference};
 
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
@@ -60,6 +60,9 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
     pub tool: Tool,
+    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES) ([`crate::infer_tool`]);
+    /// `tool` is kept when nothing tells. See [`Interpreter::tool_inference`].
+    pub infer_tool: bool,
 }
 
 impl Default for Config {
@@ -71,6 +74,7 @@ impl Default for Config {
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
+            infer_tool: false,
         }
     }
 }
@@ -101,6 +105,10 @@ pub struct Interpreter<R> {
     detection: Option<Detection>,
     summary: Summary,
     tool: Tool,
+    /// Whether the tool is still to be inferred from the look-ahead.
+    infer_tool: bool,
+    /// What the inference found.
+    tool_inference: Option<ToolInference>,
     /// Whether the tool is on (M3/M4 until M5 or M6).
     tool_on: bool,
     /// MakerBot's flavour: the A word is the extruder.
@@ -299,6 +307,8 @@ impl<R: BufRead> Interpreter<R> {
             detection: None,
             summary: Summary::default(),
             tool: config.tool,
+            infer_tool: config.infer_tool,
+            tool_inference: None,
             tool_on: false,
             makerbot: false,
             e_position: 0.0,
@@ -334,6 +344,9 @@ impl<R: BufRead> Interpreter<R> {
     fn step(&mut self) -> Result<(), GcodeError> {
         if self.undecided {
             self.decide()?;
+        }
+        if self.infer_tool {
+            self.infer_tool()?;
         }
         loop {
             let more = self

@@ -79,4 +79,4 @@ pub use dialect::{
 };
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret};
-pub use tool::Tool;
+pub use tool::{Tool, ToolInference, infer_tool};

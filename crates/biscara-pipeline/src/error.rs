@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io;
 
-use biscara_gcode::{Detection, Dialect};
+use biscara_gcode::{Detection, Dialect, ToolInference};
 use biscara_interpolate::SlowDown;
 use biscara_robot::{Fit, VirtualRobotError};
 use biscara_text::fixed;
@@ -107,6 +107,13 @@ pub enum Note {
         /// The dialect and why.
         detection: Detection,
     },
+    /// No `--tool` and no `tool.kind` in the robot file: the tool was inferred from the program.
+    Tool {
+        /// The program's name.
+        file: String,
+        /// The tool and why.
+        inference: ToolInference,
+    },
     /// The program used codes with no motion here (temperatures, fans, `$` lines, …), recorded
     /// as events; one note with their counts.
     Codes {
@@ -204,6 +211,13 @@ impl fmt::Display for Note {
                 } else {
                     ""
                 }
+            ),
+            Note::Tool { file, inference } => write!(
+                f,
+                "{file}{}: tool: {} ({}; inferred: no --tool and no tool.kind in the robot file)",
+                inference.line.map(|line| format!(":{line}")).unwrap_or_default(),
+                inference.tool,
+                inference.reason
             ),
             Note::Codes { file, codes } => write!(
                 f,

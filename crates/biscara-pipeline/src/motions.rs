@@ -42,13 +42,13 @@ impl NoteSink {
 }
 
 /// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
-/// dialect and its tool.
+/// dialect and its tool (`None`: inferred from the program, the gripper when nothing tells).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Reading {
     pub(crate) origin: Position,
     pub(crate) start: Option<Position>,
     pub(crate) dialect: Dialect,
-    pub(crate) tool: Tool,
+    pub(crate) tool: Option<Tool>,
 }
 
 /// Where the axes a G-code program zeroed with G92 before its first motion are told, once the
@@ -79,7 +79,8 @@ pub(crate) fn read_motions(
                 origin,
                 start,
                 dialect,
-                tool,
+                tool: tool.unwrap_or_default(),
+                infer_tool: tool.is_none(),
                 ..GcodeConfig::default()
             };
             let interpreter = interpret(input, &config);
@@ -135,6 +136,10 @@ impl<R: BufRead> GcodeMotions<R> {
             .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
+        }
+        if let Some(inference) = self.interpreter.tool_inference() {
+            let (file, inference) = (self.file.clone(), inference.clone());
+            self.notes.say(Note::Tool { file, inference });
         }
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {

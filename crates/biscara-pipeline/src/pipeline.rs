@@ -30,6 +30,9 @@ pub struct SamplingConfig {
     pub fit: bool,
     /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
     pub dialect: Dialect,
+    /// The tool the robot carries (`--tool`, SPEC §1.6); `None`: the robot file's `tool.kind`,
+    /// else inferred from the program (with a [`Note::Tool`]), else the gripper.
+    pub tool: Option<Tool>,
 }
 
 impl Default for SamplingConfig {
@@ -43,6 +46,7 @@ impl Default for SamplingConfig {
             origin: None,
             fit: false,
             dialect: Dialect::Auto,
+            tool: None,
         }
     }
 }
@@ -77,6 +81,14 @@ impl<'m> Pipeline<'m> {
         &self.config
     }
 
+    /// The tool when the flag or the robot file says which (`None`: inferred from the program).
+    pub fn tool(&self) -> Option<Tool> {
+        self.config.tool.or_else(|| {
+            let kind = self.model.robot().tool.kind?;
+            Tool::from_name(kind.name())
+        })
+    }
+
     /// The program's motions, placed by the configuration's origin and `fit` (which reports a
     /// [`Note::Placed`]). A path CSV has no motions.
     pub fn motions(
@@ -99,7 +111,7 @@ impl<'m> Pipeline<'m> {
             origin: placement.origin,
             start: placement.start,
             dialect: self.config.dialect,
-            tool: Tool::default(),
+            tool: self.tool(),
         };
         let motions = read_motions(self.model, source, kind, reading, notes.clone(), None)?;
         Ok(match placement.transform {

@@ -1,7 +1,6 @@
 //! Where a program runs: its G54 origin and, with `--fit`, the offset that centres it in the
 //! workspace rectangle (SPEC §4.2, §8.2).
 
-use biscara_gcode::Tool;
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 use std::cell::Cell;
@@ -45,7 +44,7 @@ pub fn place(
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
     let SamplingConfig { dialect, .. } = *config;
-    let tool = Tool::default();
+    let tool = crate::Pipeline::new(model, *config).tool();
     let mut origin = config.origin.unwrap_or([0.0; 4]);
     if !config.fit {
         return Ok(Placement { origin, start: None, transform: None });
