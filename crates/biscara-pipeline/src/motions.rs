@@ -7,7 +7,7 @@ use std::rc::Rc;
 
 use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, Tool, interpret};
 use biscara_kinematics::RobotModel;
-use biscara_motion::{Motion, Position, read_jsonl};
+use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
 
 use crate::{Note, PipelineError, ProgramKind, ProgramSource};
 
@@ -51,19 +51,24 @@ pub(crate) struct Reading {
     pub(crate) tool: Option<Tool>,
 }
 
-/// Where the axes a G-code program zeroed with G92 before its first motion are told, once the
-/// program is read (see [`Interpreter::zeroed_at_start`]).
-pub(crate) type Zeroed = Rc<Cell<[bool; 4]>>;
+/// What a G-code reading tells besides its motions: the axes the program zeroed with G92 before
+/// its first motion, once it is read (see [`Interpreter::zeroed_at_start`]), and the tool it
+/// drives, from its first motion on.
+#[derive(Default, Clone)]
+pub(crate) struct Told {
+    pub(crate) zeroed: Option<Rc<Cell<[bool; 4]>>>,
+    pub(crate) tool: Option<Rc<Cell<Option<Tool>>>>,
+}
 
-/// The motions of a G-code program (read as `reading` says) or an inter-file; with `zeroed`, the
-/// axes the program zeroed with G92 at its start are stored there at its end.
+/// The motions of a G-code program (read as `reading` says) or an inter-file; what the G-code
+/// reading tells goes to `told`.
 pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
     reading: Reading,
     notes: NoteSink,
-    zeroed: Option<Zeroed>,
+    told: Told,
 ) -> Result<MotionReader, PipelineError> {
     let Reading { origin, start, dialect, tool } = reading;
     let file = source.name().to_owned();
@@ -84,7 +89,15 @@ pub(crate) fn read_motions(
                 ..GcodeConfig::default()
             };
             let interpreter = interpret(input, &config);
-            Ok(Box::new(GcodeMotions { interpreter, file, notes, zeroed, finished: false }))
+            Ok(Box::new(GcodeMotions {
+                interpreter,
+                file,
+                notes,
+                told,
+                started: false,
+                tool_said: false,
+                finished: false,
+            }))
         }
         ProgramKind::Path => Err(PipelineError::Unsupported {
             file,
@@ -99,7 +112,9 @@ struct GcodeMotions<R> {
     interpreter: Interpreter<R>,
     file: String,
     notes: NoteSink,
-    zeroed: Option<Zeroed>,
+    told: Told,
+    started: bool,
+    tool_said: bool,
     finished: bool,
 }
 
@@ -123,9 +138,22 @@ impl<R: BufRead> GcodeMotions<R> {
         PipelineError::Program { file: self.file.clone(), error: Box::new(err), snippet }
     }
 
+    /// The tool inferred, once.
+    fn say_tool(&mut self) {
+        if self.tool_said {
+            return;
+        }
+        self.tool_said = true;
+        if let Some(inference) = self.interpreter.tool_inference() {
+            let (file, inference) = (self.file.clone(), inference.clone());
+            self.notes.say(Note::Tool { file, inference });
+        }
+    }
+
     /// The notes of a finished program.
-    fn announce(&self) {
-        if let Some(zeroed) = &self.zeroed {
+    fn announce(&mut self) {
+        self.say_tool();
+        if let Some(zeroed) = &self.told.zeroed {
             zeroed.set(self.interpreter.zeroed_at_start());
         }
         // A program in which nothing tells the dialects apart is LinuxCNC's, as before the
@@ -137,10 +165,7 @@ impl<R: BufRead> GcodeMotions<R> {
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
         }
-        if let Some(inference) = self.interpreter.tool_inference() {
-            let (file, inference) = (self.file.clone(), inference.clone());
-            self.notes.say(Note::Tool { file, inference });
-        }
+
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {
             self.notes.say(Note::Codes { file: self.file.clone(), codes: summary.codes.clone() });
@@ -161,7 +186,20 @@ impl<R: BufRead> Iterator for GcodeMotions<R> {
             return None;
         }
         match self.interpreter.next() {
-            Some(Ok(motion)) => Some(Ok(motion)),
+            Some(Ok(motion)) => {
+                if !self.started {
+                    self.started = true;
+                    if let Some(tool) = &self.told.tool {
+                        tool.set(Some(self.interpreter.tool()));
+                    }
+                }
+                // Said at the program's end (M2 or M30: the interpolator may read no further),
+                // so that an error stays the only message of a program that fails.
+                if matches!(motion.kind, MotionKind::End) {
+                    self.say_tool();
+                }
+                Some(Ok(motion))
+            }
             Some(Err(err)) => {
                 self.finished = true;
                 Some(Err(self.located(err)))

@@ -11,7 +11,11 @@ use biscara_joints::{
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 
-use crate::motions::{MotionReader, NoteSink, Reading, read_motions};
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+use crate::motions::{MotionReader, NoteSink, Reading, Told, read_motions};
+use crate::tool::{Recorder, SharedTool, ToolSamples, Track};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
@@ -97,7 +101,7 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: impl FnMut(Note) + 'static,
     ) -> Result<Motions, PipelineError> {
-        self.placed_motions(source, kind, &NoteSink::new(notes))
+        self.placed_motions(source, kind, &NoteSink::new(notes), Told::default())
     }
 
     fn placed_motions(
@@ -105,6 +109,7 @@ impl<'m> Pipeline<'m> {
         source: &dyn ProgramSource,
         kind: ProgramKind,
         notes: &NoteSink,
+        told: Told,
     ) -> Result<Motions, PipelineError> {
         let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
         let reading = Reading {
@@ -113,7 +118,7 @@ impl<'m> Pipeline<'m> {
             dialect: self.config.dialect,
             tool: self.tool(),
         };
-        let motions = read_motions(self.model, source, kind, reading, notes.clone(), None)?;
+        let motions = read_motions(self.model, source, kind, reading, notes.clone(), told)?;
         Ok(match placement.transform {
             Some(transform) if !transform.is_identity() => {
                 Box::new(motions.map(move |m| m.map(|m| transform.motion(m))))
@@ -131,7 +136,34 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: impl FnMut(Note) + 'static,
     ) -> Result<Samples, PipelineError> {
-        let notes = NoteSink::new(notes);
+        self.recorded_samples(source, kind, NoteSink::new(notes), None)
+    }
+
+    /// The program's Cartesian samples ([`Pipeline::samples`]) with the tool's state at each
+    /// (`--events`, SPEC §1.6, §6): a wrapper over the motions records the tool's events as the
+    /// interpolator reads them, and one over the samples gives each its state. Streaming. A path
+    /// CSV has no tool events: its samples carry the gripper column it has.
+    pub fn tool_samples(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<ToolSamples, PipelineError> {
+        let tool = Rc::new(Cell::new(self.tool()));
+        let track: Rc<RefCell<Option<Track>>> = Rc::default();
+        let recorder = (Rc::clone(&tool), Rc::clone(&track));
+        let samples = self.recorded_samples(source, kind, NoteSink::new(notes), Some(recorder))?;
+        let track = track.borrow_mut().take().unwrap_or_default();
+        Ok(ToolSamples::new(samples, track, tool))
+    }
+
+    fn recorded_samples(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: NoteSink,
+        recorder: Option<(SharedTool, Rc<RefCell<Option<Track>>>)>,
+    ) -> Result<Samples, PipelineError> {
         let file = source.name().to_owned();
         if kind == ProgramKind::Path {
             if self.config.fit {
@@ -144,7 +176,13 @@ impl<'m> Pipeline<'m> {
                 source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
             return Ok(Samples::Path { reader: read_path_csv(input), file });
         }
-        let motions = self.placed_motions(source, kind, &notes)?;
+        let told = Told { zeroed: None, tool: recorder.as_ref().map(|(tool, _)| Rc::clone(tool)) };
+        let mut motions = self.placed_motions(source, kind, &notes, told)?;
+        if let Some((tool, track)) = recorder {
+            let recorder = Recorder::new(motions, self.model.home_position(), tool);
+            *track.borrow_mut() = Some(recorder.track());
+            motions = Box::new(recorder);
+        }
         let robot = self.model.robot();
         let config = InterpolationConfig {
             dt: self.config.dt,

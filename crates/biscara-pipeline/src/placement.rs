@@ -8,7 +8,7 @@ use std::rc::Rc;
 
 use biscara_robot::{Bounds, Transform, Workspace, fit};
 
-use crate::motions::{NoteSink, Reading, read_motions};
+use crate::motions::{NoteSink, Reading, Told, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// Grid step of the workspace rectangle `--fit` centres programs in, millimetres (the default
@@ -66,8 +66,14 @@ pub fn place(
     let mut bounds = Bounds::new(home);
     let zeroed = Rc::new(Cell::new([false; 4]));
     let reading = Reading { origin, start: None, dialect, tool };
-    let motions =
-        read_motions(model, source, kind, reading, NoteSink::silent(), Some(zeroed.clone()))?;
+    let motions = read_motions(
+        model,
+        source,
+        kind,
+        reading,
+        NoteSink::silent(),
+        Told { zeroed: Some(zeroed.clone()), tool: None },
+    )?;
     for motion in motions {
         bounds.push(&motion?);
     }
