@@ -106,3 +106,25 @@ fn an_unknown_tool_is_refused_with_the_kinds() {
         .stderr_has("`torch` is not a tool: gripper, laser, spindle, extruder or pen");
     assert_eq!(run.stdout, "");
 }
+
+#[test]
+fn plot_draws_the_burnt_trace_darker_for_more_power_apart_from_travel() {
+    let dir = temp_dir("tool-plot");
+    let program = repo_root().join("data/programs/laser_engraving.ngc");
+    let program = program.to_str().expect("path");
+    let args = ["plot", program, "--origin", "-30,250,0,0", "--step", "10", "-o", "laser.svg"];
+    biscara(&dir, &args).success();
+    let svg = std::fs::read_to_string(dir.join("laser.svg")).expect("svg");
+    assert!(svg.contains("laser: burnt trace (darker: more power)"), "legend");
+    assert!(svg.contains("travel"), "legend");
+    // Full power (S1000 of 1000) is the darkest colour, S400 a lighter one: both drawn.
+    let full = "#1E0F05";
+    let part = "#937856";
+    assert!(svg.to_uppercase().contains(full), "no stroke at full power");
+    assert!(svg.to_uppercase().contains(part), "no stroke at 40 % power");
+    // The gripper draws no process.
+    let args = [&args[..], &["--tool", "gripper"]].concat();
+    biscara(&dir, &args).success();
+    let svg = std::fs::read_to_string(dir.join("laser.svg")).expect("svg");
+    assert!(!svg.contains("burnt trace") && svg.contains("programmed path"));
+}
