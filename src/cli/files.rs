@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use anyhow::Context;
+use biscara::gcode::Seekable;
 use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::Scene;
 use biscara::view::ImageFormat;
@@ -53,7 +54,21 @@ impl ProgramSource for FileSource {
     }
 
     fn open(&self) -> io::Result<Box<dyn BufRead>> {
-        open_with_progress(&self.path)
+        if self.path == Path::new("-") {
+            return Ok(Box::new(io::stdin().lock()));
+        }
+        Ok(open_with_progress(&self.path)?)
+    }
+
+    fn open_seekable(&self) -> io::Result<Option<Box<dyn Seekable>>> {
+        if self.path == Path::new("-") {
+            return Ok(None);
+        }
+        open_with_progress(&self.path).map(Some)
+    }
+
+    fn path(&self) -> Option<&Path> {
+        (self.path != Path::new("-")).then_some(self.path.as_path())
     }
 
     fn rereadable(&self) -> bool {
@@ -97,10 +112,7 @@ const MIN_BYTES_FOR_PROGRESS: u64 = 4 << 20;
 
 /// `path` opened for buffered reading (standard input for `-`). When stderr is a terminal and
 /// the file is large, reading it advances a progress bar on stderr, cleared at the end.
-fn open_with_progress(path: &Path) -> io::Result<Box<dyn BufRead>> {
-    if path == Path::new("-") {
-        return Ok(Box::new(io::stdin().lock()));
-    }
+fn open_with_progress(path: &Path) -> io::Result<Box<dyn Seekable>> {
     let file = File::open(path)?;
     let length = file.metadata().map(|metadata| metadata.len()).unwrap_or(0);
     if length < MIN_BYTES_FOR_PROGRESS || !io::stderr().is_terminal() {

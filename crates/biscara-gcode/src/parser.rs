@@ -312,7 +312,18 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
+    /// The compact index of the next byte to read.
+    pub(crate) fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// Reads on from compact index `pos`.
+    pub(crate) fn set_position(&mut self, pos: usize) {
+        self.pos = pos;
+    }
+
+    /// One word, setting or comment (`read_one_item`).
+    pub(crate) fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
         let start = self.pos;
         let letter = self.peek();
         match letter {
@@ -323,15 +334,6 @@ impl<'a> Reader<'a> {
             b'#' => {
                 block.empty = false;
                 return self.read_setting(block);
-            }
-            b'o' => {
-                let (first, last) = self.span(start, self.bytes.len());
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    "O-word",
-                    "subroutines and control flow: o-sub, o-if, o-while, o-repeat",
-                ));
             }
             b'@' | b'^' | b'$' => {
                 // LinuxCNC reads these words' values first (polar coordinates, spindle number).
@@ -558,7 +560,7 @@ impl<'a> Reader<'a> {
     }
 
     /// An integer value (`read_integer_value`): a real value within 0.0001 of an integer.
-    fn read_integer_value(&mut self) -> Result<i64, Fault> {
+    pub(crate) fn read_integer_value(&mut self) -> Result<i64, Fault> {
         let start = self.pos;
         let value = self.read_real_value()?;
         let mut integer = value.floor();
@@ -761,7 +763,7 @@ impl<'a> Reader<'a> {
     }
 
     /// `[ … ]` with LinuxCNC's precedence climbing (`read_real_expression`).
-    fn read_expression(&mut self) -> Result<f64, Fault> {
+    pub(crate) fn read_expression(&mut self) -> Result<f64, Fault> {
         let start = self.pos;
         self.pos += 1;
         let mut values = [0.0f64; 8];
