@@ -14,23 +14,29 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use biscara::gcode::{Config, GcodeError, interpret};
+use biscara::gcode::{Config, GcodeError, Interpreter, interpret_seekable};
 use biscara::motion::{Motion, MotionKind};
 
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
-/// Our motions for `path`, started like rs274: at 0,0,0,0 with G28/G30 at 0.
-fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+/// The interpreter on the file `path`, started like rs274 (at 0,0,0,0 with G28/G30 at 0), with
+/// file subroutines beside it (rs274 runs in the program's folder and finds them there).
+fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret(BufReader::new(file), &Config::default()).collect()
+    interpret_seekable(BufReader::new(file), &Config::default())
+        .with_subroutines(Some(path.to_path_buf()), Vec::new())
+}
+
+/// Our motions for `path`.
+fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+    interpreter(path).collect()
 }
 
 /// Our motions for `path` before the first error, and the outcome.
 fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
-    let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut motions = Vec::new();
-    for result in interpret(BufReader::new(file), &Config::default()) {
+    for result in interpreter(path) {
         match result {
             Ok(motion) => motions.push(motion),
             Err(err) => return (motions, Err(err)),
