@@ -372,10 +372,111 @@ fn random_expression(rng: &mut Rng, depth: u32) -> String {
     }
 }
 
+/// The subroutines random programs call, defined after their end (found by reading on): an
+/// O-word subroutine with a return value, one that returns early, a Fanuc-style one.
+const RANDOM_SUBROUTINES: &str = "o<rsub1> sub
+  G1 X[#<_x> + #1] Y#2 F200
+o<rsub1> endsub [#1 + #2]
+o<rsub2> sub
+  o1 if [#1 GT 0]
+    o<rsub2> return [#1]
+  o1 endif
+  G0 Z[#<_z> + 1]
+  o<rsub1> call [1] [#1]
+o<rsub2> endsub
+O7000
+  G0 C[#<_c> + 5]
+M99
+";
+
+/// A random piece of O-word control flow with labels from `label` on: conditions, loops,
+/// calls, returned values.
+fn random_control(rng: &mut Rng, label: &mut u32) -> String {
+    *label += 1;
+    let n = *label;
+    let condition = |rng: &mut Rng| format!("[{} GT 0]", random_expression(rng, 2));
+    let step = |rng: &mut Rng| {
+        let letter = rng.pick(&["X", "Y", "Z", "C"]);
+        let g = rng.pick(&["G0", "G1"]);
+        format!("{g} {letter}[#<_{}> + {}]", letter.to_ascii_lowercase(), rng.below(5))
+    };
+    match rng.below(7) {
+        0 => {
+            let mut text = format!(
+                "o{n} if {}
+  {}
+",
+                condition(rng),
+                step(rng)
+            );
+            if rng.below(2) == 0 {
+                text += &format!(
+                    "o{n} elseif {}
+  {}
+",
+                    condition(rng),
+                    step(rng)
+                );
+            }
+            if rng.below(2) == 0 {
+                text += &format!(
+                    "o{n} else
+  {}
+",
+                    step(rng)
+                );
+            }
+            text + &format!("o{n} endif")
+        }
+        1 => format!(
+            "#<w{n}> = 0
+o{n} while [#<w{n}> LT {}]
+  {}
+  #<w{n}> = [#<w{n}> + 1]
+               o{n} if [#<w{n}> GT {}]
+    o{n} break
+  o{n} endif
+o{n} endwhile",
+            rng.below(5),
+            step(rng),
+            rng.below(5)
+        ),
+        2 => format!(
+            "o{n} repeat [{}]
+  {}
+o{n} endrepeat",
+            rng.below(4),
+            step(rng)
+        ),
+        3 => format!(
+            "#<d{n}> = {}
+o{n} do
+  {}
+  #<d{n}> = [#<d{n}> - 1]
+o{n} while [#<d{n}> GT 0]",
+            rng.below(4),
+            step(rng)
+        ),
+        4 => format!(
+            "o<rsub1> call [{}] [{}]
+G0 Z[#<_value> / 10]",
+            rng.coordinate(),
+            random_expression(rng, 1)
+        ),
+        5 => format!(
+            "o<rsub2> call [{}]
+G0 Y[#<_value_returned> + #<_y>]",
+            rng.coordinate()
+        ),
+        _ => format!("M98 P7000 L{}", rng.below(3)),
+    }
+}
+
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
-/// close: both interpreters must then refuse them alike).
+/// close: both interpreters must then refuse them alike), O-word control flow.
 fn random_program(rng: &mut Rng) -> String {
     let mut text = String::from("G0 X0 Y0 Z0 C0\nF500\n");
+    let mut label = 100;
     for _ in 0..(5 + rng.below(25)) {
         let axis = |rng: &mut Rng| {
             let letter = rng.pick(&["X", "Y", "Z", "C"]);
@@ -386,7 +487,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(20) {
+        let line = match rng.below(22) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -445,12 +546,14 @@ fn random_program(rng: &mut Rng) -> String {
             15 => format!("#{}=[{}]", 1 + rng.below(5), random_expression(rng, 2)),
             16 => format!("G0 X[{}] Y[{}]", random_expression(rng, 3), random_expression(rng, 2)),
             17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
+            18 | 19 => random_control(rng, &mut label),
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);
         text.push('\n');
     }
     text.push_str("M2\n");
+    text.push_str(RANDOM_SUBROUTINES);
     text
 }
 

@@ -289,6 +289,10 @@ impl Predefined for State {
             _ => return None,
         })
     }
+
+    fn defining_sub(&self) -> bool {
+        self.owords.defining
+    }
 }
 
 impl<R: BufRead> Interpreter<R> {

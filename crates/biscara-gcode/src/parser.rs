@@ -131,6 +131,12 @@ impl Block {
 pub(crate) trait Predefined {
     /// The value of predefined parameter `name` (without `#<` `>`, lower case, with its `_`).
     fn predefined(&self, name: &[u8]) -> Option<f64>;
+
+    /// Whether an O-word subroutine definition is being passed over: LinuxCNC then reads an
+    /// undefined named parameter as 0 instead of refusing it.
+    fn defining_sub(&self) -> bool {
+        false
+    }
 }
 
 /// LinuxCNC's ROUND: `(double) (int) (x ± 0.5)`, half away from zero through a C `int`. A zero
@@ -626,7 +632,9 @@ impl<'a> Reader<'a> {
         if self.peek() == b'<' {
             let (name_start, name_end) = self.read_name()?;
             let name = &self.bytes[name_start..name_end];
-            return self.named_value(name).ok_or_else(|| {
+            let value = self.named_value(name);
+            let value = value.or_else(|| self.predefined.defining_sub().then_some(0.0));
+            return value.ok_or_else(|| {
                 self.invalid(
                     start,
                     self.pos,

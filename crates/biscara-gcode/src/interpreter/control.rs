@@ -163,6 +163,8 @@ pub(super) struct Values {
     pub returned: bool,
     /// The call level (0 in the main program).
     pub level: usize,
+    /// Whether a subroutine definition is being passed over.
+    pub defining: bool,
 }
 
 /// The control-flow state (LinuxCNC's `skipping_o`, `offset_map`, `sub_context`, …).
@@ -709,8 +711,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if block.kind == OType::M98 && block.l == Some(0.0) {
-            // `M98 … L0`: no call.
-            self.leave_context();
+            // `M98 … L0`: no call — and, as in LinuxCNC, the call level entered stays.
             return Ok(());
         }
         self.back_to(&block.name)
@@ -743,6 +744,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.skipping_o = None;
             self.control.defining_sub = false;
             self.control.sub_name = None;
+            self.state.owords.defining = false;
         }
         Ok(())
     }
@@ -803,6 +805,7 @@ impl<R: BufRead> Interpreter<R> {
                     self.skip_to(block);
                     self.control.defining_sub = true;
                     self.control.sub_name = Some(block.name.clone());
+                    self.state.owords.defining = true;
                 }
             }
             OType::EndSub | OType::Return | OType::M99 => {
