@@ -372,8 +372,9 @@ fn random_expression(rng: &mut Rng, depth: u32) -> String {
     }
 }
 
-/// The subroutines random programs call, defined after their end (found by reading on): an
-/// O-word subroutine with a return value, one that returns early, a Fanuc-style one.
+/// The subroutines random programs call, defined before their main program (the Fanuc-style
+/// one after it, found by reading on): an O-word subroutine with a return value, one that
+/// returns early and calls the first.
 const RANDOM_SUBROUTINES: &str = "o<rsub1> sub
   G1 X[#<_x> + #1] Y#2 F200
 o<rsub1> endsub [#1 + #2]
@@ -384,17 +385,21 @@ o<rsub2> sub
   G0 Z[#<_z> + 1]
   o<rsub1> call [1] [#1]
 o<rsub2> endsub
-O7000
-  G0 C[#<_c> + 5]
-M99
 ";
+
+/// The Fanuc-style subprogram random programs call, after their end.
+const RANDOM_SUBPROGRAM: &str = "O7000\n  G0 C[#<_c> + 5]\nM99\n";
 
 /// A random piece of O-word control flow with labels from `label` on: conditions, loops,
 /// calls, returned values.
 fn random_control(rng: &mut Rng, label: &mut u32) -> String {
     *label += 1;
     let n = *label;
-    let condition = |rng: &mut Rng| format!("[{} GT 0]", random_expression(rng, 2));
+    let condition = |rng: &mut Rng| match rng.below(3) {
+        0 => format!("[{} GT 0]", random_expression(rng, 1)),
+        1 => format!("[#{} LT {}]", 1 + rng.below(5), rng.coordinate()),
+        _ => format!("[#<_{}> GE {}]", rng.pick(&["x", "y", "z", "c"]), rng.coordinate()),
+    };
     let step = |rng: &mut Rng| {
         let letter = rng.pick(&["X", "Y", "Z", "C"]);
         let g = rng.pick(&["G0", "G1"]);
@@ -402,72 +407,38 @@ fn random_control(rng: &mut Rng, label: &mut u32) -> String {
     };
     match rng.below(7) {
         0 => {
-            let mut text = format!(
-                "o{n} if {}
-  {}
-",
-                condition(rng),
-                step(rng)
-            );
+            let mut text = format!("o{n} if {}\n  {}\n", condition(rng), step(rng));
             if rng.below(2) == 0 {
-                text += &format!(
-                    "o{n} elseif {}
-  {}
-",
-                    condition(rng),
-                    step(rng)
-                );
+                text += &format!("o{n} elseif {}\n  {}\n", condition(rng), step(rng));
             }
             if rng.below(2) == 0 {
-                text += &format!(
-                    "o{n} else
-  {}
-",
-                    step(rng)
-                );
+                text += &format!("o{n} else\n  {}\n", step(rng));
             }
             text + &format!("o{n} endif")
         }
-        1 => format!(
-            "#<w{n}> = 0
-o{n} while [#<w{n}> LT {}]
-  {}
-  #<w{n}> = [#<w{n}> + 1]
-               o{n} if [#<w{n}> GT {}]
-    o{n} break
-  o{n} endif
-o{n} endwhile",
-            rng.below(5),
-            step(rng),
-            rng.below(5)
-        ),
-        2 => format!(
-            "o{n} repeat [{}]
-  {}
-o{n} endrepeat",
-            rng.below(4),
-            step(rng)
-        ),
-        3 => format!(
-            "#<d{n}> = {}
-o{n} do
-  {}
-  #<d{n}> = [#<d{n}> - 1]
-o{n} while [#<d{n}> GT 0]",
-            rng.below(4),
-            step(rng)
-        ),
+        1 => {
+            let (count, step, stop) = (rng.below(5), step(rng), rng.below(5));
+            let inner = n + 1000;
+            format!(
+                "#<w{n}> = 0\no{n} while [#<w{n}> LT {count}]\n  {step}\n  \
+                 #<w{n}> = [#<w{n}> + 1]\n  o{inner} if [#<w{n}> GT {stop}]\n    o{n} break\n  \
+                 o{inner} endif\no{n} endwhile"
+            )
+        }
+        2 => format!("o{n} repeat [{}]\n  {}\no{n} endrepeat", rng.below(4), step(rng)),
+        3 => {
+            let (count, step) = (rng.below(4), step(rng));
+            format!(
+                "#<d{n}> = {count}\no{n} do\n  {step}\n  #<d{n}> = [#<d{n}> - 1]\n\
+                 o{n} while [#<d{n}> GT 0]"
+            )
+        }
         4 => format!(
-            "o<rsub1> call [{}] [{}]
-G0 Z[#<_value> / 10]",
+            "o<rsub1> call [{}] [{}]\nG0 Z[#<_value> / 10]",
             rng.coordinate(),
-            random_expression(rng, 1)
-        ),
-        5 => format!(
-            "o<rsub2> call [{}]
-G0 Y[#<_value_returned> + #<_y>]",
             rng.coordinate()
         ),
+        5 => format!("o<rsub2> call [{}]\nG0 Y[#<_value_returned> + #<_y>]", rng.coordinate()),
         _ => format!("M98 P7000 L{}", rng.below(3)),
     }
 }
@@ -475,7 +446,7 @@ G0 Y[#<_value_returned> + #<_y>]",
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
 /// close: both interpreters must then refuse them alike), O-word control flow.
 fn random_program(rng: &mut Rng) -> String {
-    let mut text = String::from("G0 X0 Y0 Z0 C0\nF500\n");
+    let mut text = format!("{RANDOM_SUBROUTINES}G0 X0 Y0 Z0 C0\nF500\n#<p1> = 0.5\n");
     let mut label = 100;
     for _ in 0..(5 + rng.below(25)) {
         let axis = |rng: &mut Rng| {
@@ -553,7 +524,7 @@ fn random_program(rng: &mut Rng) -> String {
         text.push('\n');
     }
     text.push_str("M2\n");
-    text.push_str(RANDOM_SUBROUTINES);
+    text.push_str(RANDOM_SUBPROGRAM);
     text
 }
 

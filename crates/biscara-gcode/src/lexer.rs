@@ -151,6 +151,56 @@ impl<B: BufRead> BufRead for Counted<'_, B> {
     }
 }
 
+/// The most bytes of lines a forwards-only input keeps to read them again (loop bodies and
+/// subroutine definitions): 16 MiB.
+pub(crate) const MAX_KEPT_BYTES: usize = 16 << 20;
+
+/// A line of a forwards-only input kept to be read again.
+#[derive(Debug)]
+struct Kept {
+    start: u64,
+    next: u64,
+    line: Box<[u8]>,
+    too_long: bool,
+    /// Kept for good (a subroutine definition), not only while a loop runs.
+    keep: bool,
+}
+
+/// The lines of a forwards-only input (standard input, a pipe) that O-words may jump back to:
+/// those of the loops being run and of the subroutines defined, within [`MAX_KEPT_BYTES`].
+#[derive(Debug, Default)]
+struct Tape {
+    /// In input order.
+    lines: Vec<Kept>,
+    /// The kept line to read next instead of the input.
+    replay: Option<usize>,
+    /// Offset of the next byte of the input itself.
+    live: u64,
+    /// Whether lines read from the input are kept now (`Some(true)`: for good).
+    recording: Option<bool>,
+    bytes: usize,
+    overflow: bool,
+}
+
+impl Tape {
+    fn keep(&mut self, start: u64, next: u64, line: &[u8], too_long: bool, keep: bool) {
+        if self.overflow {
+            return;
+        }
+        if let Ok(index) = self.lines.binary_search_by_key(&start, |kept| kept.start) {
+            self.lines[index].keep |= keep;
+            return;
+        }
+        self.bytes += line.len() + std::mem::size_of::<Kept>();
+        if self.bytes > MAX_KEPT_BYTES {
+            self.overflow = true;
+            self.lines = Vec::new();
+            return;
+        }
+        self.lines.push(Kept { start, next, line: line.into(), too_long, keep });
+    }
+}
+
 /// Reads lines into one reused buffer, never holding more than `max + 1` bytes of a line
 /// (`biscara_text::read_capped_line` with the dialect's cap).
 #[derive(Debug)]
@@ -166,6 +216,8 @@ pub(crate) struct LineReader<R> {
     main_next: u64,
     /// How to move in the main input (`None`: it is read only forwards).
     jump: Option<JumpFn<R>>,
+    /// The lines kept of a main input read only forwards.
+    tape: Tape,
     /// The current line (without `\n`, and without a `\r` before it), truncated to
     /// `max + 1` bytes.
     pub line: Vec<u8>,
@@ -186,6 +238,7 @@ impl<R: BufRead> LineReader<R> {
             next: 0,
             main_next: 0,
             jump: None,
+            tape: Tape::default(),
             line: Vec::with_capacity(MAX_LINE + 2),
             too_long: false,
             number: 0,
@@ -245,22 +298,90 @@ impl<R: BufRead> LineReader<R> {
             match (&mut self.file, self.jump) {
                 (Some(file), _) => file.jump(self.next, to)?,
                 (None, Some(jump)) => self.reader.jump(jump, self.next, to)?,
-                (None, None) => {
-                    return Err(io::Error::new(
-                        io::ErrorKind::Unsupported,
-                        "the input is read only forwards",
-                    ));
-                }
+                (None, None) => self.tape_seek(to)?,
             }
         }
         self.next = to;
         Ok(())
     }
 
+    /// Whether lines are kept to be read again: a forwards-only main input being read.
+    fn taping(&self) -> bool {
+        self.file.is_none() && self.jump.is_none()
+    }
+
+    /// Keeps (`Some(keep)`) or stops keeping (`None`) the lines read from a forwards-only input
+    /// from now on; the current line is kept too. Stopping forgets the lines not kept for good.
+    pub(crate) fn set_recording(&mut self, recording: Option<bool>) {
+        if !self.taping() {
+            return;
+        }
+        self.tape.recording = recording;
+        match recording {
+            Some(keep) => {
+                let line = std::mem::take(&mut self.line);
+                self.tape.keep(self.start, self.next, &line, self.too_long, keep);
+                self.line = line;
+            }
+            None => {
+                self.tape.lines.retain(|kept| kept.keep);
+                self.tape.bytes = self
+                    .tape
+                    .lines
+                    .iter()
+                    .map(|kept| kept.line.len() + std::mem::size_of::<Kept>())
+                    .sum();
+                let next = self.next;
+                self.tape.replay = (next != self.tape.live)
+                    .then(|| self.tape.lines.partition_point(|kept| kept.start < next));
+            }
+        }
+    }
+
+    /// Moves to offset `to` of a forwards-only input: a kept line, or where the input is.
+    fn tape_seek(&mut self, to: u64) -> io::Result<()> {
+        if self.tape.overflow {
+            return Err(io::Error::other(format!(
+                "more than {} MiB of loop bodies and subroutine definitions to keep",
+                MAX_KEPT_BYTES >> 20
+            )));
+        }
+        if to == self.tape.live {
+            self.tape.replay = None;
+            return Ok(());
+        }
+        match self.tape.lines.binary_search_by_key(&to, |kept| kept.start) {
+            Ok(index) => {
+                self.tape.replay = Some(index);
+                Ok(())
+            }
+            Err(_) => Err(io::Error::new(io::ErrorKind::Unsupported, "that line was not kept")),
+        }
+    }
+
     /// Reads the next line; `Ok(false)` at the end of the input.
     pub(crate) fn next_line(&mut self) -> io::Result<bool> {
         self.too_long = false;
         self.start = self.next;
+        if let Some(index) = self.tape.replay {
+            match self.tape.lines.get(index).filter(|kept| kept.start == self.next) {
+                Some(kept) => {
+                    self.line.clear();
+                    self.line.extend_from_slice(&kept.line);
+                    self.too_long = kept.too_long;
+                    self.next = kept.next;
+                    self.number += 1;
+                    self.tape.replay = Some(index + 1);
+                    return Ok(true);
+                }
+                None if self.next == self.tape.live => self.tape.replay = None,
+                None => {
+                    return Err(io::Error::other(
+                        "a line to read again was not kept (the input is read only forwards)",
+                    ));
+                }
+            }
+        }
         let read = match &mut self.file {
             Some(file) => {
                 let mut counted = Counted { inner: file, count: 0 };
@@ -275,7 +396,14 @@ impl<R: BufRead> LineReader<R> {
                 read
             }
         };
-        match read? {
+        let read = read?;
+        if self.taping() {
+            self.tape.live = self.next;
+            if let (Some(keep), Some(too_long)) = (self.tape.recording, read) {
+                self.tape.keep(self.start, self.next, &self.line, too_long, keep);
+            }
+        }
+        match read {
             Some(too_long) => {
                 self.number += 1;
                 self.too_long = too_long;

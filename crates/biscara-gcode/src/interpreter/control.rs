@@ -187,6 +187,14 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// The loops of the main program being run (for an input read only forwards, whose lines
+    /// are kept while a loop runs).
+    open_loops: Vec<Rc<str>>,
+    /// Whether the lines of an input read only forwards are being kept (`Some(true)`: for good).
+    recording: Option<bool>,
+    /// A call in the main program reads on to find its subroutine: the lines from the call on
+    /// are kept (an input read only forwards), to come back to.
+    forward: bool,
 }
 
 impl Default for Control {
@@ -206,6 +214,9 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            open_loops: Vec::new(),
+            recording: None,
+            forward: false,
         }
     }
 }
@@ -331,7 +342,41 @@ impl<R: BufRead> Interpreter<R> {
         }
         let Some(block) = self.read_o(at, m_number)? else { return Ok(true) };
         self.convert_control(&block)?;
+        if !self.lines.can_jump() && self.control.file.is_none() {
+            self.update_recording();
+        }
         Ok(true)
+    }
+
+    /// An input read only forwards: keeps the lines of the main program's loops while they
+    /// run and of its subroutine definitions for good, so that jumps can read them again.
+    fn update_recording(&mut self) {
+        let want = if self.control.defining_sub || self.control.forward {
+            Some(true)
+        } else if !self.control.open_loops.is_empty() {
+            Some(false)
+        } else {
+            None
+        };
+        if want != self.control.recording {
+            self.lines.set_recording(want);
+            self.control.recording = want;
+        }
+    }
+
+    /// A loop of the main program starts (`open`) or ends: its lines are kept while it runs.
+    fn track_loop(&mut self, name: &Rc<str>, open: bool) {
+        if self.control.level() != 0 || self.control.file.is_some() || self.lines.can_jump() {
+            return;
+        }
+        let loops = &mut self.control.open_loops;
+        if open {
+            if !loops.contains(name) {
+                loops.push(name.clone());
+            }
+        } else {
+            loops.retain(|other| other != name);
+        }
     }
 
     /// The raw line as LinuxCNC quotes it in messages (trailing blanks dropped).
@@ -601,9 +646,12 @@ impl<R: BufRead> Interpreter<R> {
     fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
         if let Err(err) = self.lines.seek(offset) {
             let message = if self.control.file.is_none() && !self.lines.can_jump() {
-                "this O-word jumps back to an earlier line, and the program is read only \
-                 forwards (standard input or a pipe): give the program as a file"
-                    .to_owned()
+                format!(
+                    "this O-word jumps back to a line of a program read only forwards \
+                     (standard input), which keeps only the lines of loops being run and of \
+                     subroutines defined before their calls, up to 16 MiB ({err}): give the \
+                     program as a file"
+                )
             } else {
                 format!("cannot move in the program: {err}")
             };
@@ -627,6 +675,8 @@ impl<R: BufRead> Interpreter<R> {
             })?;
             self.control.file = Some(path);
             self.lines.number = 0;
+        } else if self.control.file.is_none() {
+            self.control.forward = true;
         }
         self.control.skipping_o = Some(name.clone());
         self.control.skipping_to_sub = Some(name.clone());
@@ -737,6 +787,9 @@ impl<R: BufRead> Interpreter<R> {
             self.go_to(position, line)?;
             self.leave_context();
             self.control.sub_name = self.control.frames.last().and_then(|f| f.name.clone());
+            if self.control.level() == 0 {
+                self.control.forward = false;
+            }
         } else if block.kind == OType::EndSub {
             if !self.control.defining_sub {
                 return Err(self.line_fault("Not in subroutine definition"));
@@ -834,6 +887,7 @@ impl<R: BufRead> Interpreter<R> {
                 self.execute_call(block)?;
             }
             OType::Do => {
+                self.track_loop(&block.name, true);
                 self.control.skipping_o = None;
                 if self.label_of(&block.name).is_none() {
                     self.save_offset(block)?;
@@ -852,6 +906,7 @@ impl<R: BufRead> Interpreter<R> {
                     None => self.save_offset(block)?,
                 }
                 self.control.skipping_o = None;
+                self.track_loop(&block.name, true);
                 let test = self.control.test_value;
                 let Some(label) = self.control.labels.get_mut(&block.name) else {
                     return Ok(());
@@ -883,6 +938,7 @@ impl<R: BufRead> Interpreter<R> {
                 self.control.skipping_o = None;
                 let kind = self.label_of(&block.name).map_or(OType::While, |label| label.kind);
                 if kind == OType::While {
+                    self.track_loop(&block.name, true);
                     if self.control.test_value == 0.0 {
                         self.skip_to(block);
                     }
@@ -890,6 +946,7 @@ impl<R: BufRead> Interpreter<R> {
                     self.back_to(&block.name)?;
                 } else {
                     self.control.doing_break = false;
+                    self.track_loop(&block.name, false);
                 }
             }
             OType::If => {
@@ -984,6 +1041,8 @@ impl<R: BufRead> Interpreter<R> {
                     if self.control.doing_continue {
                         self.control.doing_continue = false;
                         self.back_to(&block.name)?;
+                    } else {
+                        self.track_loop(&block.name, false);
                     }
                 } else {
                     self.back_to(&block.name)?;
