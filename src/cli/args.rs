@@ -108,6 +108,16 @@ pub(crate) struct DialectArgs {
     pub(crate) dialect: Dialect,
 }
 
+/// The files a G-code program may read besides itself.
+#[derive(Debug, Args)]
+pub(crate) struct GcodeFilesArgs {
+    /// A folder where file subroutines are looked for: `o<name> call` of a subroutine the
+    /// program does not define runs `name.ngc`, from the program's own folder or else from these
+    /// folders, in order (LinuxCNC's SUBROUTINE_PATH). May be given more than once.
+    #[arg(long, value_name = "DIR", help = "Folder of file subroutines (o<name> call → name.ngc)")]
+    pub(crate) subroutine_path: Vec<PathBuf>,
+}
+
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
     text.parse::<Dialect>().map_err(|err| err.to_string())
 }
@@ -128,6 +138,8 @@ pub(crate) struct SamplingArgs {
     pub(crate) placement: PlacementArgs,
     #[command(flatten)]
     pub(crate) dialect: DialectArgs,
+    #[command(flatten)]
+    pub(crate) files: GcodeFilesArgs,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     pub(crate) precision: u8,
@@ -143,6 +155,7 @@ impl SamplingArgs {
             origin: self.placement.origin,
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
+            subroutine_path: self.files.subroutine_path.clone(),
         }
     }
 }

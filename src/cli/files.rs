@@ -4,6 +4,7 @@
 use std::io::{self, BufRead, Write};
 use std::path::{Path, PathBuf};
 
+use biscara::gcode::Seekable;
 use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::Scene;
 use biscara::view::ImageFormat;
@@ -40,10 +41,18 @@ impl ProgramSource for FileSource {
     }
 
     fn open(&self) -> io::Result<Box<dyn BufRead>> {
-        biscara_files::open_input(&self.path).map_err(|err| match err {
-            biscara_files::FileError::Read { source, .. } => source,
-            other => io::Error::other(other),
-        })
+        biscara_files::open_input(&self.path).map_err(io_error)
+    }
+
+    fn open_seekable(&self) -> io::Result<Option<Box<dyn Seekable>>> {
+        if self.path == Path::new("-") {
+            return Ok(None);
+        }
+        Ok(Some(Box::new(biscara_files::open_file(&self.path).map_err(io_error)?)))
+    }
+
+    fn path(&self) -> Option<&Path> {
+        (self.path != Path::new("-")).then_some(self.path.as_path())
     }
 
     fn rereadable(&self) -> bool {
@@ -77,4 +86,13 @@ pub(crate) fn write_output(
     write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     biscara_files::write_output(path, write)
+}
+
+/// A read error as the pipeline's sources report it: the system's error, the file named by the
+/// pipeline.
+fn io_error(err: biscara_files::FileError) -> io::Error {
+    match err {
+        biscara_files::FileError::Read { source, .. } => source,
+        other => io::Error::other(other),
+    }
 }

@@ -14,23 +14,29 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use biscara::gcode::{Config, GcodeError, interpret};
+use biscara::gcode::{Config, GcodeError, Interpreter, interpret_seekable};
 use biscara::motion::{Motion, MotionKind};
 
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
-/// Our motions for `path`, started like rs274: at 0,0,0,0 with G28/G30 at 0.
-fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+/// The interpreter on the file `path`, started like rs274 (at 0,0,0,0 with G28/G30 at 0), with
+/// file subroutines beside it (rs274 runs in the program's folder and finds them there).
+fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret(BufReader::new(file), &Config::default()).collect()
+    interpret_seekable(BufReader::new(file), &Config::default())
+        .with_subroutines(Some(path.to_path_buf()), Vec::new())
+}
+
+/// Our motions for `path`.
+fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+    interpreter(path).collect()
 }
 
 /// Our motions for `path` before the first error, and the outcome.
 fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
-    let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut motions = Vec::new();
-    for result in interpret(BufReader::new(file), &Config::default()) {
+    for result in interpreter(path) {
         match result {
             Ok(motion) => motions.push(motion),
             Err(err) => return (motions, Err(err)),
@@ -366,10 +372,82 @@ fn random_expression(rng: &mut Rng, depth: u32) -> String {
     }
 }
 
+/// The subroutines random programs call, defined before their main program (the Fanuc-style
+/// one after it, found by reading on): an O-word subroutine with a return value, one that
+/// returns early and calls the first.
+const RANDOM_SUBROUTINES: &str = "o<rsub1> sub
+  G1 X[#<_x> + #1] Y#2 F200
+o<rsub1> endsub [#1 + #2]
+o<rsub2> sub
+  o1 if [#1 GT 0]
+    o<rsub2> return [#1]
+  o1 endif
+  G0 Z[#<_z> + 1]
+  o<rsub1> call [1] [#1]
+o<rsub2> endsub
+";
+
+/// The Fanuc-style subprogram random programs call, after their end.
+const RANDOM_SUBPROGRAM: &str = "O7000\n  G0 C[#<_c> + 5]\nM99\n";
+
+/// A random piece of O-word control flow with labels from `label` on: conditions, loops,
+/// calls, returned values.
+fn random_control(rng: &mut Rng, label: &mut u32) -> String {
+    *label += 1;
+    let n = *label;
+    let condition = |rng: &mut Rng| match rng.below(3) {
+        0 => format!("[{} GT 0]", random_expression(rng, 1)),
+        1 => format!("[#{} LT {}]", 1 + rng.below(5), rng.coordinate()),
+        _ => format!("[#<_{}> GE {}]", rng.pick(&["x", "y", "z", "c"]), rng.coordinate()),
+    };
+    let step = |rng: &mut Rng| {
+        let letter = rng.pick(&["X", "Y", "Z", "C"]);
+        let g = rng.pick(&["G0", "G1"]);
+        format!("{g} {letter}[#<_{}> + {}]", letter.to_ascii_lowercase(), rng.below(5))
+    };
+    match rng.below(7) {
+        0 => {
+            let mut text = format!("o{n} if {}\n  {}\n", condition(rng), step(rng));
+            if rng.below(2) == 0 {
+                text += &format!("o{n} elseif {}\n  {}\n", condition(rng), step(rng));
+            }
+            if rng.below(2) == 0 {
+                text += &format!("o{n} else\n  {}\n", step(rng));
+            }
+            text + &format!("o{n} endif")
+        }
+        1 => {
+            let (count, step, stop) = (rng.below(5), step(rng), rng.below(5));
+            let inner = n + 1000;
+            format!(
+                "#<w{n}> = 0\no{n} while [#<w{n}> LT {count}]\n  {step}\n  \
+                 #<w{n}> = [#<w{n}> + 1]\n  o{inner} if [#<w{n}> GT {stop}]\n    o{n} break\n  \
+                 o{inner} endif\no{n} endwhile"
+            )
+        }
+        2 => format!("o{n} repeat [{}]\n  {}\no{n} endrepeat", rng.below(4), step(rng)),
+        3 => {
+            let (count, step) = (rng.below(4), step(rng));
+            format!(
+                "#<d{n}> = {count}\no{n} do\n  {step}\n  #<d{n}> = [#<d{n}> - 1]\n\
+                 o{n} while [#<d{n}> GT 0]"
+            )
+        }
+        4 => format!(
+            "o<rsub1> call [{}] [{}]\nG0 Z[#<_value> / 10]",
+            rng.coordinate(),
+            rng.coordinate()
+        ),
+        5 => format!("o<rsub2> call [{}]\nG0 Y[#<_value_returned> + #<_y>]", rng.coordinate()),
+        _ => format!("M98 P7000 L{}", rng.below(3)),
+    }
+}
+
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
-/// close: both interpreters must then refuse them alike).
+/// close: both interpreters must then refuse them alike), O-word control flow.
 fn random_program(rng: &mut Rng) -> String {
-    let mut text = String::from("G0 X0 Y0 Z0 C0\nF500\n");
+    let mut text = format!("{RANDOM_SUBROUTINES}G0 X0 Y0 Z0 C0\nF500\n#<p1> = 0.5\n");
+    let mut label = 100;
     for _ in 0..(5 + rng.below(25)) {
         let axis = |rng: &mut Rng| {
             let letter = rng.pick(&["X", "Y", "Z", "C"]);
@@ -380,7 +458,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(20) {
+        let line = match rng.below(22) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -439,12 +517,14 @@ fn random_program(rng: &mut Rng) -> String {
             15 => format!("#{}=[{}]", 1 + rng.below(5), random_expression(rng, 2)),
             16 => format!("G0 X[{}] Y[{}]", random_expression(rng, 3), random_expression(rng, 2)),
             17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
+            18 | 19 => random_control(rng, &mut label),
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);
         text.push('\n');
     }
     text.push_str("M2\n");
+    text.push_str(RANDOM_SUBPROGRAM);
     text
 }
 

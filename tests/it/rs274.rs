@@ -74,7 +74,8 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
             .arg("-g")
             .arg(program)
             .arg(&output)
-            .current_dir(dir)
+            // File subroutines are found in the current folder.
+            .current_dir(program.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(dir))
             .env("HOME", dir)
             .stdin(Stdio::null())
             .stdout(Stdio::null())

@@ -1,34 +1,57 @@
 //! Inputs: a file or standard input, read line by line or whole.
 
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, IsTerminal, Read};
+use std::io::{self, BufRead, BufReader, IsTerminal, Read, Seek};
 use std::path::Path;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressStyle};
+use indicatif::{ProgressBar, ProgressBarIter, ProgressDrawTarget, ProgressFinish, ProgressStyle};
 
 use crate::{FileError, display_path, is_stdio};
 
 /// Inputs smaller than this get no progress bar: they are done before it would show.
 const MIN_BYTES_FOR_PROGRESS: u64 = 4 << 20;
 
-/// `path` opened for buffered reading (standard input for `-`). When stderr is a terminal and the
-/// file is large, reading it advances a progress bar on stderr, cleared at the end.
+/// `path` opened for buffered reading (standard input for `-`); a file as [`open_file`] opens it.
 pub fn open_input(path: &Path) -> Result<Box<dyn BufRead>, FileError> {
     if is_stdio(path) {
         return Ok(Box::new(io::stdin().lock()));
     }
+    Ok(Box::new(open_file(path)?))
+}
+
+/// A file opened for reading: buffered, seekable (so that a reader may jump back, as G-code
+/// loops do), and advancing a progress bar on stderr when stderr is a terminal and the file is
+/// large (cleared at the end).
+pub fn open_file(path: &Path) -> Result<BufReader<ProgressFile>, FileError> {
     let file = File::open(path).map_err(|source| read_error(path, source))?;
     let length = file.metadata().map(|metadata| metadata.len()).unwrap_or(0);
-    if length < MIN_BYTES_FOR_PROGRESS || !io::stderr().is_terminal() {
-        return Ok(Box::new(BufReader::with_capacity(1 << 16, file)));
+    let bar = if length < MIN_BYTES_FOR_PROGRESS || !io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(Some(length), ProgressDrawTarget::stderr())
+            .with_style(
+                ProgressStyle::with_template("{bar:40} {bytes}/{total_bytes} {elapsed} eta {eta}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            )
+            .with_finish(ProgressFinish::AndClear)
+    };
+    Ok(BufReader::with_capacity(1 << 16, ProgressFile(bar.wrap_read(file))))
+}
+
+/// A file whose reads and seeks move its progress bar: what [`open_file`] reads through.
+#[derive(Debug)]
+pub struct ProgressFile(ProgressBarIter<File>);
+
+impl Read for ProgressFile {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        self.0.read(buf)
     }
-    let bar = ProgressBar::with_draw_target(Some(length), ProgressDrawTarget::stderr())
-        .with_style(
-            ProgressStyle::with_template("{bar:40} {bytes}/{total_bytes} {elapsed} eta {eta}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        )
-        .with_finish(ProgressFinish::AndClear);
-    Ok(Box::new(BufReader::with_capacity(1 << 16, bar.wrap_read(file))))
+}
+
+impl Seek for ProgressFile {
+    fn seek(&mut self, to: io::SeekFrom) -> io::Result<u64> {
+        self.0.seek(to)
+    }
 }
 
 /// The whole content of `path` (standard input for `-`).
@@ -89,6 +112,9 @@ mod tests {
         let lines: Vec<String> = open_input(&path).unwrap().lines().map(Result::unwrap).collect();
         assert_eq!(lines, ["a", "b"]);
         assert_eq!(read_text(&path).unwrap(), "a\nb\n");
+        let mut file = open_file(&path).unwrap();
+        file.seek(io::SeekFrom::Start(2)).unwrap();
+        assert_eq!(io::read_to_string(file).unwrap(), "b\n");
         std::fs::remove_file(path).unwrap();
     }
 }

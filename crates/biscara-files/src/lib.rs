@@ -30,7 +30,7 @@ mod output;
 
 use std::path::{Path, PathBuf};
 
-pub use input::{open_input, read_bytes, read_text};
+pub use input::{ProgressFile, open_file, open_input, read_bytes, read_text};
 pub use output::write_output;
 
 /// What went wrong with a file, and which file.

@@ -11,7 +11,7 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
-use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, compact};
+use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, compact};
 use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
@@ -19,6 +19,8 @@ use crate::params::{
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::Tool;
 
+/// O-word control flow: subroutines, conditions and loops (SPEC §4.2 tier 3).
+mod control;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
 
@@ -76,6 +78,18 @@ pub fn interpret<R: BufRead>(reader: R, config: &Config) -> Interpreter<R> {
     Interpreter::new(reader, config)
 }
 
+/// Interprets the G-code read from `reader`, an input it can jump in (a file): O-word loops
+/// and subroutine calls go back to a line by its byte offset. [`interpret`] reads only
+/// forwards: a jump back is an error there. Set where file subroutines are found with
+/// [`Interpreter::with_subroutines`].
+pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interpreter<R> {
+    let mut interpreter = Interpreter::new(reader, config);
+    if interpreter.lines.source_can_jump() {
+        interpreter.lines.set_jump(|reader: &mut R, from, to| reader.jump(from, to));
+    }
+    interpreter
+}
+
 /// The iterator returned by [`interpret`].
 #[derive(Debug)]
 pub struct Interpreter<R> {
@@ -107,6 +121,8 @@ pub struct Interpreter<R> {
     pending_extrude: Option<f64>,
     /// Whether any motion was emitted (an empty program is not a program).
     moved: bool,
+    /// O-word control flow.
+    control: Box<control::Control>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -145,6 +161,8 @@ struct State {
     spindle: u16,
     mist: bool,
     flood: bool,
+    /// `#<_value>`, `#<_value_returned>`, `#<_call_level>`.
+    owords: control::Values,
 }
 
 impl State {
@@ -178,6 +196,7 @@ impl State {
             spindle: 5,
             mist: false,
             flood: false,
+            owords: control::Values::default(),
         };
         state.publish_position();
         state
@@ -261,11 +280,18 @@ impl Predefined for State {
             b"_spindle_rpm_mode" => 1.0,
             b"_spindle_css_mode" => 0.0,
             b"_speed_override" | b"_feed_override" | b"_adaptive_feed" | b"_feed_hold" => 0.0,
-            b"_value" | b"_value_returned" | b"_call_level" | b"_remap_level" | b"_task" => 0.0,
+            b"_value" => self.owords.value,
+            b"_value_returned" => flag(self.owords.returned),
+            b"_call_level" => self.owords.level as f64,
+            b"_remap_level" | b"_task" => 0.0,
             b"_vmajor" => 2.0,
             b"_vminor" => 9.0,
             _ => return None,
         })
+    }
+
+    fn defining_sub(&self) -> bool {
+        self.owords.defining
     }
 }
 
@@ -296,6 +322,7 @@ impl<R: BufRead> Interpreter<R> {
             e_relative: false,
             pending_extrude: None,
             moved: false,
+            control: Box::default(),
         }
         .with_line_limit()
     }
@@ -331,6 +358,9 @@ impl<R: BufRead> Interpreter<R> {
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             if !more {
+                if let Some(err) = self.control_end() {
+                    return Err(err);
+                }
                 return self.end_of_input();
             }
             if self.lines.too_long {
@@ -347,7 +377,7 @@ impl<R: BufRead> Interpreter<R> {
                     continue;
                 }
                 self.percent = Percent::Absent;
-            } else if self.percent == Percent::Open && trimmed == b"%" {
+            } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
                 self.finished = true;
                 return Ok(());
             }
@@ -368,6 +398,11 @@ impl<R: BufRead> Interpreter<R> {
                 continue;
             }
             if self.block_delete && self.compact.bytes()[0] == b'/' {
+                continue;
+            }
+            if (self.control.engaged() || control::may_control(self.compact.bytes()))
+                && self.control_line()?
+            {
                 continue;
             }
             let raw_len = self.lines.line.len();

@@ -78,5 +78,6 @@ pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
 };
 pub use error::{GcodeError, Location};
-pub use interpreter::{Config, Interpreter, interpret};
+pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
+pub use lexer::{Forward, Seekable};
 pub use tool::Tool;

@@ -131,6 +131,12 @@ impl Block {
 pub(crate) trait Predefined {
     /// The value of predefined parameter `name` (without `#<` `>`, lower case, with its `_`).
     fn predefined(&self, name: &[u8]) -> Option<f64>;
+
+    /// Whether an O-word subroutine definition is being passed over: LinuxCNC then reads an
+    /// undefined named parameter as 0 instead of refusing it.
+    fn defining_sub(&self) -> bool {
+        false
+    }
 }
 
 /// LinuxCNC's ROUND: `(double) (int) (x ± 0.5)`, half away from zero through a C `int`. A zero
@@ -312,7 +318,18 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
+    /// The compact index of the next byte to read.
+    pub(crate) fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// Reads on from compact index `pos`.
+    pub(crate) fn set_position(&mut self, pos: usize) {
+        self.pos = pos;
+    }
+
+    /// One word, setting or comment (`read_one_item`).
+    pub(crate) fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
         let start = self.pos;
         let letter = self.peek();
         match letter {
@@ -323,15 +340,6 @@ impl<'a> Reader<'a> {
             b'#' => {
                 block.empty = false;
                 return self.read_setting(block);
-            }
-            b'o' => {
-                let (first, last) = self.span(start, self.bytes.len());
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    "O-word",
-                    "subroutines and control flow: o-sub, o-if, o-while, o-repeat",
-                ));
             }
             b'@' | b'^' | b'$' => {
                 // LinuxCNC reads these words' values first (polar coordinates, spindle number).
@@ -558,7 +566,7 @@ impl<'a> Reader<'a> {
     }
 
     /// An integer value (`read_integer_value`): a real value within 0.0001 of an integer.
-    fn read_integer_value(&mut self) -> Result<i64, Fault> {
+    pub(crate) fn read_integer_value(&mut self) -> Result<i64, Fault> {
         let start = self.pos;
         let value = self.read_real_value()?;
         let mut integer = value.floor();
@@ -624,7 +632,9 @@ impl<'a> Reader<'a> {
         if self.peek() == b'<' {
             let (name_start, name_end) = self.read_name()?;
             let name = &self.bytes[name_start..name_end];
-            return self.named_value(name).ok_or_else(|| {
+            let value = self.named_value(name);
+            let value = value.or_else(|| self.predefined.defining_sub().then_some(0.0));
+            return value.ok_or_else(|| {
                 self.invalid(
                     start,
                     self.pos,
@@ -761,7 +771,7 @@ impl<'a> Reader<'a> {
     }
 
     /// `[ … ]` with LinuxCNC's precedence climbing (`read_real_expression`).
-    fn read_expression(&mut self) -> Result<f64, Fault> {
+    pub(crate) fn read_expression(&mut self) -> Result<f64, Fault> {
         let start = self.pos;
         self.pos += 1;
         let mut values = [0.0f64; 8];

@@ -5,7 +5,11 @@ use std::cell::RefCell;
 use std::io::BufRead;
 use std::rc::Rc;
 
-use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, interpret};
+use std::path::{Path, PathBuf};
+
+use biscara_gcode::{
+    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, interpret_seekable,
+};
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, Position, read_jsonl};
 
@@ -41,31 +45,46 @@ impl NoteSink {
     }
 }
 
-/// The motions of a G-code program (read in `dialect`, with `origin` as its G54 offset) or an
-/// inter-file.
+/// How a G-code program is read: its dialect and where its file subroutines are.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reading<'a> {
+    pub dialect: Dialect,
+    pub subroutine_path: &'a [PathBuf],
+}
+
+/// The motions of a G-code program (read as `reading` says, with `origin` as its G54 offset)
+/// or an inter-file.
 pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
     origin: Position,
-    dialect: Dialect,
+    reading: &Reading<'_>,
     notes: NoteSink,
 ) -> Result<MotionReader, PipelineError> {
     let file = source.name().to_owned();
-    let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
+    let io_error = |source| PipelineError::Io { file: file.clone(), source };
     match kind {
         ProgramKind::Jsonl => Ok(Box::new(
-            read_jsonl(input)
+            read_jsonl(source.open().map_err(io_error)?)
                 .map(move |result| result.map_err(|err| PipelineError::program(&file, err))),
         )),
         ProgramKind::Gcode => {
             let config = GcodeConfig {
                 home: model.home_position(),
                 origin,
-                dialect,
+                dialect: reading.dialect,
                 ..GcodeConfig::default()
             };
-            let interpreter = interpret(input, &config);
+            // A file is read with jumps (O-word loops and calls); standard input only forwards.
+            let input: Box<dyn Seekable> = match source.open_seekable().map_err(io_error)? {
+                Some(input) => input,
+                None => Box::new(Forward(source.open().map_err(io_error)?)),
+            };
+            let interpreter = interpret_seekable(input, &config).with_subroutines(
+                source.path().map(Path::to_path_buf),
+                reading.subroutine_path.to_vec(),
+            );
             Ok(Box::new(GcodeMotions { interpreter, file, notes, finished: false }))
         }
         ProgramKind::Path => Err(PipelineError::Unsupported {

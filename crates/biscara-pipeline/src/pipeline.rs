@@ -1,5 +1,7 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
+use std::path::PathBuf;
+
 use biscara_gcode::Dialect;
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
@@ -12,11 +14,11 @@ use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 use biscara_robot::shift_motion;
 
-use crate::motions::{MotionReader, NoteSink, read_motions};
+use crate::motions::{MotionReader, NoteSink, Reading, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SamplingConfig {
     /// Time step, s (> 0).
     pub dt: f64,
@@ -31,6 +33,9 @@ pub struct SamplingConfig {
     pub fit: bool,
     /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
     pub dialect: Dialect,
+    /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
+    /// program's own folder (`--subroutine-path`).
+    pub subroutine_path: Vec<PathBuf>,
 }
 
 impl Default for SamplingConfig {
@@ -44,6 +49,7 @@ impl Default for SamplingConfig {
             origin: None,
             fit: false,
             dialect: Dialect::Auto,
+            subroutine_path: Vec::new(),
         }
     }
 }
@@ -56,7 +62,7 @@ pub type SlowDownNotes = Box<dyn FnMut(&SlowDown)>;
 pub type Motions = MotionReader;
 
 /// One robot and one sampling configuration: the pipeline every command runs programs through.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Pipeline<'m> {
     model: &'m RobotModel,
     config: SamplingConfig,
@@ -95,11 +101,11 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: &NoteSink,
     ) -> Result<Motions, PipelineError> {
-        let SamplingConfig { origin, fit, dialect, .. } = self.config;
-        let placement =
-            place(self.model, source, kind, origin, fit, dialect, &mut |note| notes.say(note))?;
+        let reading =
+            Reading { dialect: self.config.dialect, subroutine_path: &self.config.subroutine_path };
+        let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
         let motions =
-            read_motions(self.model, source, kind, placement.origin, dialect, notes.clone())?;
+            read_motions(self.model, source, kind, placement.origin, &reading, notes.clone())?;
         Ok(match placement.shift {
             None => motions,
             Some(offset) => {

@@ -1,13 +1,12 @@
 //! Where a program runs: its G54 origin and, with `--fit`, the offset that centres it in the
 //! workspace rectangle (SPEC §4.2, §8.2).
 
-use biscara_gcode::Dialect;
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 use biscara_robot::{Bounds, Workspace, fit};
 
-use crate::motions::{NoteSink, read_motions};
-use crate::{Note, PipelineError, ProgramKind, ProgramSource};
+use crate::motions::{NoteSink, Reading, read_motions};
+use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// Grid step of the workspace rectangle `--fit` centres programs in, millimetres (the default
 /// of `biscara workspace`).
@@ -24,21 +23,19 @@ pub struct Placement {
     pub shift: Option<[f64; 2]>,
 }
 
-/// The placement of the program: `origin` as given (zero when `None`), and with `fit` the offset
-/// that centres the program's XY extent (arcs included) in the largest rectangle of the
+/// The placement of the program: the configuration's `origin` as given (zero when `None`), and
+/// with its `fit` the offset that centres the program's XY extent (arcs included) in the largest rectangle of the
 /// workspace, announced as a [`Note::Placed`]. `fit` reads the program once more, so its source
 /// must be re-readable; a path CSV holds samples and cannot be placed.
 pub fn place(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    origin: Option<Position>,
-    fit_program: bool,
-    dialect: Dialect,
+    config: &SamplingConfig,
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
-    let mut origin = origin.unwrap_or([0.0; 4]);
-    if !fit_program {
+    let mut origin = config.origin.unwrap_or([0.0; 4]);
+    if !config.fit {
         return Ok(Placement { origin, shift: None });
     }
     let file = source.name();
@@ -55,7 +52,8 @@ pub fn place(
         });
     }
     let mut bounds = Bounds::new(model.home_position());
-    for motion in read_motions(model, source, kind, origin, dialect, NoteSink::silent())? {
+    let reading = Reading { dialect: config.dialect, subroutine_path: &config.subroutine_path };
+    for motion in read_motions(model, source, kind, origin, &reading, NoteSink::silent())? {
         bounds.push(&motion?);
     }
     let workspace =

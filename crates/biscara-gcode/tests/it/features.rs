@@ -91,8 +91,11 @@ fn errors_point_at_the_word() {
     assert!(matches!(err, GcodeError::ForeignAxis { letter: 'A', .. }));
     let err = error("G0 X1\nG83 X1 Z-1 R1 Q1 F10\nM2\n");
     assert_eq!(err.to_string(), "2:1: G83 is not supported yet (canned cycle)");
-    let err = error("o10 if [1]\nM2\n");
-    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+    let err = error("o10 if [1]\nG0 X1\no10 endif\no10 if [1]\no10 endif\nM2\n");
+    assert_eq!(
+        err.to_string(),
+        "4:1: 4: duplicate O-word label - already defined in line 1: 'o10 if [1]'"
+    );
 }
 
 /// The value of expression `expression`, read back as the X of a rapid.

@@ -3,5 +3,6 @@
 mod dialects;
 mod features;
 mod no_panic;
+mod owords;
 mod strategies;
 mod streaming;

@@ -125,7 +125,8 @@ fn fit_refuses_a_source_it_cannot_read_twice_and_a_path_csv() {
     let model = RobotModel::default();
     let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
     let stdin = Once(TextSource::new("-", PROGRAM));
-    let err = pipeline(&model, config).samples(&stdin, ProgramKind::Gcode, |_| {}).err().unwrap();
+    let err =
+        pipeline(&model, config.clone()).samples(&stdin, ProgramKind::Gcode, |_| {}).err().unwrap();
     assert!(matches!(err, PipelineError::Unsupported { .. }), "{err}");
     assert!(err.to_string().contains("not standard input"), "{err}");
     let csv = TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n");
