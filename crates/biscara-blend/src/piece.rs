@@ -147,4 +147,32 @@ impl Piece {
             }
         }
     }
+
+    /// The first and second derivatives of the pose `[x, y, z, c]` with respect to the XYZ arc
+    /// length (mm) a fraction `u` ∈ [0, 1] of the length along: what a timing law needs to map
+    /// a path speed and acceleration to the axes (for C, degrees per mm). On a line the second
+    /// is zero; on a fillet it points to the centre with length 1/radius. The second derivative
+    /// jumps where a line meets a fillet: a timing law holds its bounds on both sides there.
+    pub fn derivatives(&self, u: f64) -> ([f64; 4], [f64; 4]) {
+        let length = self.length();
+        let c_rate = (self.end()[3] - self.start()[3]) / length;
+        let tangent = self.tangent(u);
+        let mut first = [tangent[0], tangent[1], tangent[2], c_rate];
+        if !c_rate.is_finite() {
+            first[3] = 0.0;
+        }
+        let second = match self.geometry {
+            Geometry::Line { .. } => [0.0; 4],
+            Geometry::Fillet { start, center, radius, tangent, sweep, .. } => {
+                let (sin, cos) = (u * sweep).sin_cos();
+                let radial = sub(xyz(start), center);
+                let mut second = [0.0; 4];
+                for k in 0..3 {
+                    second[k] = (-cos * radial[k] / radius - sin * tangent[k]) / radius;
+                }
+                second
+            }
+        };
+        (first, second)
+    }
 }

@@ -181,6 +181,49 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
+    fn derivatives_match_finite_differences(
+        vertices in strategies::polyline(),
+        tolerance in 0.01..0.5f64,
+        u in 0.05..0.95f64,
+    ) {
+        let motions: Vec<Motion> = vertices[1..]
+            .iter()
+            .enumerate()
+            .map(|(k, &end)| linear(k + 1, end, Some(tolerance)))
+            .collect();
+        for piece in pieces(&blend(&motions, vertices[0])) {
+            let length = piece.length();
+            // A step of a thousandth of the piece's shortest scale (its length, its radius).
+            let scale = piece.radius().map_or(length, |radius| radius.min(length));
+            if scale < 0.01 {
+                continue;
+            }
+            let step = 1e-3 * scale;
+            let h = step / length;
+            let (first, second) = piece.derivatives(u);
+            let (before, here, after) = (piece.point(u - h), piece.point(u), piece.point(u + h));
+            // Rounding of coordinates near 500 mm, amplified by the differences.
+            let noise = 1e-13 * 500.0;
+            for k in 0..4 {
+                let slope = (after[k] - before[k]) / (2.0 * step);
+                let bend = (after[k] - 2.0 * here[k] + before[k]) / (step * step);
+                prop_assert!(
+                    (slope - first[k]).abs() < 1e-6 + noise / step,
+                    "axis {k}: {slope} vs {}", first[k]
+                );
+                prop_assert!(
+                    (bend - second[k]).abs() < 1e-3 / scale + 4.0 * noise / (step * step),
+                    "axis {k}: {bend} vs {}", second[k]
+                );
+            }
+            if let Some(radius) = piece.radius() {
+                let curvature = second[..3].iter().map(|v| v * v).sum::<f64>().sqrt();
+                prop_assert!((curvature * radius - 1.0).abs() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
     fn blended_polylines_stay_within_the_tolerance(
         vertices in strategies::polyline(),
         tolerance in prop_oneof![Just(0.0), 0.001..0.5f64],
@@ -214,4 +257,33 @@ fn count_straight(vertices: &[[f64; 4]]) -> usize {
             cross.iter().map(|v| v * v).sum::<f64>().sqrt() < 1e-12 && dot > 0.0
         })
         .count()
+}
+
+#[test]
+fn a_cam_polyline_runs_as_one_chain() {
+    // A circle of 720 chords (half a degree each, radius 50 mm), then a 40 mm square from the
+    // circle's start: every corner, the square's included, is a fillet; one stop, at the end.
+    let radius = 50.0;
+    let mut vertices: Vec<[f64; 4]> = (0..=720)
+        .map(|k| {
+            let angle = (f64::from(k) * 0.5).to_radians();
+            [radius * angle.cos(), 400.0 + radius * angle.sin(), 50.0, 0.0]
+        })
+        .collect();
+    let corner = vertices[0];
+    for [dx, dy] in [[40.0, 0.0], [40.0, 40.0], [0.0, 40.0], [0.0, 0.0]] {
+        vertices.push([corner[0] + dx, corner[1] + dy, 50.0, 0.0]);
+    }
+    let motions: Vec<Motion> =
+        vertices[1..].iter().enumerate().map(|(k, &end)| linear(k + 1, end, Some(0.05))).collect();
+    let got = pieces(&blend(&motions, vertices[0]));
+    check_chain(&got, &vertices, 0.05).expect("a valid chain");
+    assert_eq!(got.iter().filter(|piece| piece.ends_chain).count(), 1);
+    let fillets: Vec<f64> = got.iter().filter_map(Piece::radius).collect();
+    assert_eq!(fillets.len(), vertices.len() - 2);
+    // The circle's chords are cut at half: the fillets rebuild a 50 mm circle; the square's
+    // right angles get r = P / (√2 − 1).
+    let smallest = fillets.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!((smallest - 0.05 / (2f64.sqrt() - 1.0)).abs() < 1e-9, "{smallest}");
+    assert!(fillets[..719].iter().all(|r| (r - radius).abs() < 0.01), "{:?}", &fillets[..3]);
 }
