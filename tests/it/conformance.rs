@@ -57,11 +57,13 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
     for (index, (our, their)) in ours.iter().zip(theirs).enumerate() {
         let differ = || {
             Err(format!(
-                "motion {} (our line {}) differs:\n  ours:  {:?}\n  rs274: {:?}",
+                "motion {} (our line {}) differs:\n  ours:  {:?} blend {:?}\n  rs274: {:?} blend {:?}",
                 index + 1,
                 our.line,
                 our.kind,
-                their.kind
+                our.blend,
+                their.kind,
+                their.blend
             ))
         };
         let end_ok = |a: [f64; 4], b: [f64; 4]| {
@@ -89,7 +91,12 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
             }
             (a, b) => a == b,
         };
-        if !same {
+        // rs274 prints the tolerance to 1e-6 of the unit.
+        let blend_ok = match (our.blend, their.blend) {
+            (Some(a), Some(b)) => close(a, b, 0.6e-6 * unit + 1e-12),
+            (a, b) => a == b,
+        };
+        if !same || !blend_ok {
             return differ();
         }
     }

@@ -117,6 +117,7 @@ pub fn parse(canon: &str) -> Vec<Motion> {
     let mut g92 = [0.0; 4];
     let mut plane = Plane::Xy;
     let mut feed = 0.0;
+    let mut blend = None;
     let lines: Vec<&str> = canon
         .lines()
         .map(|line| {
@@ -127,7 +128,10 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             rest.trim()
         })
         .collect();
-    let push = |motions: &mut Vec<Motion>, kind| motions.push(Motion::new(0, kind));
+    let push = |motions: &mut Vec<Motion>, kind: MotionKind, blend: Option<f64>| {
+        let blend = kind.end().and(blend);
+        motions.push(Motion { blend, ..Motion::new(0, kind) });
+    };
     for (index, line) in lines.iter().enumerate() {
         let (name, arguments) = match line.find('(') {
             Some(open) => (&line[..open], line[open + 1..].trim_end_matches(')')),
@@ -162,13 +166,23 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 };
             }
             "SET_FEED_RATE" => feed = values[0] * factor,
-            "STRAIGHT_TRAVERSE" => push(&mut motions, MotionKind::Rapid { end: pose(&values) }),
+            // `(CANON_CONTINUOUS, tolerance)` under G64, `(CANON_EXACT_PATH)` under G61,
+            // `(CANON_EXACT_STOP)` under G61.1.
+            "SET_MOTION_CONTROL_MODE" => {
+                blend = arguments
+                    .starts_with("CANON_CONTINUOUS")
+                    .then(|| values.first().copied().unwrap_or(0.0) * factor);
+            }
+            "STRAIGHT_TRAVERSE" => {
+                push(&mut motions, MotionKind::Rapid { end: pose(&values) }, blend)
+            }
             "STRAIGHT_FEED" => push(
                 &mut motions,
                 MotionKind::Linear {
                     end: pose(&values),
                     feed: Feed { mm_per_min: feed, inverse_time: false },
                 },
+                blend,
             ),
             "ARC_FEED" => {
                 // first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c
@@ -193,22 +207,23 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                         turns: rotation.abs() as u32,
                         feed: Feed { mm_per_min: feed, inverse_time: false },
                     },
+                    blend,
                 );
             }
-            "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }),
-            "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick),
-            "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place),
+            "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
+            "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
+            "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place, None),
             "STOP_SPINDLE_TURNING" => {
                 // M2/M30 reset the spindle (then SET_SPINDLE_MODE): not a programmed M5.
                 let reset =
                     lines.get(index + 1).is_some_and(|next| next.starts_with("SET_SPINDLE_MODE"));
                 if !reset {
-                    push(&mut motions, MotionKind::GripperOff);
+                    push(&mut motions, MotionKind::GripperOff, None);
                 }
             }
-            "PROGRAM_STOP" | "OPTIONAL_PROGRAM_STOP" => push(&mut motions, MotionKind::Pause),
+            "PROGRAM_STOP" | "OPTIONAL_PROGRAM_STOP" => push(&mut motions, MotionKind::Pause, None),
             "PROGRAM_END" => {
-                push(&mut motions, MotionKind::End);
+                push(&mut motions, MotionKind::End, None);
                 break;
             }
             _ => {}

@@ -58,6 +58,9 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
     pub tool: Tool,
+    /// The path-control mode before the program says one (`--blend`): `None`, exact stop, by
+    /// default; `Some(p)` as if the program began with `G64 P{p}`. See [`Motion::blend`].
+    pub blend: Option<f64>,
 }
 
 impl Default for Config {
@@ -68,6 +71,7 @@ impl Default for Config {
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
+            blend: None,
         }
     }
 }
@@ -163,6 +167,9 @@ struct State {
     flood: bool,
     /// `#<_value>`, `#<_value_returned>`, `#<_call_level>`.
     owords: control::Values,
+    /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
+    /// G61/G61.1.
+    blend: Option<f64>,
 }
 
 impl State {
@@ -197,6 +204,7 @@ impl State {
             mist: false,
             flood: false,
             owords: control::Values::default(),
+            blend: config.blend,
         };
         state.publish_position();
         state
@@ -449,7 +457,8 @@ impl<R: BufRead> Interpreter<R> {
     fn emit(&mut self, kind: MotionKind) {
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
-        self.queue.push_back(Motion { line: self.state.line, kind, extrude });
+        let blend = kind.end().and(self.state.blend);
+        self.queue.push_back(Motion { line: self.state.line, kind, extrude, blend });
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -606,6 +615,10 @@ impl<R: BufRead> Interpreter<R> {
         // 16. length units
         if let Some(code) = g[6] {
             self.set_units(code.code == 210);
+        }
+        // 17. path control mode
+        if let Some(code) = g[13] {
+            self.set_path_control(code)?;
         }
         // 19. coordinate system
         if let Some(code) = g[12] {
@@ -847,6 +860,36 @@ impl<R: BufRead> Interpreter<R> {
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
+        Ok(())
+    }
+
+    /// G61, G61.1 (exact stop) and G64 P… Q… (blending within P of the corners, in the program's
+    /// length unit, kept in millimetres; no P, or a negative one, is LinuxCNC's tolerance 0: no
+    /// tolerance given).
+    ///
+    /// Q is LinuxCNC's naive-CAM merging of nearly collinear moves, within Q (Q = P when absent).
+    /// It is not done here: every programmed move is kept, which stays within any Q. A Q up to P
+    /// (what CAM post-processors write) is accepted, since the blended path is held within P
+    /// anyway; a Q above P asks for more deviation than the blends give, and is refused.
+    fn set_path_control(&mut self, code: Code) -> Result<(), Fault> {
+        if code.code != 640 {
+            self.state.blend = None;
+            return Ok(());
+        }
+        let p = self.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
+        if let Some(q) = self.block.word(b'q')
+            && q.value > p
+            && p > 0.0
+        {
+            let (first, last) = self.span(code.at.min(q.at), q.end.max(code.end));
+            return Err(Fault::not_supported(
+                first,
+                last,
+                "G64 Q above P",
+                "naive-CAM merging of collinear moves; a Q up to P is accepted",
+            ));
+        }
+        self.state.blend = Some(if self.state.metric { p } else { p * MM_PER_INCH });
         Ok(())
     }
 

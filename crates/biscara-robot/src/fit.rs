@@ -192,6 +192,7 @@ mod tests {
                 feed: FEED,
             },
             extrude: None,
+            blend: None,
         }
     }
 
@@ -270,6 +271,7 @@ mod tests {
                     feed: FEED,
                 },
                 extrude: None,
+                blend: None,
             },
         ];
         let offset = [3.0, 4.0];

@@ -155,3 +155,58 @@ fn assignments_take_effect_after_the_line() {
     // and Y#<a> on the same line reads 0 too.
     assert_eq!(ys[2..], [0.0, 1.0][..]);
 }
+
+/// The blend tolerance each move carries, for `program` interpreted with `config`.
+#[track_caller]
+fn blends(program: &str, config: &Config) -> Vec<(usize, Option<f64>)> {
+    interpret(program.as_bytes(), config)
+        .map(|result| result.map(|motion| (motion.line, motion.blend)))
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|err| panic!("{err}"))
+}
+
+#[test]
+fn moves_carry_the_path_control_mode() {
+    let program = "G1 X1 F100\nG64 P0.05\nG1 X2\nG0 X3\nG2 X4 I0.5\nG4 P1\nG64\nG1 X5\n\
+                   G64 P-1\nG1 X6\nG61\nG1 X7\nG64 P0.1 Q0\nG1 X8\nG61.1\nG1 X9\nM2\n";
+    let got = blends(program, &Config::default());
+    let expected = [
+        (1, None),
+        (3, Some(0.05)),
+        (4, Some(0.05)),
+        (5, Some(0.05)),
+        // A dwell is not a move and carries none.
+        (6, None),
+        (8, Some(0.0)),
+        (10, Some(0.0)),
+        (12, None),
+        (14, Some(0.1)),
+        (16, None),
+        (17, None),
+    ];
+    assert_eq!(got, expected);
+    // Inches: P is in the program's units, like every length.
+    let inches = blends("G20 G64 P0.01\nG1 X1 F10\nM2\n", &Config::default());
+    assert!((inches[0].1.unwrap() - 0.254).abs() < 1e-12, "{inches:?}");
+}
+
+#[test]
+fn the_configured_path_control_mode_holds_until_the_program_says_one() {
+    let config = Config { blend: Some(0.02), ..Config::default() };
+    let got = blends("G1 X1 F100\nG61\nG1 X2\nM2\n", &config);
+    assert_eq!(got, [(1, Some(0.02)), (3, None), (4, None)]);
+}
+
+#[test]
+fn naive_cam_merging_is_refused_where_it_is_asked_for() {
+    let err = error("G1 X1 F100\nG64 P0.05 Q0.06\nG1 X2\n");
+    assert_eq!(
+        err.to_string(),
+        "2:1: G64 Q above P is not supported yet (naive-CAM merging of collinear moves; a Q up \
+         to P is accepted)"
+    );
+    // What CAM post-processors write (Q = P), or less, is held by the blends within P.
+    let config = Config::default();
+    assert_eq!(blends("G64 P0.05 Q0.05\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+    assert_eq!(blends("G64 P0.05 Q0.01\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+}
