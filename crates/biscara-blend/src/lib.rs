@@ -22,7 +22,7 @@
 //!   by more than [`MAX_TURN_DEG`] or whose blend would be shorter than [`MIN_TRIM_MM`] is an
 //!   exact stop.
 //!
-//! A corner is blended when both moves carry a tolerance ([`Motion::blend`]); the smaller one
+//! A corner is blended when both moves carry a tolerance ([`Motion::blend`](biscara_motion::Motion::blend)); the smaller one
 //! holds. Rapid and feed moves blend alike; a fillet between them is limited to the slower.
 //! The C axis moves in proportion to the length along each piece. Any event, arc, move with no
 //! XYZ length or move under exact stop ends the chain: the robot stops there.
