@@ -2,6 +2,7 @@
 
 mod dialects;
 mod features;
+mod memory;
 mod no_panic;
 mod owords;
 mod strategies;

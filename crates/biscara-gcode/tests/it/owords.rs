@@ -11,6 +11,8 @@ use std::path::PathBuf;
 use biscara_gcode::{Config, Dialect, GcodeError, interpret, interpret_seekable};
 use biscara_motion::{Motion, MotionKind};
 
+use crate::memory::{in_a_process_of_its_own, resident_kib};
+
 /// A program with every construct: subroutines with arguments and values, loops, conditions,
 /// a Fanuc-style subprogram found by reading on.
 const PROGRAM: &str = "\
@@ -156,14 +158,8 @@ fn mach3_program_numbers_are_still_program_numbers() {
     assert_eq!(ends(&motions), [[1.0, 0.0, 0.0, 0.0]]);
 }
 
-/// Resident memory of this process, KiB (Linux).
-fn resident_kib() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|line| line.starts_with("VmRSS:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
-/// Runs `motions`, checking that resident memory stays flat; returns how many there were.
+/// Runs `motions`, checking that resident memory stays flat; returns how many there were. Call
+/// it from a test that runs [`in_a_process_of_its_own`].
 fn count_in_flat_memory(motions: impl Iterator<Item = Result<Motion, GcodeError>>) -> usize {
     let start = resident_kib();
     let mut peak = start.unwrap_or(0);
@@ -184,6 +180,11 @@ fn count_in_flat_memory(motions: impl Iterator<Item = Result<Motion, GcodeError>
 
 #[test]
 fn a_long_loop_runs_in_flat_memory_from_a_file_and_from_standard_input() {
+    if !in_a_process_of_its_own(
+        "owords::a_long_loop_runs_in_flat_memory_from_a_file_and_from_standard_input",
+    ) {
+        return;
+    }
     // Ten million iterations with RUN_SLOW_TESTS (about 40 million lines read), one million
     // otherwise.
     let iterations =
@@ -200,6 +201,11 @@ fn a_long_loop_runs_in_flat_memory_from_a_file_and_from_standard_input() {
 
 #[test]
 fn a_million_line_program_with_subroutines_streams_from_a_file() {
+    if !in_a_process_of_its_own(
+        "owords::a_million_line_program_with_subroutines_streams_from_a_file",
+    ) {
+        return;
+    }
     let dir = temp_folder("million");
     let path = dir.join("million.ngc");
     let mut out = std::io::BufWriter::new(File::create(&path).expect("create"));

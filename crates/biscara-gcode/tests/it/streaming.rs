@@ -3,8 +3,8 @@
 //! The workspace forbids `unsafe`, so no counting global allocator: instead a generated
 //! 5-million-line program is fed through a counting reader and (1) every motion is yielded
 //! before the reader has been asked for more than the line it comes from plus one buffer, and
-//! (2) the resident memory of this test process (`VmRSS` in `/proc/self/status`, sampled every
-//! 100,000 lines) stays within a few MiB of where it started — a program that collected its
+//! (2) the resident memory of a process running only this test (`VmRSS`, sampled every
+//! 100,000 lines; `memory.rs`) stays within a few MiB of where it started — a program that collected its
 //! input or its motions would grow by hundreds of MiB.
 
 use std::cell::Cell;
@@ -13,6 +13,8 @@ use std::rc::Rc;
 
 use biscara_gcode::{Config, interpret};
 use biscara_motion::MotionKind;
+
+use crate::memory::{in_a_process_of_its_own, resident_kib};
 
 /// A generated program of `lines` blocks of mixed moves, produced as it is read.
 struct Generated {
@@ -74,15 +76,11 @@ impl Read for Generated {
 /// The longest generated line, rounded up.
 const LINE_BYTES: usize = 40;
 
-/// Resident memory of this process in KiB (Linux), if known.
-fn resident_kib() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|line| line.starts_with("VmRSS:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
 #[test]
 fn a_five_million_line_program_streams_in_flat_memory() {
+    if !in_a_process_of_its_own("streaming::a_five_million_line_program_streams_in_flat_memory") {
+        return;
+    }
     const LINES: usize = 5_000_000;
     const BUFFER: usize = 8 * 1024;
     let config = Config::default();
