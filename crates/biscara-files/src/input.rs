@@ -56,14 +56,13 @@ impl Seek for ProgressFile {
 
 /// The whole content of `path` (standard input for `-`).
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>, FileError> {
-    let mut bytes = Vec::new();
-    let result = if is_stdio(path) {
-        io::stdin().read_to_end(&mut bytes).map(drop)
+    let bytes = if is_stdio(path) {
+        let mut bytes = Vec::new();
+        io::stdin().read_to_end(&mut bytes).map(|_| bytes)
     } else {
-        std::fs::read(path).map(|content| bytes = content)
+        std::fs::read(path)
     };
-    result.map_err(|source| read_error(path, source))?;
-    Ok(bytes)
+    bytes.map_err(|source| read_error(path, source))
 }
 
 /// The whole content of `path` as text; bytes that are not UTF-8 are an error naming their line.

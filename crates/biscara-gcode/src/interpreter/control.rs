@@ -587,6 +587,27 @@ impl<R: BufRead> Interpreter<R> {
         Ok(value)
     }
 
+    /// The label of a `repeat` or `while` on `line`: remembered where it is first met; met again
+    /// elsewhere, rs274's "duplicate O-word label" (unless it was defined by `shared_with`, as a
+    /// `do` shares its label with the `while` that closes it).
+    fn claim_loop_label(
+        &mut self,
+        block: &OBlock,
+        line: usize,
+        shared_with: Option<OType>,
+    ) -> Result<(), Fault> {
+        match self.label_of(&block.name) {
+            Some(label) if Some(label.kind) != shared_with && label.line != line => Err(self
+                .line_fault(format!(
+                    "{line}: duplicate O-word label: '{}' - defined in line {}",
+                    self.line_text(),
+                    label.line
+                ))),
+            Some(_) => Ok(()),
+            None => self.save_offset(block),
+        }
+    }
+
     fn label_of(&self, name: &str) -> Option<&Label> {
         self.control.labels.get(name)
     }
@@ -894,17 +915,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
             OType::Repeat => {
-                match self.label_of(&block.name) {
-                    Some(label) if label.line != line => {
-                        return Err(self.line_fault(format!(
-                            "{line}: duplicate O-word label: '{}' - defined in line {}",
-                            self.line_text(),
-                            label.line
-                        )));
-                    }
-                    Some(_) => {}
-                    None => self.save_offset(block)?,
-                }
+                self.claim_loop_label(block, line, None)?;
                 self.control.skipping_o = None;
                 self.track_loop(&block.name, true);
                 let test = self.control.test_value;
@@ -924,17 +935,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
             OType::While => {
-                match self.label_of(&block.name) {
-                    Some(label) if label.kind != OType::Do && label.line != line => {
-                        return Err(self.line_fault(format!(
-                            "{line}: duplicate O-word label: '{}' - defined in line {}",
-                            self.line_text(),
-                            label.line
-                        )));
-                    }
-                    Some(_) => {}
-                    None => self.save_offset(block)?,
-                }
+                self.claim_loop_label(block, line, Some(OType::Do))?;
                 self.control.skipping_o = None;
                 let kind = self.label_of(&block.name).map_or(OType::While, |label| label.kind);
                 if kind == OType::While {
