@@ -29,35 +29,49 @@ impl Interval {
     }
 }
 
-/// The grid points s_0 = 0 < s_1 < … < s_M = 1: `intervals` equal intervals of length Δ, the
-/// first and the last of them each cut geometrically towards the path's end, at
-/// Δ·ratio, Δ·ratio², …, Δ·ratio^refine from it (M = `intervals` + 2 · `refine`), so that the
-/// short ramps from and to rest are resolved without a fine grid all along.
+/// The grid points s_0 = 0 < s_1 < … < s_M = 1.
+///
+/// Without end parts (`ends` = 0): `intervals` equal intervals. With them: `ends` equal
+/// intervals over [0, `end`], `intervals` equal ones over [`end`, 1 − `end`] and `ends` over
+/// [1 − `end`, 1], so that `end` and 1 − `end` are grid points (where a caller expects the
+/// ramps from and to rest to end). Either way the first and the last interval, of length Δ, are
+/// then cut geometrically towards the path's end, at Δ·ratio, Δ·ratio², …, Δ·ratio^refine from
+/// it (M = `intervals` + 2 · `ends` + 2 · `refine`), so that short ramps are resolved without a
+/// fine grid all along.
 ///
 /// TOPP-RA loses time in the interval where the optimum switches from accelerating to cruising
 /// (x = ṡ² is linear in s there, below the optimum's corner): a fraction of that interval's
-/// traversal time. A ramp shorter than one interval of a uniform grid would lose most of an
-/// interval per stop; with the ends refined, the switch falls in an interval of about
-/// (1/ratio − 1) times the ramp.
+/// traversal time, and nothing when the switch falls on a grid point. A ramp shorter than one
+/// interval of a uniform grid would lose most of an interval per stop; with the ends refined,
+/// the switch falls in an interval of about (1/ratio − 1) times the ramp.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid {
-    /// Number of equal intervals (≥ 1; ≥ 2 when `refine` > 0).
+    /// Number of equal intervals of the middle part (≥ 1).
     pub intervals: usize,
     /// Number of points added between each end and its nearest equal interval's point.
     pub refine: u32,
     /// Ratio of consecutive refined points' distances to the end, in (0, 1).
     pub ratio: f64,
+    /// Number of equal intervals of each end part (0: none).
+    pub ends: usize,
+    /// Length in s of each end part, in (0, ½) when `ends` > 0.
+    pub end: f64,
 }
 
 impl Grid {
     /// `intervals` equal intervals.
     pub fn uniform(intervals: usize) -> Grid {
-        Grid { intervals, refine: 0, ratio: 0.5 }
+        Grid { intervals, refine: 0, ratio: 0.5, ends: 0, end: 0.0 }
+    }
+
+    /// `intervals` equal intervals, the first and last refined `refine` times by `ratio`.
+    pub fn refined(intervals: usize, refine: u32, ratio: f64) -> Grid {
+        Grid { refine, ratio, ..Grid::uniform(intervals) }
     }
 
     /// Number of intervals, M.
     pub fn len(&self) -> usize {
-        self.intervals + 2 * self.refine as usize
+        self.base_len() + 2 * self.refine as usize
     }
 
     /// Whether it has no interval.
@@ -65,27 +79,49 @@ impl Grid {
         self.intervals == 0
     }
 
+    /// Intervals before refinement.
+    fn base_len(&self) -> usize {
+        self.intervals + 2 * self.ends
+    }
+
+    /// Point `index` of the grid before refinement (0 ..= `base_len`).
+    fn base(&self, index: usize) -> f64 {
+        let last = self.base_len();
+        let (ends, middle) = (self.ends, self.intervals);
+        if index == 0 {
+            0.0
+        } else if index >= last {
+            1.0
+        } else if index < ends {
+            index as f64 * self.end / ends as f64
+        } else if index > ends + middle {
+            1.0 - (last - index) as f64 * self.end / ends as f64
+        } else {
+            self.end + (index - ends) as f64 * (1.0 - 2.0 * self.end) / middle as f64
+        }
+    }
+
     /// Grid point `index` (0 ..= M).
     pub fn s(&self, index: usize) -> f64 {
         let refine = self.refine as usize;
         let last = self.len();
-        let step = 1.0 / self.intervals as f64;
         // From an end: 0, Δ·ratio^r, …, Δ·ratio, Δ at 0, 1, …, r + 1.
-        let from_end = |k: usize| {
+        let from_end = |k: usize, step: f64| {
             if k == 0 { 0.0 } else { step * self.ratio.powi((refine + 1 - k) as i32) }
         };
         if index <= refine {
-            from_end(index)
+            from_end(index, self.base(1))
         } else if index + refine >= last {
-            1.0 - from_end(last - index)
+            1.0 - from_end(last - index, 1.0 - self.base(self.base_len() - 1))
         } else {
-            (index - refine) as f64 * step
+            self.base(index - refine)
         }
     }
 
     fn is_valid(&self) -> bool {
-        let refined = self.refine == 0 || (self.intervals >= 2 && self.refine <= 1000);
-        self.intervals > 0 && refined && self.ratio > 0.0 && self.ratio < 1.0
+        let refined = self.refine == 0 || (self.base_len() >= 2 && self.refine <= 1000);
+        let ends = self.ends == 0 || (self.end > 0.0 && self.end < 0.5);
+        self.intervals > 0 && refined && ends && self.ratio > 0.0 && self.ratio < 1.0
     }
 }
 
@@ -247,16 +283,55 @@ impl TimeOptimal {
 
     /// ṡ² at the end of the interval from held point `local`, from ṡ² = `self.x` at its start:
     /// the largest s̈ that keeps the next point controllable.
-    fn forward_step(&mut self, local: usize) -> f64 {
+    fn forward_step(&self, local: usize) -> f64 {
         self.forward_step_from(local, self.x)
     }
 
-    fn forward_step_from(&mut self, local: usize, x: f64) -> f64 {
-        self.build_stage(local, true);
-        let (_, u_max) = self.polygon.u_range(x);
+    fn forward_step_from(&self, local: usize, x: f64) -> f64 {
         let step = self.s[local + 1] - self.s[local];
+        let (_, u_max, _) = self.u_range_at::<false>(local, x);
         let x_end = (x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
         if self.first + local + 1 == self.intervals || x_end.is_nan() { 0.0 } else { x_end }
+    }
+
+    /// The range of s̈ the stage from held point `local` allows at ṡ² = `x`, and whether the
+    /// bounds on x alone hold there: the stage's polygon (see [`build_stage`](Self::build_stage))
+    /// cut at one x, with no polygon built. Each row whose s̈ coefficient α is not zero
+    /// (relative to its ṡ² coefficient, as [`Polygon`] decides) bounds s̈ by
+    /// `(bound − β·x) / α`; a row with α ≈ 0 bounds x alone. Without `LOWER`, only the upper
+    /// end of the range is right (all the forward pass needs).
+    #[inline]
+    fn u_range_at<const LOWER: bool>(&self, local: usize, x: f64) -> (f64, f64, bool) {
+        let step = self.s[local + 1] - self.s[local];
+        let count = self.count;
+        let (mut u_lo, mut u_hi, mut x_ok) = (f64::NEG_INFINITY, f64::INFINITY, true);
+        let mut bound = |alpha: f64, beta: f64, lo: f64, hi: f64| {
+            let scale = alpha.abs().max(beta.abs());
+            if scale == 0.0 {
+                return;
+            }
+            if alpha.abs() <= crate::polygon::ZERO * scale {
+                let value = beta * x;
+                x_ok &= value <= hi && value >= lo;
+                return;
+            }
+            let (upper, lower) = if alpha > 0.0 { (hi, lo) } else { (lo, hi) };
+            let inverse = 1.0 / alpha;
+            if upper.is_finite() {
+                u_hi = u_hi.min((upper - beta * x) * inverse);
+            }
+            if LOWER && lower.is_finite() {
+                u_lo = u_lo.max((lower - beta * x) * inverse);
+            }
+        };
+        for row in &self.rows[local * count..(local + 1) * count] {
+            bound(row.a, row.b, row.lo - row.c, row.hi - row.c);
+        }
+        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+            bound(row.a + 2.0 * step * row.b, row.b, row.lo - row.c, row.hi - row.c);
+        }
+        bound(2.0 * step, 1.0, 0.0, self.k_max[local + 1]);
+        (u_lo, u_hi, x_ok)
     }
 
     /// Holds grid points `from` to `from + 2·window` (or the end), evaluating those not held
@@ -351,14 +426,18 @@ impl TimeOptimal {
         self.k_max.clear();
         self.k_max.resize(held, 0.0);
         for local in (0..held - 1).rev() {
-            self.build_stage(local, false);
             // Where the speed limit itself is controllable (cruising, far from a stop), it is the
-            // top: the feasible x form an interval that holds 0, so one O(m) test settles it.
+            // top: the feasible x form an interval that holds 0, so one O(m) test settles it,
+            // without building the polygon.
             let x_max = self.x_max[local];
-            if x_max.is_finite() && self.polygon.contains_x(x_max) {
-                self.k_max[local] = x_max;
-                continue;
+            if x_max.is_finite() {
+                let (u_lo, u_hi, x_ok) = self.u_range_at::<true>(local, x_max);
+                if x_ok && u_lo <= u_hi {
+                    self.k_max[local] = x_max;
+                    continue;
+                }
             }
+            self.build_stage(local, false);
             // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
             // range is empty only by rounding: then only rest is controllable.
             let (_, top) = self.polygon.x_range(0.0, x_max).unwrap_or((0.0, 0.0));
@@ -468,7 +547,7 @@ mod tests {
             TimeOptimal::new(&mut trapezoid(1.0, 1000.0), Grid::uniform(10), 4096).unwrap();
         let uniform = uniform.duration().unwrap();
         assert!(uniform > shortest + 0.1, "{uniform}");
-        let grid = Grid { intervals: 10, refine: 11, ratio: 0.5 };
+        let grid = Grid::refined(10, 11, 0.5);
         assert_eq!(grid.s(0), 0.0);
         assert_eq!(grid.s(1), 0.1 / 2048.0);
         assert_eq!(grid.s(12), 0.1);
@@ -479,6 +558,24 @@ mod tests {
         let refined = refined.duration().unwrap();
         assert!(refined >= shortest * (1.0 - 1e-12));
         assert_relative_eq!(refined, shortest, max_relative = 2e-4);
+    }
+
+    #[test]
+    fn end_parts_put_the_ramps_on_grid_points() {
+        // Ramps of s = 1/8 (ṡ = 1 at 4 /s²): with grid points at 1/8 and 7/8, three intervals
+        // give the exact trapezoid; the refined points and end parts are where they should be.
+        let grid = Grid { ends: 1, end: 0.125, ..Grid::uniform(1) };
+        assert_eq!((grid.len(), grid.s(1), grid.s(2), grid.s(3)), (3, 0.125, 0.875, 1.0));
+        let plan = TimeOptimal::new(&mut trapezoid(1.0, 4.0), grid, 100).unwrap();
+        assert_relative_eq!(plan.duration().unwrap(), exact(1.0, 4.0), max_relative = 1e-12);
+        let grid = Grid { ends: 2, end: 0.2, ..Grid::refined(3, 2, 0.5) };
+        let points: Vec<f64> = (0..=grid.len()).map(|index| grid.s(index)).collect();
+        let expected = [0.0, 0.025, 0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.975, 1.0];
+        assert_eq!(points.len(), expected.len());
+        for (point, expected) in points.iter().zip(expected) {
+            assert_relative_eq!(*point, expected, epsilon = 1e-15);
+        }
+        assert!(TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid { end: 0.5, ..grid }, 9).is_err());
     }
 
     #[test]
@@ -654,7 +751,7 @@ mod tests {
         /// and a windowed plan is never faster than the whole one.
         #[test]
         fn plans_keep_every_bound(path in joints(), window in 5usize..300, refine in 0u32..12) {
-            let grid = Grid { intervals: 400, refine, ratio: 0.7 };
+            let grid = Grid::refined(400, refine, 0.7);
             let intervals = grid.len();
             let mut whole_path = path.clone();
             let whole = TimeOptimal::new(&mut whole_path, grid, 4096);
