@@ -40,7 +40,7 @@ for spec in "mixed 1000000" "engraving 200000"; do
   for command in interpret interpolate joints minimal; do
     if [ "$command" = minimal ]; then
       read -r seconds kib <<< "$(measure "$minimal" "$program")"
-      echo "  joints at $(awk -v j="$joints" -v m="$seconds" 'BEGIN { printf "%.2f", m / j }')x the minimal loop's speed"
+      echo "  joints at $(awk -v j="$joints" -v m="$seconds" 'BEGIN { if (j > 0) printf "%.2f", m / j; else printf "?" }')x the minimal loop's speed"
     else
       read -r seconds kib <<< "$(measure "$bin" "$command" "$program")"
     fi
