@@ -129,7 +129,7 @@ pub(crate) struct SamplingArgs {
     #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_step)]
     dt: f64,
     /// Velocity profile of every motion.
-    #[arg(long, value_enum, default_value = "trapezoid")]
+    #[arg(long, value_enum, default_value = "optimal")]
     profile: ProfileArg,
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]

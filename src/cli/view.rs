@@ -56,7 +56,7 @@ pub(crate) struct ViewArgs {
     #[command(flatten)]
     files: GcodeFilesArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
-    #[arg(long, value_enum, default_value = "trapezoid", help = "Profile TRAJ was made with")]
+    #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
     #[arg(

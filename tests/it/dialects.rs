@@ -86,7 +86,7 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("printer/slic3r-120-sample.gcode", Expect::Read("marlin")),
 ];
 
-fn realworld() -> Option<PathBuf> {
+pub(crate) fn realworld() -> Option<PathBuf> {
     // Beside the clone (CI), or beside the folder of worktrees.
     for relative in ["../shared/realworld", "../../shared/realworld"] {
         let folder = repo_root().join(relative);

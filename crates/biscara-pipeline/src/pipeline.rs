@@ -39,12 +39,12 @@ pub struct SamplingConfig {
 }
 
 impl Default for SamplingConfig {
-    /// The defaults of the command line: 1 ms, trapezoid, no grip time, no origin, no fit, the
+    /// The defaults of the command line: 1 ms, the optimal profile, no grip time, no origin, no fit, the
     /// dialect decided from the program.
     fn default() -> SamplingConfig {
         SamplingConfig {
             dt: 0.001,
-            profile: Profile::Trapezoid,
+            profile: Profile::Optimal,
             grip_time: 0.0,
             origin: None,
             fit: false,
