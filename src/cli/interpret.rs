@@ -18,11 +18,13 @@ use super::files::{FileSource, write_output};
 /// The language is LinuxCNC's RS274/NGC for the axes X Y Z C: G0 G1 G2 G3 (I J K or R, full
 /// circles, P turns, helical, G17/G18/G19), G4, G10 L2/L20, G20/G21 (inches become mm), G28/G30
 /// (to the robot's home pose unless set with G28.1/G30.1), G53, G54–G59.3, G90/G91, G90.1/G91.1,
-/// G92 G92.1 G92.2 G92.3, G93/G94, G40 G49 G80 G61 G64 (accepted, no effect here), M0 M1 M2 M30
-/// M60 (pause, end), M3 (pick), M4 (place), M5 (gripper off), M6 M7 M8 M9, F S T; numbered and
-/// named parameters and expressions. The program starts at the robot's home pose.
+/// G92 G92.1 G92.2 G92.3, G93/G94, G40 G41 G42 G41.1 G42.1 (cutter radius compensation, in G17
+/// or G18; the D of G41/G42 names a tool of diameter 0, G41.1/G42.1 D give the diameter), G49 G80
+/// G61 G64 (accepted, no effect here), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
+/// (gripper off), M6 M7 M8 M9, F S T; numbered and named parameters and expressions. The program
+/// starts at the robot's home pose.
 ///
-/// O-words, cutter compensation, canned cycles and the other codes LinuxCNC knows but this
+/// O-words, splines, canned cycles and the other codes LinuxCNC knows but this
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.

@@ -480,6 +480,115 @@ fn random_programs_conform() {
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
 
+/// A random profile under cutter compensation (G41.1/G42.1 with a diameter, in G17 or G18):
+/// lines, rapids, closed arcs in I J K and R form, depth moves, events, the odd G40 and G20,
+/// then an exit move. Many corners will gouge: both interpreters must then refuse alike.
+fn random_comp_program(rng: &mut Rng) -> String {
+    let xz = rng.below(4) == 0;
+    let (plane, a, b, i, j, depth) =
+        if xz { ("G18", "Z", "X", "K", "I", "Y") } else { ("G17", "X", "Y", "I", "J", "Z") };
+    let mut text = format!("G21 G90 {plane} F400\nG0 {a}0 {b}0 {depth}0\n");
+    let mut on = false;
+    // The programmed point, to write closed arcs.
+    let (mut pa, mut pb) = (0.0_f64, 0.0_f64);
+    for _ in 0..(4 + rng.below(14)) {
+        if !on {
+            let side = rng.pick(&["G41.1", "G42.1", "G41", "G42.1", "G41.1"]);
+            let d = match side {
+                "G41" => "1".to_owned(),
+                _ => rng.pick(&["1", "2", "3.5", "5", "0.5", "-2"]).to_owned(),
+            };
+            text.push_str(&format!("{side} D{d}\n"));
+            on = true;
+        }
+        let na = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let nb = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let line = match rng.below(14) {
+            0..=4 => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb}")
+            }
+            5 => {
+                (pa, pb) = (na, nb);
+                format!("G0 {a}{na} {b}{nb}")
+            }
+            6 | 7 => {
+                // A closed arc about a centre at a random offset.
+                let (oa, ob) = (rng.below(21) as f64 - 10.0, rng.below(21) as f64 - 10.0);
+                let radius = oa.hypot(ob);
+                if radius < 0.5 {
+                    continue;
+                }
+                let angle = rng.below(360) as f64 * std::f64::consts::PI / 180.0;
+                let (ca, cb) = (pa + oa, pb + ob);
+                let (ea, eb) = (ca + radius * angle.cos(), cb + radius * angle.sin());
+                let (ea, eb) = ((ea * 1e4).round() / 1e4, (eb * 1e4).round() / 1e4);
+                let code = rng.pick(&["G2", "G3"]);
+                let line = format!("{code} {a}{ea:.4} {b}{eb:.4} {i}{oa} {j}{ob}");
+                (pa, pb) = (ea, eb);
+                line
+            }
+            8 => {
+                let code = rng.pick(&["G2", "G3"]);
+                let half = (na - pa).hypot(nb - pb) / 2.0;
+                let sign = rng.pick(&["", "-"]);
+                let r = (half + rng.below(15) as f64).max(0.5);
+                (pa, pb) = (na, nb);
+                format!("{code} {a}{na} {b}{nb} R{sign}{r:.4}")
+            }
+            9 => format!("G1 {depth}{}", rng.coordinate()),
+            10 => {
+                rng.pick(&["G4 P0.5", "M3", "M5", "G91 G1 X2 G90", "G20", "G21", "C30"]).to_owned()
+            }
+            11 => {
+                on = false;
+                (pa, pb) = (na, nb);
+                format!("G40 G1 {a}{na} {b}{nb}")
+            }
+            _ => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb} C{}", rng.coordinate())
+            }
+        };
+        text.push_str(&line);
+        text.push('\n');
+        if line.starts_with("G20") {
+            text.push_str("G21\n");
+        }
+    }
+    text.push_str(&format!("G40 G1 {a}40 {b}40\nM2\n"));
+    text
+}
+
+#[test]
+fn random_cutter_comp_programs_conform() {
+    if !rs274::available("random_cutter_comp_programs_conform") {
+        return;
+    }
+    let dir = temp_dir("conformance-random-comp");
+    let mut rng = Rng(0x00c0_77e2_c0b9_0001);
+    let mut failures = Vec::new();
+    let (mut accepted, mut refused) = (0, 0);
+    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..count {
+        let program = random_comp_program(&mut rng);
+        let path = dir.join(format!("comp{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        match check(&path, &dir) {
+            Ok(Verdict::Match) => accepted += 1,
+            Ok(Verdict::BothRefuse) => refused += 1,
+            Ok(other) => failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("random compensated programs: {accepted} match, {refused} refused by both alike");
+    }
+    assert!(accepted >= count / 10, "only {accepted} of {count} random profiles were accepted");
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+}
+
 /// A soup of tokens: words, numbers, expressions, comments and stray characters in any order,
 /// a few lines of it between `F100` and `M2`.
 fn token_soup(rng: &mut Rng) -> String {

@@ -80,7 +80,7 @@ pub enum GcodeError {
         message: String,
     },
     /// Occurs for a code of LinuxCNC's language that this interpreter does not implement yet
-    /// (O-words, cutter compensation, canned cycles, threading, …): refused rather than
+    /// (O-words, splines, canned cycles, threading, …): refused rather than
     /// interpreted wrongly.
     #[error("{at}: {code} is not supported yet{}", note_suffix(note))]
     NotSupported {

@@ -19,6 +19,8 @@ use crate::params::{
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::Tool;
 
+/// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
+mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
 
@@ -145,6 +147,8 @@ struct State {
     spindle: u16,
     mist: bool,
     flood: bool,
+    /// Cutter radius compensation and the motions it holds back.
+    comp: cutter_comp::CutterComp,
 }
 
 impl State {
@@ -178,6 +182,7 @@ impl State {
             spindle: 5,
             mist: false,
             flood: false,
+            comp: cutter_comp::CutterComp::new(),
         };
         state.publish_position();
         state
@@ -245,7 +250,7 @@ impl Predefined for State {
                 Plane::Yz => 190.0,
             },
             b"_motion_mode" => self.motion.map_or(800.0, f64::from),
-            b"_ccomp" => 400.0,
+            b"_ccomp" => self.comp.code(),
             b"_feed" => self.feed_rate,
             b"_rpm" => self.speed,
             b"_current_tool" => self.tool,
@@ -331,6 +336,9 @@ impl<R: BufRead> Interpreter<R> {
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             if !more {
+                if self.dialect != Dialect::Linuxcnc {
+                    self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+                }
                 return self.end_of_input();
             }
             if self.lines.too_long {
@@ -348,6 +356,8 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 self.percent = Percent::Absent;
             } else if self.percent == Percent::Open && trimmed == b"%" {
+                // rs274 never sends the motions cutter compensation holds at a closing `%`.
+                self.state.comp.discard();
                 self.finished = true;
                 return Ok(());
             }
@@ -414,7 +424,12 @@ impl<R: BufRead> Interpreter<R> {
     fn emit(&mut self, kind: MotionKind) {
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
-        self.queue.push_back(Motion { line: self.state.line, kind, extrude });
+        let motion = Motion { line: self.state.line, kind, extrude };
+        if self.state.comp.holding() {
+            self.state.comp.hold(motion);
+        } else {
+            self.queue.push_back(motion);
+        }
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -531,7 +546,11 @@ impl<R: BufRead> Interpreter<R> {
             self.state.selected_tool = t.value;
         }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)
-        if m[6].is_some() {
+        if let Some(code) = m[6] {
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change tools with cutter radius compensation on",
+            )?;
             self.state.tool = self.state.selected_tool;
             self.state.spindle = 5;
             self.tool_event(5);
@@ -562,16 +581,25 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 15. plane
         if let Some(code) = g[2] {
-            self.state.plane = match code.code {
+            let plane = match code.code {
                 170 => Plane::Xy,
                 180 => Plane::Xz,
                 _ => Plane::Yz,
             };
+            if plane != self.state.plane {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change planes with cutter radius compensation on",
+                )?;
+            }
+            self.state.plane = plane;
         }
         // 16. length units
         if let Some(code) = g[6] {
             self.set_units(code.code == 210);
         }
+        // 17. cutter radius compensation
+        self.set_cutter_comp()?;
         // 19. coordinate system
         if let Some(code) = g[12] {
             let system = match code.code {
@@ -585,6 +613,10 @@ impl<R: BufRead> Interpreter<R> {
                 592 => 8,
                 _ => 9,
             };
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change coordinate systems with cutter radius compensation on",
+            )?;
             self.select_system(system);
         }
         // 21. distance modes
@@ -598,8 +630,18 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(zero) = group0 {
             match zero.code {
                 100 => self.set_coordinate_data(zero)?,
-                280 | 300 => self.go_home(zero)?,
+                280 | 300 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot use g28 or g30 with cutter radius comp",
+                    )?;
+                    self.go_home(zero)?;
+                }
                 281 | 301 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot set reference point with cutter compensation in effect",
+                    )?;
                     let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
                     for axis in 0..4 {
                         let machine = self.state.current[axis]
@@ -609,11 +651,18 @@ impl<R: BufRead> Interpreter<R> {
                         self.state.params.set(base + axis_slot(axis), value);
                     }
                 }
-                920 => self.set_axis_offsets(zero)?,
+                920 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot change axis offsets with cutter radius comp",
+                    )?;
+                    self.set_axis_offsets(zero)?;
+                }
                 _ => {}
             }
         }
-        if let Some(code) = g[11] {
+        // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
+        if let Some(code) = g[11].filter(|_| !self.state.comp.on()) {
             if code.code == 923 {
                 let offsets = std::array::from_fn(|axis| {
                     let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
@@ -643,8 +692,10 @@ impl<R: BufRead> Interpreter<R> {
         self.check_range()?;
         // 25. stop
         if let Some(code) = m[4] {
+            self.flush_cutter_comp()?;
             match code.code {
                 2 | 30 => {
+                    self.state.comp = cutter_comp::CutterComp::new();
                     self.emit(MotionKind::End);
                     self.finished = true;
                 }
@@ -750,10 +801,11 @@ impl<R: BufRead> Interpreter<R> {
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
         let g10 = group0 == Some(100);
+        let comp_on = block.g[7].is_some_and(|code| code.code != 400);
         let checks: [(u8, bool, &str); 7] = [
             (
                 b'd',
-                false,
+                comp_on,
                 "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
             ),
             (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
@@ -767,7 +819,7 @@ impl<R: BufRead> Interpreter<R> {
             (b'k', arc, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
             (
                 b'l',
-                g10,
+                g10 || comp_on,
                 "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
                  or NURBS code",
             ),
@@ -820,6 +872,7 @@ impl<R: BufRead> Interpreter<R> {
             return;
         }
         let scale = if metric { MM_PER_INCH } else { 1.0 / MM_PER_INCH };
+        self.state.comp.scale(scale);
         for axis in 0..3 {
             self.state.current[axis] *= scale;
             self.state.origin[axis] *= scale;
@@ -872,6 +925,12 @@ impl<R: BufRead> Interpreter<R> {
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));
             }
         };
+        if system == 0 || system == self.state.system {
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change the active coordinate system with cutter radius compensation on",
+            )?;
+        }
         if let Some(r) = self.block.word(b'r') {
             let (first, last) = self.span(r.at, r.end);
             return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
@@ -926,7 +985,10 @@ impl<R: BufRead> Interpreter<R> {
     fn find_ends(&self, g53: bool) -> [f64; 4] {
         std::array::from_fn(|axis| {
             let word = self.block.word(AXES[axis]).map(|word| word.value);
-            let current = self.state.current[axis];
+            let current = match self.state.comp.base(axis, self.state.plane) {
+                Some(programmed) if !g53 => programmed,
+                _ => self.state.current[axis],
+            };
             match word {
                 None => current,
                 Some(value) if g53 => {
@@ -968,7 +1030,11 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn straight(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
+        self.comp_straight_seen();
         let end = self.find_ends(g53);
+        if motion == 0 && self.state.comp.active() {
+            return self.comp_straight(true, end, None, g53);
+        }
         if motion == 0 {
             self.move_to(end, None);
             return Ok(());
@@ -982,7 +1048,8 @@ impl<R: BufRead> Interpreter<R> {
                     "F word missing with inverse time g1 move",
                 ));
             };
-            let length = straight_length(self.state.current, end);
+            let start = self.comp_start().unwrap_or(self.state.current);
+            let length = straight_length(start, end);
             let rate = (length * f.value).max(0.1);
             Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
         } else {
@@ -1000,12 +1067,16 @@ impl<R: BufRead> Interpreter<R> {
             }
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.state.comp.active() {
+            return self.comp_straight(false, end, Some(feed), g53);
+        }
         self.move_to(end, Some(feed));
         Ok(())
     }
 
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
     fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
+        self.comp_arc_allowed()?;
         let code_at = self.block.g[1].map_or_else(
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
@@ -1095,7 +1166,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         };
         let end = self.find_ends(false);
-        let current = self.state.current;
+        self.comp_arc_checks(clockwise, end, r.map(|r| r.value))?;
+        let current = self.comp_start().unwrap_or(self.state.current);
         let (c1, c2) = (current[first], current[second]);
         let (e1, e2) = (end[first], end[second]);
         let inch = !self.state.metric;
@@ -1192,6 +1264,12 @@ impl<R: BufRead> Interpreter<R> {
         } else {
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.comp_arcs() {
+            let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+            let center = [center1, center2];
+            let arc = cutter_comp::CompArc { start: current, end, center, turn, feed };
+            return self.comp_arc(arc);
+        }
         let mut center_position = self.state.current;
         center_position[first] = center1;
         center_position[second] = center2;

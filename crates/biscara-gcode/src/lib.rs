@@ -6,12 +6,12 @@
 //! groups and their checks, the order of execution within a block, numbered and named
 //! parameters, expressions with LinuxCNC's operators, precedence and functions, arcs in the
 //! I J K and R forms with LinuxCNC's tolerances, G20 inches, the G54–G59.3, G92 and G53
-//! offsets, G28/G30, G93 inverse time — and emits every move as absolute millimetres and
+//! offsets, G28/G30, G93 inverse time, cutter radius compensation — and emits every move as absolute millimetres and
 //! degrees in the robot's base frame. It streams: the interpreter is an iterator over an
 //! [`std::io::BufRead`] that holds one line at a time.
 //!
 //! It deliberately does not: know the robot (no kinematics; the home pose is a plain number),
-//! print, or guess. O-word control flow, cutter compensation, canned cycles, threading and the
+//! print, or guess. O-word control flow, splines, canned cycles, threading and the
 //! other codes outside SPEC §4.2's tiers 1 and 2 are refused with "… is not supported yet",
 //! never interpreted wrongly; A, B, U, V and W words are errors.
 //!

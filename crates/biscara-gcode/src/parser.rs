@@ -32,7 +32,9 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         921..=923 => (11, Yes),
         520 => (0, No("local offset G52")),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
-        50..=53 => (1, No("spline")),
+        // rs274 hands G5, G5.1 and G5.2 NURBS to the motion planner without the points of
+        // their path: there is no reference motion to match.
+        50..=53 => (1, No("spline: LinuxCNC's rs274 passes it on as a NURBS without its path")),
         330 | 331 | 760 => (1, No("threading")),
         382..=385 => (1, No("probing")),
         730 | 740 | 810..=890 => (1, cycle),
@@ -45,7 +47,7 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         950 => (5, No("feed per revolution")),
         200 | 210 => (6, Yes),
         400 => (7, Yes),
-        410 | 420 | 411 | 421 => (7, No("cutter radius compensation")),
+        410 | 420 | 411 | 421 => (7, Yes),
         490 => (8, Yes),
         430..=432 => (8, No("tool length offset")),
         980 | 990 => (10, Yes),
