@@ -7,7 +7,7 @@ use biscara::motion::write_jsonl;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
 use clap::Args;
 
-use super::args::{DialectArgs, PlacementArgs};
+use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs};
 use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
@@ -50,6 +50,8 @@ pub(crate) struct InterpretArgs {
     placement: PlacementArgs,
     #[command(flatten)]
     dialect: DialectArgs,
+    #[command(flatten)]
+    files: GcodeFilesArgs,
 }
 
 pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
@@ -59,6 +61,7 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         origin: placement.origin,
         fit: placement.fit,
         dialect: args.dialect.dialect,
+        tool_table: args.files.tool_table()?,
         ..SamplingConfig::default()
     };
     let notes = NoteReporter::default();

@@ -20,17 +20,23 @@ use biscara::motion::{Motion, MotionKind};
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
+/// The configuration rs274 is matched with: the defaults, and the program's own tool table
+/// (`NAME.tbl`) when it has one.
+fn config(path: &Path) -> Config {
+    Config { tool_table: rs274::own_table(path).map(std::sync::Arc::new), ..Config::default() }
+}
+
 /// Our motions for `path`, started like rs274: at 0,0,0,0 with G28/G30 at 0.
 fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret(BufReader::new(file), &Config::default()).collect()
+    interpret(BufReader::new(file), &config(path)).collect()
 }
 
 /// Our motions for `path` before the first error, and the outcome.
 fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut motions = Vec::new();
-    for result in interpret(BufReader::new(file), &Config::default()) {
+    for result in interpret(BufReader::new(file), &config(path)) {
         match result {
             Ok(motion) => motions.push(motion),
             Err(err) => return (motions, Err(err)),

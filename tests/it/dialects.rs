@@ -48,7 +48,7 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/fusion-grbl-clamp-base.nc", Expect::Read("linuxcnc")),
     ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Pending(NOT_YET)),
     ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Pending(NOT_YET)),
-    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Pending(NOT_YET)),
+    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("linuxcnc")),
     ("mill/gcodetools-puzzle03.gcode", Expect::Read("linuxcnc")),
     ("mill/jscut-jsdc-engrave.gcode", Expect::Read("grbl")),
     ("mill/openvoronoi-ttt-vcarve.ngc", Expect::Read("linuxcnc")),
@@ -61,10 +61,7 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("other/flatcam-inferred-bcnc-sample.gcode", Expect::Read("grbl")),
     ("other/gcode-exporter-pcb-reprap.gcode", Expect::Read("marlin")),
     ("other/gmax-4axis-rotation-a.ngc", Expect::Refused(&["A axis word"])),
-    (
-        "other/handwritten-linuxcnc-external-subs.ngc",
-        Expect::Refused(&["G10 L1 is not supported yet", "pocket_circ"]),
-    ),
+    ("other/handwritten-linuxcnc-external-subs.ngc", Expect::Pending(NOT_YET)),
     (
         "other/handwritten-linuxcnc-spool-owords-b.nc",
         Expect::Refused(&["B axis word", "O-word is not supported yet"]),
