@@ -1,8 +1,9 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara::gcode::Dialect;
+use biscara::gcode::{Dialect, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -108,6 +109,30 @@ pub(crate) struct DialectArgs {
     pub(crate) dialect: Dialect,
 }
 
+/// The files a G-code program may need besides itself (SPEC §4.2 tier 3).
+#[derive(Debug, Args)]
+pub(crate) struct GcodeFilesArgs {
+    /// LinuxCNC's tool table (`.tbl`, millimetres): the tools' lengths for G43 and diameters.
+    /// Without it, every tool has zero length and diameter, and a note says so when the program
+    /// uses them.
+    #[arg(
+        long,
+        value_name = "FILE",
+        help = "LinuxCNC tool table (.tbl, mm) for G43 tool lengths and tool diameters"
+    )]
+    pub(crate) tool_table: Option<PathBuf>,
+}
+
+impl GcodeFilesArgs {
+    /// The tool table, read.
+    pub(crate) fn tool_table(&self) -> anyhow::Result<Option<Arc<ToolTable>>> {
+        match &self.tool_table {
+            None => Ok(None),
+            Some(path) => Ok(Some(Arc::new(ToolTable::read(path)?))),
+        }
+    }
+}
+
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
     text.parse::<Dialect>().map_err(|err| err.to_string())
 }
@@ -128,6 +153,8 @@ pub(crate) struct SamplingArgs {
     pub(crate) placement: PlacementArgs,
     #[command(flatten)]
     pub(crate) dialect: DialectArgs,
+    #[command(flatten)]
+    pub(crate) files: GcodeFilesArgs,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     pub(crate) precision: u8,
@@ -135,15 +162,16 @@ pub(crate) struct SamplingArgs {
 
 impl SamplingArgs {
     /// The pipeline's sampling configuration.
-    pub(crate) fn config(&self) -> SamplingConfig {
-        SamplingConfig {
+    pub(crate) fn config(&self) -> anyhow::Result<SamplingConfig> {
+        Ok(SamplingConfig {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
             origin: self.placement.origin,
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
-        }
+            tool_table: self.files.tool_table()?,
+        })
     }
 }
 

@@ -7,7 +7,7 @@ use biscara::motion::write_jsonl;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
 use clap::Args;
 
-use super::args::{DialectArgs, PlacementArgs};
+use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs};
 use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
@@ -19,7 +19,7 @@ use super::files::{FileSource, write_output};
 /// circles, P turns, helical, G17/G18/G19), G4, G10 L2/L20, G20/G21 (inches become mm), G28/G30
 /// (to the robot's home pose unless set with G28.1/G30.1), G53, G54–G59.3, G90/G91, G90.1/G91.1,
 /// G92 G92.1 G92.2 G92.3, G93/G94, G40 G41 G42 G41.1 G42.1 (cutter radius compensation, in G17
-/// or G18; the D of G41/G42 names a tool of diameter 0, G41.1/G42.1 D give the diameter), G49 G80
+/// or G18; the D of G41/G42 names a tool of --tool-table, G41.1/G42.1 D give the diameter), G49 G80
 /// G61 G64 (accepted, no effect here), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
 /// (gripper off), M6 M7 M8 M9, F S T; numbered and named parameters and expressions. The program
 /// starts at the robot's home pose.
@@ -52,6 +52,8 @@ pub(crate) struct InterpretArgs {
     placement: PlacementArgs,
     #[command(flatten)]
     dialect: DialectArgs,
+    #[command(flatten)]
+    files: GcodeFilesArgs,
 }
 
 pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
@@ -61,6 +63,7 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         origin: placement.origin,
         fit: placement.fit,
         dialect: args.dialect.dialect,
+        tool_table: args.files.tool_table()?,
         ..SamplingConfig::default()
     };
     let notes = NoteReporter::default();

@@ -20,17 +20,23 @@ use biscara::motion::{Motion, MotionKind};
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
+/// The configuration rs274 is matched with: the defaults, and the program's own tool table
+/// (`NAME.tbl`) when it has one.
+fn config(path: &Path) -> Config {
+    Config { tool_table: rs274::own_table(path).map(std::sync::Arc::new), ..Config::default() }
+}
+
 /// Our motions for `path`, started like rs274: at 0,0,0,0 with G28/G30 at 0.
 fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret(BufReader::new(file), &Config::default()).collect()
+    interpret(BufReader::new(file), &config(path)).collect()
 }
 
 /// Our motions for `path` before the first error, and the outcome.
 fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut motions = Vec::new();
-    for result in interpret(BufReader::new(file), &Config::default()) {
+    for result in interpret(BufReader::new(file), &config(path)) {
         match result {
             Ok(motion) => motions.push(motion),
             Err(err) => return (motions, Err(err)),
@@ -544,7 +550,8 @@ fn random_programs_conform() {
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
 
-/// A random profile under cutter compensation (G41.1/G42.1 with a diameter, in G17 or G18):
+/// A random profile under cutter compensation (G41.1/G42.1 with a diameter or G41/G42 with a
+/// tool of [`COMP_TOOLS`], in G17 or G18):
 /// lines, rapids, closed arcs in I J K and R form, depth moves, events, the odd G40 and G20,
 /// then an exit move. Many corners will gouge: both interpreters must then refuse alike.
 fn random_comp_program(rng: &mut Rng) -> String {
@@ -557,9 +564,10 @@ fn random_comp_program(rng: &mut Rng) -> String {
     let (mut pa, mut pb) = (0.0_f64, 0.0_f64);
     for _ in 0..(4 + rng.below(14)) {
         if !on {
-            let side = rng.pick(&["G41.1", "G42.1", "G41", "G42.1", "G41.1"]);
+            // G41/G42 D name tools of the table beside (COMP_TOOLS), G41.1/G42.1 D diameters.
+            let side = rng.pick(&["G41.1", "G42.1", "G41", "G42"]);
             let d = match side {
-                "G41" => "1".to_owned(),
+                "G41" | "G42" => rng.pick(&["1", "2", "3", "4", "0"]).to_owned(),
                 _ => rng.pick(&["1", "2", "3.5", "5", "0.5", "-2"]).to_owned(),
             };
             text.push_str(&format!("{side} D{d}\n"));
@@ -624,6 +632,9 @@ fn random_comp_program(rng: &mut Rng) -> String {
     text
 }
 
+/// The tool table beside each random compensated profile.
+const COMP_TOOLS: &str = "T1 P1 D2\nT2 P2 D5\nT3 P3 D0.8 Z3\nT4 P4 D3.175\n";
+
 #[test]
 fn random_cutter_comp_programs_conform() {
     if !rs274::available("random_cutter_comp_programs_conform") {
@@ -638,6 +649,7 @@ fn random_cutter_comp_programs_conform() {
         let program = random_comp_program(&mut rng);
         let path = dir.join(format!("comp{index}.ngc"));
         std::fs::write(&path, &program).expect("write");
+        std::fs::write(path.with_extension("tbl"), COMP_TOOLS).expect("write the tool table");
         match check(&path, &dir) {
             Ok(Verdict::Match) => accepted += 1,
             Ok(Verdict::BothRefuse) => refused += 1,

@@ -18,11 +18,14 @@ use crate::params::{
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::Tool;
+use crate::tool_table::ToolTable;
 
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
+mod tools;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -41,7 +44,7 @@ const MAX_COORDINATE: f64 = 1e6;
 const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
 
 /// How to start interpreting a program.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Config {
     /// The pose the robot is in before the first line, `[x, y, z, c]` in millimetres and
     /// degrees, base frame; also where G28 and G30 go until G28.1 or G30.1 set them.
@@ -58,6 +61,10 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
     pub tool: Tool,
+    /// LinuxCNC's tool table (`--tool-table`): the tools' offsets (G43) and diameters. `None`:
+    /// every tool has zero length and diameter ([`Interpreter::tools_without_table`] says
+    /// whether the program used them).
+    pub tool_table: Option<std::sync::Arc<ToolTable>>,
 }
 
 impl Default for Config {
@@ -68,6 +75,7 @@ impl Default for Config {
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
+            tool_table: None,
         }
     }
 }
@@ -142,8 +150,14 @@ struct State {
     params: Params,
     line: usize,
     speed: f64,
-    tool: f64,
-    selected_tool: f64,
+    /// The tool length offset in force (G43…), in the program units in force when it was set:
+    /// as in rs274, a change of units does not convert it (it is used so by later G43, G49,
+    /// G53, G28 and G10 L10), though the machine keeps the offset it was given
+    /// ([`State::tool_offset_mm`]).
+    tool_offset: [f64; 4],
+    /// The tool length offset the machine applies, mm and degrees.
+    tool_offset_mm: [f64; 4],
+    tools: tools::Tools,
     spindle: u16,
     mist: bool,
     flood: bool,
@@ -177,8 +191,9 @@ impl State {
             params,
             line: 0,
             speed: 0.0,
-            tool: 0.0,
-            selected_tool: 0.0,
+            tool_offset: [0.0; 4],
+            tool_offset_mm: [0.0; 4],
+            tools: tools::Tools::new(config.tool_table.as_deref()),
             spindle: 5,
             mist: false,
             flood: false,
@@ -206,6 +221,7 @@ impl State {
     fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
         std::array::from_fn(|axis| {
             self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
+                + self.tool_offset_mm[axis]
         })
     }
 
@@ -220,7 +236,9 @@ impl State {
 impl Predefined for State {
     fn predefined(&self, name: &[u8]) -> Option<f64> {
         let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| self.current[axis] + self.origin[axis] + self.axis_offset[axis];
+        let machine = |axis: usize| {
+            self.current[axis] + self.origin[axis] + self.axis_offset[axis] + self.tool_offset[axis]
+        };
         Some(match name {
             b"_x" => self.current[0],
             b"_y" => self.current[1],
@@ -253,9 +271,11 @@ impl Predefined for State {
             b"_ccomp" => self.comp.code(),
             b"_feed" => self.feed_rate,
             b"_rpm" => self.speed,
-            b"_current_tool" => self.tool,
-            b"_selected_tool" => self.selected_tool,
-            b"_current_pocket" | b"_selected_pocket" | b"_tool_offset" => 0.0,
+            b"_current_tool" => f64::from(self.tools.spindle.tool),
+            b"_selected_tool" => self.tools.selected_tool,
+            b"_current_pocket" => self.tools.current_pocket,
+            b"_selected_pocket" => self.tools.selected_pocket,
+            b"_tool_offset" => flag(self.tools.offset_active),
             b"_spindle_on" => flag(self.spindle != 5),
             b"_spindle_cw" => flag(self.spindle == 3),
             b"_mist" => flag(self.mist),
@@ -451,7 +471,9 @@ impl<R: BufRead> Interpreter<R> {
         {
             return Err(self.code_fault(zero, "Cannot use two g codes that both use axis values"));
         }
-        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code));
+        // G43.1 and G43.2 use the axis words too (without making the modal motion move).
+        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code))
+            || g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         let modal_motion = match motion_code {
             Some(code) => Some(code.code),
             None => self.state.motion,
@@ -541,19 +563,21 @@ impl<R: BufRead> Interpreter<R> {
                 self.tool_event(self.state.spindle);
             }
         }
-        if let Some(t) = self.block.word(b't') {
-            // Not negative: the reader refuses that.
-            self.state.selected_tool = t.value;
-        }
-        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)
+        self.select_tool()?;
+        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
+        // tool is in the spindle.
         if let Some(code) = m[6] {
-            self.refuse_with_comp(
-                (code.at, code.end),
-                "Cannot change tools with cutter radius compensation on",
-            )?;
-            self.state.tool = self.state.selected_tool;
-            self.state.spindle = 5;
-            self.tool_event(5);
+            if code.code == 61 {
+                self.set_current_tool(code)?;
+            } else {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change tools with cutter radius compensation on",
+                )?;
+                self.change_tool();
+                self.state.spindle = 5;
+                self.tool_event(5);
+            }
         }
         // 9. spindle: the gripper (or the tool)
         if let Some(code) = m[7] {
@@ -600,6 +624,10 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 17. cutter radius compensation
         self.set_cutter_comp()?;
+        // 18. tool length offset
+        if let Some(code) = g[8] {
+            self.tool_length_offset(code)?;
+        }
         // 19. coordinate system
         if let Some(code) = g[12] {
             let system = match code.code {
@@ -646,7 +674,8 @@ impl<R: BufRead> Interpreter<R> {
                     for axis in 0..4 {
                         let machine = self.state.current[axis]
                             + self.state.origin[axis]
-                            + self.state.axis_offset[axis];
+                            + self.state.axis_offset[axis]
+                            + self.state.tool_offset[axis];
                         let value = self.state.to_mm(axis, machine);
                         self.state.params.set(base + axis_slot(axis), value);
                     }
@@ -809,7 +838,11 @@ impl<R: BufRead> Interpreter<R> {
                 "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
             ),
             (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
-            (b'h', false, "H word with no G43 or G76 to use it"),
+            (
+                b'h',
+                block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
+                "H word with no G43 or G76 to use it",
+            ),
             (
                 b'i',
                 arc || g10,
@@ -831,6 +864,19 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.word_fault(word, message));
             }
         }
+        // Mach3 takes the compensation radius from a P word (G41 P1.5): not read yet.
+        if let Some(p) = block.word(b'p')
+            && comp_on
+            && self.dialect == Dialect::Mach3
+        {
+            let (first, last) = self.span(p.at, p.end);
+            return Err(Fault::not_supported(
+                first,
+                last,
+                "G41/G42 P",
+                "Mach3's compensation radius in a P word",
+            ));
+        }
         if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let used = arc || matches!(group0, Some(40 | 100)) || g64;
@@ -851,7 +897,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(q) = block.word(b'q') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            if !g64 && !g10 {
+            let m61 = block.m[6].is_some_and(|code| code.code == 61);
+            if !g64 && !g10 && !m61 {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -877,6 +924,7 @@ impl<R: BufRead> Interpreter<R> {
             self.state.current[axis] *= scale;
             self.state.origin[axis] *= scale;
             self.state.axis_offset[axis] *= scale;
+            // rs274 keeps the tool length offset's number: it changes with the units.
         }
         self.state.metric = metric;
     }
@@ -903,13 +951,14 @@ impl<R: BufRead> Interpreter<R> {
         let l_value = l.value as i64;
         match l_value {
             2 | 20 => {}
-            0 | 1 | 10 | 11 => {
+            1 | 10 | 11 => return self.set_tool_data(code, l_value),
+            0 => {
                 let (first, last) = self.span(code.at, l.end.max(code.end));
                 return Err(Fault::not_supported(
                     first,
                     last,
-                    format!("G10 L{l_value}"),
-                    "tool table",
+                    "G10 L0".to_owned(),
+                    "reloading the tool table",
                 ));
             }
             _ => {
@@ -992,7 +1041,10 @@ impl<R: BufRead> Interpreter<R> {
             match word {
                 None => current,
                 Some(value) if g53 => {
-                    value - self.state.origin[axis] - self.state.axis_offset[axis]
+                    value
+                        - self.state.origin[axis]
+                        - self.state.axis_offset[axis]
+                        - self.state.tool_offset[axis]
                 }
                 Some(value) if self.state.incremental => current + value,
                 Some(value) => value,
@@ -1013,7 +1065,10 @@ impl<R: BufRead> Interpreter<R> {
             }
             let machine =
                 self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+            end[axis] = machine
+                - self.state.origin[axis]
+                - self.state.axis_offset[axis]
+                - self.state.tool_offset[axis];
         }
         self.move_to(end, None);
         Ok(())

@@ -73,6 +73,7 @@ mod lexer;
 mod params;
 mod parser;
 mod tool;
+mod tool_table;
 
 pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
@@ -80,3 +81,4 @@ pub use dialect::{
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret};
 pub use tool::Tool;
+pub use tool_table::{ToolEntry, ToolTable, ToolTableError};

@@ -49,7 +49,7 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         400 => (7, Yes),
         410 | 420 | 411 | 421 => (7, Yes),
         490 => (8, Yes),
-        430..=432 => (8, No("tool length offset")),
+        430..=432 => (8, Yes),
         980 | 990 => (10, Yes),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => (12, Yes),
         610 | 611 | 640 => (13, Yes),
@@ -66,8 +66,7 @@ pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
     use Support::{No, Yes};
     Some(match code {
         0 | 1 | 2 | 30 | 60 => (4, Yes),
-        6 => (6, Yes),
-        61 => (6, No("set current tool")),
+        6 | 61 => (6, Yes),
         3..=5 => (7, Yes),
         19 => (7, No("spindle orientation")),
         7..=9 => (8, Yes),

@@ -4,8 +4,11 @@
 use std::cell::RefCell;
 use std::io::BufRead;
 use std::rc::Rc;
+use std::sync::Arc;
 
-use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, interpret};
+use biscara_gcode::{
+    Config as GcodeConfig, Dialect, GcodeError, Interpreter, ToolTable, interpret,
+};
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, Position, read_jsonl};
 
@@ -48,7 +51,7 @@ pub(crate) fn read_motions(
     source: &dyn ProgramSource,
     kind: ProgramKind,
     origin: Position,
-    dialect: Dialect,
+    (dialect, tool_table): (Dialect, Option<&Arc<ToolTable>>),
     notes: NoteSink,
 ) -> Result<MotionReader, PipelineError> {
     let file = source.name().to_owned();
@@ -63,6 +66,7 @@ pub(crate) fn read_motions(
                 home: model.home_position(),
                 origin,
                 dialect,
+                tool_table: tool_table.cloned(),
                 ..GcodeConfig::default()
             };
             let interpreter = interpret(input, &config);
@@ -114,6 +118,9 @@ impl<R: BufRead> GcodeMotions<R> {
             .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
+        }
+        if self.interpreter.tools_without_table() {
+            self.notes.say(Note::ToolsWithoutTable { file: self.file.clone() });
         }
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {

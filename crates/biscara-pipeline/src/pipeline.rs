@@ -1,6 +1,8 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
-use biscara_gcode::Dialect;
+use std::sync::Arc;
+
+use biscara_gcode::{Dialect, ToolTable};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -16,7 +18,7 @@ use crate::motions::{MotionReader, NoteSink, read_motions};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SamplingConfig {
     /// Time step, s (> 0).
     pub dt: f64,
@@ -31,6 +33,9 @@ pub struct SamplingConfig {
     pub fit: bool,
     /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
     pub dialect: Dialect,
+    /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
+    /// length and diameter.
+    pub tool_table: Option<Arc<ToolTable>>,
 }
 
 impl Default for SamplingConfig {
@@ -44,6 +49,7 @@ impl Default for SamplingConfig {
             origin: None,
             fit: false,
             dialect: Dialect::Auto,
+            tool_table: None,
         }
     }
 }
@@ -56,7 +62,7 @@ pub type SlowDownNotes = Box<dyn FnMut(&SlowDown)>;
 pub type Motions = MotionReader;
 
 /// One robot and one sampling configuration: the pipeline every command runs programs through.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Pipeline<'m> {
     model: &'m RobotModel,
     config: SamplingConfig,
@@ -96,10 +102,19 @@ impl<'m> Pipeline<'m> {
         notes: &NoteSink,
     ) -> Result<Motions, PipelineError> {
         let SamplingConfig { origin, fit, dialect, .. } = self.config;
+        let tools = self.config.tool_table.as_ref();
         let placement =
-            place(self.model, source, kind, origin, fit, dialect, &mut |note| notes.say(note))?;
-        let motions =
-            read_motions(self.model, source, kind, placement.origin, dialect, notes.clone())?;
+            place(self.model, source, kind, origin, fit, (dialect, tools), &mut |note| {
+                notes.say(note)
+            })?;
+        let motions = read_motions(
+            self.model,
+            source,
+            kind,
+            placement.origin,
+            (dialect, tools),
+            notes.clone(),
+        )?;
         Ok(match placement.shift {
             None => motions,
             Some(offset) => {

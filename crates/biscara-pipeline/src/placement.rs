@@ -1,7 +1,9 @@
 //! Where a program runs: its G54 origin and, with `--fit`, the offset that centres it in the
 //! workspace rectangle (SPEC §4.2, §8.2).
 
-use biscara_gcode::Dialect;
+use std::sync::Arc;
+
+use biscara_gcode::{Dialect, ToolTable};
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
 use biscara_robot::{Bounds, Workspace, fit};
@@ -34,7 +36,7 @@ pub fn place(
     kind: ProgramKind,
     origin: Option<Position>,
     fit_program: bool,
-    dialect: Dialect,
+    (dialect, tools): (Dialect, Option<&Arc<ToolTable>>),
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
     let mut origin = origin.unwrap_or([0.0; 4]);
@@ -55,7 +57,7 @@ pub fn place(
         });
     }
     let mut bounds = Bounds::new(model.home_position());
-    for motion in read_motions(model, source, kind, origin, dialect, NoteSink::silent())? {
+    for motion in read_motions(model, source, kind, origin, (dialect, tools), NoteSink::silent())? {
         bounds.push(&motion?);
     }
     let workspace =

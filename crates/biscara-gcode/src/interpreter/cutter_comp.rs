@@ -23,6 +23,7 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use super::Interpreter;
 use crate::lexer::Fault;
+use crate::parser::Word;
 
 /// LinuxCNC's `TOLERANCE_CONCAVE_CORNER` (radians): below it a corner is straight on.
 const TOLERANCE_CONCAVE_CORNER: f64 = 0.05;
@@ -232,10 +233,32 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.comp.on() { Err(self.fault_at(at.0, at.1, message)) } else { Ok(()) }
     }
 
-    /// The diameter of tool `tool` (the D word of G41/G42), program units. There is no tool
-    /// table: every tool has diameter 0, as with LinuxCNC given a table of zero-sized tools.
-    fn tool_diameter(&self, _tool: u32) -> Result<f64, Fault> {
-        Ok(0.0)
+    /// The diameter of tool `tool` (the D word of G41/G42; 0: the tool in the spindle), in
+    /// program units, from the tool table as the program has changed it. Without a table every
+    /// tool has diameter 0 (and the note about tools used without a table is due).
+    /// Also the tool's orientation (lathe tools: 1–8).
+    fn tool_diameter(&mut self, tool: u32, d: Option<Word>) -> Result<(f64, i32), Fault> {
+        let tools = &self.state.tools;
+        let (mm, orientation) = if tool == 0 {
+            (tools.spindle.diameter, tools.spindle.orientation)
+        } else {
+            match tools.table.get(tool) {
+                Some(entry) => (entry.diameter, entry.orientation),
+                None if !tools.has_table => (0.0, 0),
+                None => {
+                    let (start, end) = d.map_or((0, 1), |d| (d.at, d.end));
+                    return Err(self.fault_at(
+                        start,
+                        end,
+                        format!("Requested tool {tool} not found in the tool table"),
+                    ));
+                }
+            }
+        };
+        if !self.state.tools.has_table {
+            self.state.tools.used_without_table = true;
+        }
+        Ok((mm / self.state.factor(), orientation))
     }
 
     /// G40, G41, G42, G41.1, G42.1 (execution step 17).
@@ -307,7 +330,23 @@ impl<R: BufRead> Interpreter<R> {
                     near as u32
                 }
             };
-            self.tool_diameter(tool)? / 2.0
+            let (diameter, orientation) = self.tool_diameter(tool, d)?;
+            if !matches!(orientation, 0 | 9) {
+                if self.state.plane != Plane::Xz {
+                    return Err(fail(
+                        self,
+                        format!("G{whole} with lathe tool, but plane is not G18"),
+                    ));
+                }
+                let (first, last) = self.span(code.at, code.end);
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    format!("G{whole} with a lathe tool"),
+                    "lathe tool orientation",
+                ));
+            }
+            diameter / 2.0
         };
         let radius = if radius < 0.0 {
             side = if side == Side::Left { Side::Right } else { Side::Left };
