@@ -450,7 +450,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(20) {
+        let line = match rng.below(24) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -509,6 +509,43 @@ fn random_program(rng: &mut Rng) -> String {
             15 => format!("#{}=[{}]", 1 + rng.below(5), random_expression(rng, 2)),
             16 => format!("G0 X[{}] Y[{}]", random_expression(rng, 3), random_expression(rng, 2)),
             17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
+            18 | 19 => {
+                // A canned cycle, its words sometimes left to stick from the last one.
+                let code = rng.pick(&["G81", "G82", "G83", "G73", "G85", "G86", "G89", "G84"]);
+                let mut words = format!("{code} {}", two_axes(rng));
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" R{}", rng.coordinate()));
+                }
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" Z{}", rng.coordinate()));
+                }
+                if matches!(code, "G82" | "G86" | "G89") && rng.below(4) != 0 {
+                    words.push_str(&format!(" P{}", rng.below(3)));
+                }
+                if matches!(code, "G83" | "G73") && rng.below(4) != 0 {
+                    words.push_str(&format!(" Q{}", 1 + rng.below(8)));
+                }
+                if rng.below(4) == 0 {
+                    words.push_str(&format!(" L{}", rng.below(4)));
+                }
+                format!("{} {words}", rng.pick(&["", "G98", "G99"]))
+            }
+            20 => rng.pick(&["G80", "G98", "G99", "X1 Y2", "G91 X1", "G90 X3 Z-1"]).to_owned(),
+            21 => match rng.below(6) {
+                0 => format!("G43.1 Z{}", rng.coordinate()),
+                1 => format!("G43 H{}", rng.below(4)),
+                2 => {
+                    format!("G10 L1 P{} Z{} R{}", 1 + rng.below(3), rng.coordinate(), rng.below(5))
+                }
+                3 => format!(
+                    "G10 L{} P{} Z{}",
+                    rng.pick(&["10", "11"]),
+                    1 + rng.below(3),
+                    rng.coordinate()
+                ),
+                4 => format!("T{} M6", rng.below(4)),
+                _ => rng.pick(&["G49", "G43", "G43.2 H1", "M61 Q2"]).to_owned(),
+            },
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);

@@ -143,7 +143,7 @@ fn bad_programs_get_a_clear_error_and_no_output() {
             "job.ngc:2:1: Length of cutter compensation entry move is not greater than the tool \
              radius",
         ),
-        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: G81 is not supported yet (canned cycle)"),
+        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: Cannot feed with zero feed rate"),
         (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is not supported yet (threading)"),
         (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is not supported yet"),
         (b"o100 sub\nM2\n".to_vec(), "job.ngc:1:1: O-word is not supported yet"),

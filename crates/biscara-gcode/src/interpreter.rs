@@ -20,6 +20,8 @@ use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_g
 use crate::tool::Tool;
 use crate::tool_table::ToolTable;
 
+/// Canned cycles: G73, G74, G81–G89, G98/G99.
+mod canned;
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
@@ -157,7 +159,12 @@ struct State {
     tool_offset: [f64; 4],
     /// The tool length offset the machine applies, mm and degrees.
     tool_offset_mm: [f64; 4],
+    /// How far tool length offsets set since the last move have shifted the current point:
+    /// rs274 takes its position back from the last move after M6 (its canon does not follow).
+    tool_shift: [f64; 4],
     tools: tools::Tools,
+    /// The canned cycles' retract mode and sticky values.
+    cycle: canned::CycleState,
     spindle: u16,
     mist: bool,
     flood: bool,
@@ -193,7 +200,9 @@ impl State {
             speed: 0.0,
             tool_offset: [0.0; 4],
             tool_offset_mm: [0.0; 4],
+            tool_shift: [0.0; 4],
             tools: tools::Tools::new(config.tool_table.as_deref()),
+            cycle: canned::CycleState::default(),
             spindle: 5,
             mist: false,
             flood: false,
@@ -707,15 +716,24 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
         }
+        // 22. retract mode
+        if let Some(code) = g[10] {
+            self.state.cycle.retract_to_old = code.code == 980;
+        }
         // 24. motion
+        let previous_motion = self.state.motion;
         if let Some(code) = motion_code {
             self.state.motion = if code.code == 800 { None } else { Some(code.code) };
+            if !canned::is_cycle(code.code) {
+                self.state.cycle.initial_level = None;
+            }
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
-                _ => self.arc(motion == 20)?,
+                20 | 30 => self.arc(motion == 20)?,
+                _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }
         self.check_range()?;
@@ -831,6 +849,11 @@ impl<R: BufRead> Interpreter<R> {
         let arc = matches!(motion, Some(20 | 30));
         let g10 = group0 == Some(100);
         let comp_on = block.g[7].is_some_and(|code| code.code != 400);
+        let cycle = motion.is_some_and(canned::is_cycle);
+        let g87 = motion == Some(870);
+        if cycle && let Some(c) = block.word(b'c') {
+            return Err(self.word_fault(c, "Cannot put a c in canned cycle"));
+        }
         let checks: [(u8, bool, &str); 7] = [
             (
                 b'd',
@@ -845,14 +868,14 @@ impl<R: BufRead> Interpreter<R> {
             ),
             (
                 b'i',
-                arc || g10,
+                arc || g10 || g87,
                 "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
             ),
-            (b'j', arc || g10, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
-            (b'k', arc, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
+            (b'j', arc || g10 || g87, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
+            (b'k', arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
             (
                 b'l',
-                g10 || comp_on,
+                g10 || comp_on || cycle,
                 "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
                  or NURBS code",
             ),
@@ -879,7 +902,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            let used = arc || matches!(group0, Some(40 | 100)) || g64;
+            let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
+            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -898,7 +922,8 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(q) = block.word(b'q') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
-            if !g64 && !g10 && !m61 {
+            let peck = matches!(motion, Some(730 | 830));
+            if !g64 && !g10 && !m61 && !peck {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -907,7 +932,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(r) = block.word(b'r')
-            && !(arc || g10)
+            && !(arc || g10 || cycle)
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
@@ -1082,6 +1107,7 @@ impl<R: BufRead> Interpreter<R> {
             Some(feed) => MotionKind::Linear { end: absolute, feed },
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
     }
 
     fn straight(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
@@ -1339,6 +1365,7 @@ impl<R: BufRead> Interpreter<R> {
             feed,
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
         Ok(())
     }
 }

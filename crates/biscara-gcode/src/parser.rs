@@ -25,7 +25,6 @@ pub(crate) enum Support {
 /// implemented; `None` for a code LinuxCNC does not know.
 pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
     use Support::{No, Yes};
-    let cycle = No("canned cycle");
     Some(match code {
         40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
         // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
@@ -37,7 +36,7 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         50..=53 => (1, No("spline: LinuxCNC's rs274 passes it on as a NURBS without its path")),
         330 | 331 | 760 => (1, No("threading")),
         382..=385 => (1, No("probing")),
-        730 | 740 | 810..=890 => (1, cycle),
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => (1, Yes),
         700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, No("lathe cycle")),
         170 | 180 | 190 => (2, Yes),
         171 | 181 | 191 => (2, No("UVW plane")),
@@ -404,6 +403,9 @@ impl<'a> Reader<'a> {
             }
             b's' if value < 0.0 => {
                 return Err(self.invalid(start, self.pos, "Negative spindle speed used"));
+            }
+            b'l' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative l word used"));
             }
             // Checked as it is read (`read_t`), before the rest of the line.
             b't' if value < 0.0 => {

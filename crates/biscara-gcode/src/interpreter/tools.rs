@@ -134,8 +134,11 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// M6: the selected tool goes into the spindle (the offset in force is not changed).
+    /// M6: the selected tool goes into the spindle (the offset in force is not changed). As
+    /// in rs274, the current point is then taken back from the last move: a tool length offset
+    /// set since that move no longer shifts it.
     pub(super) fn change_tool(&mut self) {
+        self.resync_position();
         let tools = &mut self.state.tools;
         let tool = tools.selected_tool as u32;
         if tool != 0
@@ -149,7 +152,16 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tools.publish(&mut self.state.params);
     }
 
-    /// M61 Q: says which tool is in the spindle. As in `rs274`, only the current pocket changes.
+    /// rs274 after M6 and M61: the current point taken back from the last move.
+    fn resync_position(&mut self) {
+        for axis in 0..4 {
+            self.state.current[axis] -= self.state.tool_shift[axis];
+        }
+        self.state.tool_shift = [0.0; 4];
+    }
+
+    /// M61 Q: says which tool is in the spindle. As in `rs274`, only the current pocket changes
+    /// (and the current point is taken back from the last move, as after M6).
     pub(super) fn set_current_tool(&mut self, code: Code) -> Result<(), Fault> {
         let q = self.block.word(b'q').filter(|q| q.value >= 0.0);
         let Some(q) = q else {
@@ -162,6 +174,7 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.word_fault(q, not_found(tool)));
         };
         self.note_no_table();
+        self.resync_position();
         self.state.tools.current_pocket = f64::from(entry.pocket);
         Ok(())
     }
@@ -241,6 +254,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         for axis in 0..4 {
             self.state.current[axis] += old[axis] - new[axis];
+            self.state.tool_shift[axis] += old[axis] - new[axis];
         }
         self.state.tool_offset = new;
         self.state.tool_offset_mm = std::array::from_fn(|axis| self.state.to_mm(axis, new[axis]));

@@ -89,8 +89,8 @@ fn errors_point_at_the_word() {
     let err = error("G0 X1\n  G0 Z2 A3\nM2\n");
     assert_eq!(err.to_string(), "2:9: A axis word: this robot has the axes X Y Z C only");
     assert!(matches!(err, GcodeError::ForeignAxis { letter: 'A', .. }));
-    let err = error("G0 X1\nG83 X1 Z-1 R1 Q1 F10\nM2\n");
-    assert_eq!(err.to_string(), "2:1: G83 is not supported yet (canned cycle)");
+    let err = error("G0 X1\nG83 X1 Z-1 R1 F10\nM2\n");
+    assert_eq!(err.to_string(), "2:1: Q word missing with g83");
     let err = error("o10 if [1]\nM2\n");
     assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
 }
