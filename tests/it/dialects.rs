@@ -46,7 +46,7 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/fengrave-140-text.ngc", Expect::Read("linuxcnc")),
     ("mill/freecad-grbl-ecscentric-cut.nc", Expect::Read("grbl")),
     ("mill/fusion-grbl-clamp-base.nc", Expect::Read("linuxcnc")),
-    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Pending(NOT_YET)),
+    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Read("linuxcnc")),
     ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Pending(NOT_YET)),
     ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("linuxcnc")),
     ("mill/gcodetools-puzzle03.gcode", Expect::Read("linuxcnc")),

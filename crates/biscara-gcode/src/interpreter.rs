@@ -458,7 +458,7 @@ impl<R: BufRead> Interpreter<R> {
         let motion_code = g[1];
         let group0 = g[0];
         let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
+        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
             && uses_axes(zero.code)
@@ -582,6 +582,10 @@ impl<R: BufRead> Interpreter<R> {
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
         }
+        // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
+        if let Some(code) = m[10] {
+            self.record(&format!("M{}", code.code), true);
+        }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)
             && let Some(p) = self.block.word(b'p')
@@ -648,6 +652,7 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
                 920 => self.set_axis_offsets(zero)?,
+                520 => self.set_local_offsets(),
                 _ => {}
             }
         }
@@ -761,7 +766,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 Ok(())
             }
-            920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+            520 | 920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
                 Err(self.code_fault(zero, "All axes missing with g52 or g92"))
             }
             _ => Ok(()),
@@ -838,7 +843,8 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
-            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle;
+            let user_m = block.m[10].is_some();
+            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -858,7 +864,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g64 && !g10 && !m61 && !peck {
+            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -974,6 +980,23 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.state.params.set(G92_ENABLED, 1.0);
         Ok(())
+    }
+
+    /// G52: local offsets, kept in G92's offsets (as LinuxCNC does): the given axes' offsets
+    /// become the given values.
+    fn set_local_offsets(&mut self) {
+        let mut offsets = self.state.axis_offset;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                offsets[axis] = word.value;
+            }
+        }
+        self.apply_axis_offsets(offsets);
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            let value = self.state.to_mm(axis, offset);
+            self.state.params.set(G92_OFFSET + axis_slot(axis), value);
+        }
+        self.state.params.set(G92_ENABLED, 1.0);
     }
 
     fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {

@@ -29,7 +29,7 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
         // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
         921..=923 => (11, Yes),
-        520 => (0, No("local offset G52")),
+        520 => (0, Yes),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
         50..=53 => (1, No("spline")),
         330 | 331 | 760 => (1, No("threading")),
@@ -70,6 +70,8 @@ pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
         48..=53 => (9, No("override control")),
         62..=68 => (5, No("digital/analog output")),
         70..=73 => (4, No("modal state save/restore")),
+        // User M codes: an event here (there is no external program to run).
+        100..=199 => (10, Yes),
         _ => return None,
     })
 }
