@@ -24,6 +24,8 @@ use crate::tool_table::ToolTable;
 mod canned;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M70–M73: the modal state saved and restored.
+mod modal_state;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -163,6 +165,8 @@ struct State {
     tools: tools::Tools,
     /// The canned cycles' retract mode and sticky values.
     cycle: canned::CycleState,
+    /// The modal state M70/M73 saved.
+    modal_stack: modal_state::ModalStack,
     spindle: u16,
     mist: bool,
     flood: bool,
@@ -199,6 +203,7 @@ impl State {
             tool_shift: [0.0; 4],
             tools: tools::Tools::new(config.tool_table.as_deref()),
             cycle: canned::CycleState::default(),
+            modal_stack: modal_state::ModalStack::default(),
             spindle: 5,
             mist: false,
             flood: false,
@@ -570,7 +575,9 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = m[7] {
+        if let Some(code) = m[7].filter(|code| code.code >= 70) {
+            self.modal_state(code)?;
+        } else if let Some(code) = m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }

@@ -69,7 +69,8 @@ pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
         7..=9 => (8, Yes),
         48..=53 => (9, No("override control")),
         62..=68 => (5, No("digital/analog output")),
-        70..=73 => (4, No("modal state save/restore")),
+        // rs274 refuses M70 with M3, M4 or M5: one group.
+        70..=73 => (7, Yes),
         // User M codes: an event here (there is no external program to run).
         100..=199 => (10, Yes),
         _ => return None,
