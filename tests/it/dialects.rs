@@ -46,7 +46,7 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/fengrave-140-text.ngc", Expect::Read("linuxcnc")),
     ("mill/freecad-grbl-ecscentric-cut.nc", Expect::Read("grbl")),
     ("mill/fusion-grbl-clamp-base.nc", Expect::Read("linuxcnc")),
-    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Pending(NOT_YET)),
+    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Read("linuxcnc")),
     // Nothing in it says Mach3, so it is read as LinuxCNC, which refuses G41's P (Mach3's
     // radius) as rs274 does.
     ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Refused(&["P word with no G2 G3 G4"])),

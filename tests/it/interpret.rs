@@ -124,7 +124,7 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 W1\nM2\n".to_vec(), "W axis word"),
         (b"G0 X[1/0]\nM2\n".to_vec(), "job.ngc:1:7: Attempt to divide by zero"),
         (b"G7.5\nM2\n".to_vec(), "job.ngc:1:1: Unknown g code used"),
-        (b"M123\nM2\n".to_vec(), "job.ngc:1:1: Unknown m code used: M123"),
+        (b"M223\nM2\n".to_vec(), "job.ngc:1:1: M-code greater than 199: M223"),
         (b"G1 X1\nM2\n".to_vec(), "job.ngc:1:1: Cannot do g1 with zero feed rate"),
         (b"G0 X1 NaN\nM2\n".to_vec(), "job.ngc:1:7: Bad character 'n' used"),
         (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word where unary operation could be"),

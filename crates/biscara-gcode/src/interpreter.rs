@@ -26,6 +26,8 @@ mod canned;
 mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M70–M73: the modal state saved and restored.
+mod modal_state;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -165,6 +167,8 @@ struct State {
     tools: tools::Tools,
     /// The canned cycles' retract mode and sticky values.
     cycle: canned::CycleState,
+    /// The modal state M70/M73 saved.
+    modal_stack: modal_state::ModalStack,
     spindle: u16,
     mist: bool,
     flood: bool,
@@ -203,6 +207,7 @@ impl State {
             tool_shift: [0.0; 4],
             tools: tools::Tools::new(config.tool_table.as_deref()),
             cycle: canned::CycleState::default(),
+            modal_stack: modal_state::ModalStack::default(),
             spindle: 5,
             mist: false,
             flood: false,
@@ -473,7 +478,7 @@ impl<R: BufRead> Interpreter<R> {
         let motion_code = g[1];
         let group0 = g[0];
         let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
+        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
             && uses_axes(zero.code)
@@ -589,7 +594,9 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = m[7] {
+        if let Some(code) = m[7].filter(|code| code.code >= 70) {
+            self.modal_state(code)?;
+        } else if let Some(code) = m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }
@@ -600,6 +607,10 @@ impl<R: BufRead> Interpreter<R> {
                 8 => self.state.flood = true,
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
+        }
+        // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
+        if let Some(code) = m[10] {
+            self.record(&format!("M{}", code.code), true);
         }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)
@@ -689,12 +700,16 @@ impl<R: BufRead> Interpreter<R> {
                         self.state.params.set(base + axis_slot(axis), value);
                     }
                 }
-                920 => {
+                920 | 520 => {
                     self.refuse_with_comp(
                         (zero.at, zero.end),
                         "Cannot change axis offsets with cutter radius comp",
                     )?;
-                    self.set_axis_offsets(zero)?;
+                    if zero.code == 920 {
+                        self.set_axis_offsets(zero)?;
+                    } else {
+                        self.set_local_offsets();
+                    }
                 }
                 _ => {}
             }
@@ -812,7 +827,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 Ok(())
             }
-            920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+            520 | 920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
                 Err(self.code_fault(zero, "All axes missing with g52 or g92"))
             }
             _ => Ok(()),
@@ -903,7 +918,8 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
-            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle;
+            let user_m = block.m[10].is_some();
+            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -923,7 +939,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g64 && !g10 && !m61 && !peck {
+            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -1046,6 +1062,23 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.state.params.set(G92_ENABLED, 1.0);
         Ok(())
+    }
+
+    /// G52: local offsets, kept in G92's offsets (as LinuxCNC does): the given axes' offsets
+    /// become the given values.
+    fn set_local_offsets(&mut self) {
+        let mut offsets = self.state.axis_offset;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                offsets[axis] = word.value;
+            }
+        }
+        self.apply_axis_offsets(offsets);
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            let value = self.state.to_mm(axis, offset);
+            self.state.params.set(G92_OFFSET + axis_slot(axis), value);
+        }
+        self.state.params.set(G92_ENABLED, 1.0);
     }
 
     fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {

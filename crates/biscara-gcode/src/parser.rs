@@ -29,7 +29,7 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
         // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
         921..=923 => (11, Yes),
-        520 => (0, No("local offset G52")),
+        520 => (0, Yes),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
         // rs274 hands G5, G5.1 and G5.2 NURBS to the motion planner without the points of
         // their path: there is no reference motion to match.
@@ -71,7 +71,10 @@ pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
         7..=9 => (8, Yes),
         48..=53 => (9, No("override control")),
         62..=68 => (5, No("digital/analog output")),
-        70..=73 => (4, No("modal state save/restore")),
+        // rs274 refuses M70 with M3, M4 or M5: one group.
+        70..=73 => (7, Yes),
+        // User M codes: an event here (there is no external program to run).
+        100..=199 => (10, Yes),
         _ => return None,
     })
 }
