@@ -123,6 +123,8 @@ enum Verdict {
     /// rs274 refuses a user M code (M100–M199) for want of its program; we record it as an
     /// event (SPEC §4.2) and match up to it.
     UserMCode,
+    /// We refuse what this robot cannot do (lathe, spindle-synchronised motion, probing).
+    CannotRun,
 }
 
 /// Whether rs274's `message` refuses a user M code (M100–M199) it has no program for.
@@ -149,6 +151,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
+        (Err(GcodeError::CannotRun { .. }), _) => Ok(Verdict::CannotRun),
         (Err(err), _) if stricter(&err) => Ok(Verdict::Stricter),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
         (Err(err), Outcome::Error { message, before: theirs }) => {
@@ -230,7 +233,7 @@ fn hand_written_cases_conform() {
             }
         } else if name.starts_with("unsupported_") {
             match ours {
-                Err(GcodeError::NotSupported { .. }) => None,
+                Err(GcodeError::NotSupported { .. } | GcodeError::CannotRun { .. }) => None,
                 other => Some(format!("not refused as unsupported: {other:?}")),
             }
         } else if name.starts_with("user_m_") {
@@ -305,7 +308,7 @@ fn linuxcnc_examples_match_or_are_refused() {
     let mut seen = std::collections::HashSet::new();
     let files = programs.len();
     programs.retain(|path| seen.insert(std::fs::read(path).unwrap_or_default()));
-    let mut counts = [0usize; 6];
+    let mut counts = [0usize; 7];
     let mut differ = Vec::new();
     let mut matched = Vec::new();
     for program in &programs {
@@ -325,13 +328,15 @@ fn linuxcnc_examples_match_or_are_refused() {
             "LinuxCNC examples: {} distinct programs ({files} files): {} match, {} refused as \
              not supported yet (O-words, canned cycles, …), {} refused for A/B/U/V/W axis words, \
              {} refused by rs274 itself and by us, {} with user M codes (events here, refused by \
-             rs274 without their programs), {} differ",
+             rs274 without their programs), {} refused as this robot cannot do them (lathe, \
+             spindle-synchronised motion, probing), {} differ",
             programs.len(),
             counts[Verdict::Match as usize],
             counts[Verdict::NotSupported as usize],
             counts[Verdict::ForeignAxis as usize],
             counts[Verdict::BothRefuse as usize],
             counts[Verdict::UserMCode as usize],
+            counts[Verdict::CannotRun as usize],
             differ.len()
         );
         eprintln!("matching: {}", matched.join(", "));
@@ -836,7 +841,7 @@ fn token_soups_are_refused_alike() {
     let dir = temp_dir("conformance-soup");
     let mut rng = Rng(0x0000_50c0_ffee_d00d);
     let mut failures = Vec::new();
-    let mut counts = [0usize; 6];
+    let mut counts = [0usize; 7];
     let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
     for index in 0..total {
         let program = token_soup(&mut rng);
@@ -853,7 +858,9 @@ fn token_soups_are_refused_alike() {
             "token soups: {} match, {} refused alike, {} refused here as not supported",
             counts[Verdict::Match as usize],
             counts[Verdict::BothRefuse as usize],
-            counts[Verdict::NotSupported as usize] + counts[Verdict::ForeignAxis as usize],
+            counts[Verdict::NotSupported as usize]
+                + counts[Verdict::ForeignAxis as usize]
+                + counts[Verdict::CannotRun as usize],
         );
     }
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));

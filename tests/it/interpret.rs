@@ -144,8 +144,8 @@ fn bad_programs_get_a_clear_error_and_no_output() {
              radius",
         ),
         (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: Cannot feed with zero feed rate"),
-        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is not supported yet (threading)"),
-        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is not supported yet"),
+        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is refused: spindle-synchronised motion"),
+        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is refused: a lathe code"),
         (b"o100 sub\nM2\n".to_vec(), "job.ngc:1:1: O-word is not supported yet"),
         (
             format!("G0 X1 ({})\nM2\n", "x".repeat(10 * 1024 * 1024)).into_bytes(),

@@ -355,6 +355,7 @@ impl<R: BufRead> Interpreter<R> {
             FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
             FaultKind::Invalid => GcodeError::Invalid { at, message: fault.message },
             FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
+            FaultKind::Cannot { code, reason } => GcodeError::CannotRun { at, code, reason },
             FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
         }
     }
@@ -837,14 +838,22 @@ impl<R: BufRead> Interpreter<R> {
     /// Refuses codes and words this interpreter does not implement.
     fn check_support(&self) -> Result<(), Fault> {
         for code in self.block.g.iter().flatten() {
-            if let Some((_, Support::No(note))) = g_group(code.code) {
-                let name = if code.code % 10 == 0 {
+            let name = || {
+                if code.code % 10 == 0 {
                     format!("G{}", code.code / 10)
                 } else {
                     format!("G{}.{}", code.code / 10, code.code % 10)
-                };
-                let (first, last) = self.span(code.at, code.end);
-                return Err(Fault::not_supported(first, last, name, note));
+                }
+            };
+            let (first, last) = self.span(code.at, code.end);
+            match g_group(code.code) {
+                Some((_, Support::No(note))) => {
+                    return Err(Fault::not_supported(first, last, name(), note));
+                }
+                Some((_, Support::Cannot(reason))) => {
+                    return Err(Fault::cannot(first, last, name(), reason));
+                }
+                _ => {}
             }
         }
         for code in self.block.m.iter().flatten() {
