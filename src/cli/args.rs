@@ -1,8 +1,9 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara::gcode::Dialect;
+use biscara::gcode::{Dialect, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -108,7 +109,7 @@ pub(crate) struct DialectArgs {
     pub(crate) dialect: Dialect,
 }
 
-/// The files a G-code program may read besides itself.
+/// The files a G-code program may read besides itself (SPEC §4.2 tier 3).
 #[derive(Debug, Args)]
 pub(crate) struct GcodeFilesArgs {
     /// A folder where file subroutines are looked for: `o<name> call` of a subroutine the
@@ -116,6 +117,25 @@ pub(crate) struct GcodeFilesArgs {
     /// folders, in order (LinuxCNC's SUBROUTINE_PATH). May be given more than once.
     #[arg(long, value_name = "DIR", help = "Folder of file subroutines (o<name> call → name.ngc)")]
     pub(crate) subroutine_path: Vec<PathBuf>,
+    /// LinuxCNC's tool table (`.tbl`, millimetres): the tools' lengths for G43 and diameters.
+    /// Without it, every tool has zero length and diameter, and a note says so when the program
+    /// uses them.
+    #[arg(
+        long,
+        value_name = "FILE",
+        help = "LinuxCNC tool table (.tbl, mm) for G43 tool lengths and tool diameters"
+    )]
+    pub(crate) tool_table: Option<PathBuf>,
+}
+
+impl GcodeFilesArgs {
+    /// The tool table, read.
+    pub(crate) fn tool_table(&self) -> anyhow::Result<Option<Arc<ToolTable>>> {
+        match &self.tool_table {
+            None => Ok(None),
+            Some(path) => Ok(Some(Arc::new(ToolTable::read(path)?))),
+        }
+    }
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
@@ -147,8 +167,8 @@ pub(crate) struct SamplingArgs {
 
 impl SamplingArgs {
     /// The pipeline's sampling configuration.
-    pub(crate) fn config(&self) -> SamplingConfig {
-        SamplingConfig {
+    pub(crate) fn config(&self) -> anyhow::Result<SamplingConfig> {
+        Ok(SamplingConfig {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
@@ -156,7 +176,8 @@ impl SamplingArgs {
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
             subroutine_path: self.files.subroutine_path.clone(),
-        }
+            tool_table: self.files.tool_table()?,
+        })
     }
 }
 

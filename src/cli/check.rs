@@ -56,7 +56,7 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let notes = NoteReporter::default();
     let mut checker = Checker::new(model, scene);
     for sample in
-        Pipeline::new(model, args.sampling.config()).samples(&source, kind, notes.sink())?
+        Pipeline::new(model, args.sampling.config()?).samples(&source, kind, notes.sink())?
     {
         checker.push(&sample?);
     }

@@ -64,7 +64,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
     for sample in
-        Pipeline::new(model, args.sampling.config()).samples(&source, kind, notes.sink())?
+        Pipeline::new(model, args.sampling.config()?).samples(&source, kind, notes.sink())?
     {
         trace.push(&sample?);
     }

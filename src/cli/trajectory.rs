@@ -89,7 +89,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
         return Err(anyhow!("interpolate reads G-code or an inter-file, not a path CSV"));
     }
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
     let samples = pipeline.samples(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer =
@@ -107,7 +107,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
     let mut samples = pipeline.joints(&source, kind, notes.sink())?;
     let format = JointCsvFormat {
         angle_unit: match args.angle_unit {

@@ -99,6 +99,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
         subroutine_path: args.files.subroutine_path.clone(),
+        tool_table: args.files.tool_table()?,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

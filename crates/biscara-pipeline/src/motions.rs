@@ -4,16 +4,18 @@
 use std::cell::RefCell;
 use std::io::BufRead;
 use std::rc::Rc;
+use std::sync::Arc;
 
 use std::path::{Path, PathBuf};
 
 use biscara_gcode::{
-    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, interpret_seekable,
+    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, ToolTable,
+    interpret_seekable,
 };
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, Position, read_jsonl};
 
-use crate::{Note, PipelineError, ProgramKind, ProgramSource};
+use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// A program's motions as read, with errors located in the file.
 pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
@@ -50,6 +52,18 @@ impl NoteSink {
 pub(crate) struct Reading<'a> {
     pub dialect: Dialect,
     pub subroutine_path: &'a [PathBuf],
+    pub tool_table: Option<&'a Arc<ToolTable>>,
+}
+
+impl<'a> Reading<'a> {
+    /// How `config` says G-code is read.
+    pub fn of(config: &'a SamplingConfig) -> Self {
+        Reading {
+            dialect: config.dialect,
+            subroutine_path: &config.subroutine_path,
+            tool_table: config.tool_table.as_ref(),
+        }
+    }
 }
 
 /// The motions of a G-code program (read as `reading` says, with `origin` as its G54 offset)
@@ -74,6 +88,7 @@ pub(crate) fn read_motions(
                 home: model.home_position(),
                 origin,
                 dialect: reading.dialect,
+                tool_table: reading.tool_table.cloned(),
                 ..GcodeConfig::default()
             };
             // A file is read with jumps (O-word loops and calls); standard input only forwards.
@@ -133,6 +148,9 @@ impl<R: BufRead> GcodeMotions<R> {
             .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
+        }
+        if self.interpreter.tools_without_table() {
+            self.notes.say(Note::ToolsWithoutTable { file: self.file.clone() });
         }
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {

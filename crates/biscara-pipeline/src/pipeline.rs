@@ -1,8 +1,9 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara_gcode::Dialect;
+use biscara_gcode::{Dialect, ToolTable};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -36,6 +37,9 @@ pub struct SamplingConfig {
     /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
     /// program's own folder (`--subroutine-path`).
     pub subroutine_path: Vec<PathBuf>,
+    /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
+    /// length and diameter.
+    pub tool_table: Option<Arc<ToolTable>>,
 }
 
 impl Default for SamplingConfig {
@@ -50,6 +54,7 @@ impl Default for SamplingConfig {
             fit: false,
             dialect: Dialect::Auto,
             subroutine_path: Vec::new(),
+            tool_table: None,
         }
     }
 }
@@ -101,8 +106,7 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: &NoteSink,
     ) -> Result<Motions, PipelineError> {
-        let reading =
-            Reading { dialect: self.config.dialect, subroutine_path: &self.config.subroutine_path };
+        let reading = Reading::of(&self.config);
         let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
         let motions =
             read_motions(self.model, source, kind, placement.origin, &reading, notes.clone())?;

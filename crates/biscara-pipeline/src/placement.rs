@@ -52,8 +52,9 @@ pub fn place(
         });
     }
     let mut bounds = Bounds::new(model.home_position());
-    let reading = Reading { dialect: config.dialect, subroutine_path: &config.subroutine_path };
-    for motion in read_motions(model, source, kind, origin, &reading, NoteSink::silent())? {
+    for motion in
+        read_motions(model, source, kind, origin, &Reading::of(config), NoteSink::silent())?
+    {
         bounds.push(&motion?);
     }
     let workspace =

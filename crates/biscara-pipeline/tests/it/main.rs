@@ -148,3 +148,38 @@ fn a_path_csv_is_read_as_it_is() {
     assert_eq!(samples[1].pose, [10.0, 400.0, 50.0, 0.0]);
     assert_eq!(samples[1].line, 3);
 }
+
+#[test]
+fn tool_offsets_come_from_the_table_or_a_note_says_there_is_none() {
+    let model = RobotModel::default();
+    let program = "G21 G90\nT1 M6\nG43 H1\nG0 X0 Y400 Z10\nM2\n";
+    let source = TextSource::new("tools.ngc", program);
+    let run = |config: SamplingConfig| {
+        let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+        let heard = std::rc::Rc::clone(&notes);
+        let motions: Vec<_> = pipeline(&model, config)
+            .motions(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        let end = motions.iter().find_map(|motion| motion.kind.end()).unwrap();
+        let notes = notes.borrow().clone();
+        (end, notes)
+    };
+    let (end, notes) = run(SamplingConfig::default());
+    assert_eq!(end[2], 10.0);
+    assert!(
+        notes
+            .iter()
+            .any(|note| matches!(note, Note::ToolsWithoutTable { file } if file == "tools.ngc")),
+        "{notes:?}"
+    );
+    let table = biscara_gcode::ToolTable::parse("T1 P1 Z25 D6\n".as_bytes(), "t.tbl").unwrap();
+    let config = SamplingConfig {
+        tool_table: Some(std::sync::Arc::new(table)),
+        ..SamplingConfig::default()
+    };
+    let (end, notes) = run(config);
+    assert_eq!(end[2], 35.0, "the machine holds the tool's tip at Z10");
+    assert!(!notes.iter().any(|note| matches!(note, Note::ToolsWithoutTable { .. })), "{notes:?}");
+}
