@@ -1,8 +1,9 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara::gcode::{Dialect, Tool};
+use biscara::gcode::{Dialect, Tool, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -129,6 +130,35 @@ fn parse_tool(text: &str) -> Result<Tool, String> {
         .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
+/// The files a G-code program may read besides itself (SPEC §4.2 tier 3).
+#[derive(Debug, Args)]
+pub(crate) struct GcodeFilesArgs {
+    /// A folder where file subroutines are looked for: `o<name> call` of a subroutine the
+    /// program does not define runs `name.ngc`, from the program's own folder or else from these
+    /// folders, in order (LinuxCNC's SUBROUTINE_PATH). May be given more than once.
+    #[arg(long, value_name = "DIR", help = "Folder of file subroutines (o<name> call → name.ngc)")]
+    pub(crate) subroutine_path: Vec<PathBuf>,
+    /// LinuxCNC's tool table (`.tbl`, millimetres): the tools' lengths for G43 and diameters.
+    /// Without it, every tool has zero length and diameter, and a note says so when the program
+    /// uses them.
+    #[arg(
+        long,
+        value_name = "FILE",
+        help = "LinuxCNC tool table (.tbl, mm) for G43 tool lengths and tool diameters"
+    )]
+    pub(crate) tool_table: Option<PathBuf>,
+}
+
+impl GcodeFilesArgs {
+    /// The tool table, read.
+    pub(crate) fn tool_table(&self) -> anyhow::Result<Option<Arc<ToolTable>>> {
+        match &self.tool_table {
+            None => Ok(None),
+            Some(path) => Ok(Some(Arc::new(ToolTable::read(path)?))),
+        }
+    }
+}
+
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
     text.parse::<Dialect>().map_err(|err| err.to_string())
 }
@@ -140,7 +170,7 @@ pub(crate) struct SamplingArgs {
     #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_step)]
     dt: f64,
     /// Velocity profile of every motion.
-    #[arg(long, value_enum, default_value = "trapezoid")]
+    #[arg(long, value_enum, default_value = "optimal")]
     profile: ProfileArg,
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
@@ -149,6 +179,8 @@ pub(crate) struct SamplingArgs {
     pub(crate) placement: PlacementArgs,
     #[command(flatten)]
     pub(crate) dialect: DialectArgs,
+    #[command(flatten)]
+    pub(crate) files: GcodeFilesArgs,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     pub(crate) precision: u8,
@@ -156,8 +188,8 @@ pub(crate) struct SamplingArgs {
 
 impl SamplingArgs {
     /// The pipeline's sampling configuration.
-    pub(crate) fn config(&self) -> SamplingConfig {
-        SamplingConfig {
+    pub(crate) fn config(&self) -> anyhow::Result<SamplingConfig> {
+        Ok(SamplingConfig {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
@@ -165,7 +197,9 @@ impl SamplingArgs {
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
             tool: self.dialect.tool,
-        }
+            subroutine_path: self.files.subroutine_path.clone(),
+            tool_table: self.files.tool_table()?,
+        })
     }
 }
 

@@ -78,7 +78,7 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let notes = NoteReporter::default();
     let mut checker = Checker::new(model, scene);
     let mut samples =
-        Pipeline::new(model, args.sampling.config()).tool_samples(&source, kind, notes.sink())?;
+        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
     let tool = samples.tool();
     for sample in samples {
         let (sample, state) = sample?;

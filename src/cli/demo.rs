@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use biscara::joints::read_joint_csv;
+use biscara::joints::TrajectorySummary;
 use biscara::pipeline::RobotModel;
 use clap::Args;
 
@@ -46,7 +46,8 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     run_command(model, ["interpret", &gcode, "-o", &jsonl])?;
     run_command(model, ["interpolate", &jsonl, "--events", "-o", &path])?;
     run_command(model, ["joints", &jsonl, "--derivatives", "-o", &traj])?;
-    let summary = summarize(Path::new(&traj))?;
+    let summary = TrajectorySummary::of(open_input(Path::new(&traj))?)
+        .map_err(|err| located(Path::new(&traj), err))?;
     run_command(model, ["check", &jsonl, "--json", "-o", &file("check.json")])?;
     run_command(
         model,
@@ -76,30 +77,8 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-struct Summary {
-    duration: f64,
-    samples: usize,
-    peak_velocity: [f64; 4],
-}
-
-/// Duration, samples and peak joint speeds (degrees/s, mm/s) of a joint CSV with derivatives.
-fn summarize(trajectory: &Path) -> anyhow::Result<Summary> {
-    let mut summary = Summary { duration: 0.0, samples: 0, peak_velocity: [0.0; 4] };
-    for row in read_joint_csv(open_input(trajectory)?) {
-        let row = row.map_err(|err| located(trajectory, err))?;
-        summary.duration = row.t;
-        summary.samples += 1;
-        let velocity = row.velocity.unwrap_or([0.0; 4]);
-        for (joint, peak) in summary.peak_velocity.iter_mut().enumerate() {
-            let value = if joint < 3 { velocity[joint].to_degrees() } else { velocity[joint] };
-            *peak = peak.max(value.abs());
-        }
-    }
-    Ok(summary)
-}
-
 #[allow(clippy::print_stdout)]
-fn print_summary(dir: &Path, summary: &Summary, written: &[(&str, &str)]) {
+fn print_summary(dir: &Path, summary: &TrajectorySummary, written: &[(&str, &str)]) {
     println!("biscara demo: the bundled pick-and-place job through the whole pipeline");
     for (name, what) in written {
         println!("  wrote {:<24} {what}", dir.join(name).display());

@@ -17,14 +17,12 @@ mod trajectory;
 mod view;
 mod workspace;
 
-use std::io::{self, Read};
+use std::io;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{Context, anyhow};
 use biscara::kinematics::RobotModel;
 use clap::{Parser, Subcommand};
-use files::display_path;
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
 /// vertical prismatic axis and a rotary axis about Z.
@@ -130,23 +128,8 @@ fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
     let Some(path) = path else {
         return Ok(RobotModel::default());
     };
-    let text = read_text(path)?;
+    let text = biscara_files::read_text(path)?;
     RobotModel::from_json(&text).map_err(|err| diag::located(path, err))
-}
-
-/// Reads a whole text file (or standard input for `-`).
-fn read_text(path: &Path) -> anyhow::Result<String> {
-    let mut bytes = Vec::new();
-    if path == Path::new("-") {
-        io::stdin().read_to_end(&mut bytes).context("cannot read standard input")?;
-    } else {
-        bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    }
-    String::from_utf8(bytes).map_err(|err| {
-        let valid = &err.as_bytes()[..err.utf8_error().valid_up_to()];
-        let line = valid.iter().filter(|&&byte| byte == b'\n').count() + 1;
-        anyhow!("{}:{line}: the file is not UTF-8 text", display_path(path))
-    })
 }
 
 fn is_broken_pipe(err: &anyhow::Error) -> bool {

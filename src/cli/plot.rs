@@ -120,7 +120,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
     let mut samples =
-        Pipeline::new(model, args.sampling.config()).tool_samples(&source, kind, notes.sink())?;
+        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
     let tool = samples.tool();
     let max_power = model.robot().tool.max_power;
     let mut process = Process::default();

@@ -95,7 +95,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
         return Err(anyhow!("interpolate reads G-code or an inter-file, not a path CSV"));
     }
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
     if args.events {
         let mut samples = pipeline.tool_samples(&source, kind, notes.sink())?;
         let tool = samples.tool();
@@ -137,7 +137,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
     let mut samples = pipeline.joints(&source, kind, notes.sink())?;
     let format = JointCsvFormat {
         angle_unit: match args.angle_unit {

@@ -8,7 +8,9 @@ use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, Sampli
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
-use super::args::{DialectArgs, InputKind, PlacementArgs, ProfileArg, parse_duration};
+use super::args::{
+    DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
+};
 use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
@@ -51,8 +53,10 @@ pub(crate) struct ViewArgs {
     placement: PlacementArgs,
     #[command(flatten)]
     dialect: DialectArgs,
+    #[command(flatten)]
+    files: GcodeFilesArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
-    #[arg(long, value_enum, default_value = "trapezoid", help = "Profile TRAJ was made with")]
+    #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
     #[arg(
@@ -95,6 +99,8 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
         tool: args.dialect.tool,
+        subroutine_path: args.files.subroutine_path.clone(),
+        tool_table: args.files.tool_table()?,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

@@ -14,23 +14,40 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use biscara::gcode::{Config, GcodeError, interpret};
+use biscara::gcode::{Config, GcodeError, Interpreter, interpret_seekable};
 use biscara::motion::{Motion, MotionKind};
 
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
-/// Our motions for `path`, started like rs274: at 0,0,0,0 with G28/G30 at 0.
-fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+/// The configuration rs274 is matched with: the defaults but rs274's path control mode (G64 with
+/// no tolerance, where `interpret` starts in exact stop), and the program's own tool table
+/// (`NAME.tbl`) when it has one.
+fn config(path: &Path) -> Config {
+    Config {
+        tool_table: rs274::own_table(path).map(std::sync::Arc::new),
+        blend: Some(0.0),
+        ..Config::default()
+    }
+}
+
+/// The interpreter on the file `path`, started like rs274 (at 0,0,0,0 with G28/G30 at 0), with
+/// file subroutines beside it (rs274 runs in the program's folder and finds them there).
+fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret(BufReader::new(file), &Config::default()).collect()
+    interpret_seekable(BufReader::new(file), &config(path))
+        .with_subroutines(Some(path.to_path_buf()), Vec::new())
+}
+
+/// Our motions for `path`.
+fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
+    interpreter(path).collect()
 }
 
 /// Our motions for `path` before the first error, and the outcome.
 fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
-    let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     let mut motions = Vec::new();
-    for result in interpret(BufReader::new(file), &Config::default()) {
+    for result in interpreter(path) {
         match result {
             Ok(motion) => motions.push(motion),
             Err(err) => return (motions, Err(err)),
@@ -51,11 +68,13 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
     for (index, (our, their)) in ours.iter().zip(theirs).enumerate() {
         let differ = || {
             Err(format!(
-                "motion {} (our line {}) differs:\n  ours:  {:?}\n  rs274: {:?}",
+                "motion {} (our line {}) differs:\n  ours:  {:?} blend {:?}\n  rs274: {:?} blend {:?}",
                 index + 1,
                 our.line,
                 our.kind,
-                their.kind
+                our.blend,
+                their.kind,
+                their.blend
             ))
         };
         let end_ok = |a: [f64; 4], b: [f64; 4]| {
@@ -83,7 +102,12 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
             }
             (a, b) => a == b,
         };
-        if !same {
+        // rs274 prints the tolerance to 1e-6 of the unit.
+        let blend_ok = match (our.blend, their.blend) {
+            (Some(a), Some(b)) => close(a, b, 0.6e-6 * unit + 1e-12),
+            (a, b) => a == b,
+        };
+        if !same || !blend_ok {
             return differ();
         }
     }
@@ -114,6 +138,19 @@ enum Verdict {
     BothRefuse,
     /// We refuse a value LinuxCNC would pass on: not finite, or a position beyond ±1e6 mm.
     Stricter,
+    /// rs274 refuses a user M code (M100–M199) for want of its program; we record it as an
+    /// event (SPEC §4.2) and match up to it.
+    UserMCode,
+    /// We refuse what this robot cannot do (lathe, spindle-synchronised motion, probing).
+    CannotRun,
+}
+
+/// Whether rs274's `message` refuses a user M code (M100–M199) it has no program for.
+fn user_m_code(message: &str) -> bool {
+    message
+        .strip_prefix("Unknown m code used: M")
+        .and_then(|number| number.trim().parse::<u32>().ok())
+        .is_some_and(|number| (100..=199).contains(&number))
 }
 
 /// Whether `err` is one of our deliberate refusals of values LinuxCNC lets through.
@@ -132,6 +169,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
+        (Err(GcodeError::CannotRun { .. }), _) => Ok(Verdict::CannotRun),
         (Err(err), _) if stricter(&err) => Ok(Verdict::Stricter),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
         (Err(err), Outcome::Error { message, before: theirs }) => {
@@ -152,6 +190,11 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
                 ));
             }
             Ok(Verdict::BothRefuse)
+        }
+        (Ok(ours), Outcome::Error { message, before: theirs }) if user_m_code(&message) => {
+            let common = ours.len().min(theirs.len());
+            compare(&ours[..common], &theirs, uses_inches(path))?;
+            Ok(Verdict::UserMCode)
         }
         (Ok(_), Outcome::Error { message, .. }) => {
             Err(format!("rs274 refuses ({message}), we accept"))
@@ -208,8 +251,17 @@ fn hand_written_cases_conform() {
             }
         } else if name.starts_with("unsupported_") {
             match ours {
-                Err(GcodeError::NotSupported { .. }) => None,
+                Err(GcodeError::NotSupported { .. } | GcodeError::CannotRun { .. }) => None,
                 other => Some(format!("not refused as unsupported: {other:?}")),
+            }
+        } else if name.starts_with("user_m_") {
+            match (&ours, &theirs) {
+                (Ok(motions), Outcome::Error { message, .. }) if user_m_code(message) => motions
+                    .iter()
+                    .any(|m| matches!(m.kind, MotionKind::Code { .. }))
+                    .then_some(())
+                    .map_or(Some("no code event".to_owned()), |()| None),
+                _ => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
             }
         } else if name.starts_with("axis_") {
             match ours {
@@ -274,7 +326,7 @@ fn linuxcnc_examples_match_or_are_refused() {
     let mut seen = std::collections::HashSet::new();
     let files = programs.len();
     programs.retain(|path| seen.insert(std::fs::read(path).unwrap_or_default()));
-    let mut counts = [0usize; 5];
+    let mut counts = [0usize; 7];
     let mut differ = Vec::new();
     let mut matched = Vec::new();
     for program in &programs {
@@ -293,18 +345,86 @@ fn linuxcnc_examples_match_or_are_refused() {
         eprintln!(
             "LinuxCNC examples: {} distinct programs ({files} files): {} match, {} refused as \
              not supported yet (O-words, canned cycles, …), {} refused for A/B/U/V/W axis words, \
-             {} refused by rs274 itself and by us, {} differ",
+             {} refused by rs274 itself and by us, {} with user M codes (events here, refused by \
+             rs274 without their programs), {} refused as this robot cannot do them (lathe, \
+             spindle-synchronised motion, probing), {} differ",
             programs.len(),
             counts[Verdict::Match as usize],
             counts[Verdict::NotSupported as usize],
             counts[Verdict::ForeignAxis as usize],
             counts[Verdict::BothRefuse as usize],
+            counts[Verdict::UserMCode as usize],
+            counts[Verdict::CannotRun as usize],
             differ.len()
         );
         eprintln!("matching: {}", matched.join(", "));
     }
     assert!(!programs.is_empty(), "no example programs found in {EXAMPLE_FOLDERS:?}");
     assert!(differ.is_empty(), "{} examples differ:\n{}", differ.len(), differ.join("\n"));
+}
+
+/// `text` with every G41/G42 (and its `D1`) made a G41.1/G42.1 with a diameter of `diameter`.
+fn with_tool_diameter(text: &str, diameter: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        let lower = line.to_ascii_lowercase();
+        let mut rest = 0;
+        let mut start = 0;
+        while let Some(found) = lower[start..].find("g4").map(|at| start + at) {
+            let after = found + 3;
+            let code = lower.as_bytes().get(found + 2).copied();
+            let dotted = lower.as_bytes().get(after) == Some(&b'.');
+            if matches!(code, Some(b'1' | b'2')) && !dotted {
+                out.push_str(&line[rest..after]);
+                out.push_str(&format!(".1 D{diameter}"));
+                rest = after;
+                if lower[after..].starts_with(" d1") {
+                    rest += 3;
+                }
+            }
+            start = found + 2;
+        }
+        out.push_str(&line[rest..]);
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn linuxcnc_compensation_examples_conform_with_a_real_tool() {
+    // LinuxCNC's cutter compensation examples name tools (G41 D1), which have diameter 0 in
+    // the table both are given: here they get a real diameter instead.
+    if !rs274::available("linuxcnc_compensation_examples_conform_with_a_real_tool") {
+        return;
+    }
+    let dir = temp_dir("conformance-comp-examples");
+    let folder = Path::new("/usr/share/doc/linuxcnc/examples/nc_files");
+    // (lathecomp.ngc also needs G43, not here yet.)
+    let names = ["comp-g1", "comp", "comp311", "comp311_2"];
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for name in names {
+        let Ok(text) = std::fs::read_to_string(folder.join(format!("{name}.ngc"))) else {
+            continue;
+        };
+        for diameter in ["0.125", "0.05"] {
+            let program = with_tool_diameter(&text, diameter);
+            assert!(program.contains(".1 D"), "{name}: no G41/G42 found");
+            let path = dir.join(format!("{name}-{diameter}.ngc"));
+            std::fs::write(&path, &program).expect("write");
+            checked += 1;
+            match check(&path, &dir) {
+                Ok(Verdict::Match) => {}
+                Ok(other) => failures.push(format!("{name} D{diameter}: {other:?}")),
+                Err(problem) => failures.push(format!("{name} D{diameter}: {problem}")),
+            }
+        }
+    }
+    if checked == 0 {
+        let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+        assert!(!ci, "LinuxCNC's compensation examples are missing under CI=true");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// A tiny deterministic generator (xorshift64*), so every run checks the same programs.
@@ -366,10 +486,82 @@ fn random_expression(rng: &mut Rng, depth: u32) -> String {
     }
 }
 
+/// The subroutines random programs call, defined before their main program (the Fanuc-style
+/// one after it, found by reading on): an O-word subroutine with a return value, one that
+/// returns early and calls the first.
+const RANDOM_SUBROUTINES: &str = "o<rsub1> sub
+  G1 X[#<_x> + #1] Y#2 F200
+o<rsub1> endsub [#1 + #2]
+o<rsub2> sub
+  o1 if [#1 GT 0]
+    o<rsub2> return [#1]
+  o1 endif
+  G0 Z[#<_z> + 1]
+  o<rsub1> call [1] [#1]
+o<rsub2> endsub
+";
+
+/// The Fanuc-style subprogram random programs call, after their end.
+const RANDOM_SUBPROGRAM: &str = "O7000\n  G0 C[#<_c> + 5]\nM99\n";
+
+/// A random piece of O-word control flow with labels from `label` on: conditions, loops,
+/// calls, returned values.
+fn random_control(rng: &mut Rng, label: &mut u32) -> String {
+    *label += 1;
+    let n = *label;
+    let condition = |rng: &mut Rng| match rng.below(3) {
+        0 => format!("[{} GT 0]", random_expression(rng, 1)),
+        1 => format!("[#{} LT {}]", 1 + rng.below(5), rng.coordinate()),
+        _ => format!("[#<_{}> GE {}]", rng.pick(&["x", "y", "z", "c"]), rng.coordinate()),
+    };
+    let step = |rng: &mut Rng| {
+        let letter = rng.pick(&["X", "Y", "Z", "C"]);
+        let g = rng.pick(&["G0", "G1"]);
+        format!("{g} {letter}[#<_{}> + {}]", letter.to_ascii_lowercase(), rng.below(5))
+    };
+    match rng.below(7) {
+        0 => {
+            let mut text = format!("o{n} if {}\n  {}\n", condition(rng), step(rng));
+            if rng.below(2) == 0 {
+                text += &format!("o{n} elseif {}\n  {}\n", condition(rng), step(rng));
+            }
+            if rng.below(2) == 0 {
+                text += &format!("o{n} else\n  {}\n", step(rng));
+            }
+            text + &format!("o{n} endif")
+        }
+        1 => {
+            let (count, step, stop) = (rng.below(5), step(rng), rng.below(5));
+            let inner = n + 1000;
+            format!(
+                "#<w{n}> = 0\no{n} while [#<w{n}> LT {count}]\n  {step}\n  \
+                 #<w{n}> = [#<w{n}> + 1]\n  o{inner} if [#<w{n}> GT {stop}]\n    o{n} break\n  \
+                 o{inner} endif\no{n} endwhile"
+            )
+        }
+        2 => format!("o{n} repeat [{}]\n  {}\no{n} endrepeat", rng.below(4), step(rng)),
+        3 => {
+            let (count, step) = (rng.below(4), step(rng));
+            format!(
+                "#<d{n}> = {count}\no{n} do\n  {step}\n  #<d{n}> = [#<d{n}> - 1]\n\
+                 o{n} while [#<d{n}> GT 0]"
+            )
+        }
+        4 => format!(
+            "o<rsub1> call [{}] [{}]\nG0 Z[#<_value> / 10]",
+            rng.coordinate(),
+            rng.coordinate()
+        ),
+        5 => format!("o<rsub2> call [{}]\nG0 Y[#<_value_returned> + #<_y>]", rng.coordinate()),
+        _ => format!("M98 P7000 L{}", rng.below(3)),
+    }
+}
+
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
-/// close: both interpreters must then refuse them alike).
+/// close: both interpreters must then refuse them alike), O-word control flow.
 fn random_program(rng: &mut Rng) -> String {
-    let mut text = String::from("G0 X0 Y0 Z0 C0\nF500\n");
+    let mut text = format!("{RANDOM_SUBROUTINES}G0 X0 Y0 Z0 C0\nF500\n#<p1> = 0.5\n");
+    let mut label = 100;
     for _ in 0..(5 + rng.below(25)) {
         let axis = |rng: &mut Rng| {
             let letter = rng.pick(&["X", "Y", "Z", "C"]);
@@ -380,7 +572,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(20) {
+        let line = match rng.below(26) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -439,12 +631,51 @@ fn random_program(rng: &mut Rng) -> String {
             15 => format!("#{}=[{}]", 1 + rng.below(5), random_expression(rng, 2)),
             16 => format!("G0 X[{}] Y[{}]", random_expression(rng, 3), random_expression(rng, 2)),
             17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
+            18 | 19 => random_control(rng, &mut label),
+            20 | 21 => {
+                // A canned cycle, its words sometimes left to stick from the last one.
+                let code = rng.pick(&["G81", "G82", "G83", "G73", "G85", "G86", "G89", "G84"]);
+                let mut words = format!("{code} {}", two_axes(rng));
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" R{}", rng.coordinate()));
+                }
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" Z{}", rng.coordinate()));
+                }
+                if matches!(code, "G82" | "G86" | "G89") && rng.below(4) != 0 {
+                    words.push_str(&format!(" P{}", rng.below(3)));
+                }
+                if matches!(code, "G83" | "G73") && rng.below(4) != 0 {
+                    words.push_str(&format!(" Q{}", 1 + rng.below(8)));
+                }
+                if rng.below(4) == 0 {
+                    words.push_str(&format!(" L{}", rng.below(4)));
+                }
+                format!("{} {words}", rng.pick(&["", "G98", "G99"]))
+            }
+            22 => rng.pick(&["G80", "G98", "G99", "X1 Y2", "G91 X1", "G90 X3 Z-1"]).to_owned(),
+            23 => match rng.below(6) {
+                0 => format!("G43.1 Z{}", rng.coordinate()),
+                1 => format!("G43 H{}", rng.below(4)),
+                2 => {
+                    format!("G10 L1 P{} Z{} R{}", 1 + rng.below(3), rng.coordinate(), rng.below(5))
+                }
+                3 => format!(
+                    "G10 L{} P{} Z{}",
+                    rng.pick(&["10", "11"]),
+                    1 + rng.below(3),
+                    rng.coordinate()
+                ),
+                4 => format!("T{} M6", rng.below(4)),
+                _ => rng.pick(&["G49", "G43", "G43.2 H1", "M61 Q2"]).to_owned(),
+            },
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);
         text.push('\n');
     }
     text.push_str("M2\n");
+    text.push_str(RANDOM_SUBPROGRAM);
     text
 }
 
@@ -477,6 +708,121 @@ fn random_programs_conform() {
              refused by us only for a value that is not finite or beyond ±1e6 mm"
         );
     }
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+}
+
+/// A random profile under cutter compensation (G41.1/G42.1 with a diameter or G41/G42 with a
+/// tool of [`COMP_TOOLS`], in G17 or G18):
+/// lines, rapids, closed arcs in I J K and R form, depth moves, events, the odd G40 and G20,
+/// then an exit move. Many corners will gouge: both interpreters must then refuse alike.
+fn random_comp_program(rng: &mut Rng) -> String {
+    let xz = rng.below(4) == 0;
+    let (plane, a, b, i, j, depth) =
+        if xz { ("G18", "Z", "X", "K", "I", "Y") } else { ("G17", "X", "Y", "I", "J", "Z") };
+    let mut text = format!("G21 G90 {plane} F400\nG0 {a}0 {b}0 {depth}0\n");
+    let mut on = false;
+    // The programmed point, to write closed arcs.
+    let (mut pa, mut pb) = (0.0_f64, 0.0_f64);
+    for _ in 0..(4 + rng.below(14)) {
+        if !on {
+            // G41/G42 D name tools of the table beside (COMP_TOOLS), G41.1/G42.1 D diameters.
+            let side = rng.pick(&["G41.1", "G42.1", "G41", "G42"]);
+            let d = match side {
+                "G41" | "G42" => rng.pick(&["1", "2", "3", "4", "0"]).to_owned(),
+                _ => rng.pick(&["1", "2", "3.5", "5", "0.5", "-2"]).to_owned(),
+            };
+            text.push_str(&format!("{side} D{d}\n"));
+            on = true;
+        }
+        let na = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let nb = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let line = match rng.below(14) {
+            0..=4 => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb}")
+            }
+            5 => {
+                (pa, pb) = (na, nb);
+                format!("G0 {a}{na} {b}{nb}")
+            }
+            6 | 7 => {
+                // A closed arc about a centre at a random offset.
+                let (oa, ob) = (rng.below(21) as f64 - 10.0, rng.below(21) as f64 - 10.0);
+                let radius = oa.hypot(ob);
+                if radius < 0.5 {
+                    continue;
+                }
+                let angle = rng.below(360) as f64 * std::f64::consts::PI / 180.0;
+                let (ca, cb) = (pa + oa, pb + ob);
+                let (ea, eb) = (ca + radius * angle.cos(), cb + radius * angle.sin());
+                let (ea, eb) = ((ea * 1e4).round() / 1e4, (eb * 1e4).round() / 1e4);
+                let code = rng.pick(&["G2", "G3"]);
+                let line = format!("{code} {a}{ea:.4} {b}{eb:.4} {i}{oa} {j}{ob}");
+                (pa, pb) = (ea, eb);
+                line
+            }
+            8 => {
+                let code = rng.pick(&["G2", "G3"]);
+                let half = (na - pa).hypot(nb - pb) / 2.0;
+                let sign = rng.pick(&["", "-"]);
+                let r = (half + rng.below(15) as f64).max(0.5);
+                (pa, pb) = (na, nb);
+                format!("{code} {a}{na} {b}{nb} R{sign}{r:.4}")
+            }
+            9 => format!("G1 {depth}{}", rng.coordinate()),
+            10 => {
+                rng.pick(&["G4 P0.5", "M3", "M5", "G91 G1 X2 G90", "G20", "G21", "C30"]).to_owned()
+            }
+            11 => {
+                on = false;
+                (pa, pb) = (na, nb);
+                format!("G40 G1 {a}{na} {b}{nb}")
+            }
+            _ => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb} C{}", rng.coordinate())
+            }
+        };
+        text.push_str(&line);
+        text.push('\n');
+        if line.starts_with("G20") {
+            text.push_str("G21\n");
+        }
+    }
+    text.push_str(&format!("G40 G1 {a}40 {b}40\nM2\n"));
+    text
+}
+
+/// The tool table beside each random compensated profile.
+const COMP_TOOLS: &str = "T1 P1 D2\nT2 P2 D5\nT3 P3 D0.8 Z3\nT4 P4 D3.175\n";
+
+#[test]
+fn random_cutter_comp_programs_conform() {
+    if !rs274::available("random_cutter_comp_programs_conform") {
+        return;
+    }
+    let dir = temp_dir("conformance-random-comp");
+    let mut rng = Rng(0x00c0_77e2_c0b9_0001);
+    let mut failures = Vec::new();
+    let (mut accepted, mut refused) = (0, 0);
+    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..count {
+        let program = random_comp_program(&mut rng);
+        let path = dir.join(format!("comp{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        std::fs::write(path.with_extension("tbl"), COMP_TOOLS).expect("write the tool table");
+        match check(&path, &dir) {
+            Ok(Verdict::Match) => accepted += 1,
+            Ok(Verdict::BothRefuse) => refused += 1,
+            Ok(other) => failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("random compensated programs: {accepted} match, {refused} refused by both alike");
+    }
+    assert!(accepted >= count / 10, "only {accepted} of {count} random profiles were accepted");
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
 
@@ -587,7 +933,7 @@ fn token_soups_are_refused_alike() {
     let dir = temp_dir("conformance-soup");
     let mut rng = Rng(0x0000_50c0_ffee_d00d);
     let mut failures = Vec::new();
-    let mut counts = [0usize; 5];
+    let mut counts = [0usize; 7];
     let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
     for index in 0..total {
         let program = token_soup(&mut rng);
@@ -604,7 +950,9 @@ fn token_soups_are_refused_alike() {
             "token soups: {} match, {} refused alike, {} refused here as not supported",
             counts[Verdict::Match as usize],
             counts[Verdict::BothRefuse as usize],
-            counts[Verdict::NotSupported as usize] + counts[Verdict::ForeignAxis as usize],
+            counts[Verdict::NotSupported as usize]
+                + counts[Verdict::ForeignAxis as usize]
+                + counts[Verdict::CannotRun as usize],
         );
     }
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));

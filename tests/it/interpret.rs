@@ -124,7 +124,7 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 W1\nM2\n".to_vec(), "W axis word"),
         (b"G0 X[1/0]\nM2\n".to_vec(), "job.ngc:1:7: Attempt to divide by zero"),
         (b"G7.5\nM2\n".to_vec(), "job.ngc:1:1: Unknown g code used"),
-        (b"M123\nM2\n".to_vec(), "job.ngc:1:1: Unknown m code used: M123"),
+        (b"M223\nM2\n".to_vec(), "job.ngc:1:1: M-code greater than 199: M223"),
         (b"G1 X1\nM2\n".to_vec(), "job.ngc:1:1: Cannot do g1 with zero feed rate"),
         (b"G0 X1 NaN\nM2\n".to_vec(), "job.ngc:1:7: Bad character 'n' used"),
         (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word where unary operation could be"),
@@ -137,11 +137,16 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 X1\n\xff\xfe\x00\x01\nM2\n".to_vec(), "job.ngc:2:1: Bad character byte 0xff used"),
         (b"\x7fELF\x02\x01\x01\x00".to_vec(), "job.ngc:1:1: Bad character byte 0x7f used"),
         (b"G0 X1 Q2\nM2\n".to_vec(), "job.ngc:1:7: Q word with no"),
-        (b"G41 G1 X1 F10\nM2\n".to_vec(), "job.ngc:1:1: G41 is not supported yet"),
-        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: G81 is not supported yet (canned cycle)"),
-        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is not supported yet (threading)"),
-        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is not supported yet"),
-        (b"o100 sub\nM2\n".to_vec(), "job.ngc:1:1: O-word is not supported yet"),
+        (b"G5 X1 Y1 I0 J1 P1 Q0 F10\nM2\n".to_vec(), "job.ngc:1:1: G5 is not supported yet"),
+        (
+            b"G41.1 D4 F10\nG1 X1\nM2\n".to_vec(),
+            "job.ngc:2:1: Length of cutter compensation entry move is not greater than the tool \
+             radius",
+        ),
+        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: Cannot feed with zero feed rate"),
+        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is refused: spindle-synchronised motion"),
+        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is refused: a lathe code"),
+        (b"o100 endsub\nM2\n".to_vec(), "job.ngc:1:1: 1: not in a subroutine definition"),
         (
             format!("G0 X1 ({})\nM2\n", "x".repeat(10 * 1024 * 1024)).into_bytes(),
             "job.ngc:1:253: Command too long",
@@ -178,4 +183,30 @@ fn interpret_help_text_is_pinned() {
     run.success();
     assert!(run.stdout.contains("Example:"), "{run}");
     check_golden("help/interpret.txt", &run.stdout);
+}
+
+#[test]
+fn file_subroutines_come_from_beside_the_program_or_the_subroutine_path() {
+    let dir = temp_dir("interpret-subroutines");
+    std::fs::create_dir_all(dir.join("lib")).expect("mkdir");
+    std::fs::write(dir.join("lib/hop.ngc"), "o<hop> sub\nG0 X#1\no<hop> endsub\n").expect("write");
+    std::fs::write(dir.join("main.ngc"), "o<hop> call [3]\nG0 Y400\nM2\n").expect("write");
+    // Not beside the program and no path: LinuxCNC's message, exit 1, nothing written.
+    let run = biscara(&dir, &["interpret", "main.ngc", "-o", "out.jsonl"]);
+    run.expect_code(1);
+    assert!(
+        run.stderr.contains("EOF in file:main.ngc seeking o-word: o<hop> from line: 1"),
+        "{run}"
+    );
+    assert!(!dir.join("out.jsonl").exists(), "{run}");
+    let run = biscara(&dir, &["interpret", "main.ngc", "--subroutine-path", "lib"]);
+    let lines: Vec<&str> = run.success().stdout.lines().collect();
+    assert_eq!(lines[0], r#"{"line":2,"kind":"rapid","end":[3.0,460.798724079689,100.0,0.0]}"#);
+    assert_eq!(lines.len(), 3, "{run}");
+    // From standard input: the same with the path; a loop runs from the lines kept.
+    let program =
+        b"o<hop> call [3]\n#1=0\no1 while [#1 LT 3]\nG0 Y[400 + #1]\n#1=[#1+1]\no1 endwhile\nM2\n";
+    let run =
+        biscara_with_input(&dir, &["interpret", "-", "--subroutine-path", "lib"], Some(program));
+    assert_eq!(run.success().stdout.lines().count(), 5, "{run}");
 }

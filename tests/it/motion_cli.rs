@@ -265,6 +265,34 @@ fn origin_shifts_a_gcode_program() {
     );
 }
 
+/// Every velocity and acceleration column of a joint CSV written with `--derivatives` (finite
+/// differences of the positions) within the default robot's limits: the default profile keeps
+/// them (SPEC §6). At 10 ms the differences average the motion over a step, so they stay within
+/// what holds at every instant; the slack covers the printed decimals.
+fn within_default_limits(name: &str, csv: &str) {
+    let robot = biscara::kinematics::Robot::default();
+    let radians = |values: [f64; 4]| {
+        [values[0].to_radians(), values[1].to_radians(), values[2].to_radians(), values[3]]
+    };
+    let velocity = radians(robot.joint_max_velocity.to_array());
+    let acceleration = radians(robot.joint_max_acceleration.to_array());
+    let mut rows = 0;
+    for line in csv.lines().skip(1) {
+        let values: Vec<f64> = line.split(',').map(|v| v.parse().expect("number")).collect();
+        assert_eq!(values.len(), 13, "{name}: {line}");
+        for j in 0..4 {
+            let (v, a) = (values[5 + j].abs(), values[9 + j].abs());
+            assert!(v <= velocity[j] * (1.0 + 1e-6) + 1e-6, "{name}: joint {j} velocity in {line}");
+            assert!(
+                a <= acceleration[j] * (1.0 + 1e-6) + 1e-6,
+                "{name}: joint {j} acceleration in {line}"
+            );
+        }
+        rows += 1;
+    }
+    assert!(rows > 10, "{name}: {rows} rows");
+}
+
 /// Golden path and joint CSVs (every 10th row at 10 ms) of every G-code program in `data/`, of
 /// the G-code `gen` makes from every job and of the G-code `post` makes from every CL file.
 #[test]
@@ -314,6 +342,7 @@ fn data_programs_have_golden_paths_and_trajectories() {
             &["joints", program, "--dt", "0.01", "--derivatives", "--origin", origin],
         );
         joints.success();
+        within_default_limits(&name, &joints.stdout);
         check_golden(
             &format!("motion/{name}.path.every-10th-row.csv"),
             &crate::golden::decimate(&path_csv.stdout, 10),

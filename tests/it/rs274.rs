@@ -15,6 +15,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
 
+use biscara::gcode::ToolTable;
 use biscara::motion::{Feed, Motion, MotionKind, Plane};
 
 /// Where `rs274` is looked for.
@@ -60,8 +61,32 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     let output = dir.join("rs274.out");
-    let tools = dir.join("tools.tbl");
-    if !tools.exists() {
+    let mut tools = dir.join("tools.tbl");
+    if let Some(table) = own_table(program) {
+        // The program's own table (mm), in the standalone's machine units (inches).
+        tools = dir.join("own-tools.tbl");
+        let text: String = table
+            .entries()
+            .iter()
+            .map(|e| {
+                let inch = |mm: f64| mm / 25.4;
+                format!(
+                    "T{} P{} X{:.12} Y{:.12} Z{:.12} C{:.12} D{:.12} I{} J{} Q{}\n",
+                    e.tool,
+                    e.pocket,
+                    inch(e.offset[0]),
+                    inch(e.offset[1]),
+                    inch(e.offset[2]),
+                    e.offset[3],
+                    inch(e.diameter),
+                    e.front_angle,
+                    e.back_angle,
+                    e.orientation
+                )
+            })
+            .collect();
+        std::fs::write(&tools, text).expect("write the tool table");
+    } else if !tools.exists() {
         let table: String = (1..1000).map(|tool| format!("T{tool} P{tool} Z0 D0\n")).collect();
         std::fs::write(&tools, table).expect("write the tool table");
     }
@@ -74,7 +99,8 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
             .arg("-g")
             .arg(program)
             .arg(&output)
-            .current_dir(dir)
+            // File subroutines are found in the current folder.
+            .current_dir(program.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(dir))
             .env("HOME", dir)
             .stdin(Stdio::null())
             .stdout(Stdio::null())
@@ -102,6 +128,12 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     Outcome::Error { message, before: motions }
 }
 
+/// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`), read as `interpret` reads it.
+pub fn own_table(program: &Path) -> Option<ToolTable> {
+    let path = program.with_extension("tbl");
+    path.exists().then(|| ToolTable::read(&path).expect("read the program's tool table"))
+}
+
 /// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).
 fn numbers(arguments: &str) -> Vec<f64> {
     arguments.split([',', ' ']).filter_map(|part| part.trim().parse::<f64>().ok()).collect()
@@ -114,8 +146,12 @@ pub fn parse(canon: &str) -> Vec<Motion> {
     let mut factor = 1.0;
     let mut g5x = [0.0; 4];
     let mut g92 = [0.0; 4];
+    let mut tlo = [0.0; 4];
     let mut plane = Plane::Xy;
     let mut feed = 0.0;
+    // rs274's canon starts in CANON_CONTINUOUS with no tolerance (LinuxCNC's G64 by default);
+    // canned cycles restore it after their exact-path moves.
+    let mut blend = Some(0.0);
     let lines: Vec<&str> = canon
         .lines()
         .map(|line| {
@@ -126,7 +162,10 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             rest.trim()
         })
         .collect();
-    let push = |motions: &mut Vec<Motion>, kind| motions.push(Motion::new(0, kind));
+    let push = |motions: &mut Vec<Motion>, kind: MotionKind, blend: Option<f64>| {
+        let blend = kind.end().and(blend);
+        motions.push(Motion { blend, ..Motion::new(0, kind) });
+    };
     for (index, line) in lines.iter().enumerate() {
         let (name, arguments) = match line.find('(') {
             Some(open) => (&line[..open], line[open + 1..].trim_end_matches(')')),
@@ -135,10 +174,10 @@ pub fn parse(canon: &str) -> Vec<Motion> {
         let values = numbers(arguments);
         let pose = |v: &[f64]| -> [f64; 4] {
             [
-                v[0] * factor + g5x[0] + g92[0],
-                v[1] * factor + g5x[1] + g92[1],
-                v[2] * factor + g5x[2] + g92[2],
-                v[5] + g5x[3] + g92[3],
+                v[0] * factor + g5x[0] + g92[0] + tlo[0],
+                v[1] * factor + g5x[1] + g92[1] + tlo[1],
+                v[2] * factor + g5x[2] + g92[2] + tlo[2],
+                v[5] + g5x[3] + g92[3] + tlo[3],
             ]
         };
         match name {
@@ -147,6 +186,9 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             }
             "SET_G5X_OFFSET" => {
                 g5x = [values[1] * factor, values[2] * factor, values[3] * factor, values[6]];
+            }
+            "USE_TOOL_LENGTH_OFFSET" => {
+                tlo = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
             }
             "SET_G92_OFFSET" => {
                 g92 = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
@@ -161,13 +203,23 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 };
             }
             "SET_FEED_RATE" => feed = values[0] * factor,
-            "STRAIGHT_TRAVERSE" => push(&mut motions, MotionKind::Rapid { end: pose(&values) }),
+            // `(CANON_CONTINUOUS, tolerance)` under G64, `(CANON_EXACT_PATH)` under G61,
+            // `(CANON_EXACT_STOP)` under G61.1.
+            "SET_MOTION_CONTROL_MODE" => {
+                blend = arguments
+                    .starts_with("CANON_CONTINUOUS")
+                    .then(|| values.first().copied().unwrap_or(0.0) * factor);
+            }
+            "STRAIGHT_TRAVERSE" => {
+                push(&mut motions, MotionKind::Rapid { end: pose(&values) }, blend)
+            }
             "STRAIGHT_FEED" => push(
                 &mut motions,
                 MotionKind::Linear {
                     end: pose(&values),
                     feed: Feed { mm_per_min: feed, inverse_time: false },
                 },
+                blend,
             ),
             "ARC_FEED" => {
                 // first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c
@@ -178,7 +230,8 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 program[normal] = values[5];
                 program[5] = values[8];
                 let end = pose(&program);
-                let offsets = [g5x[0] + g92[0], g5x[1] + g92[1], g5x[2] + g92[2]];
+                let offsets =
+                    [g5x[0] + g92[0] + tlo[0], g5x[1] + g92[1] + tlo[1], g5x[2] + g92[2] + tlo[2]];
                 let center =
                     [values[2] * factor + offsets[first], values[3] * factor + offsets[second]];
                 let rotation = values[4];
@@ -192,22 +245,23 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                         turns: rotation.abs() as u32,
                         feed: Feed { mm_per_min: feed, inverse_time: false },
                     },
+                    blend,
                 );
             }
-            "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }),
-            "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick),
-            "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place),
+            "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
+            "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
+            "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place, None),
             "STOP_SPINDLE_TURNING" => {
                 // M2/M30 reset the spindle (then SET_SPINDLE_MODE): not a programmed M5.
                 let reset =
                     lines.get(index + 1).is_some_and(|next| next.starts_with("SET_SPINDLE_MODE"));
                 if !reset {
-                    push(&mut motions, MotionKind::GripperOff);
+                    push(&mut motions, MotionKind::GripperOff, None);
                 }
             }
-            "PROGRAM_STOP" | "OPTIONAL_PROGRAM_STOP" => push(&mut motions, MotionKind::Pause),
+            "PROGRAM_STOP" | "OPTIONAL_PROGRAM_STOP" => push(&mut motions, MotionKind::Pause, None),
             "PROGRAM_END" => {
-                push(&mut motions, MotionKind::End);
+                push(&mut motions, MotionKind::End, None);
                 break;
             }
             _ => {}

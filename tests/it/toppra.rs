@@ -1,6 +1,7 @@
 //! toppra (PyPI) as an independent reference for `--profile optimal` (issue 16): the programs of
-//! `data/programs/` and the demo job, on the default and the weak-motor robot, timed by `biscara
-//! joints --profile optimal` and, move by move, by `tests/toppra/compare.py`. Our duration must be
+//! `data/programs/`, the demo job and programs of `../shared/realworld`, on the default and the
+//! weak-motor robot, timed by `biscara joints --profile optimal` and, move by move, by
+//! `tests/toppra/compare.py`. Our duration must be
 //! at most 1.03 × toppra's, plus one time step per move (we round every move up to whole steps).
 //!
 //! The moves go to toppra as joints sampled by IK along each move (every 0.25 mm of path,
@@ -128,6 +129,88 @@ fn write_moves(jsonl: &Path, robot: &Robot, out: &Path) -> (usize, f64) {
     (moves, holds)
 }
 
+/// The durations of one program on one robot: trapezoid (NaN where it breaks a limit), optimal
+/// and toppra's (each from `interpret` with `placement` on the command line), and its number of
+/// moves.
+fn durations(
+    dir: &Path,
+    robot_name: &str,
+    source: &Path,
+    placement: &[&str],
+) -> (f64, f64, f64, usize) {
+    let root = repo_root();
+    let robot_file = root.join(format!("data/robots/{robot_name}.json"));
+    let robot_path = robot_file.to_str().expect("path");
+    let robot =
+        Robot::from_json(&std::fs::read_to_string(&robot_file).expect("robot")).expect("robot");
+    let source = source.to_str().expect("path");
+    let mut interpret = vec!["--robot", robot_path, "interpret", source, "-o", "p.jsonl"];
+    interpret.extend(placement);
+    biscara(dir, &interpret).success();
+    let mut durations = Vec::new();
+    for profile in ["trapezoid", "optimal"] {
+        let args =
+            ["--robot", robot_path, "joints", "--profile", profile, "p.jsonl", "-o", "q.csv"];
+        let run = biscara(dir, &args);
+        if profile == "optimal" {
+            run.success();
+            durations.push(duration_of(&dir.join("q.csv")));
+        } else {
+            // The trapezoid may break a joint limit the optimal profile keeps (a figure only).
+            durations.push(if run.code == 0 { duration_of(&dir.join("q.csv")) } else { f64::NAN });
+        }
+    }
+    let (moves, holds) = write_moves(&dir.join("p.jsonl"), &robot, &dir.join("moves.jsonl"));
+    let script = root.join("tests/toppra/compare.py");
+    let output = Command::new("python3")
+        .arg(&script)
+        .arg(dir.join("moves.jsonl"))
+        .output()
+        .expect("run python3");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "compare.py failed ({})\n{stdout}\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let toppra: f64 = stdout
+        .lines()
+        .find_map(|line| line.strip_prefix("total "))
+        .and_then(|total| total.parse().ok())
+        .expect("total");
+    // Moves toppra cannot time count as 0 s on its side (a stricter comparison), but must be
+    // rare (at most 1 in 20): the tiny arcs of a few micrometres some CAM programs hold.
+    let skipped = stdout.lines().filter(|line| line.starts_with("skipped ")).count();
+    assert!(skipped * 20 <= moves, "toppra could not time {skipped} of {moves} moves\n{stdout}");
+    (durations[0], durations[1], toppra + holds, moves)
+}
+
+/// Compares the durations of `programs` (a label, the file, the placement) on both robots,
+/// printing the table the README quotes.
+fn compare_programs(dir: &Path, programs: &[(String, std::path::PathBuf, Vec<&str>)]) {
+    let mut report = String::new();
+    for robot_name in ["default", "weak-motors"] {
+        for (label, source, placement) in programs {
+            let (trapezoid, optimal, toppra, moves) = durations(dir, robot_name, source, placement);
+            report.push_str(&format!(
+                "{robot_name:12} {label:44} trapezoid {trapezoid:8.3} s  optimal {optimal:8.3} s  \
+                 toppra {toppra:8.3} s  optimal/toppra {:.4}\n",
+                optimal / toppra
+            ));
+            assert!(
+                optimal <= FACTOR * toppra + moves as f64 * DT,
+                "{label} on {robot_name}: optimal {optimal} s > {FACTOR} × toppra {toppra} s \
+                 + {moves} steps"
+            );
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("toppra comparison (dt {DT} s):\n{report}");
+    }
+}
+
 #[test]
 fn optimal_is_within_3_percent_of_toppra() {
     if !toppra_available() {
@@ -137,81 +220,41 @@ fn optimal_is_within_3_percent_of_toppra() {
     let dir = temp_dir("toppra");
     let root = repo_root();
     biscara(&dir, &["demo", "demo"]).success();
-    let programs = [
-        ("data/programs/arcs_and_offsets.ngc", None),
-        ("data/programs/engraving_arcs.ngc", Some("-75,300,20,0")),
-        ("data/programs/pick_place_inch.ngc", None),
-        ("demo job.ngc", None),
-    ];
-    let script = root.join("tests/toppra/compare.py");
-    let mut report = String::new();
-    for robot_name in ["default", "weak-motors"] {
-        let robot_file = root.join(format!("data/robots/{robot_name}.json"));
-        let robot_path = robot_file.to_str().expect("path");
-        let robot =
-            Robot::from_json(&std::fs::read_to_string(&robot_file).expect("robot")).expect("robot");
-        for (program, origin) in programs {
-            let source = if program.starts_with("demo ") {
-                dir.join("demo/job.ngc")
-            } else {
-                root.join(program)
-            };
-            let source = source.to_str().expect("path");
-            let mut interpret = vec!["--robot", robot_path, "interpret", source, "-o", "p.jsonl"];
-            if let Some(origin) = origin {
-                interpret.extend(["--origin", origin]);
-            }
-            biscara(&dir, &interpret).success();
-            let mut durations = Vec::new();
-            for profile in ["trapezoid", "optimal"] {
-                let args = [
-                    "--robot",
-                    robot_path,
-                    "joints",
-                    "--profile",
-                    profile,
-                    "p.jsonl",
-                    "-o",
-                    "q.csv",
-                ];
-                biscara(&dir, &args).success();
-                durations.push(duration_of(&dir.join("q.csv")));
-            }
-            let (moves, holds) =
-                write_moves(&dir.join("p.jsonl"), &robot, &dir.join("moves.jsonl"));
-            let output = Command::new("python3")
-                .arg(&script)
-                .arg(dir.join("moves.jsonl"))
-                .output()
-                .expect("run python3");
-            let stdout = String::from_utf8_lossy(&output.stdout);
-            assert!(
-                output.status.success(),
-                "compare.py failed ({})\n{stdout}\n{}",
-                output.status,
-                String::from_utf8_lossy(&output.stderr)
-            );
-            let toppra: f64 = stdout
-                .lines()
-                .find_map(|line| line.strip_prefix("total "))
-                .and_then(|total| total.parse().ok())
-                .expect("total");
-            let toppra = toppra + holds;
-            let (trapezoid, optimal) = (durations[0], durations[1]);
-            report.push_str(&format!(
-                "{robot_name:12} {program:38} trapezoid {trapezoid:8.3} s  optimal {optimal:8.3} s  \
-                 toppra {toppra:8.3} s  optimal/toppra {:.4}\n",
-                optimal / toppra
-            ));
-            assert!(
-                optimal <= FACTOR * toppra + moves as f64 * DT,
-                "{program} on {robot_name}: optimal {optimal} s > {FACTOR} × toppra {toppra} s \
-                 + {moves} steps"
-            );
-        }
+    let mut programs = Vec::new();
+    for (program, placement) in [
+        ("data/programs/arcs_and_offsets.ngc", vec![]),
+        ("data/programs/engraving_arcs.ngc", vec!["--origin", "-75,300,20,0"]),
+        ("data/programs/pick_place_inch.ngc", vec![]),
+    ] {
+        programs.push((program.to_owned(), root.join(program), placement));
     }
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!("toppra comparison (dt {DT} s):\n{report}");
+    programs.push(("demo job.ngc".to_owned(), dir.join("demo/job.ngc"), vec![]));
+    compare_programs(&dir, &programs);
+}
+
+/// Real CAM, laser, plotter and printer programs (`../shared/realworld`, never copied into the
+/// project), placed in the workspace with `--fit` (and lifted with `--origin` where their Z runs
+/// below the robot's reach): programs the planner was not tuned on. (Left out: programs full of
+/// arcs of a few micrometres, on which toppra's solver fails, such as
+/// `mill/cambam-2008-smile-inch.nc`: 32 of its 198 moves.)
+#[test]
+fn optimal_is_within_3_percent_of_toppra_on_real_programs() {
+    if !toppra_available() {
+        skip_or_fail("python3 with the toppra package");
+        return;
     }
+    let Some(folder) = crate::dialects::realworld() else { return };
+    let dir = temp_dir("toppra-real");
+    let lifted = vec!["--fit", "--origin", "0,0,50,0"];
+    let programs: Vec<(String, std::path::PathBuf, Vec<&str>)> = [
+        ("mill/fusion-grbl-clamp-base.nc", lifted.clone()),
+        ("mill/gcodetools-puzzle03.gcode", lifted.clone()),
+        ("mill/viaconstructor-all.ngc", lifted),
+        ("plotter/gcodeplot-3rect.gcode", vec!["--fit"]),
+        ("printer/cura-4.10-hex.gcode", vec!["--fit"]),
+    ]
+    .into_iter()
+    .map(|(name, placement)| (name.to_owned(), folder.join(name), placement))
+    .collect();
+    compare_programs(&dir, &programs);
 }

@@ -135,8 +135,10 @@ fn distal_links_folded_onto_each_other_are_a_self_collision() {
 
 #[test]
 fn joint_limit_velocity_and_acceleration_violations_at_their_lines() {
-    // Line 2 lifts the tool above z = 100: d4 = 100 − z < 0.
-    let lift = r#"{"line":1,"kind":"rapid","end":[0.0,400.0,50.0,0.0]}
+    // Line 2 lifts the tool above z = 100: d4 = 100 − z < 0. (From z = 50.01, so that no sample
+    // lands on z = 100 itself, where rounding decides the side: at 20 mm/s a sample every
+    // 0.02 mm.)
+    let lift = r#"{"line":1,"kind":"rapid","end":[0.0,400.0,50.01,0.0]}
 {"line":2,"kind":"linear","end":[0.0,400.0,120.0,0.0],"feed":1200.0}
 {"line":3,"kind":"end"}
 "#;
@@ -165,7 +167,7 @@ fn joint_limit_velocity_and_acceleration_violations_at_their_lines() {
         assert_eq!(problem["line"], 2, "{problem:#}");
         assert!(problem["subject"] == "theta1" || problem["subject"] == "theta2");
     }
-    // The same program with the default trapezoid profile is slowed to the limits: clean.
+    // The same program with the default (optimal) profile is slowed to the limits: clean.
     let run = biscara(&dir, &["check", "job.jsonl", "--json"]);
     assert_eq!(json(&run)["ok"], true, "{run}");
 
@@ -179,7 +181,13 @@ fn joint_limit_velocity_and_acceleration_violations_at_their_lines() {
     );
     let robot = r#"{"joint_max_acceleration": {"theta1": 7200, "theta2": 7200, "theta3": 1000, "d4": 10000}}"#;
     let dir = setup("check-acceleration", &[("job.jsonl", &turn), ("robot.json", robot)]);
+    // The default (optimal) profile keeps θ3 within its 1000 °/s²; the trapezoid does not.
     let run = biscara(&dir, &["--robot", "robot.json", "check", "job.jsonl", "--json"]);
+    assert_eq!(json(&run)["ok"], true, "{run}");
+    let run = biscara(
+        &dir,
+        &["--robot", "robot.json", "check", "job.jsonl", "--json", "--profile", "trapezoid"],
+    );
     let report = json(run.expect_code(1));
     let hard = problems(&report, "acceleration_limit");
     assert!(!hard.is_empty(), "{report:#}");

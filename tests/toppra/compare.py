@@ -8,7 +8,8 @@ extra "joints" the path coordinate (mm, carrying the feed and the path accelerat
 (degrees, carrying rapid_rotation and rotation_acceleration), and vlim/alim the symmetric limits
 of each column. Each move is timed from rest to rest by toppra's TOPPRA over a cubic spline of
 the samples, on a grid of at least 1000 points refined geometrically towards both ends (so that
-short ramps are resolved). Prints one line per move, `move LINE DURATION`, then `total SECONDS`.
+short ramps are resolved). Prints one line per move, `move LINE DURATION` (or `skipped LINE`
+where toppra finds no parameterisation, counted as 0 s), then `total SECONDS`.
 
 Usage: compare.py MOVES.jsonl
 """
@@ -49,7 +50,7 @@ def duration(move):
     )
     trajectory = instance.compute_trajectory(0, 0)
     if trajectory is None:
-        raise RuntimeError(f"toppra found no parameterisation for the move of line {move['line']}")
+        return None
     return float(trajectory.duration)
 
 
@@ -64,6 +65,11 @@ def main():
                 continue
             move = json.loads(text)
             seconds = duration(move)
+            if seconds is None:
+                # toppra's solver fails on some moves of a few micrometres: counted as 0 s, which
+                # only makes the comparison stricter for the caller.
+                print(f"skipped {move['line']}")
+                continue
             total += seconds
             print(f"move {move['line']} {seconds:.6f}")
     print(f"total {total:.6f}")

@@ -406,6 +406,15 @@ fn code_number(number: &[u8]) -> Option<(u32, bool)> {
     Some((whole.parse().ok()?, fraction))
 }
 
+/// Cuts `name` to at most `max` bytes at a character boundary (names come from arbitrary bytes,
+/// decoded lossily: `String::truncate` would panic inside a multi-byte character).
+fn truncate_chars(name: &mut String, max: usize) {
+    if name.len() > max {
+        let end = (0..=max).rev().find(|&index| name.is_char_boundary(index)).unwrap_or(0);
+        name.truncate(end);
+    }
+}
+
 fn code_name(letter: u8, number: &[u8]) -> String {
     let text = String::from_utf8_lossy(number);
     let trimmed = text.trim_start_matches('0');
@@ -415,7 +424,7 @@ fn code_name(letter: u8, number: &[u8]) -> String {
         trimmed.to_owned()
     };
     let mut name = format!("{}{shown}", char::from(letter));
-    name.truncate(15);
+    truncate_chars(&mut name, 15);
     name
 }
 
@@ -462,7 +471,7 @@ fn grbl_prelude(raw: &[u8]) -> Prelude {
             note: "a jog is an operator's move, not part of a program",
         };
     }
-    name.truncate(15);
+    truncate_chars(&mut name, 15);
     Prelude::Event { name, known: true }
 }
 
@@ -475,7 +484,7 @@ fn mach3_prelude(raw: &[u8]) -> Prelude {
         && (rest.is_empty() || rest[0] == b'(' || rest[0] == b';')
     {
         let mut name = format!("O{}", String::from_utf8_lossy(number));
-        name.truncate(15);
+        truncate_chars(&mut name, 15);
         return Prelude::Event { name, known: true };
     }
     Prelude::Block
@@ -578,6 +587,18 @@ mod tests {
     fn check(text: &str, expected: Option<Dialect>) {
         let found = detect_dialect(text.as_bytes(), true);
         assert_eq!(found.as_ref().map(|d| d.dialect), expected, "{found:?}");
+    }
+
+    /// Found by the `dialects` fuzz target: a `$` line whose name runs into a multi-byte
+    /// character at byte 15 panicked in `String::truncate`.
+    #[test]
+    fn event_names_are_cut_at_a_character_boundary() {
+        let raw = b"$\xb1\xcc\xf6\xf6\xfb";
+        let Prelude::Event { name, .. } = grbl_prelude(raw) else { panic!("not an event") };
+        assert!(name.len() <= 15 && name.starts_with('$'), "{name}");
+        let mut long = "Méééééééé".to_owned();
+        truncate_chars(&mut long, 16);
+        assert_eq!(long, "Mééééééé");
     }
 
     #[test]

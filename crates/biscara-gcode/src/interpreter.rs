@@ -11,16 +11,27 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
-use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, compact};
+use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, compact};
 use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
+use crate::tool_table::ToolTable;
 
+/// Canned cycles: G73, G74, G81–G89, G98/G99.
+mod canned;
+/// O-word control flow: subroutines, conditions and loops (SPEC §4.2 tier 3).
+mod control;
+/// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
+mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M70–M73: the modal state saved and restored.
+mod modal_state;
+/// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
+mod tools;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -39,7 +50,7 @@ const MAX_COORDINATE: f64 = 1e6;
 const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
 
 /// How to start interpreting a program.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Config {
     /// The pose the robot is in before the first line, `[x, y, z, c]` in millimetres and
     /// degrees, base frame; also where G28 and G30 go until G28.1 or G30.1 set them.
@@ -63,6 +74,13 @@ pub struct Config {
     /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES) ([`crate::infer_tool`]);
     /// `tool` is kept when nothing tells. See [`Interpreter::tool_inference`].
     pub infer_tool: bool,
+    /// The path-control mode before the program says one (`--blend`): `None`, exact stop, by
+    /// default; `Some(p)` as if the program began with `G64 P{p}`. See [`Motion::blend`].
+    pub blend: Option<f64>,
+    /// LinuxCNC's tool table (`--tool-table`): the tools' offsets (G43) and diameters. `None`:
+    /// every tool has zero length and diameter ([`Interpreter::tools_without_table`] says
+    /// whether the program used them).
+    pub tool_table: Option<std::sync::Arc<ToolTable>>,
 }
 
 impl Default for Config {
@@ -75,6 +93,8 @@ impl Default for Config {
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
             infer_tool: false,
+            blend: None,
+            tool_table: None,
         }
     }
 }
@@ -83,6 +103,18 @@ impl Default for Config {
 /// stops after the first error. Memory does not grow with the program's length.
 pub fn interpret<R: BufRead>(reader: R, config: &Config) -> Interpreter<R> {
     Interpreter::new(reader, config)
+}
+
+/// Interprets the G-code read from `reader`, an input it can jump in (a file): O-word loops
+/// and subroutine calls go back to a line by its byte offset. [`interpret`] reads only
+/// forwards: a jump back is an error there. Set where file subroutines are found with
+/// [`Interpreter::with_subroutines`].
+pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interpreter<R> {
+    let mut interpreter = Interpreter::new(reader, config);
+    if interpreter.lines.source_can_jump() {
+        interpreter.lines.set_jump(|reader: &mut R, from, to| reader.jump(from, to));
+    }
+    interpreter
 }
 
 /// The iterator returned by [`interpret`].
@@ -123,6 +155,8 @@ pub struct Interpreter<R> {
     /// The axes (x y z c) a G92 named before the first motion: the program made its start
     /// point its zero there.
     zeroed_at_start: [bool; 4],
+    /// O-word control flow.
+    control: Box<control::Control>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -156,11 +190,31 @@ struct State {
     params: Params,
     line: usize,
     speed: f64,
-    tool: f64,
-    selected_tool: f64,
+    /// The tool length offset in force (G43…), in the program units in force when it was set:
+    /// as in rs274, a change of units does not convert it (it is used so by later G43, G49,
+    /// G53, G28 and G10 L10), though the machine keeps the offset it was given
+    /// ([`State::tool_offset_mm`]).
+    tool_offset: [f64; 4],
+    /// The tool length offset the machine applies, mm and degrees.
+    tool_offset_mm: [f64; 4],
+    /// How far tool length offsets set since the last move have shifted the current point:
+    /// rs274 takes its position back from the last move after M6 (its canon does not follow).
+    tool_shift: [f64; 4],
+    tools: tools::Tools,
+    /// The canned cycles' retract mode and sticky values.
+    cycle: canned::CycleState,
+    /// The modal state M70/M73 saved.
+    modal_stack: modal_state::ModalStack,
     spindle: u16,
     mist: bool,
     flood: bool,
+    /// `#<_value>`, `#<_value_returned>`, `#<_call_level>`.
+    owords: control::Values,
+    /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
+    /// G61/G61.1.
+    blend: Option<f64>,
+    /// Cutter radius compensation and the motions it holds back.
+    comp: cutter_comp::CutterComp,
 }
 
 impl State {
@@ -190,11 +244,18 @@ impl State {
             params,
             line: 0,
             speed: 0.0,
-            tool: 0.0,
-            selected_tool: 0.0,
+            tool_offset: [0.0; 4],
+            tool_offset_mm: [0.0; 4],
+            tool_shift: [0.0; 4],
+            tools: tools::Tools::new(config.tool_table.as_deref()),
+            cycle: canned::CycleState::default(),
+            modal_stack: modal_state::ModalStack::default(),
             spindle: 5,
             mist: false,
             flood: false,
+            owords: control::Values::default(),
+            blend: config.blend,
+            comp: cutter_comp::CutterComp::new(),
         };
         state.publish_position();
         state
@@ -218,6 +279,7 @@ impl State {
     fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
         std::array::from_fn(|axis| {
             self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
+                + self.tool_offset_mm[axis]
         })
     }
 
@@ -232,7 +294,9 @@ impl State {
 impl Predefined for State {
     fn predefined(&self, name: &[u8]) -> Option<f64> {
         let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| self.current[axis] + self.origin[axis] + self.axis_offset[axis];
+        let machine = |axis: usize| {
+            self.current[axis] + self.origin[axis] + self.axis_offset[axis] + self.tool_offset[axis]
+        };
         Some(match name {
             b"_x" => self.current[0],
             b"_y" => self.current[1],
@@ -262,12 +326,14 @@ impl Predefined for State {
                 Plane::Yz => 190.0,
             },
             b"_motion_mode" => self.motion.map_or(800.0, f64::from),
-            b"_ccomp" => 400.0,
+            b"_ccomp" => self.comp.code(),
             b"_feed" => self.feed_rate,
             b"_rpm" => self.speed,
-            b"_current_tool" => self.tool,
-            b"_selected_tool" => self.selected_tool,
-            b"_current_pocket" | b"_selected_pocket" | b"_tool_offset" => 0.0,
+            b"_current_tool" => f64::from(self.tools.spindle.tool),
+            b"_selected_tool" => self.tools.selected_tool,
+            b"_current_pocket" => self.tools.current_pocket,
+            b"_selected_pocket" => self.tools.selected_pocket,
+            b"_tool_offset" => flag(self.tools.offset_active),
             b"_spindle_on" => flag(self.spindle != 5),
             b"_spindle_cw" => flag(self.spindle == 3),
             b"_mist" => flag(self.mist),
@@ -278,11 +344,18 @@ impl Predefined for State {
             b"_spindle_rpm_mode" => 1.0,
             b"_spindle_css_mode" => 0.0,
             b"_speed_override" | b"_feed_override" | b"_adaptive_feed" | b"_feed_hold" => 0.0,
-            b"_value" | b"_value_returned" | b"_call_level" | b"_remap_level" | b"_task" => 0.0,
+            b"_value" => self.owords.value,
+            b"_value_returned" => flag(self.owords.returned),
+            b"_call_level" => self.owords.level as f64,
+            b"_remap_level" | b"_task" => 0.0,
             b"_vmajor" => 2.0,
             b"_vminor" => 9.0,
             _ => return None,
         })
+    }
+
+    fn defining_sub(&self) -> bool {
+        self.owords.defining
     }
 }
 
@@ -316,6 +389,7 @@ impl<R: BufRead> Interpreter<R> {
             pending_extrude: None,
             moved: false,
             zeroed_at_start: [false; 4],
+            control: Box::default(),
         }
         .with_line_limit()
     }
@@ -336,6 +410,7 @@ impl<R: BufRead> Interpreter<R> {
             FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
             FaultKind::Invalid => GcodeError::Invalid { at, message: fault.message },
             FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
+            FaultKind::Cannot { code, reason } => GcodeError::CannotRun { at, code, reason },
             FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
         }
     }
@@ -354,6 +429,12 @@ impl<R: BufRead> Interpreter<R> {
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             if !more {
+                if let Some(err) = self.control_end() {
+                    return Err(err);
+                }
+                if self.dialect != Dialect::Linuxcnc {
+                    self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+                }
                 return self.end_of_input();
             }
             if self.lines.too_long {
@@ -370,7 +451,9 @@ impl<R: BufRead> Interpreter<R> {
                     continue;
                 }
                 self.percent = Percent::Absent;
-            } else if self.percent == Percent::Open && trimmed == b"%" {
+            } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                // rs274 never sends the motions cutter compensation holds at a closing `%`.
+                self.state.comp.discard();
                 self.finished = true;
                 return Ok(());
             }
@@ -391,6 +474,11 @@ impl<R: BufRead> Interpreter<R> {
                 continue;
             }
             if self.block_delete && self.compact.bytes()[0] == b'/' {
+                continue;
+            }
+            if (self.control.engaged() || control::may_control(self.compact.bytes()))
+                && self.control_line()?
+            {
                 continue;
             }
             let raw_len = self.lines.line.len();
@@ -437,7 +525,13 @@ impl<R: BufRead> Interpreter<R> {
     fn emit(&mut self, kind: MotionKind) {
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
-        self.queue.push_back(Motion { line: self.state.line, kind, extrude });
+        let blend = kind.end().and(self.state.blend);
+        let motion = Motion { line: self.state.line, kind, extrude, blend };
+        if self.state.comp.holding() {
+            self.state.comp.hold(motion);
+        } else {
+            self.queue.push_back(motion);
+        }
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -452,14 +546,16 @@ impl<R: BufRead> Interpreter<R> {
         let motion_code = g[1];
         let group0 = g[0];
         let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
+        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
             && uses_axes(zero.code)
         {
             return Err(self.code_fault(zero, "Cannot use two g codes that both use axis values"));
         }
-        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code));
+        // G43.1 and G43.2 use the axis words too (without making the modal motion move).
+        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code))
+            || g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         let modal_motion = match motion_code {
             Some(code) => Some(code.code),
             None => self.state.motion,
@@ -549,18 +645,26 @@ impl<R: BufRead> Interpreter<R> {
                 self.tool_event(self.state.spindle);
             }
         }
-        if let Some(t) = self.block.word(b't') {
-            // Not negative: the reader refuses that.
-            self.state.selected_tool = t.value;
-        }
-        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)
-        if m[6].is_some() {
-            self.state.tool = self.state.selected_tool;
-            self.state.spindle = 5;
-            self.tool_event(5);
+        self.select_tool()?;
+        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
+        // tool is in the spindle.
+        if let Some(code) = m[6] {
+            if code.code == 61 {
+                self.set_current_tool(code)?;
+            } else {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change tools with cutter radius compensation on",
+                )?;
+                self.change_tool();
+                self.state.spindle = 5;
+                self.tool_event(5);
+            }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = m[7] {
+        if let Some(code) = m[7].filter(|code| code.code >= 70) {
+            self.modal_state(code)?;
+        } else if let Some(code) = m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }
@@ -571,6 +675,10 @@ impl<R: BufRead> Interpreter<R> {
                 8 => self.state.flood = true,
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
+        }
+        // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
+        if let Some(code) = m[10] {
+            self.record(&format!("M{}", code.code), true);
         }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)
@@ -585,15 +693,28 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 15. plane
         if let Some(code) = g[2] {
-            self.state.plane = match code.code {
+            let plane = match code.code {
                 170 => Plane::Xy,
                 180 => Plane::Xz,
                 _ => Plane::Yz,
             };
+            if plane != self.state.plane {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change planes with cutter radius compensation on",
+                )?;
+            }
+            self.state.plane = plane;
         }
         // 16. length units
         if let Some(code) = g[6] {
             self.set_units(code.code == 210);
+        }
+        // 17. cutter radius compensation
+        self.set_cutter_comp()?;
+        // 18. tool length offset
+        if let Some(code) = g[8] {
+            self.tool_length_offset(code)?;
         }
         // 19. coordinate system
         if let Some(code) = g[12] {
@@ -608,7 +729,15 @@ impl<R: BufRead> Interpreter<R> {
                 592 => 8,
                 _ => 9,
             };
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change coordinate systems with cutter radius compensation on",
+            )?;
             self.select_system(system);
+        }
+        // 20. path control mode
+        if let Some(code) = g[13] {
+            self.set_path_control(code)?;
         }
         // 21. distance modes
         if let Some(code) = g[3] {
@@ -621,22 +750,44 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(zero) = group0 {
             match zero.code {
                 100 => self.set_coordinate_data(zero)?,
-                280 | 300 => self.go_home(zero)?,
+                280 | 300 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot use g28 or g30 with cutter radius comp",
+                    )?;
+                    self.go_home(zero)?;
+                }
                 281 | 301 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot set reference point with cutter compensation in effect",
+                    )?;
                     let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
                     for axis in 0..4 {
                         let machine = self.state.current[axis]
                             + self.state.origin[axis]
-                            + self.state.axis_offset[axis];
+                            + self.state.axis_offset[axis]
+                            + self.state.tool_offset[axis];
                         let value = self.state.to_mm(axis, machine);
                         self.state.params.set(base + axis_slot(axis), value);
                     }
                 }
-                920 => self.set_axis_offsets(zero)?,
+                920 | 520 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot change axis offsets with cutter radius comp",
+                    )?;
+                    if zero.code == 920 {
+                        self.set_axis_offsets(zero)?;
+                    } else {
+                        self.set_local_offsets();
+                    }
+                }
                 _ => {}
             }
         }
-        if let Some(code) = g[11] {
+        // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
+        if let Some(code) = g[11].filter(|_| !self.state.comp.on()) {
             if code.code == 923 {
                 let offsets = std::array::from_fn(|axis| {
                     let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
@@ -652,22 +803,33 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
         }
+        // 22. retract mode
+        if let Some(code) = g[10] {
+            self.state.cycle.retract_to_old = code.code == 980;
+        }
         // 24. motion
+        let previous_motion = self.state.motion;
         if let Some(code) = motion_code {
             self.state.motion = if code.code == 800 { None } else { Some(code.code) };
+            if !canned::is_cycle(code.code) {
+                self.state.cycle.initial_level = None;
+            }
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
-                _ => self.arc(motion == 20)?,
+                20 | 30 => self.arc(motion == 20)?,
+                _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }
         self.check_range()?;
         // 25. stop
         if let Some(code) = m[4] {
+            self.flush_cutter_comp()?;
             match code.code {
                 2 | 30 => {
+                    self.state.comp = cutter_comp::CutterComp::new();
                     self.emit(MotionKind::End);
                     self.finished = true;
                 }
@@ -737,7 +899,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 Ok(())
             }
-            920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+            520 | 920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
                 Err(self.code_fault(zero, "All axes missing with g52 or g92"))
             }
             _ => Ok(()),
@@ -747,14 +909,22 @@ impl<R: BufRead> Interpreter<R> {
     /// Refuses codes and words this interpreter does not implement.
     fn check_support(&self) -> Result<(), Fault> {
         for code in self.block.g.iter().flatten() {
-            if let Some((_, Support::No(note))) = g_group(code.code) {
-                let name = if code.code % 10 == 0 {
+            let name = || {
+                if code.code % 10 == 0 {
                     format!("G{}", code.code / 10)
                 } else {
                     format!("G{}.{}", code.code / 10, code.code % 10)
-                };
-                let (first, last) = self.span(code.at, code.end);
-                return Err(Fault::not_supported(first, last, name, note));
+                }
+            };
+            let (first, last) = self.span(code.at, code.end);
+            match g_group(code.code) {
+                Some((_, Support::No(note))) => {
+                    return Err(Fault::not_supported(first, last, name(), note));
+                }
+                Some((_, Support::Cannot(reason))) => {
+                    return Err(Fault::cannot(first, last, name(), reason));
+                }
+                _ => {}
             }
         }
         for code in self.block.m.iter().flatten() {
@@ -773,24 +943,34 @@ impl<R: BufRead> Interpreter<R> {
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
         let g10 = group0 == Some(100);
+        let comp_on = block.g[7].is_some_and(|code| code.code != 400);
+        let cycle = motion.is_some_and(canned::is_cycle);
+        let g87 = motion == Some(870);
+        if cycle && let Some(c) = block.word(b'c') {
+            return Err(self.word_fault(c, "Cannot put a c in canned cycle"));
+        }
         let checks: [(u8, bool, &str); 7] = [
             (
                 b'd',
-                false,
+                comp_on,
                 "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
             ),
             (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
-            (b'h', false, "H word with no G43 or G76 to use it"),
+            (
+                b'h',
+                block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
+                "H word with no G43 or G76 to use it",
+            ),
             (
                 b'i',
-                arc || g10,
+                arc || g10 || g87,
                 "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
             ),
-            (b'j', arc || g10, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
-            (b'k', arc, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
+            (b'j', arc || g10 || g87, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
+            (b'k', arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
             (
                 b'l',
-                g10,
+                g10 || comp_on || cycle,
                 "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
                  or NURBS code",
             ),
@@ -802,9 +982,24 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.word_fault(word, message));
             }
         }
+        // Mach3 takes the compensation radius from a P word (G41 P1.5): not read yet.
+        if let Some(p) = block.word(b'p')
+            && comp_on
+            && self.dialect == Dialect::Mach3
+        {
+            let (first, last) = self.span(p.at, p.end);
+            return Err(Fault::not_supported(
+                first,
+                last,
+                "G41/G42 P",
+                "Mach3's compensation radius in a P word",
+            ));
+        }
         if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            let used = arc || matches!(group0, Some(40 | 100)) || g64;
+            let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
+            let user_m = block.m[10].is_some();
+            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -822,7 +1017,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(q) = block.word(b'q') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            if !g64 && !g10 {
+            let m61 = block.m[6].is_some_and(|code| code.code == 61);
+            let peck = matches!(motion, Some(730 | 830));
+            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -831,10 +1028,40 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(r) = block.word(b'r')
-            && !(arc || g10)
+            && !(arc || g10 || cycle)
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
+        Ok(())
+    }
+
+    /// G61, G61.1 (exact stop) and G64 P… Q… (blending within P of the corners, in the program's
+    /// length unit, kept in millimetres; no P, or a negative one, is LinuxCNC's tolerance 0: no
+    /// tolerance given).
+    ///
+    /// Q is LinuxCNC's naive-CAM merging of nearly collinear moves, within Q (Q = P when absent).
+    /// It is not done here: every programmed move is kept, which stays within any Q. A Q up to P
+    /// (what CAM post-processors write) is accepted, since the blended path is held within P
+    /// anyway; a Q above P asks for more deviation than the blends give, and is refused.
+    fn set_path_control(&mut self, code: Code) -> Result<(), Fault> {
+        if code.code != 640 {
+            self.state.blend = None;
+            return Ok(());
+        }
+        let p = self.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
+        if let Some(q) = self.block.word(b'q')
+            && q.value > p
+            && p > 0.0
+        {
+            let (first, last) = self.span(code.at.min(q.at), q.end.max(code.end));
+            return Err(Fault::not_supported(
+                first,
+                last,
+                "G64 Q above P",
+                "naive-CAM merging of collinear moves; a Q up to P is accepted",
+            ));
+        }
+        self.state.blend = Some(if self.state.metric { p } else { p * MM_PER_INCH });
         Ok(())
     }
 
@@ -843,10 +1070,12 @@ impl<R: BufRead> Interpreter<R> {
             return;
         }
         let scale = if metric { MM_PER_INCH } else { 1.0 / MM_PER_INCH };
+        self.state.comp.scale(scale);
         for axis in 0..3 {
             self.state.current[axis] *= scale;
             self.state.origin[axis] *= scale;
             self.state.axis_offset[axis] *= scale;
+            // rs274 keeps the tool length offset's number: it changes with the units.
         }
         self.state.metric = metric;
     }
@@ -873,13 +1102,14 @@ impl<R: BufRead> Interpreter<R> {
         let l_value = l.value as i64;
         match l_value {
             2 | 20 => {}
-            0 | 1 | 10 | 11 => {
+            1 | 10 | 11 => return self.set_tool_data(code, l_value),
+            0 => {
                 let (first, last) = self.span(code.at, l.end.max(code.end));
                 return Err(Fault::not_supported(
                     first,
                     last,
-                    format!("G10 L{l_value}"),
-                    "tool table",
+                    "G10 L0".to_owned(),
+                    "reloading the tool table",
                 ));
             }
             _ => {
@@ -895,6 +1125,12 @@ impl<R: BufRead> Interpreter<R> {
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));
             }
         };
+        if system == 0 || system == self.state.system {
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change the active coordinate system with cutter radius compensation on",
+            )?;
+        }
         if let Some(r) = self.block.word(b'r') {
             let (first, last) = self.span(r.at, r.end);
             return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
@@ -939,6 +1175,23 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// G52: local offsets, kept in G92's offsets (as LinuxCNC does): the given axes' offsets
+    /// become the given values.
+    fn set_local_offsets(&mut self) {
+        let mut offsets = self.state.axis_offset;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                offsets[axis] = word.value;
+            }
+        }
+        self.apply_axis_offsets(offsets);
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            let value = self.state.to_mm(axis, offset);
+            self.state.params.set(G92_OFFSET + axis_slot(axis), value);
+        }
+        self.state.params.set(G92_ENABLED, 1.0);
+    }
+
     fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {
         for (axis, offset) in offsets.into_iter().enumerate() {
             self.state.current[axis] += self.state.axis_offset[axis] - offset;
@@ -950,11 +1203,17 @@ impl<R: BufRead> Interpreter<R> {
     fn find_ends(&self, g53: bool) -> [f64; 4] {
         std::array::from_fn(|axis| {
             let word = self.block.word(AXES[axis]).map(|word| word.value);
-            let current = self.state.current[axis];
+            let current = match self.state.comp.base(axis, self.state.plane) {
+                Some(programmed) if !g53 => programmed,
+                _ => self.state.current[axis],
+            };
             match word {
                 None => current,
                 Some(value) if g53 => {
-                    value - self.state.origin[axis] - self.state.axis_offset[axis]
+                    value
+                        - self.state.origin[axis]
+                        - self.state.axis_offset[axis]
+                        - self.state.tool_offset[axis]
                 }
                 Some(value) if self.state.incremental => current + value,
                 Some(value) => value,
@@ -975,7 +1234,10 @@ impl<R: BufRead> Interpreter<R> {
             }
             let machine =
                 self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+            end[axis] = machine
+                - self.state.origin[axis]
+                - self.state.axis_offset[axis]
+                - self.state.tool_offset[axis];
         }
         self.move_to(end, None);
         Ok(())
@@ -989,10 +1251,15 @@ impl<R: BufRead> Interpreter<R> {
             Some(feed) => MotionKind::Linear { end: absolute, feed },
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
     }
 
     fn straight(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
+        self.comp_straight_seen();
         let end = self.find_ends(g53);
+        if motion == 0 && self.state.comp.active() {
+            return self.comp_straight(true, end, None, g53);
+        }
         if motion == 0 {
             self.move_to(end, None);
             return Ok(());
@@ -1006,7 +1273,8 @@ impl<R: BufRead> Interpreter<R> {
                     "F word missing with inverse time g1 move",
                 ));
             };
-            let length = straight_length(self.state.current, end);
+            let start = self.comp_start().unwrap_or(self.state.current);
+            let length = straight_length(start, end);
             let rate = (length * f.value).max(0.1);
             Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
         } else {
@@ -1024,12 +1292,16 @@ impl<R: BufRead> Interpreter<R> {
             }
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.state.comp.active() {
+            return self.comp_straight(false, end, Some(feed), g53);
+        }
         self.move_to(end, Some(feed));
         Ok(())
     }
 
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
     fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
+        self.comp_arc_allowed()?;
         let code_at = self.block.g[1].map_or_else(
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
@@ -1119,7 +1391,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         };
         let end = self.find_ends(false);
-        let current = self.state.current;
+        self.comp_arc_checks(clockwise, end, r.map(|r| r.value))?;
+        let current = self.comp_start().unwrap_or(self.state.current);
         let (c1, c2) = (current[first], current[second]);
         let (e1, e2) = (end[first], end[second]);
         let inch = !self.state.metric;
@@ -1216,6 +1489,12 @@ impl<R: BufRead> Interpreter<R> {
         } else {
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.comp_arcs() {
+            let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+            let center = [center1, center2];
+            let arc = cutter_comp::CompArc { start: current, end, center, turn, feed };
+            return self.comp_arc(arc);
+        }
         let mut center_position = self.state.current;
         center_position[first] = center1;
         center_position[second] = center2;
@@ -1230,6 +1509,7 @@ impl<R: BufRead> Interpreter<R> {
             feed,
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
         Ok(())
     }
 }

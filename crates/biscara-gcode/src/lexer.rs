@@ -6,7 +6,9 @@
 //! original line (for error messages). A `( … )` comment becomes one `(` byte, so that it still
 //! separates what stands on either side of it, as it does in LinuxCNC.
 
-use std::io::{self, BufRead};
+use std::fs::File;
+use std::io::{self, BufRead, BufReader, Read, Seek};
+use std::path::Path;
 
 /// LinuxCNC refuses lines longer than this ("Command too long").
 pub(crate) const MAX_LINE: usize = 252;
@@ -30,6 +32,7 @@ pub(crate) enum FaultKind {
     Syntax,
     Invalid,
     NotSupported { code: String, note: &'static str },
+    Cannot { code: String, reason: &'static str },
     ForeignAxis(char),
 }
 
@@ -40,6 +43,10 @@ impl Fault {
 
     pub(crate) fn invalid(start: usize, end: usize, message: impl Into<String>) -> Fault {
         Fault { start, end, kind: FaultKind::Invalid, message: message.into() }
+    }
+
+    pub(crate) fn cannot(start: usize, end: usize, code: String, reason: &'static str) -> Fault {
+        Fault { start, end, kind: FaultKind::Cannot { code, reason }, message: String::new() }
     }
 
     pub(crate) fn not_supported(
@@ -53,11 +60,169 @@ impl Fault {
     }
 }
 
+/// An input the interpreter can move about in: O-word loops and subroutine calls go back to
+/// the byte offset of a line they passed ([`crate::interpret_seekable`]).
+pub trait Seekable: BufRead {
+    /// Moves so that the next byte read is the one at offset `to`; `from` is the offset of the
+    /// next byte now (so that a buffered reader can keep its buffer for a short jump).
+    fn jump(&mut self, from: u64, to: u64) -> io::Result<()>;
+
+    /// Whether [`Seekable::jump`] works (false for a pipe or standard input: then the
+    /// interpreter keeps the lines it may have to read again, within a bound).
+    fn can_jump(&self) -> bool {
+        true
+    }
+}
+
+impl<F: Read + Seek> Seekable for BufReader<F> {
+    fn jump(&mut self, from: u64, to: u64) -> io::Result<()> {
+        let distance = i64::try_from(to).unwrap_or(i64::MAX) - i64::try_from(from).unwrap_or(0);
+        self.seek_relative(distance)
+    }
+}
+
+impl<T: AsRef<[u8]>> Seekable for io::Cursor<T> {
+    fn jump(&mut self, _from: u64, to: u64) -> io::Result<()> {
+        self.set_position(to);
+        Ok(())
+    }
+}
+
+impl<S: Seekable + ?Sized> Seekable for Box<S> {
+    fn jump(&mut self, from: u64, to: u64) -> io::Result<()> {
+        (**self).jump(from, to)
+    }
+
+    fn can_jump(&self) -> bool {
+        (**self).can_jump()
+    }
+}
+
+/// An input read only forwards (standard input, a pipe), as a [`Seekable`] that cannot jump.
+#[derive(Debug)]
+pub struct Forward<R>(pub R);
+
+impl<R: BufRead> Read for Forward<R> {
+    fn read(&mut self, out: &mut [u8]) -> io::Result<usize> {
+        self.0.read(out)
+    }
+}
+
+impl<R: BufRead> BufRead for Forward<R> {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        self.0.fill_buf()
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.0.consume(amount);
+    }
+}
+
+impl<R: BufRead> Seekable for Forward<R> {
+    fn jump(&mut self, _from: u64, _to: u64) -> io::Result<()> {
+        Err(io::Error::new(io::ErrorKind::Unsupported, "the input is read only forwards"))
+    }
+
+    fn can_jump(&self) -> bool {
+        false
+    }
+}
+
+/// How the interpreter moves in its main input: a [`Seekable`]'s jump, or none.
+pub(crate) type JumpFn<R> = fn(&mut R, u64, u64) -> io::Result<()>;
+
+/// Counts the bytes consumed from a reader (the offsets of lines, for jumps).
+struct Counted<'a, B> {
+    inner: &'a mut B,
+    count: u64,
+}
+
+impl<B: BufRead> Read for Counted<'_, B> {
+    fn read(&mut self, out: &mut [u8]) -> io::Result<usize> {
+        let read = self.inner.read(out)?;
+        self.count += read as u64;
+        Ok(read)
+    }
+}
+
+impl<B: BufRead> BufRead for Counted<'_, B> {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        self.inner.fill_buf()
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.count += amount as u64;
+        self.inner.consume(amount);
+    }
+}
+
+/// The most bytes of lines a forwards-only input keeps to read them again (loop bodies and
+/// subroutine definitions): 16 MiB.
+pub(crate) const MAX_KEPT_BYTES: usize = 16 << 20;
+
+/// A line of a forwards-only input kept to be read again.
+#[derive(Debug)]
+struct Kept {
+    start: u64,
+    next: u64,
+    line: Box<[u8]>,
+    too_long: bool,
+    /// Kept for good (a subroutine definition), not only while a loop runs.
+    keep: bool,
+}
+
+/// The lines of a forwards-only input (standard input, a pipe) that O-words may jump back to:
+/// those of the loops being run and of the subroutines defined, within [`MAX_KEPT_BYTES`].
+#[derive(Debug, Default)]
+struct Tape {
+    /// In input order.
+    lines: Vec<Kept>,
+    /// The kept line to read next instead of the input.
+    replay: Option<usize>,
+    /// Offset of the next byte of the input itself.
+    live: u64,
+    /// Whether lines read from the input are kept now (`Some(true)`: for good).
+    recording: Option<bool>,
+    bytes: usize,
+    overflow: bool,
+}
+
+impl Tape {
+    fn keep(&mut self, start: u64, next: u64, line: &[u8], too_long: bool, keep: bool) {
+        if self.overflow {
+            return;
+        }
+        if let Ok(index) = self.lines.binary_search_by_key(&start, |kept| kept.start) {
+            self.lines[index].keep |= keep;
+            return;
+        }
+        self.bytes += line.len() + std::mem::size_of::<Kept>();
+        if self.bytes > MAX_KEPT_BYTES {
+            self.overflow = true;
+            self.lines = Vec::new();
+            return;
+        }
+        self.lines.push(Kept { start, next, line: line.into(), too_long, keep });
+    }
+}
+
 /// Reads lines into one reused buffer, never holding more than `max + 1` bytes of a line
 /// (`biscara_text::read_capped_line` with the dialect's cap).
 #[derive(Debug)]
 pub(crate) struct LineReader<R> {
     reader: Prefixed<R>,
+    /// A file subroutine being read instead of the main input.
+    file: Option<BufReader<File>>,
+    /// Byte offset of the current line's start in the input being read (main or file).
+    pub start: u64,
+    /// Byte offset of the next line.
+    pub next: u64,
+    /// The main input's `next` while a file subroutine is read.
+    main_next: u64,
+    /// How to move in the main input (`None`: it is read only forwards).
+    jump: Option<JumpFn<R>>,
+    /// The lines kept of a main input read only forwards.
+    tape: Tape,
     /// The current line (without `\n`, and without a `\r` before it), truncated to
     /// `max + 1` bytes.
     pub line: Vec<u8>,
@@ -73,6 +238,12 @@ impl<R: BufRead> LineReader<R> {
     pub(crate) fn new(reader: R) -> LineReader<R> {
         LineReader {
             reader: Prefixed { head: Vec::new(), position: 0, inner: reader },
+            file: None,
+            start: 0,
+            next: 0,
+            main_next: 0,
+            jump: None,
+            tape: Tape::default(),
             line: Vec::with_capacity(MAX_LINE + 2),
             too_long: false,
             number: 0,
@@ -85,10 +256,159 @@ impl<R: BufRead> LineReader<R> {
         &mut self.reader
     }
 
+    /// Makes the main input one the reader can jump in.
+    pub(crate) fn set_jump(&mut self, jump: JumpFn<R>) {
+        self.jump = Some(jump);
+    }
+
+    /// Whether the main input says it can jump.
+    pub(crate) fn source_can_jump(&self) -> bool
+    where
+        R: Seekable,
+    {
+        self.reader.inner.can_jump()
+    }
+
+    /// Whether the main input can be jumped in (file subroutines always can).
+    pub(crate) fn can_jump(&self) -> bool {
+        self.jump.is_some()
+    }
+
+    /// Whether a file subroutine is being read.
+    pub(crate) fn in_file(&self) -> bool {
+        self.file.is_some()
+    }
+
+    /// Reads `path` (a file subroutine) from its start instead of the current input.
+    pub(crate) fn open_file(&mut self, path: &Path) -> io::Result<()> {
+        let file = BufReader::new(File::open(path)?);
+        if self.file.is_none() {
+            self.main_next = self.next;
+        }
+        self.file = Some(file);
+        self.next = 0;
+        Ok(())
+    }
+
+    /// Goes back to reading the main input where it was left.
+    pub(crate) fn close_file(&mut self) {
+        if self.file.take().is_some() {
+            self.next = self.main_next;
+        }
+    }
+
+    /// Moves to byte offset `to` of the input being read.
+    pub(crate) fn seek(&mut self, to: u64) -> io::Result<()> {
+        if to != self.next {
+            match (&mut self.file, self.jump) {
+                (Some(file), _) => file.jump(self.next, to)?,
+                (None, Some(jump)) => self.reader.jump(jump, self.next, to)?,
+                (None, None) => self.tape_seek(to)?,
+            }
+        }
+        self.next = to;
+        Ok(())
+    }
+
+    /// Whether lines are kept to be read again: a forwards-only main input being read.
+    fn taping(&self) -> bool {
+        self.file.is_none() && self.jump.is_none()
+    }
+
+    /// Keeps (`Some(keep)`) or stops keeping (`None`) the lines read from a forwards-only input
+    /// from now on; the current line is kept too. Stopping forgets the lines not kept for good.
+    pub(crate) fn set_recording(&mut self, recording: Option<bool>) {
+        if !self.taping() {
+            return;
+        }
+        self.tape.recording = recording;
+        match recording {
+            Some(keep) => {
+                let line = std::mem::take(&mut self.line);
+                self.tape.keep(self.start, self.next, &line, self.too_long, keep);
+                self.line = line;
+            }
+            None => {
+                self.tape.lines.retain(|kept| kept.keep);
+                self.tape.bytes = self
+                    .tape
+                    .lines
+                    .iter()
+                    .map(|kept| kept.line.len() + std::mem::size_of::<Kept>())
+                    .sum();
+                let next = self.next;
+                self.tape.replay = (next != self.tape.live)
+                    .then(|| self.tape.lines.partition_point(|kept| kept.start < next));
+            }
+        }
+    }
+
+    /// Moves to offset `to` of a forwards-only input: a kept line, or where the input is.
+    fn tape_seek(&mut self, to: u64) -> io::Result<()> {
+        if self.tape.overflow {
+            return Err(io::Error::other(format!(
+                "more than {} MiB of loop bodies and subroutine definitions to keep",
+                MAX_KEPT_BYTES >> 20
+            )));
+        }
+        if to == self.tape.live {
+            self.tape.replay = None;
+            return Ok(());
+        }
+        match self.tape.lines.binary_search_by_key(&to, |kept| kept.start) {
+            Ok(index) => {
+                self.tape.replay = Some(index);
+                Ok(())
+            }
+            Err(_) => Err(io::Error::new(io::ErrorKind::Unsupported, "that line was not kept")),
+        }
+    }
+
     /// Reads the next line; `Ok(false)` at the end of the input.
     pub(crate) fn next_line(&mut self) -> io::Result<bool> {
         self.too_long = false;
-        match biscara_text::read_capped_line(&mut self.reader, &mut self.line, self.max)? {
+        self.start = self.next;
+        if let Some(index) = self.tape.replay {
+            match self.tape.lines.get(index).filter(|kept| kept.start == self.next) {
+                Some(kept) => {
+                    self.line.clear();
+                    self.line.extend_from_slice(&kept.line);
+                    self.too_long = kept.too_long;
+                    self.next = kept.next;
+                    self.number += 1;
+                    self.tape.replay = Some(index + 1);
+                    return Ok(true);
+                }
+                None if self.next == self.tape.live => self.tape.replay = None,
+                None => {
+                    return Err(io::Error::other(
+                        "a line to read again was not kept (the input is read only forwards)",
+                    ));
+                }
+            }
+        }
+        let read = match &mut self.file {
+            Some(file) => {
+                let mut counted = Counted { inner: file, count: 0 };
+                let read = biscara_text::read_capped_line(&mut counted, &mut self.line, self.max);
+                self.next += counted.count;
+                read
+            }
+            None => {
+                let mut counted = Counted { inner: &mut self.reader, count: 0 };
+                let read = biscara_text::read_capped_line(&mut counted, &mut self.line, self.max);
+                self.next += counted.count;
+                read
+            }
+        };
+        let read = read?;
+        if self.taping() {
+            self.tape.live = self.next;
+            if let (Some(keep), Some(too_long)) = (self.tape.recording, read) {
+                self.tape.keep(self.start, self.next, &self.line, too_long, keep);
+            }
+        }
+        match read {
             Some(too_long) => {
                 self.number += 1;
                 self.too_long = too_long;
@@ -131,6 +451,20 @@ impl<R: BufRead> Prefixed<R> {
     /// The bytes read ahead.
     pub(crate) fn head(&self) -> &[u8] {
         &self.head
+    }
+
+    /// Moves to offset `to` with `jump`; `from` is the offset of the next byte.
+    fn jump(&mut self, jump: JumpFn<R>, from: u64, to: u64) -> io::Result<()> {
+        let from = if self.head.is_empty() {
+            from
+        } else {
+            // The inner reader is past the bytes read ahead.
+            let inner = self.head.len() as u64;
+            self.head = Vec::new();
+            self.position = 0;
+            inner
+        };
+        jump(&mut self.inner, from, to)
     }
 }
 

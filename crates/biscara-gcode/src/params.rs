@@ -66,4 +66,24 @@ impl Params {
             }
         }
     }
+
+    /// Takes out the local named parameters (names not starting with `_`): a subroutine call
+    /// hides its caller's locals, as LinuxCNC's call frames do.
+    pub(crate) fn take_locals(&mut self) -> HashMap<Vec<u8>, f64> {
+        let mut locals = HashMap::new();
+        self.named.retain(|name, value| {
+            if name.first() == Some(&b'_') {
+                return true;
+            }
+            locals.insert(name.clone(), *value);
+            false
+        });
+        locals
+    }
+
+    /// Puts back locals taken by [`Params::take_locals`] (after dropping the current ones).
+    pub(crate) fn restore_locals(&mut self, locals: HashMap<Vec<u8>, f64>) {
+        self.named.retain(|name, _| name.first() == Some(&b'_'));
+        self.named.extend(locals);
+    }
 }

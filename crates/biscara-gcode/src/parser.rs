@@ -19,42 +19,51 @@ pub(crate) enum Support {
     Yes,
     /// Part of LinuxCNC's language, refused with "… is not supported yet".
     No(&'static str),
+    /// Part of LinuxCNC's language that this robot cannot do (lathe, spindle-synchronised
+    /// motion, probing; SPEC §4.2): refused, with why.
+    Cannot(&'static str),
 }
+
+/// Why spindle-synchronised motion is refused.
+const NO_SPINDLE_SYNC: &str = "spindle-synchronised motion needs a spindle encoder and a rotating tool axis this robot has not";
+/// Why lathe codes are refused.
+const NO_LATHE: &str = "a lathe code; this robot is an X Y Z C arm, not a lathe";
 
 /// The modal group of G code `code` (ten times the number: G59.3 = 593) and whether it is
 /// implemented; `None` for a code LinuxCNC does not know.
 pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
-    use Support::{No, Yes};
-    let cycle = No("canned cycle");
+    use Support::{Cannot, No, Yes};
     Some(match code {
         40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
         // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
         921..=923 => (11, Yes),
-        520 => (0, No("local offset G52")),
+        520 => (0, Yes),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
-        50..=53 => (1, No("spline")),
-        330 | 331 | 760 => (1, No("threading")),
-        382..=385 => (1, No("probing")),
-        730 | 740 | 810..=890 => (1, cycle),
-        700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, No("lathe cycle")),
+        // rs274 hands G5, G5.1 and G5.2 NURBS to the motion planner without the points of
+        // their path: there is no reference motion to match.
+        50..=53 => (1, No("spline: LinuxCNC's rs274 passes it on as a NURBS without its path")),
+        330 | 331 => (1, Cannot(NO_SPINDLE_SYNC)),
+        760 => (1, Cannot(NO_LATHE)),
+        382..=385 => (1, Cannot("probing needs a probe input this robot has not")),
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => (1, Yes),
+        700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, Cannot(NO_LATHE)),
         170 | 180 | 190 => (2, Yes),
         171 | 181 | 191 => (2, No("UVW plane")),
         900 | 910 => (3, Yes),
         901 | 911 => (4, Yes),
         930 | 940 => (5, Yes),
-        950 => (5, No("feed per revolution")),
+        950 => (5, Cannot(NO_SPINDLE_SYNC)),
         200 | 210 => (6, Yes),
         400 => (7, Yes),
-        410 | 420 | 411 | 421 => (7, No("cutter radius compensation")),
+        410 | 420 | 411 | 421 => (7, Yes),
         490 => (8, Yes),
-        430..=432 => (8, No("tool length offset")),
+        430..=432 => (8, Yes),
         980 | 990 => (10, Yes),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => (12, Yes),
         610 | 611 | 640 => (13, Yes),
         970 => (14, Yes),
-        960 => (14, No("constant surface speed")),
-        80 => (15, Yes),
-        70 => (15, No("lathe diameter mode")),
+        960 => (14, Cannot(NO_SPINDLE_SYNC)),
+        70 | 80 => (15, Cannot(NO_LATHE)),
         _ => return None,
     })
 }
@@ -64,14 +73,16 @@ pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
     use Support::{No, Yes};
     Some(match code {
         0 | 1 | 2 | 30 | 60 => (4, Yes),
-        6 => (6, Yes),
-        61 => (6, No("set current tool")),
+        6 | 61 => (6, Yes),
         3..=5 => (7, Yes),
         19 => (7, No("spindle orientation")),
         7..=9 => (8, Yes),
         48..=53 => (9, No("override control")),
         62..=68 => (5, No("digital/analog output")),
-        70..=73 => (4, No("modal state save/restore")),
+        // rs274 refuses M70 with M3, M4 or M5: one group.
+        70..=73 => (7, Yes),
+        // User M codes: an event here (there is no external program to run).
+        100..=199 => (10, Yes),
         _ => return None,
     })
 }
@@ -131,6 +142,12 @@ impl Block {
 pub(crate) trait Predefined {
     /// The value of predefined parameter `name` (without `#<` `>`, lower case, with its `_`).
     fn predefined(&self, name: &[u8]) -> Option<f64>;
+
+    /// Whether an O-word subroutine definition is being passed over: LinuxCNC then reads an
+    /// undefined named parameter as 0 instead of refusing it.
+    fn defining_sub(&self) -> bool {
+        false
+    }
 }
 
 /// LinuxCNC's ROUND: `(double) (int) (x ± 0.5)`, half away from zero through a C `int`. A zero
@@ -312,7 +329,18 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
+    /// The compact index of the next byte to read.
+    pub(crate) fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// Reads on from compact index `pos`.
+    pub(crate) fn set_position(&mut self, pos: usize) {
+        self.pos = pos;
+    }
+
+    /// One word, setting or comment (`read_one_item`).
+    pub(crate) fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
         let start = self.pos;
         let letter = self.peek();
         match letter {
@@ -323,15 +351,6 @@ impl<'a> Reader<'a> {
             b'#' => {
                 block.empty = false;
                 return self.read_setting(block);
-            }
-            b'o' => {
-                let (first, last) = self.span(start, self.bytes.len());
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    "O-word",
-                    "subroutines and control flow: o-sub, o-if, o-while, o-repeat",
-                ));
             }
             b'@' | b'^' | b'$' => {
                 // LinuxCNC reads these words' values first (polar coordinates, spindle number).
@@ -403,6 +422,9 @@ impl<'a> Reader<'a> {
             }
             b's' if value < 0.0 => {
                 return Err(self.invalid(start, self.pos, "Negative spindle speed used"));
+            }
+            b'l' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative l word used"));
             }
             // Checked as it is read (`read_t`), before the rest of the line.
             b't' if value < 0.0 => {
@@ -558,7 +580,7 @@ impl<'a> Reader<'a> {
     }
 
     /// An integer value (`read_integer_value`): a real value within 0.0001 of an integer.
-    fn read_integer_value(&mut self) -> Result<i64, Fault> {
+    pub(crate) fn read_integer_value(&mut self) -> Result<i64, Fault> {
         let start = self.pos;
         let value = self.read_real_value()?;
         let mut integer = value.floor();
@@ -624,7 +646,9 @@ impl<'a> Reader<'a> {
         if self.peek() == b'<' {
             let (name_start, name_end) = self.read_name()?;
             let name = &self.bytes[name_start..name_end];
-            return self.named_value(name).ok_or_else(|| {
+            let value = self.named_value(name);
+            let value = value.or_else(|| self.predefined.defining_sub().then_some(0.0));
+            return value.ok_or_else(|| {
                 self.invalid(
                     start,
                     self.pos,
@@ -761,7 +785,7 @@ impl<'a> Reader<'a> {
     }
 
     /// `[ … ]` with LinuxCNC's precedence climbing (`read_real_expression`).
-    fn read_expression(&mut self) -> Result<f64, Fault> {
+    pub(crate) fn read_expression(&mut self) -> Result<f64, Fault> {
         let start = self.pos;
         self.pos += 1;
         let mut values = [0.0f64; 8];

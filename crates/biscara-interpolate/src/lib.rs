@@ -31,6 +31,7 @@
 //!     line: 1,
 //!     kind: MotionKind::Linear { end: [10.0, 400.0, 50.0, 0.0], feed },
 //!     extrude: None,
+//!     blend: None,
 //! })];
 //! let samples: Vec<_> = Interpolator::new(motions.into_iter(), config, NoSpeedLimit, |_| {})
 //!     .collect::<Result<_, _>>()?;

@@ -6,14 +6,16 @@ pub enum Profile {
     /// The paper's: constant speed from the first sample to the last, velocity jumps at corners.
     Constant,
     /// Accelerate from rest, cruise, decelerate to rest: an exact stop at every corner.
-    #[default]
     Trapezoid,
     /// The fastest time scaling of each motion under the path speed and acceleration, C's
     /// limits and every joint's velocity and acceleration limits (from the [`SpeedLimit`]),
     /// from rest to rest (TOPP-RA, `biscara-timing`). Not a closed form: the interpolator plans
     /// it; [`Timing`] times it as a trapezoid.
     ///
+    /// The default (SPEC §6).
+    ///
     /// [`SpeedLimit`]: crate::SpeedLimit
+    #[default]
     Optimal,
 }
 

@@ -167,6 +167,36 @@ impl Segment {
         derivative
     }
 
+    /// The pose at `s` and its first and second derivatives along the move (mm and degrees per
+    /// unit of s and of s²): one `sin_cos` for the three.
+    pub fn derivatives(&self, s: f64) -> [[f64; 4]; 3] {
+        let delta = self.delta();
+        let mut point = [0.0; 4];
+        for axis in 0..4 {
+            point[axis] = self.start[axis] + s * delta[axis];
+        }
+        let mut derivative = delta;
+        let mut second = [0.0; 4];
+        if let Shape::Arc { axes, center, start_radius, end_radius, start_angle, sweep } =
+            self.shape
+        {
+            let radius = start_radius + s * (end_radius - start_radius);
+            let radius_rate = end_radius - start_radius;
+            let (sin, cos) = (start_angle + s * sweep).sin_cos();
+            point[axes[0]] = center[0] + radius * cos;
+            point[axes[1]] = center[1] + radius * sin;
+            derivative[axes[0]] = radius_rate * cos - radius * sweep * sin;
+            derivative[axes[1]] = radius_rate * sin + radius * sweep * cos;
+            let (twice, square) = (2.0 * radius_rate * sweep, radius * sweep * sweep);
+            second[axes[0]] = -twice * sin - square * cos;
+            second[axes[1]] = twice * cos - square * sin;
+        }
+        if s >= 1.0 {
+            point = self.end;
+        }
+        [point, derivative, second]
+    }
+
     /// The distance from `point`'s XYZ to this move's XYZ path, mm (for tests and checks).
     pub fn distance_to(&self, point: [f64; 3]) -> f64 {
         match self.shape {
@@ -298,6 +328,39 @@ mod tests {
                     (after[axis] - before[axis]) / (2.0 * h),
                     epsilon = 1e-4
                 );
+            }
+        }
+    }
+
+    /// `derivatives` agrees with `point` and `derivative`, and its second derivative with their
+    /// differences, on a spiral helix in a plane other than XY and on a line.
+    #[test]
+    fn second_derivative_matches_finite_differences() {
+        let spiral = Segment::arc(
+            [10.0, 1.0, 0.0, 5.0],
+            [0.0, 3.0, 10.5, 30.0],
+            [0.0, 0.0],
+            Plane::Xz,
+            false,
+            2,
+        );
+        let line = Segment::line([1.0, 2.0, 3.0, 4.0], [-5.0, 7.0, 1.0, 0.0]);
+        let h = 1e-5;
+        for segment in [spiral, line] {
+            for s in [0.0, 0.1, 0.5, 0.9, 1.0] {
+                let [point, first, second] = segment.derivatives(s);
+                let (after, before) = (segment.derivative(s + h), segment.derivative(s - h));
+                for axis in 0..4 {
+                    assert_relative_eq!(point[axis], segment.point(s)[axis], epsilon = 1e-12);
+                    assert_relative_eq!(first[axis], segment.derivative(s)[axis], epsilon = 1e-12);
+                    let expected = (after[axis] - before[axis]) / (2.0 * h);
+                    assert_relative_eq!(
+                        second[axis],
+                        expected,
+                        epsilon = 1e-4,
+                        max_relative = 1e-6
+                    );
+                }
             }
         }
     }

@@ -259,3 +259,49 @@ mod tests {
         }
     }
 }
+
+/// What a joint trajectory amounts to: its duration, its rows and the peak speed of each joint.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TrajectorySummary {
+    /// Time of the last row, s.
+    pub duration: f64,
+    /// Rows read.
+    pub samples: usize,
+    /// Peak |velocity| of θ1, θ2, θ3 (degrees/s) and d4 (mm/s); zero without derivative columns.
+    pub peak_velocity: [f64; 4],
+}
+
+impl TrajectorySummary {
+    /// Reads a joint CSV to its end and sums it up; the first bad row is the error.
+    pub fn of<R: BufRead>(reader: R) -> Result<TrajectorySummary, JointCsvError> {
+        let mut summary = TrajectorySummary::default();
+        for row in read_joint_csv(reader) {
+            let row = row?;
+            summary.duration = row.t;
+            summary.samples += 1;
+            let velocity = row.velocity.unwrap_or([0.0; 4]);
+            for (joint, peak) in summary.peak_velocity.iter_mut().enumerate() {
+                let value = if joint < 3 { velocity[joint].to_degrees() } else { velocity[joint] };
+                *peak = peak.max(value.abs());
+            }
+        }
+        Ok(summary)
+    }
+}
+
+#[cfg(test)]
+mod summary_tests {
+    use super::*;
+
+    #[test]
+    fn the_summary_takes_the_last_time_and_the_peak_speeds() {
+        let csv = "t_s,theta1_deg,theta2_deg,theta3_deg,d4_mm,dtheta1_deg_s,dtheta2_deg_s,\
+                   dtheta3_deg_s,dd4_mm_s,ddtheta1_deg_s2,ddtheta2_deg_s2,ddtheta3_deg_s2,ddd4_mm_s2\n\
+                   0,0,0,0,0,10,-20,0,5,0,0,0,0\n0.5,1,1,1,1,-30,2,0,-1,0,0,0,0\n";
+        let summary = TrajectorySummary::of(csv.as_bytes()).unwrap();
+        assert_eq!(summary.samples, 2);
+        assert_eq!(summary.duration, 0.5);
+        let [t1, t2, t3, d4] = summary.peak_velocity;
+        assert!((t1 - 30.0).abs() < 1e-9 && (t2 - 20.0).abs() < 1e-9 && t3 == 0.0 && d4 == 5.0);
+    }
+}

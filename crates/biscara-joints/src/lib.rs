@@ -30,7 +30,7 @@ pub use biscara_interpolate::CartesianSample;
 
 pub use csv::{
     AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
-    read_joint_csv,
+    TrajectorySummary, read_joint_csv,
 };
 pub use differences::{central_differences, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};

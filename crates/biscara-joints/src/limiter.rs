@@ -25,9 +25,6 @@ const REVOLUTE_PROBE_SAFETY: f64 = 0.998;
 /// margin is 1 %. d4 = lp − z is linear in the path: its limits are exact.
 const OPTIMAL_VELOCITY_MARGIN: f64 = REVOLUTE_PROBE_SAFETY;
 const OPTIMAL_ACCELERATION_MARGIN: f64 = 0.99;
-/// The step of the central difference that gives d²q/ds², as a displacement of the tool: 1 µm
-/// (or 0.001° of C).
-const SECOND_DERIVATIVE_STEP: f64 = 1e-3;
 
 /// A [`SpeedLimit`] from the robot's `joint_max_velocity`: the largest path rate at which no joint
 /// exceeds its limit, found by evaluating the joint rates `dq/ds = J⁻¹ · dx/ds` along the move
@@ -73,16 +70,6 @@ impl JointSpeedLimit {
             }
         });
         JointSpeedLimit { model, max_velocity, last_probe: None, bounds }
-    }
-
-    /// `dq/ds` at `s`: `J⁻¹ · dx/ds`, or `None` where IK fails or at a type-1 singularity.
-    fn rates(&self, segment: &Segment, s: f64) -> Option<[f64; 4]> {
-        let [x, y, ..] = segment.point(s);
-        let configuration = self.model.configuration(x, y).ok()?;
-        let [dx, dy, dz, dc] = segment.derivative(s);
-        let rates =
-            self.model.joint_velocity(&configuration, [dx, dy, dz, dc.to_radians()])?.to_array();
-        Some(rates)
     }
 }
 
@@ -130,14 +117,11 @@ impl SpeedLimit for JointSpeedLimit {
         &self.bounds
     }
 
-    /// `dq/ds` from the Jacobian (`J⁻¹ · dx/ds`, tested against differences of IK in
-    /// `biscara-kinematics`) at `s ± h`, where `h` moves the tool by 1 µm (or 0.001° of C):
-    /// `d²q/ds²` is their central difference and `dq/ds` their mean (one-sided at the ends of
-    /// the move). Two IK configurations per point. The truncation errors are of order
-    /// (1 µm / the links' 100 mm)² ≈ 1e-10 relative (1e-5 at a move's ends, where the
-    /// differences are one-sided), the rounding of q″ of order 1e-16 · 100 mm / 1 µm ≈ 1e-11:
-    /// all far below the margins. The analytic derivative of J⁻¹ (the loop closure
-    /// differentiated twice) would be more code to get wrong for no measurable gain.
+    /// `dq/ds` and `d²q/ds²` in closed form from the loop closure differentiated twice
+    /// ([`Kinematics::joint_derivatives`], tested against differences of IK in
+    /// `biscara-kinematics`), from the pose and its first two derivatives along the move: one
+    /// IK configuration per grid point. (The first version took central differences of the
+    /// Jacobian 1 µm apart: two configurations per point and a truncation error of ~1e-10.)
     fn joint_derivatives(
         &mut self,
         segment: &Segment,
@@ -145,17 +129,22 @@ impl SpeedLimit for JointSpeedLimit {
         first: &mut [f64],
         second: &mut [f64],
     ) -> bool {
-        let scale = segment.length().max(segment.rotation().abs()).max(1.0);
-        let h = SECOND_DERIVATIVE_STEP / scale;
-        let (below, above) = ((s - h).max(0.0), (s + h).min(1.0));
-        let (Some(before), Some(after)) = (self.rates(segment, below), self.rates(segment, above))
+        let [point, along, curve] = segment.derivatives(s);
+        let Ok(configuration) = self.model.configuration(point[0], point[1]) else {
+            return false;
+        };
+        let (along, curve) = (
+            [along[0], along[1], along[2], along[3].to_radians()],
+            [curve[0], curve[1], curve[2], curve[3].to_radians()],
+        );
+        let Some((rates, curvature)) = self.model.joint_derivatives(&configuration, along, curve)
         else {
             return false;
         };
-        for j in 0..first.len().min(4) {
-            first[j] = 0.5 * (before[j] + after[j]);
-            second[j] = (after[j] - before[j]) / (above - below);
-        }
+        let (rates, curvature) = (rates.to_array(), curvature.to_array());
+        let joints = first.len().min(4);
+        first[..joints].copy_from_slice(&rates[..joints]);
+        second[..joints].copy_from_slice(&curvature[..joints]);
         true
     }
 }

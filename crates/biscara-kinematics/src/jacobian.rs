@@ -81,6 +81,63 @@ impl crate::Kinematics {
         let distal_rate = z1.perp(&(platform_velocity - elbow_velocity)) / z1.norm_squared();
         Some(Joints::new(rates.x, rates.y, phi_rate - distal_rate, -vz))
     }
+
+    /// The first and second derivatives of the joints along a path through `configuration`:
+    /// `first` holds dx/ds, dy/ds, dz/ds (mm) and dφ/ds (rad), `second` their derivatives; the
+    /// result is `(dq/ds, d²q/ds²)` (rad and mm per unit of s and per unit of s²). `None` at a
+    /// type-1 singularity.
+    ///
+    /// Chain i, with `a = E − b` (length l1), `z = P − E` and `a⊥` = a turned by +90°: the loop
+    /// closure `|z|² = l2²` gives `z · P′ = θ′ (a × z)`; differentiated once more along s, with
+    /// `z′ = P′ − θ′ a⊥` and `(a × z)′ = a × P′ − θ′ (a · z + l1²)`,
+    ///
+    /// `θ″ (a × z) = z′ · P′ + z · P″ − θ′ (a × z)′`.
+    ///
+    /// θ3 = φ − ψ1 + const with ψ1 the angle of z1: `ψ1′ = (z1 × z1′) / l2²` and, |z1| being
+    /// constant, `ψ1″ = (z1 × z1″) / l2²` with `z1″ = P″ − θ1″ a1⊥ + θ1′² a1`. d4 = lp − z.
+    /// Exact where [`joint_velocity`](Self::joint_velocity) is (tested against differences of
+    /// IK along curved paths); one configuration per point, where differences of the Jacobian
+    /// need two.
+    pub fn joint_derivatives(
+        &self,
+        configuration: &PlanarConfiguration,
+        first: [f64; 4],
+        second: [f64; 4],
+    ) -> Option<(Joints, Joints)> {
+        let velocity = na::Vector2::new(first[0], first[1]);
+        let acceleration = na::Vector2::new(second[0], second[1]);
+        let mut rates = [0.0; 2];
+        let mut curvature = [0.0; 2];
+        let mut distal_first = [na::Vector2::zeros(); 2];
+        let mut distal_second = [na::Vector2::zeros(); 2];
+        for chain in [Chain::One, Chain::Two] {
+            let i = chain.index();
+            let a = configuration.proximal(chain);
+            let z = configuration.distal(chain);
+            let bend = a.perp(&z);
+            if bend == 0.0 {
+                return None;
+            }
+            let a_perp = proximal_rate_direction(a);
+            let rate = z.dot(&velocity) / bend;
+            let z_rate = velocity - rate * a_perp;
+            let bend_rate = a.perp(&velocity) - rate * (a.dot(&z) + a.norm_squared());
+            let second_rate =
+                (z_rate.dot(&velocity) + z.dot(&acceleration) - rate * bend_rate) / bend;
+            rates[i] = rate;
+            curvature[i] = second_rate;
+            distal_first[i] = z_rate;
+            distal_second[i] = acceleration - second_rate * a_perp + rate * rate * a;
+        }
+        let z1 = configuration.distal(Chain::One);
+        let length_squared = z1.norm_squared();
+        let distal_rate = z1.perp(&distal_first[0]) / length_squared;
+        let distal_curvature = z1.perp(&distal_second[0]) / length_squared;
+        Some((
+            Joints::new(rates[0], rates[1], first[3] - distal_rate, -first[2]),
+            Joints::new(curvature[0], curvature[1], second[3] - distal_curvature, -second[2]),
+        ))
+    }
 }
 
 #[cfg(test)]
@@ -131,6 +188,66 @@ mod tests {
         for joint in 0..4 {
             let expected = (after[joint] - before[joint]) / (2.0 * h);
             assert_relative_eq!(rates[joint], expected, epsilon = 1e-5, max_relative = 1e-6);
+        }
+    }
+
+    /// Along a curved path (a circle with z and φ moving), the analytic derivatives match
+    /// central differences of IK, at several places of the workspace.
+    #[test]
+    fn joint_derivatives_match_differences_of_ik() {
+        let model = Kinematics::default();
+        for (cx, cy, radius, speed) in
+            [(80.0, 330.0, 25.0, 0.7), (-120.0, 260.0, 3.0, 2.5), (40.0, 420.0, 60.0, 0.2)]
+        {
+            // x(s) = c + r (cos ωs, sin ωs), z = 40 − 7s + 3s², φ = 0.4 + 0.3s − 0.2s².
+            let pose = |s: f64| {
+                let angle = speed * s;
+                Pose::new(
+                    cx + radius * angle.cos(),
+                    cy + radius * angle.sin(),
+                    40.0 - 7.0 * s + 3.0 * s * s,
+                    0.4 + 0.3 * s - 0.2 * s * s,
+                )
+            };
+            for s in [0.1, 0.5, 0.9] {
+                let angle = speed * s;
+                let (sin, cos) = angle.sin_cos();
+                let first =
+                    [-radius * speed * sin, radius * speed * cos, -7.0 + 6.0 * s, 0.3 - 0.4 * s];
+                let w2 = radius * speed * speed;
+                let second = [-w2 * cos, -w2 * sin, 6.0, -0.4];
+                let solution = model.inverse(&pose(s)).unwrap();
+                let (rates, curvature) =
+                    model.joint_derivatives(&solution.configuration, first, second).unwrap();
+                let ik = |s: f64| model.inverse(&pose(s)).unwrap().joints.to_array();
+                let h = 1e-4;
+                let (before, here, after) = (ik(s - h), ik(s), ik(s + h));
+                let (rates, curvature) = (rates.to_array(), curvature.to_array());
+                let velocity = model.joint_velocity(&solution.configuration, first).unwrap();
+                for joint in 0..4 {
+                    let expected_rate = (after[joint] - before[joint]) / (2.0 * h);
+                    let expected_curvature =
+                        (after[joint] - 2.0 * here[joint] + before[joint]) / (h * h);
+                    assert_relative_eq!(
+                        rates[joint],
+                        expected_rate,
+                        epsilon = 1e-6,
+                        max_relative = 1e-6
+                    );
+                    assert_relative_eq!(
+                        rates[joint],
+                        velocity.to_array()[joint],
+                        epsilon = 1e-12,
+                        max_relative = 1e-12
+                    );
+                    assert_relative_eq!(
+                        curvature[joint],
+                        expected_curvature,
+                        epsilon = 1e-4,
+                        max_relative = 1e-4
+                    );
+                }
+            }
         }
     }
 

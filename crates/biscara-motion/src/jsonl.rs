@@ -128,6 +128,9 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
     if let Some(extrude) = motion.extrude.filter(|extrude| !extrude.is_finite()) {
         return Err(invalid(format!("\"extrude\" must be a finite number, got {extrude}")));
     }
+    if let Some(blend) = motion.blend.filter(|blend| !(blend.is_finite() && *blend >= 0.0)) {
+        return Err(invalid(format!("\"blend\" must be a finite number ≥ 0, got {blend}")));
+    }
     if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind
         && !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0)
     {
@@ -221,14 +224,43 @@ mod tests {
             line: 7,
             kind: MotionKind::Linear { end: [1.0, 2.0, 3.0, 0.0], feed },
             extrude: Some(0.5),
+            blend: None,
         };
         assert_eq!(
             round_trip(linear).trim_end(),
             r#"{"line":7,"kind":"linear","end":[1.0,2.0,3.0,0.0],"feed":1800.0,"extrude":0.5}"#
         );
-        let retract =
-            Motion { line: 8, kind: MotionKind::Rapid { end: [0.0; 4] }, extrude: Some(-2.0) };
+        let retract = Motion {
+            line: 8,
+            kind: MotionKind::Rapid { end: [0.0; 4] },
+            extrude: Some(-2.0),
+            blend: None,
+        };
         assert!(round_trip(retract).contains(r#""extrude":-2.0"#));
+    }
+
+    #[test]
+    fn moves_carry_their_blend_tolerance() {
+        let feed = Feed { mm_per_min: 600.0, inverse_time: false };
+        let kinds = [
+            MotionKind::Rapid { end: [1.0, 2.0, 3.0, 0.0] },
+            MotionKind::Linear { end: [1.0, 2.0, 3.0, 0.0], feed },
+            MotionKind::Arc {
+                end: [1.0, 2.0, 3.0, 0.0],
+                center: [0.0, 0.0],
+                plane: Plane::Xy,
+                clockwise: false,
+                turns: 1,
+                feed,
+            },
+        ];
+        for kind in kinds {
+            let motion = Motion { blend: Some(0.05), ..Motion::new(4, kind) };
+            assert!(round_trip(motion).trim_end().ends_with(r#","blend":0.05}"#));
+            let no_tolerance = Motion { blend: Some(0.0), ..Motion::new(4, kind) };
+            assert!(round_trip(no_tolerance).contains(r#""blend":0.0"#));
+            assert!(!round_trip(Motion::new(4, kind)).contains("blend"));
+        }
     }
 
     #[track_caller]
@@ -259,7 +291,7 @@ mod tests {
         );
         check_error(
             "{\"line\":1,\"kind\":\"pick\",\"extra\":1}",
-            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`, `extrude`, `power`, `dynamic`, `rpm`, `code`",
+            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`, `extrude`, `blend`, `power`, `dynamic`, `rpm`, `code`",
         );
         check_error(
             "{\"line\":1,\"kind\":\"pick\",\"extrude\":1}",
@@ -293,6 +325,14 @@ mod tests {
         check_error(
             "{\"line\":1,\"kind\":\"code\",\"code\":\"M104\",\"end\":[0,0,0,0]}",
             "1: field `end` does not belong to a code motion",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"rapid\",\"end\":[0,0,0,0],\"blend\":-0.1}",
+            "1: \"blend\" must be a finite number ≥ 0, got -0.1",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"dwell\",\"seconds\":1,\"blend\":0.1}",
+            "1: field `blend` does not belong to a dwell motion",
         );
         check_error("not json", "1:2: expected ident");
     }

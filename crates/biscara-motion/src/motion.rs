@@ -15,12 +15,17 @@ pub struct Motion {
     /// Filament the extruder feeds during this move, millimetres (negative: a retraction);
     /// `None` when the block had no E word. Only moves carry it (SPEC §1.6, §5).
     pub extrude: Option<f64>,
+    /// The path-control mode the move was programmed under (SPEC §6): `Some(p)` under G64, the
+    /// corner at the move's end may be blended within `p` millimetres of it (`p = 0`: G64 with
+    /// no P, the canon's "no tolerance given"); `None` under G61/G61.1, an exact stop. Only moves
+    /// carry it.
+    pub blend: Option<f64>,
 }
 
 impl Motion {
-    /// A motion with no extrusion.
+    /// A motion with no extrusion, under exact stop.
     pub fn new(line: usize, kind: MotionKind) -> Motion {
-        Motion { line, kind, extrude: None }
+        Motion { line, kind, extrude: None, blend: None }
     }
 }
 
@@ -288,6 +293,8 @@ struct Record {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     extrude: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    blend: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     power: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     dynamic: Option<bool>,
@@ -311,6 +318,7 @@ impl From<Motion> for Record {
             inverse_time: None,
             seconds: None,
             extrude: motion.extrude,
+            blend: motion.blend,
             power: None,
             dynamic: None,
             rpm: None,
@@ -360,6 +368,7 @@ impl TryFrom<Record> for Motion {
             Tag::Rapid => {
                 take("end");
                 take("extrude");
+                take("blend");
                 MotionKind::Rapid { end: record.end.ok_or_else(|| missing("end"))? }
             }
             Tag::Linear => {
@@ -367,6 +376,7 @@ impl TryFrom<Record> for Motion {
                 take("extrude");
                 take("feed");
                 take("inverse_time");
+                take("blend");
                 MotionKind::Linear {
                     end: record.end.ok_or_else(|| missing("end"))?,
                     feed: Feed {
@@ -385,6 +395,7 @@ impl TryFrom<Record> for Motion {
                     "feed",
                     "inverse_time",
                     "extrude",
+                    "blend",
                 ] {
                     take(key);
                 }
@@ -452,6 +463,7 @@ impl TryFrom<Record> for Motion {
             ("inverse_time", record.inverse_time.is_some()),
             ("seconds", record.seconds.is_some()),
             ("extrude", record.extrude.is_some()),
+            ("blend", record.blend.is_some()),
             ("power", record.power.is_some()),
             ("dynamic", record.dynamic.is_some()),
             ("rpm", record.rpm.is_some()),
@@ -460,6 +472,6 @@ impl TryFrom<Record> for Motion {
         if let Some((key, _)) = present.iter().find(|(key, here)| *here && !used.contains(key)) {
             return Err(format!("field `{key}` does not belong to a {kind_name} motion"));
         }
-        Ok(Motion { line: record.line, kind, extrude: record.extrude })
+        Ok(Motion { line: record.line, kind, extrude: record.extrude, blend: record.blend })
     }
 }

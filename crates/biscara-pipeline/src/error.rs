@@ -132,6 +132,12 @@ pub enum Note {
         /// Each code and how many times it occurs.
         codes: BTreeMap<String, usize>,
     },
+    /// The program used tool offsets (G43, G43.2, G10 L1/L10/L11, M61) with no tool table
+    /// given: every tool has zero length and diameter.
+    ToolsWithoutTable {
+        /// The program's name.
+        file: String,
+    },
     /// A motion runs slower than programmed (a joint or C speed limit).
     SlowedDown {
         /// The program's name.
@@ -229,6 +235,11 @@ impl fmt::Display for Note {
                 "{file}: codes {dialect} does not know, skipped as it does (\"Unknown command\"), \
                  recorded as events: {}",
                 Counted(codes)
+            ),
+            Note::ToolsWithoutTable { file } => write!(
+                f,
+                "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
+                 given: every tool has zero length and diameter"
             ),
             Note::SlowedDown { file, slow } => write!(
                 f,

@@ -4,12 +4,18 @@
 use std::cell::{Cell, RefCell};
 use std::io::BufRead;
 use std::rc::Rc;
+use std::sync::Arc;
 
-use biscara_gcode::{Config as GcodeConfig, Dialect, GcodeError, Interpreter, Tool, interpret};
+use std::path::{Path, PathBuf};
+
+use biscara_gcode::{
+    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, Tool, ToolTable,
+    interpret_seekable,
+};
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
 
-use crate::{Note, PipelineError, ProgramKind, ProgramSource};
+use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// A program's motions as read, with errors located in the file.
 pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
@@ -42,13 +48,35 @@ impl NoteSink {
 }
 
 /// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
-/// dialect and its tool (`None`: inferred from the program, the gripper when nothing tells).
+/// dialect, its tool (`None`: inferred from the program, the gripper when nothing tells), where
+/// its file subroutines are and the tool table.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Reading {
+pub(crate) struct Reading<'a> {
     pub(crate) origin: Position,
     pub(crate) start: Option<Position>,
     pub(crate) dialect: Dialect,
     pub(crate) tool: Option<Tool>,
+    pub(crate) subroutine_path: &'a [PathBuf],
+    pub(crate) tool_table: Option<&'a Arc<ToolTable>>,
+}
+
+impl<'a> Reading<'a> {
+    /// How `config` says G-code is read, from `origin` and `start`, with `tool`.
+    pub(crate) fn of(
+        config: &'a SamplingConfig,
+        origin: Position,
+        start: Option<Position>,
+        tool: Option<Tool>,
+    ) -> Self {
+        Reading {
+            origin,
+            start,
+            dialect: config.dialect,
+            tool,
+            subroutine_path: &config.subroutine_path,
+            tool_table: config.tool_table.as_ref(),
+        }
+    }
 }
 
 /// What a G-code reading tells besides its motions: the axes the program zeroed with G92 before
@@ -66,16 +94,16 @@ pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    reading: Reading,
+    reading: &Reading<'_>,
     notes: NoteSink,
     told: Told,
 ) -> Result<MotionReader, PipelineError> {
-    let Reading { origin, start, dialect, tool } = reading;
+    let Reading { origin, start, dialect, tool, .. } = *reading;
     let file = source.name().to_owned();
-    let input = source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
+    let io_error = |source| PipelineError::Io { file: file.clone(), source };
     match kind {
         ProgramKind::Jsonl => Ok(Box::new(
-            read_jsonl(input)
+            read_jsonl(source.open().map_err(io_error)?)
                 .map(move |result| result.map_err(|err| PipelineError::program(&file, err))),
         )),
         ProgramKind::Gcode => {
@@ -86,9 +114,18 @@ pub(crate) fn read_motions(
                 dialect,
                 tool: tool.unwrap_or_default(),
                 infer_tool: tool.is_none(),
+                tool_table: reading.tool_table.cloned(),
                 ..GcodeConfig::default()
             };
-            let interpreter = interpret(input, &config);
+            // A file is read with jumps (O-word loops and calls); standard input only forwards.
+            let input: Box<dyn Seekable> = match source.open_seekable().map_err(io_error)? {
+                Some(input) => input,
+                None => Box::new(Forward(source.open().map_err(io_error)?)),
+            };
+            let interpreter = interpret_seekable(input, &config).with_subroutines(
+                source.path().map(Path::to_path_buf),
+                reading.subroutine_path.to_vec(),
+            );
             Ok(Box::new(GcodeMotions {
                 interpreter,
                 file,
@@ -165,7 +202,9 @@ impl<R: BufRead> GcodeMotions<R> {
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
         }
-
+        if self.interpreter.tools_without_table() {
+            self.notes.say(Note::ToolsWithoutTable { file: self.file.clone() });
+        }
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {
             self.notes.say(Note::Codes { file: self.file.clone(), codes: summary.codes.clone() });

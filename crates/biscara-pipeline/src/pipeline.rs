@@ -1,6 +1,9 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
-use biscara_gcode::{Dialect, Tool};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use biscara_gcode::{Dialect, Tool, ToolTable};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -19,7 +22,7 @@ use crate::tool::{Recorder, SharedTool, ToolSamples, Track};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SamplingConfig {
     /// Time step, s (> 0).
     pub dt: f64,
@@ -37,20 +40,28 @@ pub struct SamplingConfig {
     /// The tool the robot carries (`--tool`, SPEC §1.6); `None`: the robot file's `tool.kind`,
     /// else inferred from the program (with a [`Note::Tool`]), else the gripper.
     pub tool: Option<Tool>,
+    /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
+    /// program's own folder (`--subroutine-path`).
+    pub subroutine_path: Vec<PathBuf>,
+    /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
+    /// length and diameter.
+    pub tool_table: Option<Arc<ToolTable>>,
 }
 
 impl Default for SamplingConfig {
-    /// The defaults of the command line: 1 ms, trapezoid, no grip time, no origin, no fit, the
+    /// The defaults of the command line: 1 ms, the optimal profile, no grip time, no origin, no fit, the
     /// dialect decided from the program.
     fn default() -> SamplingConfig {
         SamplingConfig {
             dt: 0.001,
-            profile: Profile::Trapezoid,
+            profile: Profile::Optimal,
             grip_time: 0.0,
             origin: None,
             fit: false,
             dialect: Dialect::Auto,
             tool: None,
+            subroutine_path: Vec::new(),
+            tool_table: None,
         }
     }
 }
@@ -63,7 +74,7 @@ pub type SlowDownNotes = Box<dyn FnMut(&SlowDown)>;
 pub type Motions = MotionReader;
 
 /// One robot and one sampling configuration: the pipeline every command runs programs through.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Pipeline<'m> {
     model: &'m RobotModel,
     config: SamplingConfig,
@@ -112,13 +123,8 @@ impl<'m> Pipeline<'m> {
         told: Told,
     ) -> Result<Motions, PipelineError> {
         let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
-        let reading = Reading {
-            origin: placement.origin,
-            start: placement.start,
-            dialect: self.config.dialect,
-            tool: self.tool(),
-        };
-        let motions = read_motions(self.model, source, kind, reading, notes.clone(), told)?;
+        let reading = Reading::of(&self.config, placement.origin, placement.start, self.tool());
+        let motions = read_motions(self.model, source, kind, &reading, notes.clone(), told)?;
         Ok(match placement.transform {
             Some(transform) if !transform.is_identity() => {
                 Box::new(motions.map(move |m| m.map(|m| transform.motion(m))))

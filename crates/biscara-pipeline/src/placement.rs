@@ -43,8 +43,7 @@ pub fn place(
     config: &SamplingConfig,
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
-    let SamplingConfig { dialect, .. } = *config;
-    let tool = crate::Pipeline::new(model, *config).tool();
+    let tool = crate::Pipeline::new(model, config.clone()).tool();
     let mut origin = config.origin.unwrap_or([0.0; 4]);
     if !config.fit {
         return Ok(Placement { origin, start: None, transform: None });
@@ -65,12 +64,11 @@ pub fn place(
     let home = model.home_position();
     let mut bounds = Bounds::new(home);
     let zeroed = Rc::new(Cell::new([false; 4]));
-    let reading = Reading { origin, start: None, dialect, tool };
     let motions = read_motions(
         model,
         source,
         kind,
-        reading,
+        &Reading::of(config, origin, None, tool),
         NoteSink::silent(),
         Told { zeroed: Some(zeroed.clone()), tool: None },
     )?;

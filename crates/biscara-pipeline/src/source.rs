@@ -1,6 +1,9 @@
 //! Where a program's text comes from.
 
 use std::io::{self, BufRead};
+use std::path::Path;
+
+use biscara_gcode::Seekable;
 
 /// A program's text, opened by the caller: the pipeline never touches a path.
 pub trait ProgramSource {
@@ -13,6 +16,19 @@ pub trait ProgramSource {
     /// Whether [`ProgramSource::open`] may be called more than once (false for standard input).
     fn rereadable(&self) -> bool {
         true
+    }
+
+    /// The text from its start as an input the interpreter can jump in (O-word loops and
+    /// subroutine calls go back by byte offset); `None` (the default) when it can only be read
+    /// forwards, as standard input.
+    fn open_seekable(&self) -> io::Result<Option<Box<dyn Seekable>>> {
+        Ok(None)
+    }
+
+    /// The program's file, when it is one: file subroutines (`o<name> call`) are looked for
+    /// beside it, and it names the program in LinuxCNC's messages. `None` by default.
+    fn path(&self) -> Option<&Path> {
+        None
     }
 }
 
@@ -37,5 +53,9 @@ impl ProgramSource for TextSource {
 
     fn open(&self) -> io::Result<Box<dyn BufRead>> {
         Ok(Box::new(io::Cursor::new(self.text.clone().into_bytes())))
+    }
+
+    fn open_seekable(&self) -> io::Result<Option<Box<dyn Seekable>>> {
+        Ok(Some(Box::new(io::Cursor::new(self.text.clone().into_bytes()))))
     }
 }

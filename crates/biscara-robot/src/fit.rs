@@ -339,6 +339,7 @@ mod tests {
                 feed: FEED,
             },
             extrude: None,
+            blend: None,
         }
     }
 
@@ -418,6 +419,7 @@ mod tests {
                     feed: FEED,
                 },
                 extrude: None,
+                blend: None,
             },
         ];
         let offset = [3.0, 4.0];

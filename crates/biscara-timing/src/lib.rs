@@ -37,10 +37,11 @@
 //! rest is feasible everywhere (checked), a state from which the robot can stop within the
 //! first window can also stop within the next, longer one: the plan stays feasible. It is
 //! optimal whenever stopping from full speed takes fewer than `window` intervals, i.e. unless
-//! the look-ahead is too short for the braking distance. [`TimeOptimal::new`] runs the passes
-//! once to learn the duration (needed to round it to whole time steps) and
-//! [`TimeOptimal::s_at`] runs them again as time advances; a grid that fits one window is
-//! planned once and kept.
+//! the look-ahead is too short for the braking distance. Every grid point is evaluated once
+//! and every stage planned once: a grid that fits one window is planned whole by
+//! [`TimeOptimal::plan`], which then knows the duration; a longer one is planned window by
+//! window as [`TimeOptimal::s_at`] advances, and its duration is known once the window holding
+//! its end is planned (the forward pass then runs to the end at once).
 //!
 //! It knows nothing of kinematics or of G-code: the caller evaluates the coefficients through
 //! [`PathConstraints`].
@@ -58,7 +59,7 @@
 //!     }
 //! }
 //! let plan = TimeOptimal::new(&mut Box, Grid::uniform(1000), 4096)?;
-//! assert!((plan.duration() - 1.25).abs() < 0.01);
+//! assert!((plan.duration().expect("one window") - 1.25).abs() < 0.01);
 //! # Ok::<(), biscara_timing::TimingError>(())
 //! ```
 

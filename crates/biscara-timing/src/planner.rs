@@ -29,35 +29,49 @@ impl Interval {
     }
 }
 
-/// The grid points s_0 = 0 < s_1 < … < s_M = 1: `intervals` equal intervals of length Δ, the
-/// first and the last of them each cut geometrically towards the path's end, at
-/// Δ·ratio, Δ·ratio², …, Δ·ratio^refine from it (M = `intervals` + 2 · `refine`), so that the
-/// short ramps from and to rest are resolved without a fine grid all along.
+/// The grid points s_0 = 0 < s_1 < … < s_M = 1.
+///
+/// Without end parts (`ends` = 0): `intervals` equal intervals. With them: `ends` equal
+/// intervals over [0, `end`], `intervals` equal ones over [`end`, 1 − `end`] and `ends` over
+/// [1 − `end`, 1], so that `end` and 1 − `end` are grid points (where a caller expects the
+/// ramps from and to rest to end). Either way the first and the last interval, of length Δ, are
+/// then cut geometrically towards the path's end, at Δ·ratio, Δ·ratio², …, Δ·ratio^refine from
+/// it (M = `intervals` + 2 · `ends` + 2 · `refine`), so that short ramps are resolved without a
+/// fine grid all along.
 ///
 /// TOPP-RA loses time in the interval where the optimum switches from accelerating to cruising
 /// (x = ṡ² is linear in s there, below the optimum's corner): a fraction of that interval's
-/// traversal time. A ramp shorter than one interval of a uniform grid would lose most of an
-/// interval per stop; with the ends refined, the switch falls in an interval of about
-/// (1/ratio − 1) times the ramp.
+/// traversal time, and nothing when the switch falls on a grid point. A ramp shorter than one
+/// interval of a uniform grid would lose most of an interval per stop; with the ends refined,
+/// the switch falls in an interval of about (1/ratio − 1) times the ramp.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid {
-    /// Number of equal intervals (≥ 1; ≥ 2 when `refine` > 0).
+    /// Number of equal intervals of the middle part (≥ 1).
     pub intervals: usize,
     /// Number of points added between each end and its nearest equal interval's point.
     pub refine: u32,
     /// Ratio of consecutive refined points' distances to the end, in (0, 1).
     pub ratio: f64,
+    /// Number of equal intervals of each end part (0: none).
+    pub ends: usize,
+    /// Length in s of each end part, in (0, ½) when `ends` > 0.
+    pub end: f64,
 }
 
 impl Grid {
     /// `intervals` equal intervals.
     pub fn uniform(intervals: usize) -> Grid {
-        Grid { intervals, refine: 0, ratio: 0.5 }
+        Grid { intervals, refine: 0, ratio: 0.5, ends: 0, end: 0.0 }
+    }
+
+    /// `intervals` equal intervals, the first and last refined `refine` times by `ratio`.
+    pub fn refined(intervals: usize, refine: u32, ratio: f64) -> Grid {
+        Grid { refine, ratio, ..Grid::uniform(intervals) }
     }
 
     /// Number of intervals, M.
     pub fn len(&self) -> usize {
-        self.intervals + 2 * self.refine as usize
+        self.base_len() + 2 * self.refine as usize
     }
 
     /// Whether it has no interval.
@@ -65,55 +79,86 @@ impl Grid {
         self.intervals == 0
     }
 
+    /// Intervals before refinement.
+    fn base_len(&self) -> usize {
+        self.intervals + 2 * self.ends
+    }
+
+    /// Point `index` of the grid before refinement (0 ..= `base_len`).
+    fn base(&self, index: usize) -> f64 {
+        let last = self.base_len();
+        let (ends, middle) = (self.ends, self.intervals);
+        if index == 0 {
+            0.0
+        } else if index >= last {
+            1.0
+        } else if index < ends {
+            index as f64 * self.end / ends as f64
+        } else if index > ends + middle {
+            1.0 - (last - index) as f64 * self.end / ends as f64
+        } else {
+            self.end + (index - ends) as f64 * (1.0 - 2.0 * self.end) / middle as f64
+        }
+    }
+
     /// Grid point `index` (0 ..= M).
     pub fn s(&self, index: usize) -> f64 {
         let refine = self.refine as usize;
         let last = self.len();
-        let step = 1.0 / self.intervals as f64;
         // From an end: 0, Δ·ratio^r, …, Δ·ratio, Δ at 0, 1, …, r + 1.
-        let from_end = |k: usize| {
+        let from_end = |k: usize, step: f64| {
             if k == 0 { 0.0 } else { step * self.ratio.powi((refine + 1 - k) as i32) }
         };
         if index <= refine {
-            from_end(index)
+            from_end(index, self.base(1))
         } else if index + refine >= last {
-            1.0 - from_end(last - index)
+            1.0 - from_end(last - index, 1.0 - self.base(self.base_len() - 1))
         } else {
-            (index - refine) as f64 * step
+            self.base(index - refine)
         }
     }
 
     fn is_valid(&self) -> bool {
-        let refined = self.refine == 0 || (self.intervals >= 2 && self.refine <= 1000);
-        self.intervals > 0 && refined && self.ratio > 0.0 && self.ratio < 1.0
+        let refined = self.refine == 0 || (self.base_len() >= 2 && self.refine <= 1000);
+        let ends = self.ends == 0 || (self.end > 0.0 && self.end < 0.5);
+        self.intervals > 0 && refined && ends && self.ratio > 0.0 && self.ratio < 1.0
     }
 }
 
 /// The time-optimal time scaling of a path under [`PathConstraints`] (see the crate's
 /// documentation for the method), streamed: at most `2 · window + 1` grid points are held.
 ///
-/// The same `path` must be passed to every call (its evaluations must not change between the
-/// duration pass and the sampling pass).
-#[derive(Debug, Clone)]
+/// The same `path` must be passed to every call. One value can plan path after path
+/// ([`plan`](Self::plan)) without allocating once its buffers have grown.
+#[derive(Debug, Clone, Default)]
 pub struct TimeOptimal {
-    grid: Grid,
+    grid: Option<Grid>,
     /// Number of grid intervals.
     intervals: usize,
     window: usize,
     count: usize,
-    duration: f64,
+    /// The duration, once the window holding the path's end has been planned.
+    duration: Option<f64>,
     /// Grid index of the first point held.
     first: usize,
+    /// Path parameter of every point held.
+    s: Vec<f64>,
     /// Largest ṡ² of every point held.
     x_max: Vec<f64>,
     /// `count` constraints of every point held.
     rows: Vec<Constraint>,
     /// Top of the controllable set of every point held (its bottom is 0: rest is allowed).
     k_max: Vec<f64>,
+    /// ṡ² of the forward pass at every point held from `forward_from` on, once the window holds
+    /// the path's end (the forward pass then runs to the end at once, to learn the duration).
+    forward: Vec<f64>,
+    /// Local index of `forward[0]` (`usize::MAX` while the end is not held).
+    forward_from: usize,
     polygon: Polygon,
-    /// Grid index of the next interval's start, and ṡ² there.
+    /// Grid index of the next interval's start, ṡ² there, and the plan's time there.
     index: usize,
     x: f64,
+    time: f64,
     /// The interval `s_at` is in, and the time it starts.
     current: Option<Interval>,
     elapsed: f64,
@@ -121,72 +166,66 @@ pub struct TimeOptimal {
 
 impl TimeOptimal {
     /// Plans `path` over `grid`, holding windows of `window` intervals plus as many of
-    /// look-ahead; learns the duration.
+    /// look-ahead.
     pub fn new<P: PathConstraints + ?Sized>(
         path: &mut P,
         grid: Grid,
         window: usize,
     ) -> Result<TimeOptimal, TimingError> {
-        if !grid.is_valid() {
-            return Err(TimingError::NoIntervals);
-        }
-        let mut plan = TimeOptimal {
-            grid,
-            intervals: grid.len(),
-            window: window.max(1),
-            count: path.count(),
-            duration: 0.0,
-            first: 0,
-            x_max: Vec::new(),
-            rows: Vec::new(),
-            k_max: Vec::new(),
-            polygon: Polygon::default(),
-            index: 0,
-            x: 0.0,
-            current: None,
-            elapsed: 0.0,
-        };
-        plan.fill(path, 0)?;
-        let mut duration = 0.0;
-        while let Some(interval) = plan.next_interval(path)? {
-            duration += interval.duration;
-        }
-        plan.duration = duration;
-        plan.restart(path)?;
+        let mut plan = TimeOptimal::default();
+        plan.plan(path, grid, window)?;
         Ok(plan)
     }
 
-    /// The duration of the plan, s.
-    pub fn duration(&self) -> f64 {
+    /// Plans `path` over `grid` in place of what was planned before, reusing the buffers: the
+    /// first window's backward pass, and when that window holds the whole grid, the forward
+    /// pass too (the [`duration`](Self::duration) is then known).
+    pub fn plan<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        grid: Grid,
+        window: usize,
+    ) -> Result<(), TimingError> {
+        self.grid = None;
+        if !grid.is_valid() {
+            return Err(TimingError::NoIntervals);
+        }
+        self.grid = Some(grid);
+        self.intervals = grid.len();
+        self.window = window.max(1);
+        self.count = path.count();
+        self.duration = None;
+        self.first = 0;
+        self.s.clear();
+        self.x_max.clear();
+        self.rows.clear();
+        self.index = 0;
+        self.x = 0.0;
+        self.time = 0.0;
+        self.current = None;
+        self.elapsed = 0.0;
+        let planned = self.fill(path, 0);
+        if planned.is_err() {
+            self.grid = None;
+        }
+        planned
+    }
+
+    /// The duration of the plan, s: known from [`plan`](Self::plan) on when the grid fits in
+    /// one window, else once sampling has reached the last window (`None` until then). A path
+    /// is planned once either way: a long one is sampled in its own time before its end is
+    /// known.
+    pub fn duration(&self) -> Option<f64> {
         self.duration
     }
 
-    /// The grid.
-    pub fn grid(&self) -> Grid {
+    /// The grid (`None` before the first successful plan).
+    pub fn grid(&self) -> Option<Grid> {
         self.grid
     }
 
-    /// Goes back to the start of the path (re-planning the first window unless the whole grid
-    /// fits in one).
-    pub fn restart<P: PathConstraints + ?Sized>(
-        &mut self,
-        path: &mut P,
-    ) -> Result<(), TimingError> {
-        let whole = self.first == 0 && self.x_max.len() == self.intervals + 1;
-        if !whole {
-            self.x_max.clear();
-            self.rows.clear();
-            self.fill(path, 0)?;
-        }
-        self.index = 0;
-        self.x = 0.0;
-        self.current = None;
-        self.elapsed = 0.0;
-        Ok(())
-    }
-
     /// The path parameter at time `t` (s) from the start; `t` must not decrease from one call to
-    /// the next (since the last [`restart`](Self::restart)). 1 from the end of the plan on.
+    /// the next. 1 from the end of the plan on.
     pub fn s_at<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
@@ -211,28 +250,26 @@ impl TimeOptimal {
         &mut self,
         path: &mut P,
     ) -> Result<Option<Interval>, TimingError> {
-        if self.index >= self.intervals {
+        if self.index >= self.intervals || self.grid.is_none() {
             return Ok(None);
         }
-        let last = self.first + self.x_max.len() - 1;
-        if last < self.intervals && self.index - self.first >= self.window {
+        if self.forward_from == usize::MAX && self.index - self.first >= self.window {
             self.fill(path, self.index)?;
         }
         let local = self.index - self.first;
-        self.build_stage(local, true);
-        let (_, u_max) = self.polygon.u_range(self.x);
-        let step = self.step(self.index);
-        let mut x_end = (self.x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
-        if self.index + 1 == self.intervals || x_end.is_nan() {
-            x_end = 0.0;
-        }
+        let (s_start, s_end) = (self.s[local], self.s[local + 1]);
+        let step = s_end - s_start;
+        let x_end = match local.checked_sub(self.forward_from) {
+            Some(k) => self.forward[k + 1],
+            None => self.forward_step(local),
+        };
         let duration = 2.0 * step / (self.x.sqrt() + x_end.sqrt());
         if !duration.is_finite() {
-            return Err(TimingError::Stuck { s: self.s(self.index) });
+            return Err(TimingError::Stuck { s: s_start });
         }
         let interval = Interval {
-            s_start: self.s(self.index),
-            s_end: self.s(self.index + 1),
+            s_start,
+            s_end,
             x_start: self.x,
             x_end,
             u: (x_end - self.x) / (2.0 * step),
@@ -240,51 +277,129 @@ impl TimeOptimal {
         };
         self.index += 1;
         self.x = x_end;
+        self.time += duration;
         Ok(Some(interval))
     }
 
-    /// Length of interval `index`.
-    fn step(&self, index: usize) -> f64 {
-        self.s(index + 1) - self.s(index)
+    /// ṡ² at the end of the interval from held point `local`, from ṡ² = `self.x` at its start:
+    /// the largest s̈ that keeps the next point controllable.
+    fn forward_step(&self, local: usize) -> f64 {
+        self.forward_step_from(local, self.x)
     }
 
-    fn s(&self, index: usize) -> f64 {
-        self.grid.s(index)
+    fn forward_step_from(&self, local: usize, x: f64) -> f64 {
+        let step = self.s[local + 1] - self.s[local];
+        let (_, u_max, _) = self.u_range_at::<false>(local, x);
+        let x_end = (x + 2.0 * step * u_max).clamp(0.0, self.k_max[local + 1]);
+        if self.first + local + 1 == self.intervals || x_end.is_nan() { 0.0 } else { x_end }
+    }
+
+    /// The range of s̈ the stage from held point `local` allows at ṡ² = `x`, and whether the
+    /// bounds on x alone hold there: the stage's polygon (see [`build_stage`](Self::build_stage))
+    /// cut at one x, with no polygon built. Each row whose s̈ coefficient α is not zero
+    /// (relative to its ṡ² coefficient, as [`Polygon`] decides) bounds s̈ by
+    /// `(bound − β·x) / α`; a row with α ≈ 0 bounds x alone. Without `LOWER`, only the upper
+    /// end of the range is right (all the forward pass needs).
+    #[inline]
+    fn u_range_at<const LOWER: bool>(&self, local: usize, x: f64) -> (f64, f64, bool) {
+        let step = self.s[local + 1] - self.s[local];
+        let count = self.count;
+        let (mut u_lo, mut u_hi, mut x_ok) = (f64::NEG_INFINITY, f64::INFINITY, true);
+        let mut bound = |alpha: f64, beta: f64, lo: f64, hi: f64| {
+            let scale = alpha.abs().max(beta.abs());
+            if scale == 0.0 {
+                return;
+            }
+            if alpha.abs() <= crate::polygon::ZERO * scale {
+                let value = beta * x;
+                x_ok &= value <= hi && value >= lo;
+                return;
+            }
+            let (upper, lower) = if alpha > 0.0 { (hi, lo) } else { (lo, hi) };
+            let inverse = 1.0 / alpha;
+            if upper.is_finite() {
+                u_hi = u_hi.min((upper - beta * x) * inverse);
+            }
+            if LOWER && lower.is_finite() {
+                u_lo = u_lo.max((lower - beta * x) * inverse);
+            }
+        };
+        for row in &self.rows[local * count..(local + 1) * count] {
+            bound(row.a, row.b, row.lo - row.c, row.hi - row.c);
+        }
+        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+            bound(row.a + 2.0 * step * row.b, row.b, row.lo - row.c, row.hi - row.c);
+        }
+        bound(2.0 * step, 1.0, 0.0, self.k_max[local + 1]);
+        (u_lo, u_hi, x_ok)
     }
 
     /// Holds grid points `from` to `from + 2·window` (or the end), evaluating those not held
-    /// yet, and runs the backward pass over them.
+    /// yet, and runs the backward pass over them; when they reach the end, the forward pass too.
     fn fill<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
         from: usize,
     ) -> Result<(), TimingError> {
+        let grid = self.grid.unwrap_or(Grid::uniform(1));
         let last = (from + 2 * self.window).min(self.intervals);
         let mut next = from;
         if !self.x_max.is_empty() && from >= self.first {
             let held_last = self.first + self.x_max.len() - 1;
             let drop = (from - self.first).min(self.x_max.len());
+            self.s.drain(..drop);
             self.x_max.drain(..drop);
             self.rows.drain(..drop * self.count);
             next = held_last + 1;
         } else {
+            self.s.clear();
             self.x_max.clear();
             self.rows.clear();
         }
         self.first = from;
+        self.forward_from = usize::MAX;
         for index in next..=last {
-            self.evaluate(path, index)?;
+            self.evaluate(path, grid.s(index))?;
         }
-        self.backward()
+        self.backward()?;
+        if last == self.intervals {
+            self.forward_to_end()?;
+        }
+        Ok(())
     }
 
-    /// Evaluates grid point `index` at the end of what is held.
+    /// The forward pass from the next interval to the path's end, kept; the duration.
+    fn forward_to_end(&mut self) -> Result<(), TimingError> {
+        let from = self.index - self.first;
+        let mut forward = std::mem::take(&mut self.forward);
+        forward.clear();
+        forward.push(self.x);
+        let mut x = self.x;
+        let mut time = self.time;
+        for local in from..self.x_max.len() - 1 {
+            let x_end = self.forward_step_from(local, x);
+            let step = self.s[local + 1] - self.s[local];
+            let duration = 2.0 * step / (x.sqrt() + x_end.sqrt());
+            if !duration.is_finite() {
+                self.forward = forward;
+                return Err(TimingError::Stuck { s: self.s[local] });
+            }
+            time += duration;
+            forward.push(x_end);
+            x = x_end;
+        }
+        self.forward = forward;
+        self.forward_from = from;
+        self.duration = Some(time);
+        Ok(())
+    }
+
+    /// Evaluates the grid point at `s`, at the end of what is held.
     fn evaluate<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
-        index: usize,
+        s: f64,
     ) -> Result<(), TimingError> {
-        let s = self.s(index);
         let start = self.rows.len();
         self.rows.resize(start + self.count, Constraint::default());
         let x_max = path.evaluate(s, &mut self.rows[start..]);
@@ -300,6 +415,7 @@ impl TimeOptimal {
                 return Err(TimingError::RestForbidden { s, index: offset });
             }
         }
+        self.s.push(s);
         self.x_max.push(x_max);
         Ok(())
     }
@@ -310,19 +426,23 @@ impl TimeOptimal {
         self.k_max.clear();
         self.k_max.resize(held, 0.0);
         for local in (0..held - 1).rev() {
-            self.build_stage(local, false);
             // Where the speed limit itself is controllable (cruising, far from a stop), it is the
-            // top: the feasible x form an interval that holds 0, so one O(m) test settles it.
+            // top: the feasible x form an interval that holds 0, so one O(m) test settles it,
+            // without building the polygon.
             let x_max = self.x_max[local];
-            if x_max.is_finite() && self.polygon.contains_x(x_max) {
-                self.k_max[local] = x_max;
-                continue;
+            if x_max.is_finite() {
+                let (u_lo, u_hi, x_ok) = self.u_range_at::<true>(local, x_max);
+                if x_ok && u_lo <= u_hi {
+                    self.k_max[local] = x_max;
+                    continue;
+                }
             }
+            self.build_stage(local, false);
             // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
             // range is empty only by rounding: then only rest is controllable.
             let (_, top) = self.polygon.x_range(0.0, x_max).unwrap_or((0.0, 0.0));
             if top.is_infinite() {
-                return Err(TimingError::Unbounded { s: self.s(self.first + local) });
+                return Err(TimingError::Unbounded { s: self.s[local] });
             }
             self.k_max[local] = top.max(0.0);
         }
@@ -333,7 +453,7 @@ impl TimeOptimal {
     /// constraint at both ends of the interval, and the next point in its controllable set (only
     /// the upper bounds on u with `uppers_only`).
     fn build_stage(&mut self, local: usize, uppers_only: bool) {
-        let step = self.step(self.first + local);
+        let step = self.s[local + 1] - self.s[local];
         let count = self.count;
         self.polygon.reset(uppers_only);
         for row in &self.rows[local * count..(local + 1) * count] {
@@ -382,6 +502,18 @@ mod tests {
         Trapezoid { rate, acceleration, calls: 0 }
     }
 
+    /// Runs the forward pass to the end: the sum of the intervals' durations, which must be
+    /// the duration the plan then reports.
+    fn run<P: PathConstraints>(plan: &mut TimeOptimal, path: &mut P) -> f64 {
+        let mut total = 0.0;
+        while let Some(interval) = plan.next_interval(path).unwrap() {
+            total += interval.duration;
+        }
+        let duration = plan.duration().expect("known at the end");
+        assert!((total - duration).abs() <= 1e-9 * total, "{total} against {duration}");
+        duration
+    }
+
     /// The closed-form shortest time of a trapezoid (or triangle) over s ∈ [0, 1].
     fn exact(rate: f64, acceleration: f64) -> f64 {
         if rate * rate >= acceleration {
@@ -397,11 +529,12 @@ mod tests {
             let plan =
                 TimeOptimal::new(&mut trapezoid(rate, acceleration), Grid::uniform(2000), 4096)
                     .unwrap();
+            let duration = plan.duration().expect("one window");
             let shortest = exact(rate, acceleration);
             // The plan is feasible for the continuous problem, so never shorter; the switch from
             // accelerating to cruising falls on the grid, which costs at most a little.
-            assert!(plan.duration() >= shortest * (1.0 - 1e-12), "{rate} {acceleration}");
-            assert_relative_eq!(plan.duration(), shortest, max_relative = 2e-3);
+            assert!(duration >= shortest * (1.0 - 1e-12), "{rate} {acceleration}");
+            assert_relative_eq!(duration, shortest, max_relative = 2e-3);
         }
     }
 
@@ -412,8 +545,9 @@ mod tests {
         let shortest = exact(1.0, 1000.0);
         let uniform =
             TimeOptimal::new(&mut trapezoid(1.0, 1000.0), Grid::uniform(10), 4096).unwrap();
-        assert!(uniform.duration() > shortest + 0.1, "{}", uniform.duration());
-        let grid = Grid { intervals: 10, refine: 11, ratio: 0.5 };
+        let uniform = uniform.duration().unwrap();
+        assert!(uniform > shortest + 0.1, "{uniform}");
+        let grid = Grid::refined(10, 11, 0.5);
         assert_eq!(grid.s(0), 0.0);
         assert_eq!(grid.s(1), 0.1 / 2048.0);
         assert_eq!(grid.s(12), 0.1);
@@ -421,46 +555,98 @@ mod tests {
         assert_relative_eq!(grid.s(grid.len() - 1), 1.0 - 0.1 / 2048.0, epsilon = 1e-15);
         assert_eq!(grid.s(grid.len()), 1.0);
         let refined = TimeOptimal::new(&mut trapezoid(1.0, 1000.0), grid, 4096).unwrap();
-        assert!(refined.duration() >= shortest * (1.0 - 1e-12));
-        assert_relative_eq!(refined.duration(), shortest, max_relative = 2e-4);
+        let refined = refined.duration().unwrap();
+        assert!(refined >= shortest * (1.0 - 1e-12));
+        assert_relative_eq!(refined, shortest, max_relative = 2e-4);
+    }
+
+    #[test]
+    fn end_parts_put_the_ramps_on_grid_points() {
+        // Ramps of s = 1/8 (ṡ = 1 at 4 /s²): with grid points at 1/8 and 7/8, three intervals
+        // give the exact trapezoid; the refined points and end parts are where they should be.
+        let grid = Grid { ends: 1, end: 0.125, ..Grid::uniform(1) };
+        assert_eq!((grid.len(), grid.s(1), grid.s(2), grid.s(3)), (3, 0.125, 0.875, 1.0));
+        let plan = TimeOptimal::new(&mut trapezoid(1.0, 4.0), grid, 100).unwrap();
+        assert_relative_eq!(plan.duration().unwrap(), exact(1.0, 4.0), max_relative = 1e-12);
+        let grid = Grid { ends: 2, end: 0.2, ..Grid::refined(3, 2, 0.5) };
+        let points: Vec<f64> = (0..=grid.len()).map(|index| grid.s(index)).collect();
+        let expected = [0.0, 0.025, 0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.975, 1.0];
+        assert_eq!(points.len(), expected.len());
+        for (point, expected) in points.iter().zip(expected) {
+            assert_relative_eq!(*point, expected, epsilon = 1e-15);
+        }
+        assert!(TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid { end: 0.5, ..grid }, 9).is_err());
     }
 
     #[test]
     fn samples_follow_the_plan_and_end_at_one() {
-        let mut path = trapezoid(1.0, 4.0);
-        let mut plan = TimeOptimal::new(&mut path, Grid::uniform(500), 4096).unwrap();
-        let duration = plan.duration();
-        let mut previous = 0.0;
-        for k in 0..=1000 {
-            let s = plan.s_at(&mut path, duration * f64::from(k) / 1000.0).unwrap();
-            assert!(s >= previous, "s went back at {k}");
-            previous = s;
+        for window in [4096, 60] {
+            let mut path = trapezoid(1.0, 4.0);
+            let mut plan = TimeOptimal::new(&mut path, Grid::uniform(500), window).unwrap();
+            // A plan longer than its window learns its duration as it is sampled.
+            let known = plan.duration();
+            assert_eq!(known.is_some(), window >= 500);
+            let duration = exact(1.0, 4.0);
+            let mut previous = 0.0;
+            for k in 0..=1100 {
+                let t = duration * f64::from(k) / 1000.0;
+                let s = plan.s_at(&mut path, t).unwrap();
+                assert!(s >= previous, "s went back at {k}");
+                previous = s;
+                // In the cruise, ṡ = 1: s(0.5) = 1/8 (the ramp, 0.25 s) + 0.25.
+                if k == 400 {
+                    assert_relative_eq!(s, 0.375, epsilon = 2e-3);
+                }
+            }
+            assert_eq!(previous, 1.0);
+            let learned = plan.duration().expect("known at the end");
+            assert_relative_eq!(learned, duration, max_relative = 2e-3);
+            if let Some(known) = known {
+                assert_eq!(known, learned);
+            }
+            assert_eq!(plan.s_at(&mut path, duration * 2.0).unwrap(), 1.0);
         }
-        assert_relative_eq!(previous, 1.0, epsilon = 1e-12);
-        // In the cruise, ṡ = 1: s(0.5) = 1/8 (the ramp, 0.25 s) + 0.25.
-        plan.restart(&mut path).unwrap();
-        assert_relative_eq!(plan.s_at(&mut path, 0.5).unwrap(), 0.375, epsilon = 2e-3);
-        assert_eq!(plan.s_at(&mut path, duration * 2.0).unwrap(), 1.0);
+    }
+
+    #[test]
+    fn one_value_plans_path_after_path() {
+        let mut plan = TimeOptimal::default();
+        for (rate, acceleration) in [(1.0, 4.0), (3.0, 4.0), (0.2, 50.0)] {
+            let mut path = trapezoid(rate, acceleration);
+            plan.plan(&mut path, Grid::uniform(700), 100).unwrap();
+            let mut fresh = TimeOptimal::new(&mut path, Grid::uniform(700), 100).unwrap();
+            let fresh = run(&mut fresh, &mut path);
+            assert_eq!(run(&mut plan, &mut path), fresh);
+        }
+        // A failed plan leaves nothing to sample.
+        assert!(plan.plan(&mut Pushed, Grid::uniform(10), 100).is_err());
+        assert_eq!(plan.next_interval(&mut Pushed).unwrap(), None);
     }
 
     #[test]
     fn short_windows_stay_feasible_and_long_ones_are_optimal() {
         // Braking from ṡ = 1 at 4 /s² takes s = 1/8: 125 of 1000 intervals.
-        let whole = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 4096).unwrap();
         let mut path = trapezoid(1.0, 4.0);
-        let long = TimeOptimal::new(&mut path, Grid::uniform(1000), 150).unwrap();
-        assert_relative_eq!(long.duration(), whole.duration(), max_relative = 1e-12);
-        // Windows of 150 + 150 intervals: the grid is evaluated twice (duration, then samples),
-        // each time with the 150 look-ahead points of every window after the first held over.
-        assert!(path.calls <= 2 * 1001 + 2, "{} evaluations", path.calls);
-        let short = TimeOptimal::new(&mut trapezoid(1.0, 4.0), Grid::uniform(1000), 20).unwrap();
-        assert!(short.duration() > whole.duration());
+        let whole = TimeOptimal::new(&mut path, Grid::uniform(1000), 4096).unwrap();
+        let whole = whole.duration().unwrap();
+        assert_eq!(path.calls, 1001);
+        let mut path = trapezoid(1.0, 4.0);
+        let mut long = TimeOptimal::new(&mut path, Grid::uniform(1000), 150).unwrap();
+        assert_eq!(long.duration(), None);
+        assert_relative_eq!(run(&mut long, &mut path), whole, max_relative = 1e-12);
+        // Windows of 150 + 150 intervals: every grid point is evaluated once (planned once, not
+        // once for the duration and again for the samples).
+        assert_eq!(path.calls, 1001);
         let mut path = trapezoid(1.0, 4.0);
         let mut short = TimeOptimal::new(&mut path, Grid::uniform(1000), 20).unwrap();
+        let mut total = 0.0;
         while let Some(interval) = short.next_interval(&mut path).unwrap() {
             assert!(interval.u.abs() <= 4.0 * (1.0 + 1e-9));
             assert!(interval.x_end <= 1.0 + 1e-12);
+            total += interval.duration;
         }
+        assert!(total > whole);
+        assert_eq!(short.duration(), Some(total));
     }
 
     struct Blocked;
@@ -565,15 +751,14 @@ mod tests {
         /// and a windowed plan is never faster than the whole one.
         #[test]
         fn plans_keep_every_bound(path in joints(), window in 5usize..300, refine in 0u32..12) {
-            let grid = Grid { intervals: 400, refine, ratio: 0.7 };
+            let grid = Grid::refined(400, refine, 0.7);
             let intervals = grid.len();
             let mut whole_path = path.clone();
             let whole = TimeOptimal::new(&mut whole_path, grid, 4096);
             prop_assume!(whole.is_ok());
-            let whole = whole.unwrap();
+            let whole = whole.unwrap().duration().expect("one window");
             let mut windowed_path = path.clone();
             let mut plan = TimeOptimal::new(&mut windowed_path, grid, window).unwrap();
-            prop_assert!(plan.duration() >= whole.duration() * (1.0 - 1e-9));
             let mut total = 0.0;
             let mut count = 0;
             while let Some(interval) = plan.next_interval(&mut windowed_path).unwrap() {
@@ -600,7 +785,9 @@ mod tests {
                 }
             }
             prop_assert_eq!(count, intervals);
-            prop_assert!((total - plan.duration()).abs() <= 1e-9 * total);
+            let duration = plan.duration().expect("known at the end");
+            prop_assert!((total - duration).abs() <= 1e-9 * total);
+            prop_assert!(duration >= whole * (1.0 - 1e-9));
         }
     }
 }

@@ -2,7 +2,7 @@
 
 /// Below this, a half-plane's coefficient of u, relative to the larger of its two coefficients,
 /// counts as zero.
-const ZERO: f64 = 1e-12;
+pub(crate) const ZERO: f64 = 1e-12;
 
 /// The half-planes of one stage, kept as what they say: bounds on x alone, constant bounds on
 /// u, and bounds `u ≤ p + r·x` (upper) or `u ≥ p + r·x` (lower).
@@ -141,7 +141,9 @@ impl Polygon {
         (lo <= hi).then_some((lo, hi))
     }
 
-    /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)).
+    /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)); the
+    /// planner computes the same without building the polygon (`TimeOptimal::u_range_at`).
+    #[cfg(test)]
     pub(crate) fn contains_x(&self, x: f64) -> bool {
         let (lo, hi) = self.u_range(x);
         x >= self.x_lo && x <= self.x_hi && lo <= hi
@@ -149,6 +151,7 @@ impl Polygon {
 
     /// The largest u at the given x (`+∞` when nothing bounds it from above) and the smallest
     /// (`−∞` likewise).
+    #[cfg(test)]
     pub(crate) fn u_range(&self, x: f64) -> (f64, f64) {
         let hi = self.uppers.iter().fold(self.u_hi, |hi, &(p, r)| hi.min(p + r * x));
         let lo = self.lowers.iter().fold(self.u_lo, |lo, &(p, r)| lo.max(p + r * x));

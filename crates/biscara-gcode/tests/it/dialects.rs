@@ -212,13 +212,13 @@ fn auto_without_evidence_is_linuxcnc_and_grbl_when_the_end_is_missing() {
 #[test]
 fn auto_reads_ahead_64_kib_at_most() {
     let mut program = "G0 X1\n".repeat(20_000);
-    program.push_str("M104 S200\nM2\n");
+    program.push_str("M204 S200\nM2\n");
     let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
     interpreter.next();
-    // The M104 lies beyond the look-ahead: LinuxCNC, which then refuses it.
+    // The M204 lies beyond the look-ahead: LinuxCNC, which then refuses it.
     assert_eq!(interpreter.dialect(), Dialect::Linuxcnc);
     let err = interpreter.find_map(Result::err).expect("refused");
-    assert!(err.to_string().contains("Unknown m code used: M104"), "{err}");
+    assert!(err.to_string().contains("M-code greater than 199: M204"), "{err}");
 }
 
 #[test]

@@ -89,10 +89,13 @@ fn errors_point_at_the_word() {
     let err = error("G0 X1\n  G0 Z2 A3\nM2\n");
     assert_eq!(err.to_string(), "2:9: A axis word: this robot has the axes X Y Z C only");
     assert!(matches!(err, GcodeError::ForeignAxis { letter: 'A', .. }));
-    let err = error("G0 X1\nG83 X1 Z-1 R1 Q1 F10\nM2\n");
-    assert_eq!(err.to_string(), "2:1: G83 is not supported yet (canned cycle)");
-    let err = error("o10 if [1]\nM2\n");
-    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+    let err = error("G0 X1\nG83 X1 Z-1 R1 F10\nM2\n");
+    assert_eq!(err.to_string(), "2:1: Q word missing with g83");
+    let err = error("o10 if [1]\nG0 X1\no10 endif\no10 if [1]\no10 endif\nM2\n");
+    assert_eq!(
+        err.to_string(),
+        "4:1: 4: duplicate O-word label - already defined in line 1: 'o10 if [1]'"
+    );
 }
 
 /// The value of expression `expression`, read back as the X of a rapid.
@@ -151,4 +154,128 @@ fn assignments_take_effect_after_the_line() {
     // LinuxCNC creates #<a> (= 0) when it reads the assignment: the second assignment reads 0,
     // and Y#<a> on the same line reads 0 too.
     assert_eq!(ys[2..], [0.0, 1.0][..]);
+}
+
+/// The blend tolerance each move carries, for `program` interpreted with `config`.
+#[track_caller]
+fn blends(program: &str, config: &Config) -> Vec<(usize, Option<f64>)> {
+    interpret(program.as_bytes(), config)
+        .map(|result| result.map(|motion| (motion.line, motion.blend)))
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|err| panic!("{err}"))
+}
+
+#[test]
+fn moves_carry_the_path_control_mode() {
+    let program = "G1 X1 F100\nG64 P0.05\nG1 X2\nG0 X3\nG2 X4 I0.5\nG4 P1\nG64\nG1 X5\n\
+                   G64 P-1\nG1 X6\nG61\nG1 X7\nG64 P0.1 Q0\nG1 X8\nG61.1\nG1 X9\nM2\n";
+    let got = blends(program, &Config::default());
+    let expected = [
+        (1, None),
+        (3, Some(0.05)),
+        (4, Some(0.05)),
+        (5, Some(0.05)),
+        // A dwell is not a move and carries none.
+        (6, None),
+        (8, Some(0.0)),
+        (10, Some(0.0)),
+        (12, None),
+        (14, Some(0.1)),
+        (16, None),
+        (17, None),
+    ];
+    assert_eq!(got, expected);
+    // Inches: P is in the program's units, like every length.
+    let inches = blends("G20 G64 P0.01\nG1 X1 F10\nM2\n", &Config::default());
+    assert!((inches[0].1.unwrap() - 0.254).abs() < 1e-12, "{inches:?}");
+}
+
+#[test]
+fn the_configured_path_control_mode_holds_until_the_program_says_one() {
+    let config = Config { blend: Some(0.02), ..Config::default() };
+    let got = blends("G1 X1 F100\nG61\nG1 X2\nM2\n", &config);
+    assert_eq!(got, [(1, Some(0.02)), (3, None), (4, None)]);
+}
+
+#[test]
+fn naive_cam_merging_is_refused_where_it_is_asked_for() {
+    let err = error("G1 X1 F100\nG64 P0.05 Q0.06\nG1 X2\n");
+    assert_eq!(
+        err.to_string(),
+        "2:1: G64 Q above P is not supported yet (naive-CAM merging of collinear moves; a Q up \
+         to P is accepted)"
+    );
+    // What CAM post-processors write (Q = P), or less, is held by the blends within P.
+    let config = Config::default();
+    assert_eq!(blends("G64 P0.05 Q0.05\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+    assert_eq!(blends("G64 P0.05 Q0.01\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+}
+
+/// The XY end of a move (of any kind with one).
+fn xy(kind: &MotionKind) -> [f64; 2] {
+    let end = kind.end().unwrap_or_else(|| panic!("no end: {kind:?}"));
+    [end[0], end[1]]
+}
+
+#[track_caller]
+fn assert_near(got: [f64; 2], want: [f64; 2]) {
+    assert!(
+        (got[0] - want[0]).abs() < 1e-9 && (got[1] - want[1]).abs() < 1e-9,
+        "{got:?} != {want:?}"
+    );
+}
+
+#[test]
+fn cutter_compensation_offsets_the_path_and_rounds_convex_corners() {
+    // A 20 mm square cut on its outside with a 4 mm tool on the left of the path (clockwise):
+    // entry perpendicular to the first side, an arc about each corner, exit back to the line.
+    let program = "G21 G90 F100 G0 X0 Y0\nG41.1 D4\nG1 X0 Y20\nG1 X20\nG1 Y0\nG40 G1 X0 Y0\nM2\n";
+    let got = motions(&program.replace("G0 X0 Y0", "G0 X0 Y-10"), [0.0; 4]);
+    let kinds: Vec<&MotionKind> = got.iter().map(|(_, kind)| kind).collect();
+    // The entry: to one radius left of (0, 20) seen from (0, -10).
+    assert_near(xy(kinds[1]), [-2.0, 20.0]);
+    // Round the corner (0, 20) clockwise to one radius above it.
+    let MotionKind::Arc { center, clockwise: true, .. } = *kinds[2] else { panic!("{kinds:?}") };
+    assert_near(center, [0.0, 20.0]);
+    assert_near(xy(kinds[2]), [0.0, 22.0]);
+    assert_near(xy(kinds[3]), [20.0, 22.0]);
+    assert_near(xy(kinds[4]), [22.0, 20.0]);
+    assert_near(xy(kinds[5]), [22.0, 0.0]);
+    // G40: the exit move goes to the programmed point itself.
+    assert_near(xy(kinds[6]), [0.0, 0.0]);
+    // Each held move carries its own line.
+    assert_eq!(got[3].0, 4);
+    assert_eq!(got[5].0, 5);
+}
+
+#[test]
+fn cutter_compensation_shortens_moves_into_concave_corners() {
+    // A tool on the right turning right: the first move stops one radius before the wall.
+    let start = "G21 G90 F100 G0 X0 Y0\nG42.1 D2\nG1 X10\n";
+    let got = motions(&format!("{start}G1 Y-10\nG40 G1 X0 Y0\nM2\n"), [0.0; 4]);
+    assert_near(xy(&got[1].1), [9.0, -1.0]);
+    assert_near(xy(&got[2].1), [9.0, -10.0]);
+    // Turning left is convex for it: to the corner's side, round it, on.
+    let got = motions(&format!("{start}G1 Y10\nG40 G1 X0 Y0\nM2\n"), [0.0; 4]);
+    assert_near(xy(&got[1].1), [10.0, -1.0]);
+    assert!(matches!(got[2].1, MotionKind::Arc { clockwise: false, .. }), "{got:?}");
+    assert_near(xy(&got[2].1), [11.0, 0.0]);
+    assert_near(xy(&got[3].1), [11.0, 10.0]);
+}
+
+#[test]
+fn cutter_compensation_errors_name_the_block() {
+    let err = error("G21 F100\nG41.1 D4\nG1 X10\nG1 X12 Y-0.5\nG1 X13 Y5\nM2\n");
+    assert_eq!(
+        err.to_string(),
+        "5:1: Straight feed in concave corner cannot be reached by the tool without gouging"
+    );
+    let err = error("G21 F100\nG41.1 D4\nG1 X10\nG92 X0\nM2\n");
+    assert_eq!(err.to_string(), "4:1: Cannot change axis offsets with cutter radius comp");
+    let err = error("G21 F100\nG41 D1.5\nM2\n");
+    assert_eq!(err.to_string(), "2:5: G41 requires D word to be a whole number");
+    let err = error("G21 F100\n  G42.1\nM2\n");
+    assert_eq!(err.to_string(), "2:3: G42.1 with no D word");
+    let err = error("G21 F100\nG41.1 D2\nG1 X10\nG40\nG3 X0 R5\nM2\n");
+    assert!(err.to_string().starts_with("5:1: The move just after exiting"), "{err}");
 }

@@ -2,6 +2,8 @@
 
 mod dialects;
 mod features;
+mod memory;
 mod no_panic;
+mod owords;
 mod strategies;
 mod streaming;

@@ -3,8 +3,8 @@
 //! The workspace forbids `unsafe`, so no counting global allocator: instead a generated
 //! 5-million-line program is fed through a counting reader and (1) every motion is yielded
 //! before the reader has been asked for more than the line it comes from plus one buffer, and
-//! (2) the resident memory of this test process (`VmRSS` in `/proc/self/status`, sampled every
-//! 100,000 lines) stays within a few MiB of where it started — a program that collected its
+//! (2) the resident memory of a process running only this test (`VmRSS`, sampled every
+//! 100,000 lines; `memory.rs`) stays within a few MiB of where it started — a program that collected its
 //! input or its motions would grow by hundreds of MiB.
 
 use std::cell::Cell;
@@ -14,6 +14,8 @@ use std::rc::Rc;
 use biscara_gcode::{Config, interpret};
 use biscara_motion::MotionKind;
 
+use crate::memory::{in_a_process_of_its_own, resident_kib};
+
 /// A generated program of `lines` blocks of mixed moves, produced as it is read.
 struct Generated {
     lines: usize,
@@ -22,6 +24,8 @@ struct Generated {
     offset: usize,
     /// Bytes handed out so far (shared with the test).
     consumed: Rc<Cell<usize>>,
+    /// A square profile under cutter compensation instead of mixed moves.
+    compensated: bool,
 }
 
 impl Generated {
@@ -33,7 +37,15 @@ impl Generated {
             line: Vec::with_capacity(64),
             offset: 0,
             consumed: Rc::clone(&consumed),
+            compensated: false,
         };
+        (generated, consumed)
+    }
+
+    /// `lines` blocks going round a 20 mm square under G41.1 (a concave corner at each).
+    fn compensated(lines: usize) -> (Generated, Rc<Cell<usize>>) {
+        let (mut generated, consumed) = Generated::new(lines);
+        generated.compensated = true;
         (generated, consumed)
     }
 
@@ -44,9 +56,16 @@ impl Generated {
         let n = self.next;
         self.next += 1;
         let _ = match n {
+            0 if self.compensated => writeln!(self.line, "G21 G90 F1000 G41.1 D2"),
             0 => writeln!(self.line, "G21 G90 F1000"),
             n if n == self.lines + 1 => writeln!(self.line, "M2"),
             n if n > self.lines + 1 => return false,
+            n if self.compensated => match n % 4 {
+                1 => writeln!(self.line, "G1 X20 Y0"),
+                2 => writeln!(self.line, "G1 X20 Y20"),
+                3 => writeln!(self.line, "G1 X0 Y20"),
+                _ => writeln!(self.line, "G1 X0 Y0"),
+            },
             n => match n % 4 {
                 0 => writeln!(self.line, "G1 X{}.5 Y{}.25", n % 100, (n * 7) % 100),
                 1 => writeln!(self.line, "G2 I5 J0"),
@@ -74,15 +93,11 @@ impl Read for Generated {
 /// The longest generated line, rounded up.
 const LINE_BYTES: usize = 40;
 
-/// Resident memory of this process in KiB (Linux), if known.
-fn resident_kib() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|line| line.starts_with("VmRSS:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
 #[test]
 fn a_five_million_line_program_streams_in_flat_memory() {
+    if !in_a_process_of_its_own("streaming::a_five_million_line_program_streams_in_flat_memory") {
+        return;
+    }
     const LINES: usize = 5_000_000;
     const BUFFER: usize = 8 * 1024;
     let config = Config::default();
@@ -133,4 +148,39 @@ fn each_motion_comes_before_more_than_its_line_is_read() {
         );
     }
     assert_eq!(count, 20_001);
+}
+
+#[test]
+fn cutter_compensation_holds_back_one_motion_in_flat_memory() {
+    // Each compensated move waits for the next block (its corner), no longer: when the motion
+    // of line k is yielded, at most lines 1..=k+1 and one buffer have been read.
+    const LINES: usize = 1_000_000;
+    const BUFFER: usize = 64;
+    let (generated, consumed) = Generated::compensated(LINES);
+    let config = Config::default();
+    let start = resident_kib();
+    let mut peak = start.unwrap_or(0);
+    let mut count = 0usize;
+    for motion in interpret(BufReader::with_capacity(BUFFER, generated), &config) {
+        let motion = motion.expect("the compensated square is valid");
+        count += 1;
+        assert!(
+            consumed.get() <= (motion.line + 1) * LINE_BYTES + BUFFER,
+            "line {}: {} bytes read already",
+            motion.line,
+            consumed.get()
+        );
+        if count.is_multiple_of(100_000) {
+            peak = peak.max(resident_kib().unwrap_or(0));
+        }
+        if let MotionKind::Linear { end, .. } = motion.kind {
+            // Inside the square, one radius from its sides.
+            assert!(end[0] >= 0.999 && end[0] <= 19.001 && end[1] >= -0.001, "{end:?}");
+        }
+    }
+    assert_eq!(count, LINES + 1, "one motion per move line, and the end");
+    if let Some(start) = start {
+        let growth = peak.saturating_sub(start);
+        assert!(growth < 16 * 1024, "resident memory grew by {growth} KiB over {LINES} lines");
+    }
 }

@@ -154,6 +154,7 @@ fn arcs_follow_the_circle() {
                 feed: feed(1200.0),
             },
             extrude: None,
+            blend: None,
         },
     ];
     let (samples, _) = run(&motions, config(Profile::Trapezoid, 0.001));

@@ -125,7 +125,8 @@ fn fit_refuses_a_source_it_cannot_read_twice_and_a_path_csv() {
     let model = RobotModel::default();
     let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
     let stdin = Once(TextSource::new("-", PROGRAM));
-    let err = pipeline(&model, config).samples(&stdin, ProgramKind::Gcode, |_| {}).err().unwrap();
+    let err =
+        pipeline(&model, config.clone()).samples(&stdin, ProgramKind::Gcode, |_| {}).err().unwrap();
     assert!(matches!(err, PipelineError::Unsupported { .. }), "{err}");
     assert!(err.to_string().contains("not standard input"), "{err}");
     let csv = TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n");
@@ -204,4 +205,39 @@ fn a_robot_file_with_a_bad_tool_is_refused_naming_the_key() {
     assert!(err.contains("tool.kind") && err.contains("torch"), "{err}");
     let err = RobotModel::from_json(r#"{"tool":{"max_power":0}}"#).unwrap_err().to_string();
     assert!(err.contains("tool.max_power"), "{err}");
+}
+
+#[test]
+fn tool_offsets_come_from_the_table_or_a_note_says_there_is_none() {
+    let model = RobotModel::default();
+    let program = "G21 G90\nT1 M6\nG43 H1\nG0 X0 Y400 Z10\nM2\n";
+    let source = TextSource::new("tools.ngc", program);
+    let run = |config: SamplingConfig| {
+        let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+        let heard = std::rc::Rc::clone(&notes);
+        let motions: Vec<_> = pipeline(&model, config)
+            .motions(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        let end = motions.iter().find_map(|motion| motion.kind.end()).unwrap();
+        let notes = notes.borrow().clone();
+        (end, notes)
+    };
+    let (end, notes) = run(SamplingConfig::default());
+    assert_eq!(end[2], 10.0);
+    assert!(
+        notes
+            .iter()
+            .any(|note| matches!(note, Note::ToolsWithoutTable { file } if file == "tools.ngc")),
+        "{notes:?}"
+    );
+    let table = biscara_gcode::ToolTable::parse("T1 P1 Z25 D6\n".as_bytes(), "t.tbl").unwrap();
+    let config = SamplingConfig {
+        tool_table: Some(std::sync::Arc::new(table)),
+        ..SamplingConfig::default()
+    };
+    let (end, notes) = run(config);
+    assert_eq!(end[2], 35.0, "the machine holds the tool's tip at Z10");
+    assert!(!notes.iter().any(|note| matches!(note, Note::ToolsWithoutTable { .. })), "{notes:?}");
 }

@@ -296,7 +296,7 @@ fn every_real_program_is_placed_in_the_rectangle_or_says_why_not() {
         };
         let text = std::fs::read_to_string(folder.join(name)).unwrap();
         let source = TextSource::new(name, text);
-        let (motions, notes) = run(&model, config, &source);
+        let (motions, notes) = run(&model, config.clone(), &source);
         let found = match &motions {
             Err(PipelineError::Fit { .. }) => Fits::TooLarge,
             Err(_) => Fits::Unread,

@@ -1,4 +1,5 @@
 //! Integration tests of the virtual robot.
 
 mod checker;
+mod optimal;
 mod workspace;

@@ -1,0 +1,222 @@
+//! The streaming blender.
+
+use std::collections::VecDeque;
+
+use biscara_motion::{Motion, MotionKind};
+
+use crate::piece::{Geometry, Piece, Speed, dot, norm, sub, xyz};
+
+/// The tolerance of G64 with no P (or `P0`, LinuxCNC's "no tolerance given"), mm: the blend is
+/// otherwise bounded only by the half-move rule, which on long moves would cut corners by
+/// centimetres.
+pub const NO_TOLERANCE_CAP_MM: f64 = 1.0;
+
+/// The sharpest turn blended, degrees: a move that comes back on itself stops.
+pub const MAX_TURN_DEG: f64 = 179.0;
+
+/// The shortest blend made, mm along each move: a corner that can only get less is an exact stop.
+pub const MIN_TRIM_MM: f64 = 1e-4;
+
+/// Turns below this, radians, are straight on: no fillet needed.
+const COLLINEAR_RAD: f64 = 1e-9;
+
+/// What the [`Blender`] yields.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Blended {
+    /// A piece of a blended chain.
+    Piece(Piece),
+    /// A motion left as it is: an event, an arc, a move under exact stop or with no XYZ length.
+    Motion(Motion),
+}
+
+/// A straight move under G64 waiting for the next motion to know how its end is blended.
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    line: usize,
+    /// Programmed start and end.
+    from: [f64; 4],
+    to: [f64; 4],
+    /// Where the piece starts: `from`, or past the fillet that cut its start.
+    start: [f64; 4],
+    speed: Speed,
+    tolerance: f64,
+}
+
+impl Pending {
+    fn length(&self) -> f64 {
+        norm(sub(xyz(self.to), xyz(self.from)))
+    }
+
+    fn direction(&self) -> [f64; 3] {
+        let d = sub(xyz(self.to), xyz(self.from));
+        let n = norm(d);
+        [d[0] / n, d[1] / n, d[2] / n]
+    }
+
+    /// The programmed pose `distance` mm from the start (C in proportion).
+    fn at(&self, distance: f64) -> [f64; 4] {
+        let u = distance / self.length();
+        std::array::from_fn(|k| self.from[k] + u * (self.to[k] - self.from[k]))
+    }
+
+    fn piece(&self, end: [f64; 4], ends_chain: bool) -> Piece {
+        Piece {
+            line: self.line,
+            geometry: Geometry::Line { start: self.start, end },
+            speed: self.speed,
+            ends_chain,
+        }
+    }
+}
+
+/// Joins the straight moves programmed under G64 by fillets; see the crate documentation.
+///
+/// Holds one motion of look-ahead and at most three items to yield: memory does not grow with
+/// the program.
+#[derive(Debug)]
+pub struct Blender<I> {
+    motions: I,
+    position: [f64; 4],
+    pending: Option<Pending>,
+    out: VecDeque<Blended>,
+    done: bool,
+}
+
+impl<I, E> Blender<I>
+where
+    I: Iterator<Item = Result<Motion, E>>,
+{
+    /// Blends `motions`, the first of which starts at `start` (`[x, y, z, c]`, mm and degrees).
+    pub fn new(motions: I, start: [f64; 4]) -> Blender<I> {
+        Blender { motions, position: start, pending: None, out: VecDeque::new(), done: false }
+    }
+
+    fn flush(&mut self) {
+        if let Some(pending) = self.pending.take() {
+            self.out.push_back(Blended::Piece(pending.piece(pending.to, true)));
+        }
+    }
+
+    fn take(&mut self, motion: Motion) {
+        let from = self.position;
+        if let Some(end) = motion.kind.end() {
+            self.position = end;
+        }
+        let (to, speed) = match motion.kind {
+            MotionKind::Rapid { end } => (end, Speed::Rapid),
+            MotionKind::Linear { end, feed } => (end, Speed::Feed(feed)),
+            _ => {
+                self.flush();
+                self.out.push_back(Blended::Motion(motion));
+                return;
+            }
+        };
+        let Some(blend) = motion.blend else {
+            self.flush();
+            self.out.push_back(Blended::Motion(motion));
+            return;
+        };
+        if norm(sub(xyz(to), xyz(from))) <= 1e-9 {
+            self.flush();
+            self.out.push_back(Blended::Motion(motion));
+            return;
+        }
+        let tolerance = if blend > 0.0 { blend } else { NO_TOLERANCE_CAP_MM };
+        let mut next = Pending { line: motion.line, from, to, start: from, speed, tolerance };
+        if let Some(previous) = self.pending.take() {
+            match corner(&previous, &next) {
+                Corner::Straight => {
+                    self.out.push_back(Blended::Piece(previous.piece(previous.to, false)));
+                }
+                Corner::Stop => {
+                    self.out.push_back(Blended::Piece(previous.piece(previous.to, true)));
+                }
+                Corner::Fillet { trim, fillet } => {
+                    let cut = previous.at(previous.length() - trim);
+                    if norm(sub(xyz(cut), xyz(previous.start))) > 1e-9 {
+                        self.out.push_back(Blended::Piece(previous.piece(cut, false)));
+                    }
+                    self.out.push_back(Blended::Piece(fillet));
+                    next.start = next.at(trim);
+                }
+            }
+        }
+        self.pending = Some(next);
+    }
+}
+
+enum Corner {
+    /// The moves go straight on: no fillet, no stop.
+    Straight,
+    /// No blend fits: an exact stop.
+    Stop,
+    /// Each move is cut `trim` mm from the corner and joined by `fillet`.
+    Fillet { trim: f64, fillet: Piece },
+}
+
+fn corner(a: &Pending, b: &Pending) -> Corner {
+    let ua = a.direction();
+    let ub = b.direction();
+    let cos = dot(ua, ub).clamp(-1.0, 1.0);
+    let turn = cos.acos();
+    if turn < COLLINEAR_RAD {
+        return Corner::Straight;
+    }
+    if turn > MAX_TURN_DEG.to_radians() {
+        return Corner::Stop;
+    }
+    let half = turn / 2.0;
+    let tolerance = a.tolerance.min(b.tolerance);
+    // Deviation of the fillet's midpoint from the corner: r (1/cos(θ/2) − 1) = r · 2 sin²(θ/4)
+    // / cos(θ/2), written without the cancellation of 1 − cos for small turns.
+    let quarter_sin = (turn / 4.0).sin();
+    let radius_for_tolerance = tolerance * half.cos() / (2.0 * quarter_sin * quarter_sin);
+    let trim = (radius_for_tolerance * half.tan()).min(a.length() / 2.0).min(b.length() / 2.0);
+    if trim < MIN_TRIM_MM {
+        return Corner::Stop;
+    }
+    let radius = trim / half.tan();
+    let start = a.at(a.length() - trim);
+    let end = b.at(trim);
+    // Towards the centre: the part of ub across ua.
+    let across: [f64; 3] = std::array::from_fn(|k| ub[k] - cos * ua[k]);
+    let across_norm = norm(across);
+    let inward: [f64; 3] = std::array::from_fn(|k| across[k] / across_norm);
+    let center = std::array::from_fn(|k| start[k] + radius * inward[k]);
+    let fillet = Piece {
+        line: a.line,
+        geometry: Geometry::Fillet { start, end, center, radius, tangent: ua, sweep: turn },
+        speed: a.speed.slower(b.speed),
+        ends_chain: false,
+    };
+    Corner::Fillet { trim, fillet }
+}
+
+impl<I, E> Iterator for Blender<I>
+where
+    I: Iterator<Item = Result<Motion, E>>,
+{
+    type Item = Result<Blended, E>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if let Some(item) = self.out.pop_front() {
+                return Some(Ok(item));
+            }
+            if self.done {
+                return None;
+            }
+            match self.motions.next() {
+                Some(Ok(motion)) => self.take(motion),
+                Some(Err(err)) => {
+                    self.done = true;
+                    return Some(Err(err));
+                }
+                None => {
+                    self.done = true;
+                    self.flush();
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! Corner blending under G64 P (SPEC §6): consecutive straight moves programmed under G64 are
+//! joined by circular fillets that stay within the tolerance P of the programmed corner, so that
+//! a timing law can run through the corner without stopping.
+//!
+//! The [`Blender`] reads motions (with one motion of look-ahead) and yields [`Blended`] items:
+//! the [`Piece`]s of a blended chain (trimmed straight moves and the fillets between them), or
+//! the motions it leaves alone (events, arcs, moves under exact stop), which it passes on
+//! unchanged. It knows nothing of kinematics, limits or time.
+//!
+//! # The blend
+//!
+//! A corner between two straight moves of XYZ length `la`, `lb` that turns by θ is cut by the
+//! circular arc tangent to both, of radius `r`, which starts and ends a distance
+//! `d = r · tan(θ/2)` from the corner; its midpoint lies `r · (1/cos(θ/2) − 1)` from the corner,
+//! the farthest the blended path gets from the programmed one. The radius is the largest with:
+//!
+//! - that deviation at most the tolerance P (G64 without P, or `P0`: at most
+//!   [`NO_TOLERANCE_CAP_MM`]);
+//! - `d` at most half of either move, so that the blends at the two ends of a move never
+//!   overlap. A move too short for the blend the tolerance allows gets the smaller blend that
+//!   fits (the deviation is then smaller than P), as LinuxCNC shrinks its blends; one that turns
+//!   by more than [`MAX_TURN_DEG`] or whose blend would be shorter than [`MIN_TRIM_MM`] is an
+//!   exact stop.
+//!
+//! A corner is blended when both moves carry a tolerance ([`Motion::blend`](biscara_motion::Motion::blend)); the smaller one
+//! holds. Rapid and feed moves blend alike; a fillet between them is limited to the slower.
+//! The C axis moves in proportion to the length along each piece. Any event, arc, move with no
+//! XYZ length or move under exact stop ends the chain: the robot stops there.
+//!
+//! ```
+//! use biscara_blend::{Blended, Blender};
+//! use biscara_motion::{Feed, Motion, MotionKind};
+//!
+//! let feed = Feed { mm_per_min: 6000.0, inverse_time: false };
+//! let corner = |line, end| Motion {
+//!     blend: Some(0.05),
+//!     ..Motion::new(line, MotionKind::Linear { end, feed })
+//! };
+//! let motions = [corner(1, [10.0, 0.0, 0.0, 0.0]), corner(2, [10.0, 10.0, 0.0, 0.0])];
+//! let items: Vec<Blended> =
+//!     Blender::new(motions.into_iter().map(Ok::<_, ()>), [0.0; 4]).collect::<Result<_, _>>()?;
+//! // A trimmed line, the fillet, the rest of the second line.
+//! assert_eq!(items.len(), 3);
+//! let Blended::Piece(fillet) = &items[1] else { panic!() };
+//! assert!(fillet.radius().is_some());
+//! # Ok::<(), ()>(())
+//! ```
+
+#![warn(missing_docs)]
+
+mod blender;
+mod piece;
+
+pub use blender::{Blended, Blender, MAX_TURN_DEG, MIN_TRIM_MM, NO_TOLERANCE_CAP_MM};
+pub use piece::{Geometry, Piece, Speed};
