@@ -166,6 +166,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let (before, ours) = ours_with_partial(path);
     match (ours, theirs) {
         (Ok(ours), Outcome::Motions(theirs)) => {
+            let theirs = rs274::expand_splines(&ours, &theirs);
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
@@ -173,6 +174,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
         (Err(err), _) if stricter(&err) => Ok(Verdict::Stricter),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
         (Err(err), Outcome::Error { message, before: theirs }) => {
+            let theirs = rs274::expand_splines(&before, &theirs);
             // The same motions up to the block that fails (rs274 may have emitted part of it),
             // and LinuxCNC's message within ours.
             let common = before.len().min(theirs.len());
@@ -192,6 +194,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
             Ok(Verdict::BothRefuse)
         }
         (Ok(ours), Outcome::Error { message, before: theirs }) if user_m_code(&message) => {
+            let theirs = rs274::expand_splines(&ours, &theirs);
             let common = ours.len().min(theirs.len());
             compare(&ours[..common], &theirs, uses_inches(path))?;
             Ok(Verdict::UserMCode)
@@ -271,6 +274,7 @@ fn hand_written_cases_conform() {
         } else {
             match (ours, theirs) {
                 (Ok(ours), Outcome::Motions(theirs)) => {
+                    let theirs = rs274::expand_splines(&ours, &theirs);
                     compare(&ours, &theirs, uses_inches(case)).err()
                 }
                 (ours, theirs) => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),

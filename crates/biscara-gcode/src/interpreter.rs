@@ -30,6 +30,8 @@ mod cutter_comp;
 mod hooks;
 /// M70–M73: the modal state saved and restored.
 mod modal_state;
+/// G5 and G5.1 splines, run as straight moves.
+mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -523,6 +525,13 @@ impl<R: BufRead> Interpreter<R> {
         let motion_code = g[1];
         let group0 = g[0];
         let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        // rs274 checks a spline's axis words first of all.
+        if let Some(code) = motion_code
+            && spline::is_spline(code.code)
+            && !axis_words
+        {
+            return Err(self.code_fault(code, "All axes missing with motion code"));
+        }
         let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
@@ -786,7 +795,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 24. motion
         let previous_motion = self.state.motion;
-        if let Some(code) = motion_code {
+        // A spline leaves the modal motion as it was.
+        if let Some(code) = motion_code.filter(|code| !spline::is_spline(code.code)) {
             self.state.motion = if code.code == 800 { None } else { Some(code.code) };
             if !canned::is_cycle(code.code) {
                 self.state.cycle.initial_level = None;
@@ -797,6 +807,7 @@ impl<R: BufRead> Interpreter<R> {
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
                 20 | 30 => self.arc(motion == 20)?,
+                50 | 51 => self.spline(motion)?,
                 _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }
@@ -919,6 +930,8 @@ impl<R: BufRead> Interpreter<R> {
         let block = &self.block;
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
+        let g5 = motion == Some(50);
+        let spline = g5 || motion == Some(51);
         let g10 = group0 == Some(100);
         let comp_on = block.g[7].is_some_and(|code| code.code != 400);
         let cycle = motion.is_some_and(canned::is_cycle);
@@ -940,10 +953,14 @@ impl<R: BufRead> Interpreter<R> {
             ),
             (
                 b'i',
-                arc || g10 || g87,
+                arc || spline || g10 || g87,
                 "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
             ),
-            (b'j', arc || g10 || g87, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
+            (
+                b'j',
+                arc || spline || g10 || g87,
+                "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it",
+            ),
             (b'k', arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
             (
                 b'l',
@@ -976,7 +993,8 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
             let user_m = block.m[10].is_some();
-            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
+            let used =
+                arc || g5 || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -996,7 +1014,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
+            if !g5 && !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
