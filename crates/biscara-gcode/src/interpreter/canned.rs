@@ -57,7 +57,9 @@ fn plane_axes(plane: Plane) -> [usize; 3] {
 
 /// Whether `motion` (ten times the G number) is a canned cycle.
 pub(super) fn is_cycle(motion: u16) -> bool {
-    matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
+    // The range first: G0–G3 leave after one comparison (this runs on every motion line).
+    motion >= 730
+        && matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
 }
 
 impl<R: BufRead> Interpreter<R> {
