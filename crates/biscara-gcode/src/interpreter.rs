@@ -629,7 +629,11 @@ impl<R: BufRead> Interpreter<R> {
                 self.tool_event(self.state.spindle);
             }
         }
-        self.select_tool()?;
+        // (Calls into the tier-3 modules only when the block has their words: every line
+        // passes here.)
+        if self.block.word(b't').is_some() {
+            self.select_tool()?;
+        }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
         // tool is in the spindle.
         if let Some(code) = self.block.m[6] {
@@ -695,7 +699,9 @@ impl<R: BufRead> Interpreter<R> {
             self.set_units(code.code == 210);
         }
         // 17. cutter radius compensation
-        self.set_cutter_comp()?;
+        if self.block.g[7].is_some() {
+            self.set_cutter_comp()?;
+        }
         // 18. tool length offset
         if let Some(code) = self.block.g[8] {
             self.tool_length_offset(code)?;
