@@ -458,7 +458,14 @@ impl<'a> Reader<'a> {
         let Some((group, _)) = g_group(code) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
-        if block.g[group].is_some() {
+        if let Some(before) = block.g[group] {
+            // rs274's `read_g` lets G80 share a block with another motion code, which wins.
+            if group == 1 && (before.code == 800 || code == 800) {
+                if before.code == 800 {
+                    block.g[group] = Some(Code { code, at: start, end });
+                }
+                return Ok(());
+            }
             return Err(self.syntax(start, end, "Two g codes used from same modal group"));
         }
         block.g[group] = Some(Code { code, at: start, end });
