@@ -62,7 +62,7 @@ fn parse_time(text: &str) -> Result<f64, String> {
 }
 
 /// How strongly the tool works at a sample, 0 … 1; `None` while it does not (SPEC §1.6).
-fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
+pub(crate) fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
     match tool {
         Tool::Laser if state.laser_power > 0.0 => Some(state.laser_power / max_power),
         Tool::Extruder if state.move_extrude_mm > 0.0 => Some(1.0),
@@ -73,7 +73,7 @@ fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
 }
 
 /// The legend of the tool's work.
-fn process_label(tool: Tool) -> &'static str {
+pub(crate) fn process_label(tool: Tool) -> &'static str {
     match tool {
         Tool::Laser => "laser: burnt trace (darker: more power)",
         Tool::Extruder => "extruder: deposited track",
