@@ -122,6 +122,17 @@ fn plot_draws_the_burnt_trace_darker_for_more_power_apart_from_travel() {
     let part = "#937856";
     assert!(svg.to_uppercase().contains(full), "no stroke at full power");
     assert!(svg.to_uppercase().contains(part), "no stroke at 40 % power");
+    // --zoom draws the frame's region, 60 mm wide, not the workspace: ticks every 10 mm from
+    // x = −30, y up to 310, none at the workspace's 400 mm; no robot unless --at asks.
+    let ticks = |svg: &str| -> Vec<String> {
+        svg.split("<text").filter_map(|t| t.lines().nth(1).map(str::to_owned)).collect()
+    };
+    biscara(&dir, &[&args[..], &["--zoom"]].concat()).success();
+    let zoomed = ticks(&std::fs::read_to_string(dir.join("laser.svg")).expect("svg"));
+    for tick in ["-30.0", "0.0", "30.0", "250.0", "310.0"] {
+        assert!(zoomed.iter().any(|t| t == tick), "{tick} in {zoomed:?}");
+    }
+    assert!(!zoomed.iter().any(|t| t == "400.0" || t.starts_with("t = ")), "{zoomed:?}");
     // The gripper draws no process.
     let args = [&args[..], &["--tool", "gripper"]].concat();
     biscara(&dir, &args).success();

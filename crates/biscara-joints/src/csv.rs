@@ -277,6 +277,29 @@ mod tests {
     }
 
     #[test]
+    fn a_tool_column_is_read_past_and_checked() {
+        let format =
+            JointCsvFormat { angle_unit: AngleUnit::Degrees, derivatives: true, precision: 6 };
+        let mut writer = JointCsvWriter::with_columns(Vec::new(), format, &["pen_down"]).unwrap();
+        writer.write_with(&sample(0.0, [10.0, -20.0, 30.0, 40.0]), &[1.0]).unwrap();
+        let text = writer.finish().unwrap();
+        assert!(String::from_utf8_lossy(&text).starts_with("t_s,theta1_deg,"));
+        let rows = read(&text).unwrap();
+        assert_eq!(rows.len(), 1);
+        assert!((rows[0].joints.d4 - 40.0).abs() < 1e-9);
+        let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm";
+        let cases = [
+            (format!("{header},laser_power\n0,0,0,0,0\n"), "2:10: expected 6 fields, found 5"),
+            (format!("{header},power\n0,0,0,0,0,1\n"), "1:1: expected a joint CSV header"),
+            (format!("{header},extruded_mm\n0,0,0,0,0,x\n"), "2:11: `x` is not a"),
+        ];
+        for (input, expected) in cases {
+            let message = read(input.as_bytes()).unwrap_err();
+            assert!(message.starts_with(expected), "{message:?} should start with {expected:?}");
+        }
+    }
+
+    #[test]
     fn bad_input_names_line_and_column() {
         let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n";
         let long = format!("{header}0,{}\n", "1".repeat(100_000)).into_bytes();
