@@ -23,8 +23,9 @@ use super::plot::{process_label, work};
 /// gripper — with the tool's trace, the scene's boxes, and with --program the programmed path,
 /// the pick (M3) and place (M4) events and the program line being executed. For a laser, an
 /// extruder, a pen or a spindle (--tool, the robot file, or inferred from the program) it draws
-/// the work done so far apart from travel: the burnt trace (darker for more power), the
-/// deposited track layer by layer (the current layer brightest), the pen's strokes, the cuts. Play/pause, speed
+/// the work done so far apart from travel, also in a third view zoomed on the work: the burnt
+/// trace (darker for more power), the deposited track layer by layer (the current layer
+/// brightest), the pen's strokes, the cuts. Play/pause, speed
 /// and a time slider; the time, joint values, tool pose and program line are shown as it plays.
 /// The file needs no network and no other file: its data and JavaScript are inside. Opening it
 /// as `view.html#t=2.5` shows the robot paused at t = 2.5 s; without `#t=` it plays from the
