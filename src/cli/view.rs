@@ -119,7 +119,8 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         let (sample, state) = sample?;
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
         if tool != Tool::Gripper {
-            viewer.push_process_sample(sample.t, sample.pose, work(tool, &state, max_power));
+            let strength = work(tool, &state, max_power);
+            viewer.push_process_sample(sample.t, sample.pose, sample.line, strength);
         }
         end = sample.t;
     }

@@ -126,6 +126,8 @@ struct Process {
     pending: Option<ProcessPoint>,
     spacing: f64,
     capacity: usize,
+    /// The previous sample's program line.
+    line: Option<usize>,
     /// (time, strength; −1 when the tool stops working).
     changes: Vec<(f64, f64)>,
     max_changes: usize,
@@ -140,13 +142,16 @@ impl Process {
             pending: None,
             spacing: 0.5,
             capacity: capacity.max(4),
+            line: None,
             changes: Vec::new(),
             max_changes,
         }
     }
 
-    fn push(&mut self, t: f64, pose: [f64; 4], strength: Option<f64>) {
+    fn push(&mut self, t: f64, pose: [f64; 4], line: usize, strength: Option<f64>) {
         let at = [pose[0], pose[1], pose[2]];
+        // A corner: the previous sample ended a move; keep it.
+        let corner = self.line.replace(line).is_some_and(|previous| previous != line);
         let was = self.last.map(|point| point.strength);
         if was != strength && self.changes.len() < self.max_changes {
             self.changes.push((t, strength.unwrap_or(-1.0)));
@@ -157,7 +162,11 @@ impl Process {
         };
         let point = ProcessPoint { t, at, strength, start: false };
         match self.last {
-            Some(last) if last.strength == strength => {
+            Some(mut last) if last.strength == strength => {
+                if corner && let Some(pending) = self.pending {
+                    self.keep(pending);
+                    last = pending;
+                }
                 let far = (0..3).map(|k| (at[k] - last.at[k]).powi(2)).sum::<f64>().sqrt()
                     >= self.spacing;
                 if far {
@@ -301,11 +310,18 @@ impl Viewer {
     }
 
     /// Adds the tool's work at one sample of the program: time (s), pose `[x, y, z, c]` (mm,
-    /// degrees) and how strongly it works there, 0…1 (`None` while it does not: travel). The
-    /// page draws the work done so far, apart from travel: the burnt trace, the deposited track
-    /// layer by layer, the pen's strokes.
-    pub fn push_process_sample(&mut self, t: f64, pose: [f64; 4], strength: Option<f64>) {
-        self.process.push(t, pose, strength);
+    /// degrees), the program line it belongs to (the last sample of a line is kept: a corner)
+    /// and how strongly the tool works there, 0…1 (`None` while it does not: travel). The page
+    /// draws the work done so far, apart from travel: the burnt trace, the deposited track layer
+    /// by layer, the pen's strokes.
+    pub fn push_process_sample(
+        &mut self,
+        t: f64,
+        pose: [f64; 4],
+        line: usize,
+        strength: Option<f64>,
+    ) {
+        self.process.push(t, pose, line, strength);
     }
 
     /// The program lines the page refers to (those of the kept line changes), ascending.
@@ -547,11 +563,11 @@ mod tests {
         let mut process = Process::new(100, 10);
         // Burn along x from 0 to 10 mm (0.1 mm a sample), travel, burn at half power.
         for step in 0..=100 {
-            process.push(f64::from(step), [f64::from(step) * 0.1, 0.0, 0.0, 0.0], Some(1.0));
+            process.push(f64::from(step), [f64::from(step) * 0.1, 0.0, 0.0, 0.0], 1, Some(1.0));
         }
-        process.push(101.0, [20.0, 0.0, 0.0, 0.0], None);
+        process.push(101.0, [20.0, 0.0, 0.0, 0.0], 2, None);
         for step in 0..=10 {
-            process.push(200.0 + f64::from(step), [0.0, f64::from(step), 0.0, 0.0], Some(0.5));
+            process.push(200.0 + f64::from(step), [0.0, f64::from(step), 0.0, 0.0], 3, Some(0.5));
         }
         process.end_stroke();
         let starts: Vec<f64> = process.points.iter().filter(|p| p.start).map(|p| p.t).collect();
@@ -562,11 +578,21 @@ mod tests {
         assert_eq!(first.last().map(|p| p.at[0]), Some(10.0));
         assert!(process.points.iter().all(|p| p.at[0] <= 10.0), "travel is not work");
         assert_eq!(process.changes, [(0.0, 1.0), (101.0, -1.0), (200.0, 0.5)]);
+        // A corner is kept: the last sample of a line, however close to the last point.
+        let mut corner = Process::new(100, 10);
+        for step in 0..=34 {
+            let x = (f64::from(step) * 0.3).min(10.0);
+            corner.push(f64::from(step), [x, 0.0, 0.0, 0.0], 1, Some(1.0));
+        }
+        for step in 1..=10 {
+            corner.push(40.0 + f64::from(step), [10.0, f64::from(step), 0.0, 0.0], 2, Some(1.0));
+        }
+        assert!(corner.points.iter().any(|p| p.at == [10.0, 0.0, 0.0]), "{:?}", corner.points);
         // A long job: thinned to the capacity, both ends of every stroke kept.
         for step in 0..100_000 {
             let t = 1000.0 + f64::from(step);
             let strength = if step % 5000 < 4000 { Some(1.0) } else { None };
-            process.push(t, [f64::from(step) * 0.3, 5.0, 0.0, 0.0], strength);
+            process.push(t, [f64::from(step) * 0.3, 5.0, 0.0, 0.0], 4, strength);
         }
         assert!(process.points.len() <= 101, "{}", process.points.len());
         assert!(process.points.iter().any(|p| p.start && p.t > 90_000.0));
