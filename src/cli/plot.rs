@@ -47,6 +47,10 @@ pub(crate) struct PlotArgs {
     /// Boxes around the robot to draw (JSON, as for check).
     #[arg(long, value_name = "FILE")]
     scene: Option<PathBuf>,
+    /// Draw only the tool's work (or, for the gripper, the path without the travel from and
+    /// to the home pose) with a margin, instead of the whole workspace.
+    #[arg(long, conflicts_with = "joints")]
+    zoom: bool,
     /// Grid step of the workspace, millimetres.
     #[arg(long, value_name = "MM", default_value = "2")]
     step: f64,
@@ -62,7 +66,7 @@ fn parse_time(text: &str) -> Result<f64, String> {
 }
 
 /// How strongly the tool works at a sample, 0 … 1; `None` while it does not (SPEC §1.6).
-fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
+pub(crate) fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
     match tool {
         Tool::Laser if state.laser_power > 0.0 => Some(state.laser_power / max_power),
         Tool::Extruder if state.move_extrude_mm > 0.0 => Some(1.0),
@@ -73,7 +77,7 @@ fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
 }
 
 /// The legend of the tool's work.
-fn process_label(tool: Tool) -> &'static str {
+pub(crate) fn process_label(tool: Tool) -> &'static str {
     match tool {
         Tool::Laser => "laser: burnt trace (darker: more power)",
         Tool::Extruder => "extruder: deposited track",
@@ -84,11 +88,15 @@ fn process_label(tool: Tool) -> &'static str {
 }
 
 /// The tool's work as strokes, a point at least [`Process::SPACING_MM`] from the last (a
-/// picture's resolution), a new stroke where the strength changes.
+/// picture's resolution) and at every corner (the last sample of a move), a new stroke where
+/// the strength changes.
 #[derive(Default)]
 struct Process {
     strokes: Vec<ProcessStroke>,
+    /// The stroke's last point and strength.
     last: Option<([f64; 2], f64)>,
+    /// The previous sample's point and line.
+    previous: Option<([f64; 2], usize)>,
 }
 
 impl Process {
@@ -96,27 +104,72 @@ impl Process {
 
     fn push(&mut self, sample: &CartesianSample, strength: Option<f64>) {
         let point = [sample.pose[0], sample.pose[1]];
+        let previous = self.previous.replace((point, sample.line));
         let Some(strength) = strength else {
+            // The stroke ends at the last sample that worked.
+            if let (Some((from, was)), Some((end, _))) = (self.last, previous) {
+                self.stroke(from, end, was);
+            }
             self.last = None;
             return;
         };
         match self.last {
-            Some((from, was)) if was == strength => {
-                let far = (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM;
-                if far {
-                    self.strokes.push(ProcessStroke { from, to: point, strength });
-                    self.last = Some((point, strength));
+            Some((mut from, was)) if was == strength => {
+                if let Some((corner, line)) = previous
+                    && line != sample.line
+                {
+                    from = self.stroke(from, corner, strength);
+                }
+                if (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM {
+                    self.stroke(from, point, strength);
                 }
             }
             _ => self.last = Some((point, strength)),
         }
     }
+
+    /// Adds the stroke `from` → `to` unless it is empty; returns where the stroke now ends.
+    fn stroke(&mut self, from: [f64; 2], to: [f64; 2], strength: f64) -> [f64; 2] {
+        if from != to {
+            self.strokes.push(ProcessStroke { from, to, strength });
+            self.last = Some((to, strength));
+        }
+        to
+    }
+}
+
+/// The region of `--zoom`: the tool's work, else the path but its first and last points (the
+/// travel from and back to the home pose), with a margin of a tenth (at least 5 mm).
+fn zoom_region(strokes: &[ProcessStroke], path: &[[f64; 2]]) -> Option<((f64, f64), (f64, f64))> {
+    let points: Vec<[f64; 2]> = if strokes.is_empty() {
+        path.get(1..path.len().saturating_sub(1)).unwrap_or_default().to_vec()
+    } else {
+        strokes.iter().flat_map(|stroke| [stroke.from, stroke.to]).collect()
+    };
+    let mut min = [f64::INFINITY; 2];
+    let mut max = [f64::NEG_INFINITY; 2];
+    for point in &points {
+        for axis in 0..2 {
+            min[axis] = min[axis].min(point[axis]);
+            max[axis] = max[axis].max(point[axis]);
+        }
+    }
+    if !min[0].is_finite() {
+        return None;
+    }
+    let margin = (0.1 * (max[0] - min[0]).max(max[1] - min[1])).max(5.0);
+    Some(((min[0] - margin, max[0] + margin), (min[1] - margin, max[1] + margin)))
 }
 
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
     let (source, kind) = args.program.open()?;
-    let at = if args.at.is_empty() { vec![0.0] } else { args.at.clone() };
+    // Zoomed on the work, the robot is drawn only when asked for.
+    let at = match args.at.is_empty() {
+        true if args.zoom => Vec::new(),
+        true => vec![0.0],
+        false => args.at.clone(),
+    };
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
     let mut samples =
@@ -155,6 +208,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             process_label: process_label(tool),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
+            region: if args.zoom { zoom_region(&process.strokes, &trace.path) } else { None },
         };
         draw_top_view(&view, format).map_err(|err| anyhow!("{err}"))?
     };

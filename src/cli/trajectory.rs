@@ -87,6 +87,13 @@ pub(crate) struct JointsArgs {
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
     angle_unit: AngleUnitArg,
+    /// Add the tool's column after the joints, as `interpolate --events` does (SPEC §1.6):
+    /// `gripper`, `laser_power`, `spindle_rpm`, `extruded_mm` or `pen_down`.
+    #[arg(
+        long,
+        help = "Add the tool's column: gripper, laser_power, spindle_rpm, extruded_mm or pen_down"
+    )]
+    events: bool,
 }
 
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
@@ -138,7 +145,6 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config()?);
-    let mut samples = pipeline.joints(&source, kind, notes.sink())?;
     let format = JointCsvFormat {
         angle_unit: match args.angle_unit {
             AngleUnitArg::Rad => AngleUnit::Radians,
@@ -147,6 +153,22 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
+    if args.events {
+        let mut samples = pipeline.tool_joints(&source, kind, notes.sink())?;
+        let tool = samples.tool();
+        write_output(args.output.as_deref(), |out| {
+            let mut writer = JointCsvWriter::with_columns(out, format, ToolState::columns(tool))?;
+            while let Some(row) = samples.next_sample() {
+                let (row, state) = row?;
+                writer.write_with(row, &[state.value(tool)])?;
+            }
+            writer.finish()?;
+            Ok(())
+        })?;
+        notes.finish();
+        return Ok(());
+    }
+    let mut samples = pipeline.joints(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer = JointCsvWriter::new(out, format)?;
         while let Some(row) = samples.next_sample() {

@@ -43,9 +43,8 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/freecad-grbl-ecscentric-cut.nc", Expect::Read("grbl")),
     ("mill/fusion-grbl-clamp-base.nc", Expect::Read("linuxcnc")),
     ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Read("linuxcnc")),
-    // Nothing in it says Mach3, so it is read as LinuxCNC, which refuses G41's P (Mach3's
-    // radius) as rs274 does.
-    ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Refused(&["P word with no G2 G3 G4"])),
+    // G41 with a P word (Mach3's compensation radius) says Mach3.
+    ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Read("mach3")),
     ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("linuxcnc")),
     ("mill/gcodetools-puzzle03.gcode", Expect::Read("linuxcnc")),
     ("mill/jscut-jsdc-engrave.gcode", Expect::Read("grbl")),
@@ -212,6 +211,13 @@ enum Step {
     Dwell {
         seconds: f64,
     },
+    /// A move under Mach3's G41/G42 P (cutter compensation by `radius`): the tool's end lies
+    /// beside the programmed `end`, at least the radius from it and at most √2 times (a corner
+    /// of up to 90° with the next move), at the programmed Z.
+    Compensated {
+        end: [f64; 4],
+        radius: f64,
+    },
 }
 
 fn ours_as_steps(ours: &[Motion]) -> Vec<Step> {
@@ -267,6 +273,13 @@ fn compare(ours: &[Motion], expected: &[(usize, Step)]) -> Result<(), String> {
                     }
             }
             (Step::Dwell { seconds: a }, Step::Dwell { seconds: b }) => close(*a, *b),
+            (
+                Step::Linear { end: a, .. } | Step::Arc { end: a, .. },
+                Step::Compensated { end: b, radius },
+            ) => {
+                let beside = (a[0] - b[0]).hypot(a[1] - b[1]);
+                close(a[2], b[2]) && beside >= radius - 1e-6 && beside <= radius * 2f64.sqrt()
+            }
             _ => false,
         };
         if !same || lines[index] != *line {
@@ -290,7 +303,8 @@ fn compare(ours: &[Motion], expected: &[(usize, Step)]) -> Result<(), String> {
 /// A reader of the plain G-code these programs use, as their firmware documents it: words,
 /// comments, G0–G3 (I J K offsets or R), G4, G17–G19, G20/G21, G28, G90/G91, G92 (with E),
 /// M82/M83, `#n = value` parameters; per dialect: Marlin's one command per line and its G4 and
-/// G28, Grbl's `$` lines, Mach3's nested comments and program numbers. Positions in mm.
+/// G28, Grbl's `$` lines, Mach3's nested comments, program numbers and G41/G42 P
+/// (checked as [`Step::Compensated`]). Positions in mm.
 struct Reader<'a> {
     dialect: &'static str,
     home: [f64; 4],
@@ -306,6 +320,8 @@ struct Reader<'a> {
     e: f64,
     e_relative: bool,
     params: std::collections::HashMap<u32, f64>,
+    /// Mach3's cutter compensation radius (mm) while G41/G42 P is in force.
+    compensation: Option<f64>,
 }
 
 impl<'a> Reader<'a> {
@@ -323,6 +339,7 @@ impl<'a> Reader<'a> {
             e: 0.0,
             e_relative: false,
             params: std::collections::HashMap::new(),
+            compensation: None,
         }
     }
 
@@ -430,7 +447,15 @@ impl<'a> Reader<'a> {
                     .chain(words_no_n[1..].iter().copied().filter(|(l, _)| !matches!(l, 'G' | 'M')))
                     .collect();
             }
+            let before = steps.len();
             self.block(number, &words, &mut steps);
+            if let Some(radius) = self.compensation {
+                for (_, step) in &mut steps[before..] {
+                    if let Step::Linear { end, .. } | Step::Arc { end, .. } = *step {
+                        *step = Step::Compensated { end, radius };
+                    }
+                }
+            }
         }
         steps
     }
@@ -453,6 +478,11 @@ impl<'a> Reader<'a> {
         }
         for &code in &g {
             match code {
+                // Mach3's G41/G42 P: the compensation radius (Mach3 only; G40 ends it).
+                410 | 420 if self.dialect == "mach3" => {
+                    self.compensation = word('P').map(|radius| radius * self.unit(0));
+                }
+                400 => self.compensation = None,
                 170 | 180 | 190 => self.plane = code as usize / 10,
                 200 => self.inches = true,
                 210 => self.inches = false,

@@ -17,7 +17,7 @@ fn programs_in_data_match_their_golden_inter_files() {
     let mut programs: Vec<_> = std::fs::read_dir(repo_root().join("data/programs"))
         .expect("data/programs")
         .map(|entry| entry.expect("entry").path())
-        .filter(|path| path.extension().is_some_and(|e| e == "ngc"))
+        .filter(|path| path.extension().is_some_and(|e| e == "ngc" || e == "gcode"))
         .collect();
     programs.sort();
     assert!(!programs.is_empty());

@@ -122,9 +122,56 @@ fn plot_draws_the_burnt_trace_darker_for_more_power_apart_from_travel() {
     let part = "#937856";
     assert!(svg.to_uppercase().contains(full), "no stroke at full power");
     assert!(svg.to_uppercase().contains(part), "no stroke at 40 % power");
+    // --zoom draws the frame's region, 60 mm wide, not the workspace: ticks every 10 mm from
+    // x = −30, y up to 310, none at the workspace's 400 mm; no robot unless --at asks.
+    let ticks = |svg: &str| -> Vec<String> {
+        svg.split("<text").filter_map(|t| t.lines().nth(1).map(str::to_owned)).collect()
+    };
+    biscara(&dir, &[&args[..], &["--zoom"]].concat()).success();
+    let zoomed = ticks(&std::fs::read_to_string(dir.join("laser.svg")).expect("svg"));
+    for tick in ["-30.0", "0.0", "30.0", "250.0", "310.0"] {
+        assert!(zoomed.iter().any(|t| t == tick), "{tick} in {zoomed:?}");
+    }
+    assert!(!zoomed.iter().any(|t| t == "400.0" || t.starts_with("t = ")), "{zoomed:?}");
     // The gripper draws no process.
     let args = [&args[..], &["--tool", "gripper"]].concat();
     biscara(&dir, &args).success();
     let svg = std::fs::read_to_string(dir.join("laser.svg")).expect("svg");
     assert!(!svg.contains("burnt trace") && svg.contains("programmed path"));
+}
+
+#[test]
+fn joints_events_carry_the_same_tool_column_as_interpolate_and_view_reads_them() {
+    let dir = temp_dir("tool-joints-events");
+    let print = "M83\nG0 X0 Y250 Z10\nG1 X20 E2 F1200\nG1 Y270 E1\nG1 E-0.5 F600\nG0 X0\nM2\n";
+    std::fs::write(dir.join("print.gcode"), print).expect("write");
+    let laser = repo_root().join("data/programs/laser_engraving.ngc");
+    let laser = laser.to_str().expect("path");
+    let cases = [
+        (laser, "laser_power", &["--origin", "-30,250,0,0"][..]),
+        ("print.gcode", "extruded_mm", &[][..]),
+    ];
+    for (program, column, extra) in cases {
+        let common = [&[program, "--events", "--dt", "0.01"][..], extra].concat();
+        let path = biscara(&dir, &[&["interpolate"][..], &common].concat());
+        let joints = biscara(&dir, &[&["joints", "--derivatives"][..], &common].concat());
+        let (path_header, path_rows) = csv(&path.success().stdout);
+        let (header, rows) = csv(&joints.success().stdout);
+        assert!(path_header.ends_with(&format!(",{column}")), "{path_header}");
+        assert!(
+            header.starts_with("t_s,theta1_rad,")
+                && header.ends_with(&format!("ddd4_mm_s2,{column}")),
+            "{header}"
+        );
+        // Row by row, the same time and the same tool value.
+        assert_eq!(rows.len(), path_rows.len(), "{program}");
+        for (row, path_row) in rows.iter().zip(&path_rows) {
+            assert_eq!((row[0], row[13]), (path_row[0], path_row[5]), "{program}: {row:?}");
+        }
+        assert!(rows.iter().any(|row| row[13] != 0.0), "{program}: the tool never works");
+        // The viewer and mjcf read a joint CSV with the tool's column.
+        std::fs::write(dir.join("traj.csv"), &joints.stdout).expect("write");
+        biscara(&dir, &["view", "traj.csv", "-o", "view.html"]).success();
+        biscara(&dir, &["mjcf", "--traj", "traj.csv", "-o", "robot.xml"]).success();
+    }
 }

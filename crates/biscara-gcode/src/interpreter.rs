@@ -998,20 +998,12 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.word_fault(word, message));
             }
         }
-        // Mach3 takes the compensation radius from a P word (G41 P1.5): not read yet.
+        // Mach3 takes the compensation radius from a P word (G41 P1.5): G41/G42 use it.
+        let mach3_radius = self.dialect == Dialect::Mach3
+            && block.g[7].is_some_and(|code| matches!(code.code, 410 | 420));
         if let Some(p) = block.word(b'p')
-            && comp_on
-            && self.dialect == Dialect::Mach3
+            && !mach3_radius
         {
-            let (first, last) = self.span(p.at, p.end);
-            return Err(Fault::not_supported(
-                first,
-                last,
-                "G41/G42 P",
-                "Mach3's compensation radius in a P word",
-            ));
-        }
-        if let Some(p) = block.word(b'p') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
             let user_m = block.m[10].is_some();

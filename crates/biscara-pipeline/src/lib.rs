@@ -51,4 +51,4 @@ pub use kind::ProgramKind;
 pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes};
 pub use placement::{Placement, place};
 pub use source::{ProgramSource, TextSource};
-pub use tool::{ToolSamples, ToolState};
+pub use tool::{ToolJointSamples, ToolSamples, ToolState};

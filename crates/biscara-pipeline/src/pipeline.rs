@@ -18,7 +18,7 @@ use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 use crate::motions::{MotionReader, NoteSink, Reading, Told, read_motions};
-use crate::tool::{Recorder, SharedTool, ToolSamples, Track};
+use crate::tool::{Recorder, SharedTool, ToolJointSamples, ToolSamples, Track};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
@@ -221,6 +221,29 @@ impl<'m> Pipeline<'m> {
             file,
         })
     }
+
+    /// The program's joint samples ([`Pipeline::joints`]) with the tool's state at each
+    /// (`joints --events`, SPEC §1.6, §7): the states of [`Pipeline::tool_samples`] carried to
+    /// the joint samples solved from them. Streaming.
+    pub fn tool_joints(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<ToolJointSamples, PipelineError> {
+        let file = source.name().to_owned();
+        let samples = self.tool_samples(source, kind, notes)?;
+        Ok(ToolJointSamples::new(samples, self.model.kinematics(), file))
+    }
+}
+
+/// A joint-trajectory error located in `file`.
+pub(crate) fn locate(file: &str, err: JointsError<PipelineError>) -> PipelineError {
+    match err {
+        JointsError::Input(err) => err,
+        JointsError::Pose(err) => PipelineError::program(file, err),
+        other => PipelineError::program(file, other),
+    }
 }
 
 /// The Cartesian samples of a program, read from a path CSV or interpolated from its motions.
@@ -278,11 +301,7 @@ impl JointSamples {
     #[inline]
     pub fn next_sample(&mut self) -> Option<Result<&JointSample, PipelineError>> {
         let file = &self.file;
-        Some(self.trajectory.next_sample()?.map_err(|err| match err {
-            JointsError::Input(err) => err,
-            JointsError::Pose(err) => PipelineError::program(file, err),
-            other => PipelineError::program(file, other),
-        }))
+        Some(self.trajectory.next_sample()?.map_err(|err| locate(file, err)))
     }
 }
 

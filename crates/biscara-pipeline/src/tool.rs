@@ -7,8 +7,11 @@ use std::rc::Rc;
 
 use biscara_gcode::Tool;
 use biscara_interpolate::CartesianSample;
+use biscara_joints::{JointSample, JointTrajectory};
+use biscara_kinematics::Kinematics;
 use biscara_motion::{Motion, MotionKind};
 
+use crate::pipeline::locate;
 use crate::{PipelineError, Samples};
 
 /// The tool's state at one sample.
@@ -218,5 +221,61 @@ impl Iterator for ToolSamples {
             let state = self.state(&sample);
             (sample, state)
         }))
+    }
+}
+
+/// The states of the samples handed to the joint solver and not yet out of it, oldest first.
+type Stash = Rc<RefCell<VecDeque<ToolState>>>;
+
+/// The Cartesian samples of a [`ToolSamples`], their states set aside in order for the joint
+/// samples solved from them.
+pub(crate) struct Stashed {
+    samples: ToolSamples,
+    states: Stash,
+}
+
+impl Iterator for Stashed {
+    type Item = Result<CartesianSample, PipelineError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        Some(self.samples.next()?.map(|(sample, state)| {
+            self.states.borrow_mut().push_back(state);
+            sample
+        }))
+    }
+}
+
+/// A program's joint samples with the tool's state at each (see
+/// [`crate::Pipeline::tool_joints`]); the solver holds at most three samples, so do the states.
+pub struct ToolJointSamples {
+    trajectory: JointTrajectory<Stashed>,
+    states: Stash,
+    tool: Tool,
+    file: String,
+}
+
+impl ToolJointSamples {
+    pub(crate) fn new(mut samples: ToolSamples, model: Kinematics, file: String) -> Self {
+        let tool = samples.tool();
+        let states = Stash::default();
+        let stashed = Stashed { samples, states: Rc::clone(&states) };
+        ToolJointSamples { trajectory: JointTrajectory::new(stashed, model), states, tool, file }
+    }
+
+    /// The tool (see [`ToolSamples::tool`]).
+    pub fn tool(&self) -> Tool {
+        self.tool
+    }
+
+    /// The next joint sample, borrowed, with the tool's state at it.
+    pub fn next_sample(&mut self) -> Option<Result<(&JointSample, ToolState), PipelineError>> {
+        let file = &self.file;
+        match self.trajectory.next_sample()? {
+            Ok(sample) => {
+                let state = self.states.borrow_mut().pop_front().unwrap_or_default();
+                Some(Ok((sample, state)))
+            }
+            Err(err) => Some(Err(locate(file, err))),
+        }
     }
 }

@@ -57,6 +57,9 @@ pub struct TopView<'a> {
     pub bodies: &'a [(f64, Body)],
     /// The scene's boxes, drawn as footprints.
     pub scene: Option<&'a Scene>,
+    /// The region drawn, `((x_min, x_max), (y_min, y_max))` in millimetres; `None`: everything
+    /// (workspace, path, robot, scene) with a margin.
+    pub region: Option<((f64, f64), (f64, f64))>,
 }
 
 /// A piece of the tool's work in XY (see [`TopView::process`]).
@@ -161,6 +164,9 @@ pub fn draw_top_view(view: &TopView<'_>, format: ImageFormat) -> Result<Vec<u8>,
 }
 
 fn top_view_extent(view: &TopView<'_>) -> ((f64, f64), (f64, f64)) {
+    if let Some(region) = view.region {
+        return region;
+    }
     let mut min = [f64::INFINITY; 2];
     let mut max = [f64::NEG_INFINITY; 2];
     let mut include = |p: [f64; 2]| {
@@ -435,6 +441,7 @@ pub fn draw_workspace(
     let view = TopView {
         process: &[],
         process_label: "",
+        region: None,
         title,
         workspace: Some(workspace),
         rectangle: Some(rectangle),

@@ -22,6 +22,7 @@ use std::io::BufRead;
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use super::Interpreter;
+use crate::Dialect;
 use crate::lexer::Fault;
 use crate::parser::Word;
 
@@ -315,6 +316,12 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             d.value / 2.0
+        } else if self.dialect == Dialect::Mach3
+            && let Some(p) = self.block.word(b'p')
+        {
+            // Mach3's G41/G42 P: the radius itself, program units, instead of the tool table's
+            // (a Fusion 360 Mach3 post writes P1.587 for its 3.175 mm cutter).
+            p.value
         } else {
             let tool = match d {
                 None => 0,

@@ -240,7 +240,7 @@ const TABLE: &[(&str, Fits)] = &[
     ("mill/freecad-grbl-ecscentric-cut.nc", CUT),
     ("mill/fusion-grbl-clamp-base.nc", CUT),
     ("mill/fusion-linuxcnc-inch-hema-p030.ngc", CUT),
-    ("mill/fusion-mach3-eccentric-g41p.tap", Fits::Unread),
+    ("mill/fusion-mach3-eccentric-g41p.tap", CUT),
     ("mill/fusion-mach3-heatsink-bottom.tap", CUT),
     ("mill/gcodetools-puzzle03.gcode", CUT),
     ("mill/jscut-jsdc-engrave.gcode", CUT),
