@@ -57,7 +57,14 @@ fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeErro
 }
 
 /// The first difference between our motions and rs274's, if any.
+/// Our motions without the events of codes rs274 has no motion for (M19, M62–M68, M100–M199):
+/// its canon prints them as calls the comparison does not read.
+fn without_codes(ours: &[Motion]) -> Vec<Motion> {
+    ours.iter().filter(|m| !matches!(m.kind, MotionKind::Code { .. })).copied().collect()
+}
+
 fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
+    let ours = &without_codes(ours)[..];
     let unit = if inches { 25.4 } else { 1.0 };
     // Each printed number is rounded to 1e-4 of the unit; an absolute position sums up to three.
     let length_tolerance = 1.5e-4 * unit + 1e-9;
@@ -164,6 +171,7 @@ fn stricter(err: &GcodeError) -> bool {
 fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let theirs = rs274::run(path, dir);
     let (before, ours) = ours_with_partial(path);
+    let before = without_codes(&before);
     match (ours, theirs) {
         (Ok(ours), Outcome::Motions(theirs)) => {
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
@@ -177,6 +185,11 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
             // and LinuxCNC's message within ours.
             let common = before.len().min(theirs.len());
             compare(&before, &theirs[..common], uses_inches(path))?;
+            if user_m_code(&message) {
+                // rs274 stops at a user M code for want of its program; we read on (to a
+                // refusal of our own further on).
+                return Ok(Verdict::UserMCode);
+            }
             if theirs.len() > before.len() + 3 || before.len() > theirs.len() {
                 return Err(format!(
                     "both refuse, ours after {} motions, rs274 after {}: {err} / {message}",
@@ -192,6 +205,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
             Ok(Verdict::BothRefuse)
         }
         (Ok(ours), Outcome::Error { message, before: theirs }) if user_m_code(&message) => {
+            let ours = without_codes(&ours);
             let common = ours.len().min(theirs.len());
             compare(&ours[..common], &theirs, uses_inches(path))?;
             Ok(Verdict::UserMCode)

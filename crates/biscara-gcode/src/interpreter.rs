@@ -28,8 +28,12 @@ mod control;
 mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M19, M48–M53, M62–M68 and the `$` word.
+mod io_codes;
 /// M70–M73: the modal state saved and restored.
 mod modal_state;
+/// Polar coordinates (`@`, `^`).
+mod polar;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -518,11 +522,13 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         self.check_support()?;
+        self.check_polar_words()?;
         let g = self.block.g;
         let m = self.block.m;
         let motion_code = g[1];
         let group0 = g[0];
-        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        let axis_words =
+            AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
         let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
@@ -612,6 +618,7 @@ impl<R: BufRead> Interpreter<R> {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
+        self.check_spindle_number()?;
         // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
         // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
@@ -623,6 +630,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         self.select_tool()?;
+        // 7. digital and analog outputs and inputs
+        self.io_output()?;
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
         // tool is in the spindle.
         if let Some(code) = m[6] {
@@ -641,6 +650,8 @@ impl<R: BufRead> Interpreter<R> {
         // 9. spindle: the gripper (or the tool)
         if let Some(code) = m[7].filter(|code| code.code >= 70) {
             self.modal_state(code)?;
+        } else if m[7].is_some_and(|code| code.code == 19) {
+            self.orient_spindle()?;
         } else if let Some(code) = m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
@@ -653,6 +664,8 @@ impl<R: BufRead> Interpreter<R> {
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
         }
+        // overrides
+        self.overrides()?;
         // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
         if let Some(code) = m[10] {
             self.record(&format!("M{}", code.code), true);
@@ -794,6 +807,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
+            if self.block.extra.is_some() {
+                self.apply_polar(motion, g53)?;
+            }
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
                 20 | 30 => self.arc(motion == 20)?,
@@ -847,7 +863,10 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn first_axis_word(&self) -> Option<Word> {
-        AXES.iter().filter_map(|&letter| self.block.word(letter)).min_by_key(|word| word.at)
+        AXES.iter()
+            .filter_map(|&letter| self.block.word(letter))
+            .chain(self.first_polar_word())
+            .min_by_key(|word| word.at)
     }
 
     /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
@@ -932,7 +951,7 @@ impl<R: BufRead> Interpreter<R> {
                 comp_on,
                 "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
             ),
-            (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
+            (b'e', self.io_uses_e(), "E word with no G70, G76, M66, M67 or M68 to use it"),
             (
                 b'h',
                 block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
@@ -947,12 +966,16 @@ impl<R: BufRead> Interpreter<R> {
             (b'k', arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
             (
                 b'l',
-                g10 || comp_on || cycle,
+                g10 || comp_on || cycle || self.io_uses_l(),
                 "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
                  or NURBS code",
             ),
         ];
         for (letter, used, message) in checks {
+            if letter == b'e' {
+                // rs274 checks the `$` word between D and E.
+                self.check_dollar()?;
+            }
             if let Some(word) = block.word(letter)
                 && !used
             {
@@ -976,7 +999,12 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
             let user_m = block.m[10].is_some();
-            let used = arc || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
+            let used = arc
+                || matches!(group0, Some(40 | 100))
+                || g64
+                || dwell_cycle
+                || user_m
+                || self.io_uses_p();
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -985,6 +1013,7 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             // The turns of an arc, checked here with the block, before the arc's own checks.
+            self.m19_p_integer(p)?;
             if arc && (round_to_int(p.value) - p.value).abs() > 0.001 {
                 return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
             }
@@ -996,7 +1025,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
+            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() && !self.io_uses_q() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -1004,8 +1033,9 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
         }
+        let m19 = block.m[7].is_some_and(|code| code.code == 19);
         if let Some(r) = block.word(b'r')
-            && !(arc || g10 || cycle)
+            && !(arc || g10 || cycle || m19)
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
