@@ -34,6 +34,8 @@ mod io_codes;
 mod modal_state;
 /// Polar coordinates (`@`, `^`).
 mod polar;
+/// G10 L2 R: coordinate systems rotated about Z.
+mod rotation;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -175,6 +177,8 @@ struct State {
     origin: [f64; 4],
     axis_offset: [f64; 4],
     system: usize,
+    /// The rotation of the system in force about Z, degrees (G10 L2 R; 0: none).
+    rotation: f64,
     params: Params,
     line: usize,
     speed: f64,
@@ -228,6 +232,7 @@ impl State {
             origin: config.origin,
             axis_offset: [0.0; 4],
             system: 1,
+            rotation: 0.0,
             params,
             line: 0,
             speed: 0.0,
@@ -264,6 +269,9 @@ impl State {
 
     /// A position in the current coordinate system → absolute mm and degrees.
     fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
+        if self.rotation != 0.0 {
+            return self.absolute_rotated(position);
+        }
         std::array::from_fn(|axis| {
             self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
                 + self.tool_offset_mm[axis]
@@ -281,9 +289,7 @@ impl State {
 impl Predefined for State {
     fn predefined(&self, name: &[u8]) -> Option<f64> {
         let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| {
-            self.current[axis] + self.origin[axis] + self.axis_offset[axis] + self.tool_offset[axis]
-        };
+        let machine = |axis: usize| self.machine(self.current)[axis];
         Some(match name {
             b"_x" => self.current[0],
             b"_y" => self.current[1],
@@ -753,11 +759,8 @@ impl<R: BufRead> Interpreter<R> {
                         "Cannot set reference point with cutter compensation in effect",
                     )?;
                     let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
-                    for axis in 0..4 {
-                        let machine = self.state.current[axis]
-                            + self.state.origin[axis]
-                            + self.state.axis_offset[axis]
-                            + self.state.tool_offset[axis];
+                    let machine = self.state.machine(self.state.current);
+                    for (axis, machine) in machine.into_iter().enumerate() {
                         let value = self.state.to_mm(axis, machine);
                         self.state.params.set(base + axis_slot(axis), value);
                     }
@@ -1088,15 +1091,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn select_system(&mut self, system: usize) {
-        let base = coordinate_system_base(system);
-        for axis in 0..4 {
-            let origin =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            self.state.current[axis] += self.state.origin[axis] - origin;
-            self.state.origin[axis] = origin;
-        }
-        self.state.system = system;
-        self.state.params.set(COORDINATE_SYSTEM, system as f64);
+        self.change_system(system, false);
     }
 
     /// G10 L2 and L20.
@@ -1111,13 +1106,16 @@ impl<R: BufRead> Interpreter<R> {
             2 | 20 => {}
             1 | 10 | 11 => return self.set_tool_data(code, l_value),
             0 => {
-                let (first, last) = self.span(code.at, l.end.max(code.end));
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    "G10 L0".to_owned(),
-                    "reloading the tool table",
-                ));
+                // Reloading the tool table: rs274 keeps the table as the program changed it,
+                // and refuses while a tool is in the spindle.
+                let loaded = self.state.tools.spindle.tool;
+                if loaded > 0 {
+                    return Err(self.code_fault(
+                        code,
+                        format!("G10 L0 not allowed with loaded tool <{loaded}>"),
+                    ));
+                }
+                return Ok(());
             }
             _ => {
                 return Err(
@@ -1138,24 +1136,40 @@ impl<R: BufRead> Interpreter<R> {
                 "Cannot change the active coordinate system with cutter radius compensation on",
             )?;
         }
-        if let Some(r) = self.block.word(b'r') {
-            let (first, last) = self.span(r.at, r.end);
-            return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
+        let r = self.block.word(b'r');
+        if let Some(r) = r
+            && l_value == 20
+        {
+            return Err(self.word_fault(r, "R not allowed in G10 L20"));
         }
         let system = if system == 0 { self.state.system } else { system };
         let base = coordinate_system_base(system);
+        let rotated_l20 = (l_value == 20 && self.state.rotation != 0.0).then(|| {
+            let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+            (given[0].is_some() || given[1].is_some()).then(|| self.rotated_l20_origin(given))
+        });
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
-            let origin = if l_value == 2 {
-                word.value
-            } else {
-                self.state.current[axis] + self.state.origin[axis] - word.value
+            let origin = match rotated_l20 {
+                Some(Some(xy)) if axis < 2 => xy[axis],
+                _ if l_value == 2 => word.value,
+                _ => self.state.current[axis] + self.state.origin[axis] - word.value,
             };
             let value = self.state.to_mm(axis, origin);
             self.state.params.set(base + axis_slot(axis), value);
         }
+        if let Some(Some(xy)) = rotated_l20 {
+            // Both X and Y change when the system is rotated, whichever was given.
+            for (axis, value) in xy.into_iter().enumerate() {
+                let value = self.state.to_mm(axis, value);
+                self.state.params.set(base + axis_slot(axis), value);
+            }
+        }
+        if let Some(r) = r {
+            self.state.params.set(rotation::rotation_parameter(system), r.value);
+        }
         if system == self.state.system {
-            self.select_system(system);
+            self.change_system(system, true);
         }
         Ok(())
     }
@@ -1207,7 +1221,13 @@ impl<R: BufRead> Interpreter<R> {
 
     /// End point of a move (`find_ends`).
     fn find_ends(&self, g53: bool) -> [f64; 4] {
+        let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());
         std::array::from_fn(|axis| {
+            if let Some(Some(xy)) = rotated
+                && axis < 2
+            {
+                return xy[axis];
+            }
             let word = self.block.word(AXES[axis]).map(|word| word.value);
             let current = match self.state.comp.base(axis, self.state.plane) {
                 Some(programmed) if !g53 => programmed,
@@ -1234,16 +1254,15 @@ impl<R: BufRead> Interpreter<R> {
         let base = if code.code == 280 { G28_HOME } else { G30_HOME };
         let any = AXES.iter().any(|&letter| self.block.word(letter).is_some());
         let mut end = intermediate;
+        let home = std::array::from_fn(|axis| {
+            self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
+        });
+        let home = self.state.program_of(home);
         for (axis, &letter) in AXES.iter().enumerate() {
             if any && self.block.word(letter).is_none() {
                 continue;
             }
-            let machine =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            end[axis] = machine
-                - self.state.origin[axis]
-                - self.state.axis_offset[axis]
-                - self.state.tool_offset[axis];
+            end[axis] = home[axis];
         }
         self.move_to(end, None);
         Ok(())
@@ -1312,6 +1331,7 @@ impl<R: BufRead> Interpreter<R> {
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
         );
+        self.check_rotated_arc(code_at)?;
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));

@@ -7,7 +7,8 @@
 //! point's radius and a missing `^` its angle (refused at the origin, where there is none).
 //! Under G91 both are relative to the current point's own radius and angle (refused at the
 //! origin). The end point becomes the block's X and Y words, so that lines, arcs and canned
-//! cycles take it as they take X and Y; a line without `@` or `^` does no work here.
+//! cycles take it as they take X and Y (an incremental cycle's repeats step on in polar
+//! coordinates, as in rs274); a line without `@` or `^` does no work here.
 
 use std::io::BufRead;
 
@@ -49,6 +50,19 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
+    /// The next hole of an incremental canned cycle with polar words, from hole `[x, y]`:
+    /// rs274 applies the `@` and `^` steps again at each repeat (a bolt circle: `G91 G81 ^60
+    /// L6`).
+    pub(super) fn polar_repeat(&self, [x, y]: [f64; 2]) -> Option<[f64; 2]> {
+        let extra = self.block.extra()?;
+        if extra.radius.is_none() && extra.theta.is_none() {
+            return None;
+        }
+        let radius = x.hypot(y) + extra.radius.map_or(0.0, |r| r.value);
+        let theta = y.atan2(x) + extra.theta.map_or(0.0, |t| t.value.to_radians());
+        Some([radius * theta.cos(), radius * theta.sin()])
+    }
+
     /// Turns `@` and `^` into the block's X and Y words, before its motion (`find_ends`).
     pub(super) fn apply_polar(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
         let Some(extra) = self.block.extra().copied() else { return Ok(()) };
@@ -68,18 +82,6 @@ impl<R: BufRead> Interpreter<R> {
                 let at = self.block.g[1].map_or((first.at, first.end), |code| (code.at, code.end));
                 return Err(self.fault_at(at.0, at.1, message));
             }
-        }
-        if super::canned::is_cycle(motion)
-            && self.state.incremental
-            && self.block.word(b'l').is_some_and(|l| l.value > 1.0)
-        {
-            let (start, end) = self.span(first.at, first.end);
-            return Err(Fault::not_supported(
-                start,
-                end,
-                "polar coordinates in a repeated incremental canned cycle",
-                "rs274's repeats of such a cycle do not follow its first hole",
-            ));
         }
         let [x, y, ..] = self.state.current;
         let at_origin = x == 0.0 && y == 0.0;
