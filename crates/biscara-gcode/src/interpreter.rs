@@ -1144,22 +1144,19 @@ impl<R: BufRead> Interpreter<R> {
         }
         let system = if system == 0 { self.state.system } else { system };
         let base = coordinate_system_base(system);
-        let rotated_l20 = (l_value == 20 && self.state.rotation != 0.0).then(|| {
-            let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
-            (given[0].is_some() || given[1].is_some()).then(|| self.rotated_l20_origin(given))
-        });
+        let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(code, system)? } else { None };
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
             let origin = match rotated_l20 {
-                Some(Some(xy)) if axis < 2 => xy[axis],
+                Some(xy) if axis < 2 => xy[axis],
                 _ if l_value == 2 => word.value,
                 _ => self.state.current[axis] + self.state.origin[axis] - word.value,
             };
             let value = self.state.to_mm(axis, origin);
             self.state.params.set(base + axis_slot(axis), value);
         }
-        if let Some(Some(xy)) = rotated_l20 {
-            // Both X and Y change when the system is rotated, whichever was given.
+        if let Some(xy) = rotated_l20 {
+            // In a rotated system both X and Y change, whichever was given.
             for (axis, value) in xy.into_iter().enumerate() {
                 let value = self.state.to_mm(axis, value);
                 self.state.params.set(base + axis_slot(axis), value);

@@ -139,8 +139,10 @@ impl<R: BufRead> Interpreter<R> {
         self.state.flood = saved.flood;
         self.state.cycle.retract_to_old = saved.retract_to_old;
         let old = self.state.tool_offset;
-        for (axis, old) in old.into_iter().enumerate() {
-            let shift = old - saved.tool_offset[axis];
+        let shift = self
+            .state
+            .program_shift(std::array::from_fn(|axis| old[axis] - saved.tool_offset[axis]));
+        for (axis, shift) in shift.into_iter().enumerate() {
             self.state.current[axis] += shift;
             self.state.tool_shift[axis] += shift;
         }

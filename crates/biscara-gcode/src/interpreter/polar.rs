@@ -85,6 +85,15 @@ impl<R: BufRead> Interpreter<R> {
         }
         let [x, y, ..] = self.state.current;
         let at_origin = x == 0.0 && y == 0.0;
+        // rs274's canned cycles take the angle at the origin as 0, and refuse only an
+        // incremental polar move from there (after the climb to the R plane).
+        let cycle = super::canned::is_cycle(motion);
+        if cycle && at_origin && self.state.incremental {
+            return Err(self.word_fault(
+                first,
+                "Incremental motion with polar coordinates is indeterminate when at the origin",
+            ));
+        }
         let mut radius = match extra.radius {
             Some(r) => r.value,
             None => x.hypot(y),
@@ -92,7 +101,7 @@ impl<R: BufRead> Interpreter<R> {
         let mut theta = match extra.theta {
             Some(t) => t.value.to_radians(),
             None => {
-                if at_origin && !self.state.incremental {
+                if at_origin && !self.state.incremental && !cycle {
                     return Err(self.word_fault(
                         first,
                         "Must specify angle in polar coordinate if at the origin",

@@ -18,6 +18,7 @@ use biscara_motion::Plane;
 use super::{Interpreter, State};
 use crate::lexer::Fault;
 use crate::params::{COORDINATE_SYSTEM, axis_slot, coordinate_system_base};
+use crate::parser::Code;
 
 /// The parameter of a system's rotation, after its nine axes.
 const ROTATION_SLOT: usize = 9;
@@ -49,6 +50,16 @@ impl State {
             std::array::from_fn(|axis| position[axis] + self.axis_offset[axis]);
         [local[0], local[1]] = rotate([local[0], local[1]], self.rotation);
         local
+    }
+
+    /// A shift of the machine (a change of tool length offset) as seen in the program's
+    /// coordinates: turned back by the rotation in XY.
+    pub(super) fn program_shift(&self, shift: [f64; 4]) -> [f64; 4] {
+        if self.rotation == 0.0 {
+            return shift;
+        }
+        let [x, y] = rotate([shift[0], shift[1]], -self.rotation);
+        [x, y, shift[2], shift[3]]
     }
 
     /// The machine position (program units, with the tool length offset) of `position`.
@@ -117,14 +128,47 @@ impl<R: BufRead> Interpreter<R> {
         state.params.set(COORDINATE_SYSTEM, system as f64);
     }
 
-    /// G10 L20's XY origin in a rotated system: the current point gets the given X and Y
-    /// (a missing one keeps its value), `origin + rot(current − given)`.
-    pub(super) fn rotated_l20_origin(&self, given: [Option<f64>; 2]) -> [f64; 2] {
+    /// G10 L20's XY origin for `system` when a rotation is involved (`None`: the plain sums
+    /// do, or no X or Y word). The point is placed on the machine as rs274 does for G10 L20,
+    /// `rot(current) + origin` (without G92). The system in force, rotated: its origin
+    /// becomes `origin + rot(current − given)` (a missing X or Y keeps its value, both
+    /// change). Another system, not rotated: the given axes' origins become that point's
+    /// coordinates less the given values. Another system, rotated: refused (rs274's result
+    /// there has not been worked out).
+    pub(super) fn rotated_l20_origin(
+        &self,
+        code: Code,
+        system: usize,
+    ) -> Result<Option<[f64; 2]>, Fault> {
         let state = &self.state;
+        let target_rotation = state.params.get(rotation_parameter(system));
+        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        if (state.rotation == 0.0 && target_rotation == 0.0) || given.iter().all(Option::is_none) {
+            return Ok(None);
+        }
         let target = [given[0].unwrap_or(state.current[0]), given[1].unwrap_or(state.current[1])];
-        let [dx, dy] =
-            rotate([state.current[0] - target[0], state.current[1] - target[1]], state.rotation);
-        [state.origin[0] + dx, state.origin[1] + dy]
+        if system == state.system {
+            let [dx, dy] = rotate(
+                [state.current[0] - target[0], state.current[1] - target[1]],
+                state.rotation,
+            );
+            return Ok(Some([state.origin[0] + dx, state.origin[1] + dy]));
+        }
+        if target_rotation != 0.0 {
+            let (first, last) = self.span(code.at, code.end);
+            return Err(Fault::not_supported(
+                first,
+                last,
+                "G10 L20 of a rotated coordinate system other than the one in force",
+                "rs274's result there has not been worked out",
+            ));
+        }
+        let turned = rotate([state.current[0], state.current[1]], state.rotation);
+        let base = coordinate_system_base(system);
+        Ok(Some(std::array::from_fn(|axis| match given[axis] {
+            Some(value) => turned[axis] + state.origin[axis] - value,
+            None => state.mm_to_program(axis, state.params.get(base + axis_slot(axis))),
+        })))
     }
 
     /// G53's X and Y in a rotated system (`None` without an X or Y word): the machine
