@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use biscara::gcode::{Dialect, ToolTable};
+use biscara::gcode::{Dialect, Tool, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -87,9 +87,15 @@ pub(crate) struct PlacementArgs {
     )]
     pub(crate) origin: Option<[f64; 4]>,
     /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
-    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
-    /// The offset is reported on stderr; a program larger than the rectangle is an error.
-    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    /// included) is centred in the largest rectangle of `biscara workspace`, turned by 90° about
+    /// Z when it fits only that way, and its Z range centred in the Z stroke when it lies outside.
+    /// Programs that zero themselves with G92 at their start are placed too. The placement is
+    /// reported on stderr; a program that fits neither way is an error that says by how much.
+    #[arg(
+        long,
+        help = "Centre the program in the workspace rectangle, turned by 90° if only that fits, \
+                Z into the stroke (placement on stderr)"
+    )]
     pub(crate) fit: bool,
 }
 
@@ -107,6 +113,21 @@ pub(crate) struct DialectArgs {
         help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
+    /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,
+    /// S and E mean. Without either, the tool is inferred from the program (noted on stderr),
+    /// the gripper when nothing tells.
+    #[arg(
+        long,
+        value_name = "KIND",
+        value_parser = parse_tool,
+        help = "gripper, laser, spindle, extruder or pen (default: the robot file's, else inferred)"
+    )]
+    pub(crate) tool: Option<Tool>,
+}
+
+fn parse_tool(text: &str) -> Result<Tool, String> {
+    Tool::from_name(text)
+        .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
 /// The files a G-code program may read besides itself (SPEC §4.2 tier 3).
@@ -175,6 +196,7 @@ impl SamplingArgs {
             origin: self.placement.origin,
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
+            tool: self.dialect.tool,
             subroutine_path: self.files.subroutine_path.clone(),
             tool_table: self.files.tool_table()?,
         })

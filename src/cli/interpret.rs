@@ -27,10 +27,11 @@ use super::files::{FileSource, write_output};
 /// move under G64 carries `"blend":P`, in mm, 0 when P is not given; a Q up to P is accepted, no
 /// collinear merging is done), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
 /// (gripper off), M7 M8 M9, F S; numbered and named parameters and expressions; O-word
-/// subroutines (also from files, with --subroutine-path) and control flow. The program starts
-/// at the robot's home pose, under exact stop (G61).
+/// subroutines (also from files, with --subroutine-path) and control flow; G5 and G5.1 splines
+/// in G17 (straight moves within 0.001 mm of the curve, on the spline's line). The program
+/// starts at the robot's home pose, under exact stop (G61).
 ///
-/// Splines and the other codes LinuxCNC knows but this
+/// NURBS (G5.2) and the other codes LinuxCNC knows but this
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.
@@ -69,6 +70,7 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         origin: placement.origin,
         fit: placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
         subroutine_path: args.files.subroutine_path.clone(),
         tool_table: args.files.tool_table()?,
         ..SamplingConfig::default()

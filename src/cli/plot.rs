@@ -3,9 +3,13 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
+use biscara::gcode::Tool;
+use biscara::interpolate::CartesianSample;
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
 use biscara::robot::Workspace;
-use biscara::view::{JointCurves, ProgramTrace, TopView, draw_joints, draw_top_view};
+use biscara::view::{
+    JointCurves, ProcessStroke, ProgramTrace, TopView, draw_joints, draw_top_view,
+};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs};
@@ -57,16 +61,73 @@ fn parse_time(text: &str) -> Result<f64, String> {
     }
 }
 
+/// How strongly the tool works at a sample, 0 … 1; `None` while it does not (SPEC §1.6).
+fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
+    match tool {
+        Tool::Laser if state.laser_power > 0.0 => Some(state.laser_power / max_power),
+        Tool::Extruder if state.move_extrude_mm > 0.0 => Some(1.0),
+        Tool::Pen if state.pen_down => Some(1.0),
+        Tool::Spindle if state.spindle_rpm != 0.0 && !state.rapid => Some(1.0),
+        _ => None,
+    }
+}
+
+/// The legend of the tool's work.
+fn process_label(tool: Tool) -> &'static str {
+    match tool {
+        Tool::Laser => "laser: burnt trace (darker: more power)",
+        Tool::Extruder => "extruder: deposited track",
+        Tool::Pen => "pen: strokes (pen down)",
+        Tool::Spindle => "spindle: cutting moves",
+        Tool::Gripper => "",
+    }
+}
+
+/// The tool's work as strokes, a point at least [`Process::SPACING_MM`] from the last (a
+/// picture's resolution), a new stroke where the strength changes.
+#[derive(Default)]
+struct Process {
+    strokes: Vec<ProcessStroke>,
+    last: Option<([f64; 2], f64)>,
+}
+
+impl Process {
+    const SPACING_MM: f64 = 0.5;
+
+    fn push(&mut self, sample: &CartesianSample, strength: Option<f64>) {
+        let point = [sample.pose[0], sample.pose[1]];
+        let Some(strength) = strength else {
+            self.last = None;
+            return;
+        };
+        match self.last {
+            Some((from, was)) if was == strength => {
+                let far = (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM;
+                if far {
+                    self.strokes.push(ProcessStroke { from, to: point, strength });
+                    self.last = Some((point, strength));
+                }
+            }
+            _ => self.last = Some((point, strength)),
+        }
+    }
+}
+
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
     let (source, kind) = args.program.open()?;
     let at = if args.at.is_empty() { vec![0.0] } else { args.at.clone() };
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
-    for sample in
-        Pipeline::new(model, args.sampling.config()?).samples(&source, kind, notes.sink())?
-    {
-        trace.push(&sample?);
+    let mut samples =
+        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
+    let tool = samples.tool();
+    let max_power = model.robot().tool.max_power;
+    let mut process = Process::default();
+    for sample in samples {
+        let (sample, state) = sample?;
+        trace.push(&sample);
+        process.push(&sample, work(tool, &state, max_power));
     }
     for t in trace.missed_times() {
         let end = trace.duration();
@@ -90,6 +151,8 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             workspace: Some(&workspace),
             rectangle: Some(&rectangle),
             path: &trace.path,
+            process: &process.strokes,
+            process_label: process_label(tool),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
         };

@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use biscara::gcode::Tool;
 use biscara::interpolate::PathCsvWriter;
 use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
-use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
+use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, ToolState};
 use clap::{Args, ValueEnum};
 
 use super::args::{ProgramArgs, SamplingArgs};
@@ -45,8 +46,13 @@ pub(crate) struct InterpolateArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
-    /// Add a `gripper` column: 1 from a pick to the next place.
-    #[arg(long)]
+    /// Add the tool's column (SPEC §1.6): `gripper` (1 from a pick to the next place),
+    /// `laser_power` (the S power while on, 0 off), `spindle_rpm` (negative: M4),
+    /// `extruded_mm` (filament fed since the start) or `pen_down` (1 down, 0 up).
+    #[arg(
+        long,
+        help = "Add the tool's column: gripper, laser_power, spindle_rpm, extruded_mm or pen_down"
+    )]
     events: bool,
 }
 
@@ -90,6 +96,30 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
     }
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config()?);
+    if args.events {
+        let mut samples = pipeline.tool_samples(&source, kind, notes.sink())?;
+        let tool = samples.tool();
+        write_output(args.output.as_deref(), |out| {
+            let precision = usize::from(args.sampling.precision);
+            let mut writer = if tool == Tool::Gripper {
+                PathCsvWriter::new(out, precision, true)?
+            } else {
+                PathCsvWriter::with_columns(out, precision, ToolState::columns(tool))?
+            };
+            for sample in samples {
+                let (sample, state) = sample?;
+                if tool == Tool::Gripper {
+                    writer.write(&sample)?;
+                } else {
+                    writer.write_with(&sample, &[state.value(tool)])?;
+                }
+            }
+            writer.finish()?;
+            Ok(())
+        })?;
+        notes.finish();
+        return Ok(());
+    }
     let samples = pipeline.samples(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer =

@@ -98,6 +98,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         origin: args.placement.origin,
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
         subroutine_path: args.files.subroutine_path.clone(),
         tool_table: args.files.tool_table()?,
     };

@@ -56,13 +56,13 @@ fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeErro
     (motions.clone(), Ok(motions))
 }
 
-/// The first difference between our motions and rs274's, if any.
 /// Our motions without the events of codes rs274 has no motion for (M19, M62–M68, M100–M199):
 /// its canon prints them as calls the comparison does not read.
 fn without_codes(ours: &[Motion]) -> Vec<Motion> {
     ours.iter().filter(|m| !matches!(m.kind, MotionKind::Code { .. })).copied().collect()
 }
 
+/// The first difference between our motions and rs274's, if any.
 fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
     let ours = &without_codes(ours)[..];
     let unit = if inches { 25.4 } else { 1.0 };
@@ -174,6 +174,8 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let before = without_codes(&before);
     match (ours, theirs) {
         (Ok(ours), Outcome::Motions(theirs)) => {
+            let ours = without_codes(&ours);
+            let theirs = rs274::expand_splines(&ours, &theirs);
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
@@ -181,6 +183,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
         (Err(err), _) if stricter(&err) => Ok(Verdict::Stricter),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
         (Err(err), Outcome::Error { message, before: theirs }) => {
+            let theirs = rs274::expand_splines(&before, &theirs);
             // The same motions up to the block that fails (rs274 may have emitted part of it),
             // and LinuxCNC's message within ours.
             let common = before.len().min(theirs.len());
@@ -206,6 +209,7 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
         }
         (Ok(ours), Outcome::Error { message, before: theirs }) if user_m_code(&message) => {
             let ours = without_codes(&ours);
+            let theirs = rs274::expand_splines(&ours, &theirs);
             let common = ours.len().min(theirs.len());
             compare(&ours[..common], &theirs, uses_inches(path))?;
             Ok(Verdict::UserMCode)
@@ -285,6 +289,8 @@ fn hand_written_cases_conform() {
         } else {
             match (ours, theirs) {
                 (Ok(ours), Outcome::Motions(theirs)) => {
+                    let ours = without_codes(&ours);
+                    let theirs = rs274::expand_splines(&ours, &theirs);
                     compare(&ours, &theirs, uses_inches(case)).err()
                 }
                 (ours, theirs) => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
@@ -572,7 +578,7 @@ fn random_control(rng: &mut Rng, label: &mut u32) -> String {
 }
 
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
-/// close: both interpreters must then refuse them alike), O-word control flow.
+/// close: both interpreters must then refuse them alike), O-word control flow, G5/G5.1 splines.
 fn random_program(rng: &mut Rng) -> String {
     let mut text = format!("{RANDOM_SUBROUTINES}G0 X0 Y0 Z0 C0\nF500\n#<p1> = 0.5\n");
     let mut label = 100;
@@ -683,6 +689,24 @@ fn random_program(rng: &mut Rng) -> String {
                 4 => format!("T{} M6", rng.below(4)),
                 _ => rng.pick(&["G49", "G43", "G43.2 H1", "M61 Q2"]).to_owned(),
             },
+            25 => {
+                // A spline: G5 (sometimes without I J: it continues from the last G5's P Q, or
+                // G87's I J) or G5.1; now and then outside G17, which both refuse.
+                let plane = if rng.below(5) == 0 { "" } else { "G17 " };
+                let end =
+                    format!("X[#<_x> + {}] Y[#<_y> - {}]", rng.coordinate(), rng.coordinate());
+                let (i, j) = (rng.coordinate(), rng.coordinate());
+                let (p, q) = (rng.coordinate(), rng.coordinate());
+                let words = match rng.below(4) {
+                    0 => format!("G5.1 {end} I{i} J{j}"),
+                    1 => format!("G5 {end} P{p} Q{q}"),
+                    _ => format!("G5 {end} I{i} J{j} P{p} Q{q}"),
+                };
+                // Then a straight move to where the spline ended: rs274 prints that point (its
+                // NURBS_FEED does not), and its canon learns it (an M6 takes its position
+                // back from the canon, which does not follow a NURBS).
+                format!("G94 {plane}{words} F{}\nG1 X#<_x> Y#<_y>", 100 + rng.below(900))
+            }
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);

@@ -137,7 +137,9 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 X1\n\xff\xfe\x00\x01\nM2\n".to_vec(), "job.ngc:2:1: Bad character byte 0xff used"),
         (b"\x7fELF\x02\x01\x01\x00".to_vec(), "job.ngc:1:1: Bad character byte 0x7f used"),
         (b"G0 X1 Q2\nM2\n".to_vec(), "job.ngc:1:7: Q word with no"),
-        (b"G5 X1 Y1 I0 J1 P1 Q0 F10\nM2\n".to_vec(), "job.ngc:1:1: G5 is not supported yet"),
+        (b"G5.2 X1 Y1 P1 L3 F10\nM2\n".to_vec(), "job.ngc:1:1: G5.2 is not supported yet"),
+        (b"G18 G5 X1 Y1 I0 J1 P1 Q0 F10\nM2\n".to_vec(), "job.ngc:1:5: Splines must be in the XY"),
+        (b"G5.1 X1 Y1 I0 F10\nM2\n".to_vec(), "job.ngc:1:1: Must specify both I and J with G5.1"),
         (
             b"G41.1 D4 F10\nG1 X1\nM2\n".to_vec(),
             "job.ngc:2:1: Length of cutter compensation entry move is not greater than the tool \

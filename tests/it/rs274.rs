@@ -259,6 +259,17 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                     blend,
                 );
             }
+            // A G5/G5.1 spline: rs274's canon prints the number of control points, not where the
+            // curve goes. A linear move with an end that is not a number stands for it; see
+            // `expand_splines`.
+            "NURBS_FEED" => push(
+                &mut motions,
+                MotionKind::Linear {
+                    end: [f64::NAN; 4],
+                    feed: Feed { mm_per_min: feed, inverse_time: false },
+                },
+                blend,
+            ),
             "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
             "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
             "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place, None),
@@ -279,4 +290,42 @@ pub fn parse(canon: &str) -> Vec<Motion> {
         }
     }
     motions
+}
+
+/// Whether `motion` stands for one of rs274's `NURBS_FEED`s (see [`parse`]).
+pub fn is_spline(motion: &Motion) -> bool {
+    matches!(motion.kind, MotionKind::Linear { end, .. } if end[0].is_nan())
+}
+
+/// rs274's motions with each spline (`NURBS_FEED`) replaced by the straight moves `ours` made
+/// of it: the moves of one line that stand where the spline stands in the sequence, with
+/// rs274's feed and blend. Their ends are ours (rs274 does not print the curve's points); where
+/// the curve ends is checked by the motions after it, which start there (a program ends with
+/// moves that show the position). A spline with no straight move of ours in its place is left
+/// as it is, and so differs.
+pub fn expand_splines(ours: &[Motion], theirs: &[Motion]) -> Vec<Motion> {
+    let mut expanded = Vec::with_capacity(theirs.len());
+    let mut at = 0;
+    for motion in theirs {
+        let ours_here = ours.get(at);
+        match (is_spline(motion), motion.kind, ours_here) {
+            (true, MotionKind::Linear { feed, .. }, Some(first))
+                if matches!(first.kind, MotionKind::Linear { .. }) =>
+            {
+                let line = first.line;
+                while let Some(our) = ours.get(at)
+                    && our.line == line
+                    && let MotionKind::Linear { end, .. } = our.kind
+                {
+                    expanded.push(Motion { kind: MotionKind::Linear { end, feed }, ..*motion });
+                    at += 1;
+                }
+            }
+            _ => {
+                expanded.push(*motion);
+                at += 1;
+            }
+        }
+    }
+    expanded
 }

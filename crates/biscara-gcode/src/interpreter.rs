@@ -17,7 +17,7 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
-use crate::tool::Tool;
+use crate::tool::{Tool, ToolInference};
 use crate::tool_table::ToolTable;
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
@@ -36,6 +36,8 @@ mod modal_state;
 mod polar;
 /// G10 L2 R: coordinate systems rotated about Z.
 mod rotation;
+/// G5 and G5.1 splines, run as straight moves.
+mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
@@ -64,6 +66,10 @@ pub struct Config {
     /// The G54 offset in force before the first line, `[x, y, z, c]` (mm, degrees): shifts the
     /// whole program (`--origin`).
     pub origin: [f64; 4],
+    /// Where the robot is before the first line when that is not `home` (`[x, y, z, c]`, mm and
+    /// degrees, base frame): a program that makes its start point its zero (`G92 X0 Y0`) is
+    /// placed by moving its start (`--fit`). `None`: at `home`. G28 and G30 still go to `home`.
+    pub start: Option<[f64; 4]>,
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
@@ -73,6 +79,9 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
     pub tool: Tool,
+    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES) ([`crate::infer_tool`]);
+    /// `tool` is kept when nothing tells. See [`Interpreter::tool_inference`].
+    pub infer_tool: bool,
     /// The path-control mode before the program says one (`--blend`): `None`, exact stop, by
     /// default; `Some(p)` as if the program began with `G64 P{p}`. See [`Motion::blend`].
     pub blend: Option<f64>,
@@ -87,9 +96,11 @@ impl Default for Config {
         Config {
             home: [0.0; 4],
             origin: [0.0; 4],
+            start: None,
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
+            infer_tool: false,
             blend: None,
             tool_table: None,
         }
@@ -134,6 +145,10 @@ pub struct Interpreter<R> {
     detection: Option<Detection>,
     summary: Summary,
     tool: Tool,
+    /// Whether the tool is still to be inferred from the look-ahead.
+    infer_tool: bool,
+    /// What the inference found.
+    tool_inference: Option<ToolInference>,
     /// Whether the tool is on (M3/M4 until M5 or M6).
     tool_on: bool,
     /// MakerBot's flavour: the A word is the extruder.
@@ -145,6 +160,9 @@ pub struct Interpreter<R> {
     pending_extrude: Option<f64>,
     /// Whether any motion was emitted (an empty program is not a program).
     moved: bool,
+    /// The axes (x y z c) a G92 named before the first motion: the program made its start
+    /// point its zero there.
+    zeroed_at_start: [bool; 4],
     /// O-word control flow.
     control: Box<control::Control>,
 }
@@ -218,7 +236,8 @@ impl State {
             params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
         }
         params.set(COORDINATE_SYSTEM, 1.0);
-        let current = std::array::from_fn(|axis| config.home[axis] - config.origin[axis]);
+        let start = config.start.unwrap_or(config.home);
+        let current = std::array::from_fn(|axis| start[axis] - config.origin[axis]);
         let mut state = State {
             metric: true,
             incremental: false,
@@ -373,12 +392,15 @@ impl<R: BufRead> Interpreter<R> {
             detection: None,
             summary: Summary::default(),
             tool: config.tool,
+            infer_tool: config.infer_tool,
+            tool_inference: None,
             tool_on: false,
             makerbot: false,
             e_position: 0.0,
             e_relative: false,
             pending_extrude: None,
             moved: false,
+            zeroed_at_start: [false; 4],
             control: Box::default(),
         }
         .with_line_limit()
@@ -409,6 +431,9 @@ impl<R: BufRead> Interpreter<R> {
     fn step(&mut self) -> Result<(), GcodeError> {
         if self.undecided {
             self.decide()?;
+        }
+        if self.infer_tool {
+            self.infer_tool()?;
         }
         loop {
             let more = self
@@ -528,13 +553,20 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         self.check_support()?;
-        self.check_polar_words()?;
-        let g = self.block.g;
-        let m = self.block.m;
-        let motion_code = g[1];
-        let group0 = g[0];
+        if self.block.extra.is_some() {
+            self.check_polar_words()?;
+        }
+        let motion_code = self.block.g[1];
+        let group0 = self.block.g[0];
         let axis_words =
             AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
+        // rs274 checks a spline's axis words first of all.
+        if let Some(code) = motion_code
+            && spline::is_spline(code.code)
+            && !axis_words
+        {
+            return Err(self.code_fault(code, "All axes missing with motion code"));
+        }
         let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
@@ -544,7 +576,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         // G43.1 and G43.2 use the axis words too (without making the modal motion move).
         let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code))
-            || g[8].is_some_and(|code| matches!(code.code, 431 | 432));
+            || self.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         let modal_motion = match motion_code {
             Some(code) => Some(code.code),
             None => self.state.motion,
@@ -572,7 +604,7 @@ impl<R: BufRead> Interpreter<R> {
             if !matches!(motion_to_be, Some(0 | 10)) {
                 return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
             }
-            let incremental = match g[3] {
+            let incremental = match self.block.g[3] {
                 Some(code) => code.code == 910,
                 None => self.state.incremental,
             };
@@ -608,7 +640,7 @@ impl<R: BufRead> Interpreter<R> {
         }
 
         // 3. feed mode
-        if let Some(code) = g[5] {
+        if let Some(code) = self.block.g[5] {
             if code.code == 930 {
                 self.state.inverse_time = true;
             } else {
@@ -624,23 +656,31 @@ impl<R: BufRead> Interpreter<R> {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
-        self.check_spindle_number()?;
+        if self.block.extra.is_some() {
+            self.check_spindle_number()?;
+        }
         // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
         // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
             let changed = s.value != self.state.speed;
             self.state.speed = s.value;
             let powered = matches!(self.tool, Tool::Laser | Tool::Spindle);
-            if changed && powered && self.tool_on && m[7].is_none() {
+            if changed && powered && self.tool_on && self.block.m[7].is_none() {
                 self.tool_event(self.state.spindle);
             }
         }
-        self.select_tool()?;
+        // (Calls into the tier-3 modules only when the block has their words: every line
+        // passes here.)
+        if self.block.word(b't').is_some() {
+            self.select_tool()?;
+        }
         // 7. digital and analog outputs and inputs
-        self.io_output()?;
+        if self.block.m[5].is_some() {
+            self.io_output()?;
+        }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
         // tool is in the spindle.
-        if let Some(code) = m[6] {
+        if let Some(code) = self.block.m[6] {
             if code.code == 61 {
                 self.set_current_tool(code)?;
             } else {
@@ -654,16 +694,16 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = m[7].filter(|code| code.code >= 70) {
+        if let Some(code) = self.block.m[7].filter(|code| code.code >= 70) {
             self.modal_state(code)?;
-        } else if m[7].is_some_and(|code| code.code == 19) {
+        } else if self.block.m[7].is_some_and(|code| code.code == 19) {
             self.orient_spindle()?;
-        } else if let Some(code) = m[7] {
+        } else if let Some(code) = self.block.m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }
         // 11. coolant
-        if let Some(code) = m[8] {
+        if let Some(code) = self.block.m[8] {
             match code.code {
                 7 => self.state.mist = true,
                 8 => self.state.flood = true,
@@ -671,9 +711,11 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // overrides
-        self.overrides()?;
+        if self.block.m[9].is_some() {
+            self.overrides()?;
+        }
         // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
-        if let Some(code) = m[10] {
+        if let Some(code) = self.block.m[10] {
             self.record(&format!("M{}", code.code), true);
         }
         // 14. dwell
@@ -688,7 +730,7 @@ impl<R: BufRead> Interpreter<R> {
             self.emit(MotionKind::Dwell { seconds: p.value });
         }
         // 15. plane
-        if let Some(code) = g[2] {
+        if let Some(code) = self.block.g[2] {
             let plane = match code.code {
                 170 => Plane::Xy,
                 180 => Plane::Xz,
@@ -703,17 +745,19 @@ impl<R: BufRead> Interpreter<R> {
             self.state.plane = plane;
         }
         // 16. length units
-        if let Some(code) = g[6] {
+        if let Some(code) = self.block.g[6] {
             self.set_units(code.code == 210);
         }
         // 17. cutter radius compensation
-        self.set_cutter_comp()?;
+        if self.block.g[7].is_some() {
+            self.set_cutter_comp()?;
+        }
         // 18. tool length offset
-        if let Some(code) = g[8] {
+        if let Some(code) = self.block.g[8] {
             self.tool_length_offset(code)?;
         }
         // 19. coordinate system
-        if let Some(code) = g[12] {
+        if let Some(code) = self.block.g[12] {
             let system = match code.code {
                 540 => 1,
                 550 => 2,
@@ -732,14 +776,14 @@ impl<R: BufRead> Interpreter<R> {
             self.select_system(system);
         }
         // 20. path control mode
-        if let Some(code) = g[13] {
+        if let Some(code) = self.block.g[13] {
             self.set_path_control(code)?;
         }
         // 21. distance modes
-        if let Some(code) = g[3] {
+        if let Some(code) = self.block.g[3] {
             self.state.incremental = code.code == 910;
         }
-        if let Some(code) = g[4] {
+        if let Some(code) = self.block.g[4] {
             self.state.ijk_absolute = code.code == 901;
         }
         // 23. G10, G28, G30, G92 family
@@ -780,7 +824,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
-        if let Some(code) = g[11].filter(|_| !self.state.comp.on()) {
+        if let Some(code) = self.block.g[11].filter(|_| !self.state.comp.on()) {
             if code.code == 923 {
                 let offsets = std::array::from_fn(|axis| {
                     let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
@@ -797,12 +841,13 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 22. retract mode
-        if let Some(code) = g[10] {
+        if let Some(code) = self.block.g[10] {
             self.state.cycle.retract_to_old = code.code == 980;
         }
         // 24. motion
         let previous_motion = self.state.motion;
-        if let Some(code) = motion_code {
+        // A spline leaves the modal motion as it was.
+        if let Some(code) = motion_code.filter(|code| !spline::is_spline(code.code)) {
             self.state.motion = if code.code == 800 { None } else { Some(code.code) };
             if !canned::is_cycle(code.code) {
                 self.state.cycle.initial_level = None;
@@ -816,12 +861,13 @@ impl<R: BufRead> Interpreter<R> {
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
                 20 | 30 => self.arc(motion == 20)?,
+                50 | 51 => self.spline(motion)?,
                 _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }
         self.check_range()?;
         // 25. stop
-        if let Some(code) = m[4] {
+        if let Some(code) = self.block.m[4] {
             self.flush_cutter_comp()?;
             match code.code {
                 2 | 30 => {
@@ -839,18 +885,16 @@ impl<R: BufRead> Interpreter<R> {
     /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
     /// 240-digit number), rather than passing them on.
     fn check_range(&self) -> Result<(), Fault> {
+        let far = |value: &f64| value.abs() > MAX_COORDINATE;
         for motion in &self.queue {
-            let mut values = [0.0; 6];
-            let mut count = 0;
-            if let Some(end) = motion.kind.end() {
-                values[..4].copy_from_slice(&end);
-                count = 4;
-            }
-            if let MotionKind::Arc { center, .. } = motion.kind {
-                values[4..].copy_from_slice(&center);
-                count = 6;
-            }
-            if let Some(value) = values[..count].iter().find(|value| value.abs() > MAX_COORDINATE) {
+            let value = match &motion.kind {
+                MotionKind::Arc { end, center, .. } => end.iter().chain(center).copied().find(far),
+                MotionKind::Rapid { end } | MotionKind::Linear { end, .. } => {
+                    end.iter().copied().find(far)
+                }
+                kind => kind.end().and_then(|end| end.into_iter().find(far)),
+            };
+            if let Some(value) = value {
                 let word = self.first_axis_word().map_or((0, 1), |word| (word.at, word.end));
                 return Err(self.fault_at(
                     word.0,
@@ -915,12 +959,14 @@ impl<R: BufRead> Interpreter<R> {
                     format!("G{}.{}", code.code / 10, code.code % 10)
                 }
             };
-            let (first, last) = self.span(code.at, code.end);
+            // The span only for a refusal: this runs on every code of every line.
             match g_group(code.code) {
                 Some((_, Support::No(note))) => {
+                    let (first, last) = self.span(code.at, code.end);
                     return Err(Fault::not_supported(first, last, name(), note));
                 }
                 Some((_, Support::Cannot(reason))) => {
+                    let (first, last) = self.span(code.at, code.end);
                     return Err(Fault::cannot(first, last, name(), reason));
                 }
                 _ => {}
@@ -941,6 +987,8 @@ impl<R: BufRead> Interpreter<R> {
         let block = &self.block;
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
+        let g5 = motion == Some(50);
+        let spline = g5 || motion == Some(51);
         let g10 = group0 == Some(100);
         let comp_on = block.g[7].is_some_and(|code| code.code != 400);
         let cycle = motion.is_some_and(canned::is_cycle);
@@ -948,40 +996,47 @@ impl<R: BufRead> Interpreter<R> {
         if cycle && let Some(c) = block.word(b'c') {
             return Err(self.word_fault(c, "Cannot put a c in canned cycle"));
         }
-        let checks: [(u8, bool, &str); 7] = [
-            (
-                b'd',
-                comp_on,
-                "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
-            ),
-            (b'e', self.io_uses_e(), "E word with no G70, G76, M66, M67 or M68 to use it"),
-            (
-                b'h',
-                block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
-                "H word with no G43 or G76 to use it",
-            ),
-            (
-                b'i',
-                arc || g10 || g87,
-                "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
-            ),
-            (b'j', arc || g10 || g87, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
-            (b'k', arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
-            (
-                b'l',
-                g10 || comp_on || cycle || self.io_uses_l(),
-                "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
-                 or NURBS code",
-            ),
-        ];
-        for (letter, used, message) in checks {
-            if letter == b'e' {
-                // rs274 checks the `$` word between D and E.
-                self.check_dollar()?;
-            }
-            if let Some(word) = block.word(letter)
-                && !used
+        if block.extra.is_some() {
+            // rs274 checks the `$` word between D and E.
+            if let Some(d) = block.word(b'd')
+                && !comp_on
             {
+                return Err(self.word_fault(
+                    d,
+                    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+                ));
+            }
+            self.check_dollar()?;
+        }
+        // The use of a word is looked at only when the block has it: this runs on every line.
+        for letter in [b'd', b'e', b'h', b'i', b'j', b'k', b'l'] {
+            let Some(word) = block.word(letter) else { continue };
+            let (used, message) = match letter {
+                b'd' => (
+                    comp_on,
+                    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+                ),
+                b'e' => (self.io_uses_e(), "E word with no G70, G76, M66, M67 or M68 to use it"),
+                b'h' => (
+                    block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
+                    "H word with no G43 or G76 to use it",
+                ),
+                b'i' => (
+                    arc || spline || g10 || g87,
+                    "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
+                ),
+                b'j' => (
+                    arc || spline || g10 || g87,
+                    "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it",
+                ),
+                b'k' => (arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
+                _ => (
+                    g10 || comp_on || cycle || self.io_uses_l(),
+                    "L word with no G10, cutter compensation, canned cycle, digital/analog input, \
+                     M98 or NURBS code",
+                ),
+            };
+            if !used {
                 return Err(self.word_fault(word, message));
             }
         }
@@ -1003,6 +1058,7 @@ impl<R: BufRead> Interpreter<R> {
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
             let user_m = block.m[10].is_some();
             let used = arc
+                || g5
                 || matches!(group0, Some(40 | 100))
                 || g64
                 || dwell_cycle
@@ -1028,7 +1084,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g64 && !g10 && !m61 && !peck && block.m[10].is_none() && !self.io_uses_q() {
+            if !g5 && !g64 && !g10 && !m61 && !peck && block.m[10].is_none() && !self.io_uses_q() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -1179,6 +1235,7 @@ impl<R: BufRead> Interpreter<R> {
         let mut offsets = self.state.axis_offset;
         for (axis, &letter) in AXES.iter().enumerate() {
             if let Some(word) = self.block.word(letter) {
+                self.zeroed_at_start[axis] |= !self.moved;
                 offsets[axis] =
                     self.state.current[axis] + self.state.axis_offset[axis] - word.value;
             }
@@ -1219,6 +1276,8 @@ impl<R: BufRead> Interpreter<R> {
     /// End point of a move (`find_ends`).
     fn find_ends(&self, g53: bool) -> [f64; 4] {
         let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());
+        // Without compensation the base is the current point (checked once, not per axis).
+        let comp = self.state.comp.on() && !g53;
         std::array::from_fn(|axis| {
             if let Some(Some(xy)) = rotated
                 && axis < 2
@@ -1226,9 +1285,10 @@ impl<R: BufRead> Interpreter<R> {
                 return xy[axis];
             }
             let word = self.block.word(AXES[axis]).map(|word| word.value);
-            let current = match self.state.comp.base(axis, self.state.plane) {
-                Some(programmed) if !g53 => programmed,
-                _ => self.state.current[axis],
+            let current = if comp {
+                self.state.comp.base(axis, self.state.plane).unwrap_or(self.state.current[axis])
+            } else {
+                self.state.current[axis]
             };
             match word {
                 None => current,

@@ -13,8 +13,9 @@
 //! It deliberately does not: know the robot (no kinematics; the home pose is a plain number),
 //! print, or guess. Of tier 3 it reads tool offsets with a LinuxCNC tool table
 //! ([`Config::tool_table`], [`ToolTable`]), canned cycles, cutter radius compensation, G52,
-//! M70–M73 and user M codes (events); splines and the rest are refused with "… is not supported
-//! yet", never interpreted wrongly; lathe codes, spindle-synchronised motion and probing are
+//! M70–M73 and user M codes (events), G5/G5.1 splines in G17 (as straight moves within
+//! 0.001 mm of the curve); NURBS and the rest are refused with "… is not supported yet", never
+//! interpreted wrongly; lathe codes, spindle-synchronised motion and probing are
 //! refused as this robot cannot do them; A, B, U, V and W words are errors.
 //!
 //! Where it differs from LinuxCNC, on purpose:
@@ -88,5 +89,5 @@ pub use dialect::{
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
 pub use lexer::{Forward, Seekable};
-pub use tool::Tool;
+pub use tool::{Tool, ToolInference, infer_tool};
 pub use tool_table::{ToolEntry, ToolTable, ToolTableError};

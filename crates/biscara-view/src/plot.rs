@@ -47,10 +47,35 @@ pub struct TopView<'a> {
     pub rectangle: Option<&'a WorkspaceRectangle>,
     /// The programmed path in XY, millimetres (a polyline).
     pub path: &'a [[f64; 2]],
+    /// What the tool did (SPEC §1.6): the laser's burnt trace, the extruded track, the pen's
+    /// strokes, the cut; drawn over the path, which then shows the travel. Empty for the
+    /// gripper.
+    pub process: &'a [ProcessStroke],
+    /// The legend of the process strokes (`laser: burnt trace, darker for more power`).
+    pub process_label: &'a str,
     /// The robot at chosen times: `(t, body)`.
     pub bodies: &'a [(f64, Body)],
     /// The scene's boxes, drawn as footprints.
     pub scene: Option<&'a Scene>,
+}
+
+/// A piece of the tool's work in XY (see [`TopView::process`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProcessStroke {
+    /// Where it starts, millimetres.
+    pub from: [f64; 2],
+    /// Where it ends, millimetres.
+    pub to: [f64; 2],
+    /// How strong, 0 … 1 (a laser's power over its maximum; 1 for the other tools): drawn
+    /// darker when stronger.
+    pub strength: f64,
+}
+
+/// The colour of a process stroke of `strength` (0 … 1): light brown to near black.
+fn process_colour(strength: f64) -> RGBColor {
+    let s = strength.clamp(0.0, 1.0);
+    let lerp = |light: f64, dark: f64| (light + (dark - light) * s).round() as u8;
+    RGBColor(lerp(225.0, 30.0), lerp(190.0, 15.0), lerp(140.0, 5.0))
 }
 
 /// The joint curves: positions in user units (degrees for θ, millimetres for d4) against time.
@@ -262,14 +287,33 @@ fn top_view_on<DB: DrawingBackend>(
             });
     }
     if !view.path.is_empty() {
+        // With the tool's work drawn over it, the path shows the travel: thin.
+        let (width, label) =
+            if view.process.is_empty() { (2, "programmed path") } else { (1, "travel") };
         chart
             .draw_series(LineSeries::new(
                 view.path.iter().map(|p| (p[0], p[1])),
-                PATH_COLOUR.stroke_width(2),
+                PATH_COLOUR.stroke_width(width),
             ))
             .map_err(e)?
-            .label("programmed path")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], PATH_COLOUR.stroke_width(2)));
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 16, y)], PATH_COLOUR.stroke_width(width))
+            });
+    }
+    if !view.process.is_empty() {
+        chart
+            .draw_series(view.process.iter().map(|stroke| {
+                PathElement::new(
+                    [(stroke.from[0], stroke.from[1]), (stroke.to[0], stroke.to[1])],
+                    process_colour(stroke.strength).stroke_width(3),
+                )
+            }))
+            .map_err(e)?
+            .label(view.process_label)
+            .legend(|(x, y)| {
+                PathElement::new([(x, y), (x + 16, y)], process_colour(1.0).stroke_width(3))
+            });
     }
     for (index, (t, body)) in view.bodies.iter().enumerate() {
         let colour = ROBOT_COLOURS[index % ROBOT_COLOURS.len()];
@@ -389,6 +433,8 @@ pub fn draw_workspace(
 ) -> Result<Vec<u8>, ViewError> {
     let bodies: Vec<(f64, Body)> = home.map(|body| (0.0, *body)).into_iter().collect();
     let view = TopView {
+        process: &[],
+        process_label: "",
         title,
         workspace: Some(workspace),
         rectangle: Some(rectangle),

@@ -32,6 +32,20 @@ pub(super) struct CycleState {
     ijk: [f64; 3],
 }
 
+impl CycleState {
+    /// The I and J a G5 without them takes: rs274 keeps the last G5's (−P, −Q) where it keeps
+    /// G87's I and J (`cycle_i`, `cycle_j`), so each reads what the other left.
+    pub(super) fn spline_ij(&self) -> [f64; 2] {
+        [self.ijk[0], self.ijk[1]]
+    }
+
+    /// Keeps a G5's (−P, −Q) for the next G5 (see [`CycleState::spline_ij`]).
+    pub(super) fn set_spline_ij(&mut self, ij: [f64; 2]) {
+        self.ijk[0] = ij[0];
+        self.ijk[1] = ij[1];
+    }
+}
+
 /// The axes (x = 0, y = 1, z = 2) of `aa`, `bb` and `cc` in `plane`.
 fn plane_axes(plane: Plane) -> [usize; 3] {
     match plane {
@@ -43,7 +57,9 @@ fn plane_axes(plane: Plane) -> [usize; 3] {
 
 /// Whether `motion` (ten times the G number) is a canned cycle.
 pub(super) fn is_cycle(motion: u16) -> bool {
-    matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
+    // The range first: G0–G3 leave after one comparison (this runs on every motion line).
+    motion >= 730
+        && matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
 }
 
 impl<R: BufRead> Interpreter<R> {
