@@ -148,6 +148,8 @@ pub fn parse(canon: &str) -> Vec<Motion> {
     let mut g92 = [0.0; 4];
     let mut tlo = [0.0; 4];
     let mut plane = Plane::Xy;
+    // SET_XY_ROTATION: the system's rotation about Z, degrees (canon: rot(p + g92) + g5x + tlo).
+    let mut rotation = 0.0_f64;
     let mut feed = 0.0;
     // rs274's canon starts in CANON_CONTINUOUS with no tolerance (LinuxCNC's G64 by default);
     // canned cycles restore it after their exact-path moves.
@@ -172,10 +174,15 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             None => (*line, ""),
         };
         let values = numbers(arguments);
+        let turn = |x: f64, y: f64| -> [f64; 2] {
+            let t = rotation.to_radians();
+            [x * t.cos() - y * t.sin(), x * t.sin() + y * t.cos()]
+        };
         let pose = |v: &[f64]| -> [f64; 4] {
+            let [x, y] = turn(v[0] * factor + g92[0], v[1] * factor + g92[1]);
             [
-                v[0] * factor + g5x[0] + g92[0] + tlo[0],
-                v[1] * factor + g5x[1] + g92[1] + tlo[1],
+                x + g5x[0] + tlo[0],
+                y + g5x[1] + tlo[1],
                 v[2] * factor + g5x[2] + g92[2] + tlo[2],
                 v[5] + g5x[3] + g92[3] + tlo[3],
             ]
@@ -190,6 +197,7 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             "USE_TOOL_LENGTH_OFFSET" => {
                 tlo = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
             }
+            "SET_XY_ROTATION" => rotation = values[0],
             "SET_G92_OFFSET" => {
                 g92 = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
             }
@@ -230,10 +238,13 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 program[normal] = values[5];
                 program[5] = values[8];
                 let end = pose(&program);
-                let offsets =
-                    [g5x[0] + g92[0] + tlo[0], g5x[1] + g92[1] + tlo[1], g5x[2] + g92[2] + tlo[2]];
-                let center =
-                    [values[2] * factor + offsets[first], values[3] * factor + offsets[second]];
+                // The centre is turned as the points are (XY arcs: rs274 rotates no other plane's
+                // arcs, which are refused here).
+                let mut point = [0.0; 6];
+                point[first] = values[2];
+                point[second] = values[3];
+                let centre = pose(&point);
+                let center = [centre[first], centre[second]];
                 let rotation = values[4];
                 push(
                     &mut motions,

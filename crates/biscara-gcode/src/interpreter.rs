@@ -28,8 +28,14 @@ mod control;
 mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M19, M48–M53, M62–M68 and the `$` word.
+mod io_codes;
 /// M70–M73: the modal state saved and restored.
 mod modal_state;
+/// Polar coordinates (`@`, `^`).
+mod polar;
+/// G10 L2 R: coordinate systems rotated about Z.
+mod rotation;
 /// G5 and G5.1 splines, run as straight moves.
 mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
@@ -189,6 +195,8 @@ struct State {
     origin: [f64; 4],
     axis_offset: [f64; 4],
     system: usize,
+    /// The rotation of the system in force about Z, degrees (G10 L2 R; 0: none).
+    rotation: f64,
     params: Params,
     line: usize,
     speed: f64,
@@ -243,6 +251,7 @@ impl State {
             origin: config.origin,
             axis_offset: [0.0; 4],
             system: 1,
+            rotation: 0.0,
             params,
             line: 0,
             speed: 0.0,
@@ -279,6 +288,9 @@ impl State {
 
     /// A position in the current coordinate system → absolute mm and degrees.
     fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
+        if self.rotation != 0.0 {
+            return self.absolute_rotated(position);
+        }
         std::array::from_fn(|axis| {
             self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
                 + self.tool_offset_mm[axis]
@@ -296,9 +308,7 @@ impl State {
 impl Predefined for State {
     fn predefined(&self, name: &[u8]) -> Option<f64> {
         let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| {
-            self.current[axis] + self.origin[axis] + self.axis_offset[axis] + self.tool_offset[axis]
-        };
+        let machine = |axis: usize| self.machine(self.current)[axis];
         Some(match name {
             b"_x" => self.current[0],
             b"_y" => self.current[1],
@@ -543,9 +553,13 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         self.check_support()?;
+        if self.block.extra.is_some() {
+            self.check_polar_words()?;
+        }
         let motion_code = self.block.g[1];
         let group0 = self.block.g[0];
-        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        let axis_words =
+            AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
         // rs274 checks a spline's axis words first of all.
         if let Some(code) = motion_code
             && spline::is_spline(code.code)
@@ -642,6 +656,9 @@ impl<R: BufRead> Interpreter<R> {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
+        if self.block.extra.is_some() {
+            self.check_spindle_number()?;
+        }
         // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
         // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
@@ -656,6 +673,10 @@ impl<R: BufRead> Interpreter<R> {
         // passes here.)
         if self.block.word(b't').is_some() {
             self.select_tool()?;
+        }
+        // 7. digital and analog outputs and inputs
+        if self.block.m[5].is_some() {
+            self.io_output()?;
         }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
         // tool is in the spindle.
@@ -675,6 +696,8 @@ impl<R: BufRead> Interpreter<R> {
         // 9. spindle: the gripper (or the tool)
         if let Some(code) = self.block.m[7].filter(|code| code.code >= 70) {
             self.modal_state(code)?;
+        } else if self.block.m[7].is_some_and(|code| code.code == 19) {
+            self.orient_spindle()?;
         } else if let Some(code) = self.block.m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
@@ -686,6 +709,10 @@ impl<R: BufRead> Interpreter<R> {
                 8 => self.state.flood = true,
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
+        }
+        // overrides
+        if self.block.m[9].is_some() {
+            self.overrides()?;
         }
         // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
         if let Some(code) = self.block.m[10] {
@@ -776,11 +803,8 @@ impl<R: BufRead> Interpreter<R> {
                         "Cannot set reference point with cutter compensation in effect",
                     )?;
                     let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
-                    for axis in 0..4 {
-                        let machine = self.state.current[axis]
-                            + self.state.origin[axis]
-                            + self.state.axis_offset[axis]
-                            + self.state.tool_offset[axis];
+                    let machine = self.state.machine(self.state.current);
+                    for (axis, machine) in machine.into_iter().enumerate() {
                         let value = self.state.to_mm(axis, machine);
                         self.state.params.set(base + axis_slot(axis), value);
                     }
@@ -831,6 +855,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
+            if self.block.extra.is_some() {
+                self.apply_polar(motion, g53)?;
+            }
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
                 20 | 30 => self.arc(motion == 20)?,
@@ -883,7 +910,10 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn first_axis_word(&self) -> Option<Word> {
-        AXES.iter().filter_map(|&letter| self.block.word(letter)).min_by_key(|word| word.at)
+        AXES.iter()
+            .filter_map(|&letter| self.block.word(letter))
+            .chain(self.first_polar_word())
+            .min_by_key(|word| word.at)
     }
 
     /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
@@ -966,6 +996,18 @@ impl<R: BufRead> Interpreter<R> {
         if cycle && let Some(c) = block.word(b'c') {
             return Err(self.word_fault(c, "Cannot put a c in canned cycle"));
         }
+        if block.extra.is_some() {
+            // rs274 checks the `$` word between D and E.
+            if let Some(d) = block.word(b'd')
+                && !comp_on
+            {
+                return Err(self.word_fault(
+                    d,
+                    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+                ));
+            }
+            self.check_dollar()?;
+        }
         // The use of a word is looked at only when the block has it: this runs on every line.
         for letter in [b'd', b'e', b'h', b'i', b'j', b'k', b'l'] {
             let Some(word) = block.word(letter) else { continue };
@@ -974,7 +1016,7 @@ impl<R: BufRead> Interpreter<R> {
                     comp_on,
                     "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
                 ),
-                b'e' => (false, "E word with no G70, G76, M66, M67 or M68 to use it"),
+                b'e' => (self.io_uses_e(), "E word with no G70, G76, M66, M67 or M68 to use it"),
                 b'h' => (
                     block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
                     "H word with no G43 or G76 to use it",
@@ -989,7 +1031,7 @@ impl<R: BufRead> Interpreter<R> {
                 ),
                 b'k' => (arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
                 _ => (
-                    g10 || comp_on || cycle,
+                    g10 || comp_on || cycle || self.io_uses_l(),
                     "L word with no G10, cutter compensation, canned cycle, digital/analog input, \
                      M98 or NURBS code",
                 ),
@@ -1007,8 +1049,13 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
             let user_m = block.m[10].is_some();
-            let used =
-                arc || g5 || matches!(group0, Some(40 | 100)) || g64 || dwell_cycle || user_m;
+            let used = arc
+                || g5
+                || matches!(group0, Some(40 | 100))
+                || g64
+                || dwell_cycle
+                || user_m
+                || self.io_uses_p();
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -1017,6 +1064,7 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             // The turns of an arc, checked here with the block, before the arc's own checks.
+            self.m19_p_integer(p)?;
             if arc && (round_to_int(p.value) - p.value).abs() > 0.001 {
                 return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
             }
@@ -1028,7 +1076,7 @@ impl<R: BufRead> Interpreter<R> {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
             let m61 = block.m[6].is_some_and(|code| code.code == 61);
             let peck = matches!(motion, Some(730 | 830));
-            if !g5 && !g64 && !g10 && !m61 && !peck && block.m[10].is_none() {
+            if !g5 && !g64 && !g10 && !m61 && !peck && block.m[10].is_none() && !self.io_uses_q() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -1036,8 +1084,9 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
         }
+        let m19 = block.m[7].is_some_and(|code| code.code == 19);
         if let Some(r) = block.word(b'r')
-            && !(arc || g10 || cycle)
+            && !(arc || g10 || cycle || m19)
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
@@ -1090,15 +1139,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn select_system(&mut self, system: usize) {
-        let base = coordinate_system_base(system);
-        for axis in 0..4 {
-            let origin =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            self.state.current[axis] += self.state.origin[axis] - origin;
-            self.state.origin[axis] = origin;
-        }
-        self.state.system = system;
-        self.state.params.set(COORDINATE_SYSTEM, system as f64);
+        self.change_system(system, false);
     }
 
     /// G10 L2 and L20.
@@ -1113,13 +1154,16 @@ impl<R: BufRead> Interpreter<R> {
             2 | 20 => {}
             1 | 10 | 11 => return self.set_tool_data(code, l_value),
             0 => {
-                let (first, last) = self.span(code.at, l.end.max(code.end));
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    "G10 L0".to_owned(),
-                    "reloading the tool table",
-                ));
+                // Reloading the tool table: rs274 keeps the table as the program changed it,
+                // and refuses while a tool is in the spindle.
+                let loaded = self.state.tools.spindle.tool;
+                if loaded > 0 {
+                    return Err(self.code_fault(
+                        code,
+                        format!("G10 L0 not allowed with loaded tool <{loaded}>"),
+                    ));
+                }
+                return Ok(());
             }
             _ => {
                 return Err(
@@ -1140,24 +1184,37 @@ impl<R: BufRead> Interpreter<R> {
                 "Cannot change the active coordinate system with cutter radius compensation on",
             )?;
         }
-        if let Some(r) = self.block.word(b'r') {
-            let (first, last) = self.span(r.at, r.end);
-            return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
+        let r = self.block.word(b'r');
+        if let Some(r) = r
+            && l_value == 20
+        {
+            return Err(self.word_fault(r, "R not allowed in G10 L20"));
         }
         let system = if system == 0 { self.state.system } else { system };
         let base = coordinate_system_base(system);
+        let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(code, system)? } else { None };
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
-            let origin = if l_value == 2 {
-                word.value
-            } else {
-                self.state.current[axis] + self.state.origin[axis] - word.value
+            let origin = match rotated_l20 {
+                Some(xy) if axis < 2 => xy[axis],
+                _ if l_value == 2 => word.value,
+                _ => self.state.current[axis] + self.state.origin[axis] - word.value,
             };
             let value = self.state.to_mm(axis, origin);
             self.state.params.set(base + axis_slot(axis), value);
         }
+        if let Some(xy) = rotated_l20 {
+            // In a rotated system both X and Y change, whichever was given.
+            for (axis, value) in xy.into_iter().enumerate() {
+                let value = self.state.to_mm(axis, value);
+                self.state.params.set(base + axis_slot(axis), value);
+            }
+        }
+        if let Some(r) = r {
+            self.state.params.set(rotation::rotation_parameter(system), r.value);
+        }
         if system == self.state.system {
-            self.select_system(system);
+            self.change_system(system, true);
         }
         Ok(())
     }
@@ -1210,9 +1267,15 @@ impl<R: BufRead> Interpreter<R> {
 
     /// End point of a move (`find_ends`).
     fn find_ends(&self, g53: bool) -> [f64; 4] {
+        let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());
         // Without compensation the base is the current point (checked once, not per axis).
         let comp = self.state.comp.on() && !g53;
         std::array::from_fn(|axis| {
+            if let Some(Some(xy)) = rotated
+                && axis < 2
+            {
+                return xy[axis];
+            }
             let word = self.block.word(AXES[axis]).map(|word| word.value);
             let current = if comp {
                 self.state.comp.base(axis, self.state.plane).unwrap_or(self.state.current[axis])
@@ -1240,16 +1303,15 @@ impl<R: BufRead> Interpreter<R> {
         let base = if code.code == 280 { G28_HOME } else { G30_HOME };
         let any = AXES.iter().any(|&letter| self.block.word(letter).is_some());
         let mut end = intermediate;
+        let home = std::array::from_fn(|axis| {
+            self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
+        });
+        let home = self.state.program_of(home);
         for (axis, &letter) in AXES.iter().enumerate() {
             if any && self.block.word(letter).is_none() {
                 continue;
             }
-            let machine =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            end[axis] = machine
-                - self.state.origin[axis]
-                - self.state.axis_offset[axis]
-                - self.state.tool_offset[axis];
+            end[axis] = home[axis];
         }
         self.move_to(end, None);
         Ok(())
@@ -1318,6 +1380,7 @@ impl<R: BufRead> Interpreter<R> {
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
         );
+        self.check_rotated_arc(code_at)?;
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));

@@ -71,15 +71,18 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
 
 /// The modal group of M code `code` and whether it is implemented; `None` when unknown.
 pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
-    use Support::{No, Yes};
+    use Support::Yes;
     Some(match code {
         0 | 1 | 2 | 30 | 60 => (4, Yes),
         6 | 61 => (6, Yes),
         3..=5 => (7, Yes),
-        19 => (7, No("spindle orientation")),
+        // Spindle orientation: an event here (interpreter/io_codes.rs).
+        19 => (7, Yes),
         7..=9 => (8, Yes),
-        48..=53 => (9, No("override control")),
-        62..=68 => (5, No("digital/analog output")),
+        // Override switches: accepted, nothing to do in a simulation.
+        48..=53 => (9, Yes),
+        // Digital and analog outputs, waiting for an input: events here.
+        62..=68 => (5, Yes),
         // rs274 refuses M70 with M3, M4 or M5: one group.
         70..=73 => (7, Yes),
         // User M codes: an event here (there is no external program to run).
@@ -119,6 +122,20 @@ pub(crate) struct Block {
     pub named: Vec<(usize, usize, f64)>,
     /// Whether the line holds nothing but (perhaps) a line number, a comment or `/`.
     pub empty: bool,
+    /// `@`, `^` (polar radius and angle) and `$` (spindle number): rare, kept out of
+    /// [`Block::letters`]; the last `@` or `^` of a line counts, as in LinuxCNC.
+    pub extra: Option<Box<ExtraWords>>,
+}
+
+/// The words LinuxCNC reads besides the letters: polar coordinates and the spindle number.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct ExtraWords {
+    /// `@`: the polar radius.
+    pub radius: Option<Word>,
+    /// `^`: the polar angle, degrees.
+    pub theta: Option<Word>,
+    /// `$`: the spindle.
+    pub spindle: Option<Word>,
 }
 
 impl Block {
@@ -130,6 +147,21 @@ impl Block {
         self.numbered.clear();
         self.named.clear();
         self.empty = true;
+        if let Some(extra) = &mut self.extra {
+            **extra = ExtraWords::default();
+        }
+    }
+
+    /// The `@`, `^` and `$` words of the line, if any.
+    pub(crate) fn extra(&self) -> Option<&ExtraWords> {
+        self.extra.as_deref().filter(|extra| {
+            extra.radius.is_some() || extra.theta.is_some() || extra.spindle.is_some()
+        })
+    }
+
+    /// Whether the line has a polar coordinate (`@` or `^`).
+    pub(crate) fn polar(&self) -> bool {
+        self.extra().is_some_and(|extra| extra.radius.is_some() || extra.theta.is_some())
     }
 
     /// The word for `letter` (lower case).
@@ -356,17 +388,25 @@ impl<'a> Reader<'a> {
                 return self.read_setting(block);
             }
             b'@' | b'^' | b'$' => {
-                // LinuxCNC reads these words' values first (polar coordinates, spindle number).
+                block.empty = false;
+                let extra = block.extra.get_or_insert_with(Box::default);
+                if letter == b'$' && extra.spindle.is_some() {
+                    return Err(self.syntax(
+                        start,
+                        start + 1,
+                        "Multiple spindle choice ($) words on one line",
+                    ));
+                }
                 self.pos += 1;
-                self.read_real_value()?;
-                let (first, last) = self.span(start, self.pos);
-                let note = if letter == b'$' { "spindle selection" } else { "polar coordinates" };
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    format!("the {} word", char::from(letter)),
-                    note,
-                ));
+                let value = self.read_real_value()?;
+                let word = Some(Word { value, at: start, end: self.pos });
+                let extra = block.extra.get_or_insert_with(Box::default);
+                match letter {
+                    b'@' => extra.radius = word,
+                    b'^' => extra.theta = word,
+                    _ => extra.spindle = word,
+                }
+                return Ok(());
             }
             b'a' | b'b' | b'u' | b'v' | b'w' => {
                 let (first, _) = self.span(start, start + 1);

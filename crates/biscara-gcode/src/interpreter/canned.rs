@@ -211,7 +211,15 @@ impl<R: BufRead> Interpreter<R> {
         let rapid_delta =
             if self.state.metric { RAPID_DELTA_INCH * 25.4 } else { RAPID_DELTA_INCH };
         let back_bore_top = if self.state.incremental { cc + ijk[2] } else { ijk[2] };
+        let mut increment = increment;
+        let polar = self.state.incremental && self.block.polar();
         for repeat in 0..repeats {
+            if polar
+                && repeat > 0
+                && let Some([x, y]) = self.polar_repeat([aa, bb])
+            {
+                increment = [x - aa, y - bb];
+            }
             aa += increment[0];
             bb += increment[1];
             if repeat == 0 && current_cc > r {

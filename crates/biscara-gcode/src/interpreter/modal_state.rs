@@ -1,7 +1,9 @@
 //! M70–M73: saving and restoring the modal state, as LinuxCNC's `rs274` does it.
 //!
 //! M70 saves, M71 forgets, M72 restores, M73 saves for restoring when a subroutine returns
-//! (at the program's level it only saves). Saved and restored: the length units, the plane,
+//! (at the program's level it only saves). Each call level has its own saved state: a
+//! subroutine starts with none, and what it saved is forgotten (M70) or restored (M73) when it
+//! returns. Saved and restored: the length units, the plane,
 //! the distance and arc distance modes, the feed mode and rate, the spindle speed and
 //! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
 //! coordinate system, the canned cycles' retract mode and the tool length offset. Not the
@@ -38,8 +40,7 @@ pub(super) struct SavedModes {
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct ModalStack {
     pub saved: Option<SavedModes>,
-    /// M73: restore when the subroutine returns (for the O-word code to honour).
-    #[allow(dead_code)]
+    /// M73: restore when the subroutine returns.
     pub auto_restore: bool,
 }
 
@@ -94,6 +95,18 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// The return from a subroutine: the state M73 saved at its level, if M71 did not forget
+    /// it. Each call level has its own saved state (M70 in a subroutine is forgotten when it
+    /// returns; M72 finds only what its own level saved).
+    pub(super) fn restore_on_return(&mut self) {
+        let stack = std::mem::take(&mut self.state.modal_stack);
+        if stack.auto_restore
+            && let Some(saved) = stack.saved
+        {
+            self.restore_modes(saved);
+        }
+    }
+
     /// M72: the saved state back, in rs274's order.
     fn restore_modes(&mut self, saved: SavedModes) {
         self.set_units(saved.metric);
@@ -126,8 +139,10 @@ impl<R: BufRead> Interpreter<R> {
         self.state.flood = saved.flood;
         self.state.cycle.retract_to_old = saved.retract_to_old;
         let old = self.state.tool_offset;
-        for (axis, old) in old.into_iter().enumerate() {
-            let shift = old - saved.tool_offset[axis];
+        let shift = self
+            .state
+            .program_shift(std::array::from_fn(|axis| old[axis] - saved.tool_offset[axis]));
+        for (axis, shift) in shift.into_iter().enumerate() {
             self.state.current[axis] += shift;
             self.state.tool_shift[axis] += shift;
         }

@@ -252,9 +252,10 @@ impl<R: BufRead> Interpreter<R> {
                 offset
             }
         };
-        for axis in 0..4 {
-            self.state.current[axis] += old[axis] - new[axis];
-            self.state.tool_shift[axis] += old[axis] - new[axis];
+        let shift = self.state.program_shift(std::array::from_fn(|axis| old[axis] - new[axis]));
+        for (axis, shift) in shift.into_iter().enumerate() {
+            self.state.current[axis] += shift;
+            self.state.tool_shift[axis] += shift;
         }
         self.state.tool_offset = new;
         self.state.tool_offset_mm = std::array::from_fn(|axis| self.state.to_mm(axis, new[axis]));
@@ -276,6 +277,18 @@ impl<R: BufRead> Interpreter<R> {
         let words = [b'x', b'y', b'z', b'c', b'r', b'i', b'j', b'q'];
         if words.iter().all(|&letter| self.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
+        }
+        if l != 1 && self.state.rotation != 0.0 {
+            let xy = self.block.word(b'x').or(self.block.word(b'y'));
+            if let Some(word) = xy {
+                let (first, last) = self.span(code.at, word.end);
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    format!("G10 L{l} X/Y in a rotated coordinate system"),
+                    "rs274's tool offsets from a rotated system's X and Y",
+                ));
+            }
         }
         self.note_no_table();
         // The origin the given coordinates are in: the current one (L10), G59.3's (L11).

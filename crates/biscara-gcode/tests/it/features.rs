@@ -279,3 +279,66 @@ fn cutter_compensation_errors_name_the_block() {
     let err = error("G21 F100\nG41.1 D2\nG1 X10\nG40\nG3 X0 R5\nM2\n");
     assert!(err.to_string().starts_with("5:1: The move just after exiting"), "{err}");
 }
+
+/// The end point of motion `index` of `got`, checked to 1e-9.
+#[track_caller]
+fn assert_end(got: &[(usize, MotionKind)], index: usize, want: [f64; 3]) {
+    let end = got[index].1.end().unwrap_or_else(|| panic!("{got:?}"));
+    for axis in 0..3 {
+        assert!((end[axis] - want[axis]).abs() < 1e-9, "motion {index}: {end:?}, want {want:?}");
+    }
+}
+
+#[test]
+fn polar_words_place_the_end_from_the_origin_or_the_current_point() {
+    let program = "G0 X0 Y0 Z0\nG1 @10 ^90 F100\nG1 ^180\nG91 G1 @5\nG91 G1 ^-90\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    assert_end(&got, 1, [0.0, 10.0, 0.0]);
+    // The radius kept, the angle given.
+    assert_end(&got, 2, [-10.0, 0.0, 0.0]);
+    // G91: radius 10 + 5 at the same angle, then a quarter turn back.
+    assert_end(&got, 3, [-15.0, 0.0, 0.0]);
+    assert_end(&got, 4, [0.0, 15.0, 0.0]);
+    let err = error("G0 X0 Y0\nG1 @10 X1 F100\nM2\n");
+    assert!(err.to_string().contains("Cannot specify both polar coordinate and X word"), "{err}");
+}
+
+#[test]
+fn a_rotated_coordinate_system_turns_moves_and_arcs_about_its_origin() {
+    let program =
+        "G10 L2 P1 X10 Y5 R90\nG0 X0 Y0 Z0\nG1 X1 F100\nG2 X3 Y0 I1 J0\nG53 G0 X0 Y0\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    assert_end(&got, 0, [10.0, 5.0, 0.0]);
+    // X in the system is Y on the machine.
+    assert_end(&got, 1, [10.0, 6.0, 0.0]);
+    let MotionKind::Arc { end, center, clockwise, .. } = got[2].1 else { panic!("{got:?}") };
+    assert!((end[0] - 10.0).abs() < 1e-9 && (end[1] - 8.0).abs() < 1e-9, "{end:?}");
+    assert!((center[0] - 10.0).abs() < 1e-9 && (center[1] - 7.0).abs() < 1e-9, "{center:?}");
+    assert!(clockwise);
+    assert_end(&got, 3, [0.0, 0.0, 0.0]);
+    let err = error("G10 L2 P1 R30\nG18 G2 X1 Z0 I0.5 K0 F10\nM2\n");
+    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+}
+
+#[test]
+fn outputs_are_events_and_overrides_do_nothing() {
+    let got = motions("M62 P1\nM48\nM68 E0 Q2\nM19 R90\nM3 $0\nM5 $-1\nM2\n", [0.0; 4]);
+    let codes: Vec<String> = got
+        .iter()
+        .filter_map(|(_, kind)| match kind {
+            MotionKind::Code { code } => Some(code.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(codes, ["M62", "M68", "M19"]);
+    let err = error("M3 $1\nM2\n");
+    assert!(err.to_string().contains("Spindle ($) number out of range in M3 Command"), "{err}");
+}
+
+#[test]
+fn m73_in_a_subroutine_restores_the_modes_when_it_returns() {
+    let program = "o1 sub\nM73\nG20 G91\no1 endsub\nG0 X0 Y0 Z0\no1 call\nG0 X2\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    // Millimetres and absolute again after the call.
+    assert_end(&got, 1, [2.0, 0.0, 0.0]);
+}
