@@ -3,12 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::gcode::Tool;
-use biscara::interpolate::CartesianSample;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
 use biscara::robot::Workspace;
 use biscara::view::{
-    JointCurves, ProcessStroke, ProgramTrace, TopView, draw_joints, draw_top_view,
+    JointCurves, ProcessStrokes, ProgramTrace, TopView, draw_joints, draw_top_view, zoom_region,
 };
 use clap::Args;
 
@@ -65,102 +63,6 @@ fn parse_time(text: &str) -> Result<f64, String> {
     }
 }
 
-/// How strongly the tool works at a sample, 0 … 1; `None` while it does not (SPEC §1.6).
-pub(crate) fn work(tool: Tool, state: &ToolState, max_power: f64) -> Option<f64> {
-    match tool {
-        Tool::Laser if state.laser_power > 0.0 => Some(state.laser_power / max_power),
-        Tool::Extruder if state.move_extrude_mm > 0.0 => Some(1.0),
-        Tool::Pen if state.pen_down => Some(1.0),
-        Tool::Spindle if state.spindle_rpm != 0.0 && !state.rapid => Some(1.0),
-        _ => None,
-    }
-}
-
-/// The legend of the tool's work.
-pub(crate) fn process_label(tool: Tool) -> &'static str {
-    match tool {
-        Tool::Laser => "laser: burnt trace (darker: more power)",
-        Tool::Extruder => "extruder: deposited track",
-        Tool::Pen => "pen: strokes (pen down)",
-        Tool::Spindle => "spindle: cutting moves",
-        Tool::Gripper => "",
-    }
-}
-
-/// The tool's work as strokes, a point at least [`Process::SPACING_MM`] from the last (a
-/// picture's resolution) and at every corner (the last sample of a move), a new stroke where
-/// the strength changes.
-#[derive(Default)]
-struct Process {
-    strokes: Vec<ProcessStroke>,
-    /// The stroke's last point and strength.
-    last: Option<([f64; 2], f64)>,
-    /// The previous sample's point and line.
-    previous: Option<([f64; 2], usize)>,
-}
-
-impl Process {
-    const SPACING_MM: f64 = 0.5;
-
-    fn push(&mut self, sample: &CartesianSample, strength: Option<f64>) {
-        let point = [sample.pose[0], sample.pose[1]];
-        let previous = self.previous.replace((point, sample.line));
-        let Some(strength) = strength else {
-            // The stroke ends at the last sample that worked.
-            if let (Some((from, was)), Some((end, _))) = (self.last, previous) {
-                self.stroke(from, end, was);
-            }
-            self.last = None;
-            return;
-        };
-        match self.last {
-            Some((mut from, was)) if was == strength => {
-                if let Some((corner, line)) = previous
-                    && line != sample.line
-                {
-                    from = self.stroke(from, corner, strength);
-                }
-                if (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM {
-                    self.stroke(from, point, strength);
-                }
-            }
-            _ => self.last = Some((point, strength)),
-        }
-    }
-
-    /// Adds the stroke `from` → `to` unless it is empty; returns where the stroke now ends.
-    fn stroke(&mut self, from: [f64; 2], to: [f64; 2], strength: f64) -> [f64; 2] {
-        if from != to {
-            self.strokes.push(ProcessStroke { from, to, strength });
-            self.last = Some((to, strength));
-        }
-        to
-    }
-}
-
-/// The region of `--zoom`: the tool's work, else the path but its first and last points (the
-/// travel from and back to the home pose), with a margin of a tenth (at least 5 mm).
-fn zoom_region(strokes: &[ProcessStroke], path: &[[f64; 2]]) -> Option<((f64, f64), (f64, f64))> {
-    let points: Vec<[f64; 2]> = if strokes.is_empty() {
-        path.get(1..path.len().saturating_sub(1)).unwrap_or_default().to_vec()
-    } else {
-        strokes.iter().flat_map(|stroke| [stroke.from, stroke.to]).collect()
-    };
-    let mut min = [f64::INFINITY; 2];
-    let mut max = [f64::NEG_INFINITY; 2];
-    for point in &points {
-        for axis in 0..2 {
-            min[axis] = min[axis].min(point[axis]);
-            max[axis] = max[axis].max(point[axis]);
-        }
-    }
-    if !min[0].is_finite() {
-        return None;
-    }
-    let margin = (0.1 * (max[0] - min[0]).max(max[1] - min[1])).max(5.0);
-    Some(((min[0] - margin, max[0] + margin), (min[1] - margin, max[1] + margin)))
-}
-
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
     let (source, kind) = args.program.open()?;
@@ -176,11 +78,12 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
         Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
     let tool = samples.tool();
     let max_power = model.robot().tool.max_power;
-    let mut process = Process::default();
+    let mut process = ProcessStrokes::default();
     for sample in samples {
         let (sample, state) = sample?;
         trace.push(&sample);
-        process.push(&sample, work(tool, &state, max_power));
+        let point = [sample.pose[0], sample.pose[1]];
+        process.push(point, sample.line, state.strength(tool, max_power));
     }
     for t in trace.missed_times() {
         let end = trace.duration();
@@ -204,11 +107,11 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             workspace: Some(&workspace),
             rectangle: Some(&rectangle),
             path: &trace.path,
-            process: &process.strokes,
-            process_label: process_label(tool),
+            process: process.strokes(),
+            process_label: ToolState::legend(tool),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
-            region: if args.zoom { zoom_region(&process.strokes, &trace.path) } else { None },
+            region: if args.zoom { zoom_region(process.strokes(), &trace.path) } else { None },
         };
         draw_top_view(&view, format).map_err(|err| anyhow!("{err}"))?
     };

@@ -5,7 +5,9 @@ use std::path::PathBuf;
 use anyhow::anyhow;
 use biscara::gcode::Tool;
 use biscara::joints::read_joint_csv;
-use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::pipeline::{
+    Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig, ToolState,
+};
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
@@ -15,7 +17,6 @@ use super::args::{
 use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
-use super::plot::{process_label, work};
 
 /// Writes one self-contained HTML file that animates a joint trajectory (SPEC §8.3).
 ///
@@ -112,14 +113,14 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
     let tool = samples.tool();
     if tool != Tool::Gripper {
-        viewer.set_tool(tool.name(), process_label(tool));
+        viewer.set_tool(tool.name(), ToolState::legend(tool));
     }
     let max_power = model.robot().tool.max_power;
     for sample in samples {
         let (sample, state) = sample?;
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
         if tool != Tool::Gripper {
-            let strength = work(tool, &state, max_power);
+            let strength = state.strength(tool, max_power);
             viewer.push_process_sample(sample.t, sample.pose, sample.line, strength);
         }
         end = sample.t;

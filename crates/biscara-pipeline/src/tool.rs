@@ -57,6 +57,30 @@ impl ToolState {
         }
     }
 
+    /// How strongly `tool` works at this sample, 0 … 1 (a laser's power over `max_power`, 1 for
+    /// the other tools); `None` while it does not work (SPEC §1.6): a laser off, an extruder not
+    /// feeding, a pen up, a spindle off or on a rapid, a gripper always.
+    pub fn strength(&self, tool: Tool, max_power: f64) -> Option<f64> {
+        match tool {
+            Tool::Laser if self.laser_power > 0.0 => Some(self.laser_power / max_power),
+            Tool::Extruder if self.move_extrude_mm > 0.0 => Some(1.0),
+            Tool::Pen if self.pen_down => Some(1.0),
+            Tool::Spindle if self.spindle_rpm != 0.0 && !self.rapid => Some(1.0),
+            _ => None,
+        }
+    }
+
+    /// What a picture calls `tool`'s work in its legend ("" for the gripper, which leaves none).
+    pub fn legend(tool: Tool) -> &'static str {
+        match tool {
+            Tool::Laser => "laser: burnt trace (darker: more power)",
+            Tool::Extruder => "extruder: deposited track",
+            Tool::Pen => "pen: strokes (pen down)",
+            Tool::Spindle => "spindle: cutting moves",
+            Tool::Gripper => "",
+        }
+    }
+
     /// The state after `kind` (an event; moves change nothing).
     pub fn after(mut self, kind: &MotionKind) -> ToolState {
         match *kind {
@@ -277,5 +301,30 @@ impl ToolJointSamples {
             }
             Err(err) => Some(Err(locate(file, err))),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_tool_works_only_while_it_acts_on_the_part() {
+        let off = ToolState::default();
+        for tool in [Tool::Gripper, Tool::Laser, Tool::Spindle, Tool::Extruder, Tool::Pen] {
+            assert_eq!(off.strength(tool, 1000.0), None, "{tool:?}");
+        }
+        let laser = ToolState { laser_power: 250.0, ..off };
+        assert_eq!(laser.strength(Tool::Laser, 1000.0), Some(0.25));
+        let cutting = ToolState { spindle_rpm: -12000.0, ..off };
+        assert_eq!(cutting.strength(Tool::Spindle, 1000.0), Some(1.0));
+        assert_eq!(ToolState { rapid: true, ..cutting }.strength(Tool::Spindle, 1000.0), None);
+        let feeding = ToolState { move_extrude_mm: 0.1, extruded_mm: 5.0, ..off };
+        assert_eq!(feeding.strength(Tool::Extruder, 1000.0), Some(1.0));
+        // Filament fed before does not make a travel move a track.
+        assert_eq!(ToolState { extruded_mm: 5.0, ..off }.strength(Tool::Extruder, 1000.0), None);
+        assert_eq!(ToolState { pen_down: true, ..off }.strength(Tool::Pen, 1000.0), Some(1.0));
+        assert_eq!(ToolState::legend(Tool::Gripper), "");
+        assert!(ToolState::legend(Tool::Laser).starts_with("laser"));
     }
 }

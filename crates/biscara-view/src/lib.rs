@@ -31,6 +31,7 @@ pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
 pub use plot::{
-    ImageFormat, JointCurves, ProcessStroke, TopView, draw_joints, draw_top_view, draw_workspace,
+    ImageFormat, JointCurves, ProcessStroke, ProcessStrokes, TopView, draw_joints, draw_top_view,
+    draw_workspace, zoom_region,
 };
 pub use trace::ProgramTrace;

@@ -74,6 +74,91 @@ pub struct ProcessStroke {
     pub strength: f64,
 }
 
+/// A tool's work gathered as [`ProcessStroke`]s from a stream of samples: a point at least
+/// [`ProcessStrokes::SPACING_MM`] from the last (a picture's resolution) and at every corner (the
+/// last sample of a move), a new stroke where the strength changes.
+#[derive(Debug, Default)]
+pub struct ProcessStrokes {
+    strokes: Vec<ProcessStroke>,
+    /// The stroke's last point and strength.
+    last: Option<([f64; 2], f64)>,
+    /// The previous sample's point and line.
+    previous: Option<([f64; 2], usize)>,
+}
+
+impl ProcessStrokes {
+    /// The least distance between two points of a stroke, millimetres.
+    pub const SPACING_MM: f64 = 0.5;
+
+    /// Adds the sample at XY `point` of program line `line`, where the tool works with
+    /// `strength` (`None`: it does not work there).
+    pub fn push(&mut self, point: [f64; 2], line: usize, strength: Option<f64>) {
+        let previous = self.previous.replace((point, line));
+        let Some(strength) = strength else {
+            // The stroke ends at the last sample that worked.
+            if let (Some((from, was)), Some((end, _))) = (self.last, previous) {
+                self.stroke(from, end, was);
+            }
+            self.last = None;
+            return;
+        };
+        match self.last {
+            Some((mut from, was)) if was == strength => {
+                if let Some((corner, previous_line)) = previous
+                    && previous_line != line
+                {
+                    from = self.stroke(from, corner, strength);
+                }
+                if (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM {
+                    self.stroke(from, point, strength);
+                }
+            }
+            _ => self.last = Some((point, strength)),
+        }
+    }
+
+    /// The strokes so far.
+    pub fn strokes(&self) -> &[ProcessStroke] {
+        &self.strokes
+    }
+
+    /// Adds the stroke `from` → `to` unless it is empty; returns where the stroke now ends.
+    fn stroke(&mut self, from: [f64; 2], to: [f64; 2], strength: f64) -> [f64; 2] {
+        if from != to {
+            self.strokes.push(ProcessStroke { from, to, strength });
+            self.last = Some((to, strength));
+        }
+        to
+    }
+}
+
+/// The region a zoomed picture shows, `((x_min, x_max), (y_min, y_max))`: the tool's `strokes`,
+/// else the `path` but its first and last points (the travel from and back to the home pose),
+/// with a margin of a tenth (at least 5 mm); `None` when there is nothing to show.
+pub fn zoom_region(
+    strokes: &[ProcessStroke],
+    path: &[[f64; 2]],
+) -> Option<((f64, f64), (f64, f64))> {
+    let points: Vec<[f64; 2]> = if strokes.is_empty() {
+        path.get(1..path.len().saturating_sub(1)).unwrap_or_default().to_vec()
+    } else {
+        strokes.iter().flat_map(|stroke| [stroke.from, stroke.to]).collect()
+    };
+    let mut min = [f64::INFINITY; 2];
+    let mut max = [f64::NEG_INFINITY; 2];
+    for point in &points {
+        for axis in 0..2 {
+            min[axis] = min[axis].min(point[axis]);
+            max[axis] = max[axis].max(point[axis]);
+        }
+    }
+    if !min[0].is_finite() {
+        return None;
+    }
+    let margin = (0.1 * (max[0] - min[0]).max(max[1] - min[1])).max(5.0);
+    Some(((min[0] - margin, max[0] + margin), (min[1] - margin, max[1] + margin)))
+}
+
 /// The colour of a process stroke of `strength` (0 … 1): light brown to near black.
 fn process_colour(strength: f64) -> RGBColor {
     let s = strength.clamp(0.0, 1.0);
@@ -450,4 +535,44 @@ pub fn draw_workspace(
         scene: None,
     };
     draw_top_view(&view, format)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn process_strokes_keep_corners_and_split_where_the_strength_changes() {
+        let mut process = ProcessStrokes::default();
+        // A move along X on line 1 (samples 0.1 mm apart), a corner, a move along Y on line 2.
+        for i in 0..=20 {
+            process.push([f64::from(i) * 0.1, 0.0], 1, Some(1.0));
+        }
+        for i in 1..=20 {
+            process.push([2.0, f64::from(i) * 0.1], 2, Some(1.0));
+        }
+        // Travel, then work at half strength.
+        process.push([5.0, 5.0], 3, None);
+        process.push([6.0, 5.0], 4, Some(0.5));
+        process.push([7.0, 5.0], 4, Some(0.5));
+        let strokes = process.strokes();
+        assert!(strokes.iter().any(|s| s.to == [2.0, 0.0]), "the corner is a point: {strokes:?}");
+        for stroke in strokes.iter().filter(|s| s.strength == 1.0) {
+            let length = (stroke.to[0] - stroke.from[0]).hypot(stroke.to[1] - stroke.from[1]);
+            assert!(length >= ProcessStrokes::SPACING_MM - 1e-9 || stroke.to == [2.0, 0.0]);
+        }
+        assert_eq!(strokes.last().map(|s| (s.from, s.to, s.strength)), Some(([6.0, 5.0], [7.0, 5.0], 0.5)));
+        // No stroke crosses the travel.
+        assert!(!strokes.iter().any(|s| s.to == [5.0, 5.0] || s.from == [5.0, 5.0]));
+    }
+
+    #[test]
+    fn the_zoom_region_holds_the_work_with_a_margin() {
+        let strokes = [ProcessStroke { from: [0.0, 0.0], to: [100.0, 20.0], strength: 1.0 }];
+        assert_eq!(zoom_region(&strokes, &[]), Some(((-10.0, 110.0), (-10.0, 30.0))));
+        // Without work: the path but its travel from and back to home, at least 5 mm around.
+        let path = [[500.0, 500.0], [1.0, 1.0], [2.0, 2.0], [500.0, 500.0]];
+        assert_eq!(zoom_region(&[], &path), Some(((-4.0, 7.0), (-4.0, 7.0))));
+        assert_eq!(zoom_region(&[], &path[..2]), None);
+    }
 }
