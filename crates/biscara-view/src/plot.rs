@@ -561,7 +561,10 @@ mod tests {
             let length = (stroke.to[0] - stroke.from[0]).hypot(stroke.to[1] - stroke.from[1]);
             assert!(length >= ProcessStrokes::SPACING_MM - 1e-9 || stroke.to == [2.0, 0.0]);
         }
-        assert_eq!(strokes.last().map(|s| (s.from, s.to, s.strength)), Some(([6.0, 5.0], [7.0, 5.0], 0.5)));
+        assert_eq!(
+            strokes.last().map(|s| (s.from, s.to, s.strength)),
+            Some(([6.0, 5.0], [7.0, 5.0], 0.5))
+        );
         // No stroke crosses the travel.
         assert!(!strokes.iter().any(|s| s.to == [5.0, 5.0] || s.from == [5.0, 5.0]));
     }
