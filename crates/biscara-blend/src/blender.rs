@@ -80,6 +80,7 @@ pub struct Blender<I> {
     pending: Option<Pending>,
     out: VecDeque<Blended>,
     done: bool,
+    enabled: bool,
 }
 
 impl<I, E> Blender<I>
@@ -88,7 +89,20 @@ where
 {
     /// Blends `motions`, the first of which starts at `start` (`[x, y, z, c]`, mm and degrees).
     pub fn new(motions: I, start: [f64; 4]) -> Blender<I> {
-        Blender { motions, position: start, pending: None, out: VecDeque::new(), done: false }
+        Blender {
+            motions,
+            position: start,
+            pending: None,
+            out: VecDeque::new(),
+            done: false,
+            enabled: true,
+        }
+    }
+
+    /// Whether to blend at all: with `false`, every motion passes unchanged (an exact stop at
+    /// every corner, for timing laws that cannot run through one).
+    pub fn blending(self, enabled: bool) -> Blender<I> {
+        Blender { enabled, ..self }
     }
 
     fn flush(&mut self) {
@@ -207,6 +221,16 @@ where
                 return None;
             }
             match self.motions.next() {
+                // Nothing waits and the motion is not blended: it passes at once.
+                Some(Ok(motion))
+                    if self.pending.is_none() && !(self.enabled && motion.blend.is_some()) =>
+                {
+                    if let Some(end) = motion.kind.end() {
+                        self.position = end;
+                    }
+                    return Some(Ok(Blended::Motion(motion)));
+                }
+                // (Nothing is pending unless blending is enabled.)
                 Some(Ok(motion)) => self.take(motion),
                 Some(Err(err)) => {
                     self.done = true;

@@ -162,6 +162,8 @@ pub struct TimeOptimal {
     /// The interval `s_at` is in, and the time it starts.
     current: Option<Interval>,
     elapsed: f64,
+    /// Whether the path gives its own grid points ([`plan_streamed`](Self::plan_streamed)).
+    streamed: bool,
 }
 
 impl TimeOptimal {
@@ -187,11 +189,36 @@ impl TimeOptimal {
         window: usize,
     ) -> Result<(), TimingError> {
         self.grid = None;
+        self.streamed = false;
         if !grid.is_valid() {
             return Err(TimingError::NoIntervals);
         }
         self.grid = Some(grid);
         self.intervals = grid.len();
+        self.start(path, window)
+    }
+
+    /// Plans `path` over the grid points it gives itself ([`PathConstraints::point`]), whose
+    /// number is not known in advance: a path of any length (a chain of blended moves, whose
+    /// end is found as the windows reach it), planned in windows of `window` intervals plus as
+    /// many of look-ahead, from rest to rest. The path parameter is the path's own (for
+    /// example mm along it); [`s_at`](Self::s_at) returns the last point's after the end.
+    pub fn plan_streamed<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        window: usize,
+    ) -> Result<(), TimingError> {
+        self.grid = None;
+        self.streamed = true;
+        self.intervals = usize::MAX;
+        self.start(path, window)
+    }
+
+    fn start<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        window: usize,
+    ) -> Result<(), TimingError> {
         self.window = window.max(1);
         self.count = path.count();
         self.duration = None;
@@ -207,6 +234,7 @@ impl TimeOptimal {
         let planned = self.fill(path, 0);
         if planned.is_err() {
             self.grid = None;
+            self.streamed = false;
         }
         planned
     }
@@ -240,7 +268,7 @@ impl TimeOptimal {
             }
             self.current = self.next_interval(path)?;
             if self.current.is_none() {
-                return Ok(1.0);
+                return Ok(if self.streamed { self.s.last().copied().unwrap_or(0.0) } else { 1.0 });
             }
         }
     }
@@ -250,7 +278,7 @@ impl TimeOptimal {
         &mut self,
         path: &mut P,
     ) -> Result<Option<Interval>, TimingError> {
-        if self.index >= self.intervals || self.grid.is_none() {
+        if self.index >= self.intervals || (self.grid.is_none() && !self.streamed) {
             return Ok(None);
         }
         if self.forward_from == usize::MAX && self.index - self.first >= self.window {
@@ -342,7 +370,7 @@ impl TimeOptimal {
         from: usize,
     ) -> Result<(), TimingError> {
         let grid = self.grid.unwrap_or(Grid::uniform(1));
-        let last = (from + 2 * self.window).min(self.intervals);
+        let mut last = (from + 2 * self.window).min(self.intervals);
         let mut next = from;
         if !self.x_max.is_empty() && from >= self.first {
             let held_last = self.first + self.x_max.len() - 1;
@@ -359,7 +387,21 @@ impl TimeOptimal {
         self.first = from;
         self.forward_from = usize::MAX;
         for index in next..=last {
-            self.evaluate(path, grid.s(index))?;
+            let s = if self.streamed {
+                match path.point(index) {
+                    Some(s) if index == 0 || s > self.s[self.s.len() - 1] => s,
+                    Some(s) => return Err(TimingError::NotFinite { s }),
+                    None if index < 2 => return Err(TimingError::NoIntervals),
+                    None => {
+                        self.intervals = index - 1;
+                        last = index - 1;
+                        break;
+                    }
+                }
+            } else {
+                grid.s(index)
+            };
+            self.evaluate(path, s)?;
         }
         self.backward()?;
         if last == self.intervals {
@@ -647,6 +689,54 @@ mod tests {
         }
         assert!(total > whole);
         assert_eq!(short.duration(), Some(total));
+    }
+
+    /// The trapezoid over the points 0, 1/n, …, 1 that it gives itself.
+    struct Streamed {
+        inner: Trapezoid,
+        points: usize,
+        asked: usize,
+    }
+
+    impl PathConstraints for Streamed {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            self.inner.evaluate(s, out)
+        }
+        fn point(&mut self, index: usize) -> Option<f64> {
+            assert_eq!(index, self.asked, "points are asked in order, once each");
+            self.asked += 1;
+            (index <= self.points).then(|| index as f64 / self.points as f64)
+        }
+    }
+
+    #[test]
+    fn a_streamed_path_plans_as_its_grid() {
+        for window in [4096, 60, 7] {
+            let mut grid_path = trapezoid(1.0, 4.0);
+            let mut whole = TimeOptimal::new(&mut grid_path, Grid::uniform(1000), window).unwrap();
+            let expected = run(&mut whole, &mut grid_path);
+            let mut path = Streamed { inner: trapezoid(1.0, 4.0), points: 1000, asked: 0 };
+            let mut plan = TimeOptimal::default();
+            plan.plan_streamed(&mut path, window).unwrap();
+            assert_eq!(plan.duration().is_some(), window >= 1000);
+            let mut last = 0.0;
+            let mut t = 0.0;
+            while last < 1.0 {
+                t += 1e-3;
+                last = plan.s_at(&mut path, t).unwrap();
+            }
+            assert_eq!(path.inner.calls, 1001);
+            assert_relative_eq!(plan.duration().unwrap(), expected, max_relative = 1e-12);
+            assert_relative_eq!(t, expected, epsilon = 1.1e-3);
+        }
+        let mut one = Streamed { inner: trapezoid(1.0, 4.0), points: 0, asked: 0 };
+        assert_eq!(
+            TimeOptimal::default().plan_streamed(&mut one, 10),
+            Err(TimingError::NoIntervals)
+        );
     }
 
     struct Blocked;

@@ -1,0 +1,280 @@
+//! A chain of blended moves (G64 P) timed as one path by the optimal profile.
+//!
+//! The pieces of the chain (trimmed lines and the fillets between them, from `biscara-blend`)
+//! are laid end to end: the path parameter is the length along the chain, mm. The planner
+//! ([`TimeOptimal::plan_streamed`]) asks for grid points one by one; the chain pulls pieces from
+//! the blender as it needs them and drops those the sampling has passed, so it holds only the
+//! pieces of the planner's window.
+//!
+//! Each piece gets its own grid ([`GRID_MM`], [`GRID_TURN_DEGREES`], at least one interval), so
+//! that every junction (the ends of every fillet) is a grid point. The second derivative of the
+//! path jumps there; a junction point carries two sets of constraints, the piece before it at its
+//! end and the piece after it at its start, and the planner keeps both on either side.
+
+use std::collections::VecDeque;
+
+use biscara_blend::{Blended, Geometry, Piece, Speed};
+use biscara_motion::Motion;
+use biscara_timing::{Constraint, PathConstraints};
+
+use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES};
+use crate::{CartesianLimits, InterpolateError, MAX_JOINTS, Segment, SpeedLimit};
+
+/// One piece of the chain with where it starts along the chain.
+#[derive(Debug, Clone, Copy)]
+struct ChainPiece {
+    segment: Segment,
+    /// Chain parameter (mm) at its start, and its length.
+    start: f64,
+    length: f64,
+    intervals: usize,
+    line: usize,
+    /// Largest path speed (the feed), mm/s; NaN for a rapid piece.
+    speed: f64,
+    /// |dC/ds|, degrees per mm.
+    rotation_rate: f64,
+    /// Radius of a fillet, mm (infinite for a line).
+    radius: f64,
+    ends_chain: bool,
+}
+
+/// The state of a chain between calls: the pieces held and where the grid has got to.
+#[derive(Debug, Clone)]
+pub(crate) struct Chain {
+    /// The pieces from the one being sampled to the last one the planner has asked for.
+    pieces: VecDeque<ChainPiece>,
+    /// Absolute index of `pieces[0]`.
+    front: usize,
+    /// The piece (absolute index) and interval of the last grid point given.
+    piece: usize,
+    interval: usize,
+    /// The last grid point given was the chain's end.
+    at_end: bool,
+    /// The sides of the last grid point given: (absolute piece, fraction along it), before and
+    /// after it (the same but at a junction).
+    sides: [(usize, f64); 2],
+    /// The pose where the chain ends (known once its last piece is pulled).
+    pub(crate) end: Option<[f64; 4]>,
+    /// A motion the blender gave where a piece was expected (never, by its contract): the
+    /// interpolator runs it after the chain.
+    pub(crate) deferred: Option<Motion>,
+}
+
+impl Chain {
+    /// A chain starting with `first`.
+    pub(crate) fn new<E>(first: Piece) -> Result<Chain, InterpolateError<E>> {
+        let mut chain = Chain {
+            pieces: VecDeque::new(),
+            front: 0,
+            piece: 0,
+            interval: 0,
+            at_end: false,
+            sides: [(0, 0.0); 2],
+            end: None,
+            deferred: None,
+        };
+        chain.push(first, 0.0)?;
+        Ok(chain)
+    }
+
+    fn push<E>(&mut self, piece: Piece, start: f64) -> Result<(), InterpolateError<E>> {
+        let segment = match piece.geometry {
+            Geometry::Line { start, end } => Segment::line(start, end),
+            Geometry::Fillet { start, end, center, tangent, sweep, .. } => {
+                Segment::fillet(start, end, center, tangent, sweep)
+            }
+        };
+        let length = piece.length();
+        let speed = match piece.speed {
+            Speed::Rapid => f64::NAN,
+            Speed::Feed(feed) => {
+                let per_second = feed.mm_per_min / 60.0;
+                if !(per_second.is_finite() && per_second > 0.0) {
+                    return Err(InterpolateError::Motion {
+                        line: piece.line,
+                        message: format!("the feed {} mm/min is not positive", feed.mm_per_min),
+                    });
+                }
+                per_second
+            }
+        };
+        let per_unit = (length / GRID_MM + segment.turning() / GRID_TURN_DEGREES).ceil();
+        if !(length.is_finite() && length > 0.0 && per_unit < 1e9) {
+            return Err(InterpolateError::Motion {
+                line: piece.line,
+                message: "the move is too slow to count in time steps".to_owned(),
+            });
+        }
+        if piece.ends_chain {
+            self.end = Some(piece.end());
+        }
+        self.pieces.push_back(ChainPiece {
+            segment,
+            start,
+            length,
+            intervals: (per_unit as usize).max(1),
+            line: piece.line,
+            speed,
+            rotation_rate: (segment.rotation() / length).abs(),
+            radius: piece.radius().unwrap_or(f64::INFINITY),
+            ends_chain: piece.ends_chain,
+        });
+        Ok(())
+    }
+
+    fn get(&self, index: usize) -> &ChainPiece {
+        &self.pieces[index - self.front]
+    }
+
+    /// The pose at chain parameter `s` and the line of its piece; drops the pieces before it.
+    pub(crate) fn pose(&mut self, s: f64) -> ([f64; 4], usize) {
+        while self.pieces.len() > 1 && self.front < self.piece {
+            let first = self.pieces[0];
+            if s <= first.start + first.length {
+                break;
+            }
+            self.pieces.pop_front();
+            self.front += 1;
+        }
+        let piece = &self.pieces[0];
+        let u = ((s - piece.start) / piece.length).clamp(0.0, 1.0);
+        (piece.segment.point(u), piece.line)
+    }
+}
+
+/// The chain as [`PathConstraints`]: pulls pieces from `source` as the planner needs them.
+pub(crate) struct ChainBounds<'a, B, L, E> {
+    pub(crate) chain: &'a mut Chain,
+    pub(crate) source: &'a mut B,
+    pub(crate) limit: &'a mut L,
+    pub(crate) limits: CartesianLimits,
+    /// The first error met (an input error, or a piece that cannot be timed): the chain ends
+    /// there, and the interpolator reports it.
+    pub(crate) error: &'a mut Option<InterpolateError<E>>,
+}
+
+impl<B, L, E> ChainBounds<'_, B, L, E>
+where
+    B: Iterator<Item = Result<Blended, E>>,
+    L: SpeedLimit,
+{
+    /// Pulls the piece after the last one held; `false` when there is none.
+    fn pull(&mut self) -> bool {
+        let last = self.chain.pieces[self.chain.pieces.len() - 1];
+        let start = last.start + last.length;
+        match self.source.next() {
+            Some(Ok(Blended::Piece(piece))) => match self.chain.push(piece, start) {
+                Ok(()) => true,
+                Err(err) => {
+                    *self.error = Some(err);
+                    false
+                }
+            },
+            Some(Ok(Blended::Motion(motion))) => {
+                self.chain.deferred = Some(motion);
+                false
+            }
+            Some(Err(err)) => {
+                *self.error = Some(InterpolateError::Input(err));
+                false
+            }
+            None => false,
+        }
+    }
+
+    /// The constraints of one side of a grid point into `out` (1 + joints rows); the largest ṡ².
+    fn side(&mut self, (index, u): (usize, f64), out: &mut [Constraint]) -> f64 {
+        let piece = *self.chain.get(index);
+        let limits = self.limits;
+        let acceleration =
+            limits.acceleration.min(limits.rotation_acceleration / piece.rotation_rate);
+        out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
+        // A rapid piece (NaN) runs at the rapid speed.
+        let along = if piece.speed.is_nan() { limits.rapid_velocity } else { piece.speed };
+        let mut speed = along.min(limits.rapid_rotation / piece.rotation_rate);
+        // The acceleration towards a fillet's centre within the path acceleration too.
+        let mut x_max = (speed * speed).min(limits.acceleration * piece.radius);
+        let joints = out.len() - 1;
+        let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
+        let known =
+            self.limit.joint_derivatives(
+                &piece.segment,
+                u,
+                &mut first[..joints],
+                &mut second[..joints],
+            ) && first[..joints].iter().chain(&second[..joints]).all(|value| value.is_finite());
+        let (per_mm, per_mm2) = (1.0 / piece.length, 1.0 / (piece.length * piece.length));
+        for (j, bound) in self.limit.joint_bounds()[..joints].iter().enumerate() {
+            if !known {
+                out[1 + j] = Constraint { lo: f64::NEG_INFINITY, hi: f64::INFINITY, ..out[0] };
+                continue;
+            }
+            let a = bound.max_acceleration;
+            let (q1, q2) = (first[j] * per_mm, second[j] * per_mm2);
+            out[1 + j] = Constraint { a: q1, b: q2, c: 0.0, lo: -a, hi: a };
+            let joint = bound.max_velocity / q1.abs();
+            if joint < speed {
+                speed = joint;
+            }
+        }
+        x_max = x_max.min(speed * speed);
+        x_max
+    }
+}
+
+impl<B, L, E> PathConstraints for ChainBounds<'_, B, L, E>
+where
+    B: Iterator<Item = Result<Blended, E>>,
+    L: SpeedLimit,
+{
+    fn count(&self) -> usize {
+        2 * (1 + self.limit.joint_bounds().len().min(MAX_JOINTS))
+    }
+
+    fn point(&mut self, index: usize) -> Option<f64> {
+        let chain = &mut *self.chain;
+        if index == 0 {
+            chain.sides = [(chain.piece, 0.0); 2];
+            return Some(chain.get(chain.piece).start);
+        }
+        if chain.at_end {
+            return None;
+        }
+        chain.interval += 1;
+        let piece = *chain.get(chain.piece);
+        if chain.interval < piece.intervals {
+            let u = chain.interval as f64 / piece.intervals as f64;
+            chain.sides = [(chain.piece, u); 2];
+            return Some(piece.start + u * piece.length);
+        }
+        let end = piece.start + piece.length;
+        let before = (chain.piece, 1.0);
+        if piece.ends_chain || chain.piece + 1 - chain.front >= chain.pieces.len() && !self.pull() {
+            let chain = &mut *self.chain;
+            chain.at_end = true;
+            chain.sides = [before; 2];
+            if chain.end.is_none() {
+                chain.end = Some(piece.segment.end());
+            }
+            return Some(end);
+        }
+        let chain = &mut *self.chain;
+        chain.piece += 1;
+        chain.interval = 0;
+        chain.sides = [before, (chain.piece, 0.0)];
+        Some(end)
+    }
+
+    fn evaluate(&mut self, _s: f64, out: &mut [Constraint]) -> f64 {
+        let rows = out.len() / 2;
+        let [before, after] = self.chain.sides;
+        let (left, right) = out.split_at_mut(rows);
+        let x_max = self.side(before, left);
+        if after == before {
+            right.copy_from_slice(left);
+            x_max
+        } else {
+            x_max.min(self.side(after, right))
+        }
+    }
+}
