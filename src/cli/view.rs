@@ -9,7 +9,7 @@ use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
 use super::args::{
-    DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
+    BlendArgs, DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
 };
 use super::diag::located;
 use super::diag::{Level, report};
@@ -58,6 +58,8 @@ pub(crate) struct ViewArgs {
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
+    #[command(flatten)]
+    blend: BlendArgs,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
     #[arg(
         long,
@@ -99,6 +101,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
         subroutine_path: args.files.subroutine_path.clone(),
+        blend: args.blend.blend,
     };
     let mut end = 0.0;
     for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {

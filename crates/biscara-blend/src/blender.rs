@@ -53,6 +53,11 @@ impl Pending {
         [d[0] / n, d[1] / n, d[2] / n]
     }
 
+    /// C's change per mm of XYZ path, degrees.
+    fn rotation_rate(&self) -> f64 {
+        (self.to[3] - self.from[3]) / self.length()
+    }
+
     /// The programmed pose `distance` mm from the start (C in proportion).
     fn at(&self, distance: f64) -> [f64; 4] {
         let u = distance / self.length();
@@ -173,8 +178,15 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
     let ub = b.direction();
     let cos = dot(ua, ub).clamp(-1.0, 1.0);
     let turn = cos.acos();
+    // C's rate along the path, degrees per mm: it must not jump where the robot does not stop
+    // (a jump in a joint's dq/ds at speed is an unbounded acceleration).
+    let (rate_a, rate_b) = (a.rotation_rate(), b.rotation_rate());
     if turn < COLLINEAR_RAD {
-        return Corner::Straight;
+        let same = (rate_a - rate_b).abs() <= 1e-9 * (1.0 + rate_a.abs().max(rate_b.abs()));
+        return if same { Corner::Straight } else { Corner::Stop };
+    }
+    if rate_a != 0.0 || rate_b != 0.0 {
+        return Corner::Stop;
     }
     if turn > MAX_TURN_DEG.to_radians() {
         return Corner::Stop;

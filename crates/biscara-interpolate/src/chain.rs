@@ -6,18 +6,22 @@
 //! the blender as it needs them and drops those the sampling has passed, so it holds only the
 //! pieces of the planner's window.
 //!
-//! Each piece gets its own grid ([`GRID_MM`], [`GRID_TURN_DEGREES`], at least one interval), so
-//! that every junction (the ends of every fillet) is a grid point. The second derivative of the
-//! path jumps there; a junction point carries two sets of constraints, the piece before it at its
+//! Each piece gets its own grid ([`GRID_MM`], [`GRID_TURN_DEGREES`], at least one interval; a
+//! line's ends refined as a single move's are), so that every junction (the ends of every
+//! fillet) is a grid point. TOPP-RA loses a little time in the interval where the speed stops
+//! changing, and nothing when that happens on a grid point: a line also gets the points where
+//! its Cartesian ramps would end, from the speed its neighbours allow at its ends (rest at the
+//! chain's ends, the centripetal limit on a fillet) to its own. The second derivative of the
+//! path jumps at a junction; a junction point carries two sets of constraints, the piece before it at its
 //! end and the piece after it at its start, and the planner keeps both on either side.
 
 use std::collections::VecDeque;
 
 use biscara_blend::{Blended, Geometry, Piece, Speed};
 use biscara_motion::Motion;
-use biscara_timing::{Constraint, PathConstraints};
+use biscara_timing::{Constraint, Grid, PathConstraints};
 
-use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES};
+use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO};
 use crate::{CartesianLimits, InterpolateError, MAX_JOINTS, Segment, SpeedLimit};
 
 /// One piece of the chain with where it starts along the chain.
@@ -27,7 +31,8 @@ struct ChainPiece {
     /// Chain parameter (mm) at its start, and its length.
     start: f64,
     length: f64,
-    intervals: usize,
+    /// The piece's grid over its fraction along it.
+    grid: Grid,
     line: usize,
     /// Largest path speed (the feed), mm/s; NaN for a rapid piece.
     speed: f64,
@@ -35,6 +40,9 @@ struct ChainPiece {
     rotation_rate: f64,
     /// Radius of a fillet, mm (infinite for a line).
     radius: f64,
+    /// The path acceleration (with C's), mm/s², and the largest ṡ² the Cartesian limits allow.
+    acceleration: f64,
+    cap: f64,
     ends_chain: bool,
 }
 
@@ -48,6 +56,13 @@ pub(crate) struct Chain {
     /// The piece (absolute index) and interval of the last grid point given.
     piece: usize,
     interval: usize,
+    /// The current piece's extra grid points (fractions along it, increasing; infinite when
+    /// none), the next of them to give, and the last fraction given.
+    extra: [f64; 2],
+    extra_next: usize,
+    last_u: f64,
+    /// The Cartesian ṡ² cap where the current piece starts.
+    x_in: f64,
     /// The last grid point given was the chain's end.
     at_end: bool,
     /// The sides of the last grid point given: (absolute piece, fraction along it), before and
@@ -62,22 +77,34 @@ pub(crate) struct Chain {
 
 impl Chain {
     /// A chain starting with `first`.
-    pub(crate) fn new<E>(first: Piece) -> Result<Chain, InterpolateError<E>> {
+    pub(crate) fn new<E>(
+        first: Piece,
+        limits: CartesianLimits,
+    ) -> Result<Chain, InterpolateError<E>> {
         let mut chain = Chain {
             pieces: VecDeque::new(),
             front: 0,
             piece: 0,
             interval: 0,
+            extra: [f64::INFINITY; 2],
+            extra_next: 0,
+            last_u: 0.0,
+            x_in: 0.0,
             at_end: false,
             sides: [(0, 0.0); 2],
             end: None,
             deferred: None,
         };
-        chain.push(first, 0.0)?;
+        chain.push(first, 0.0, limits)?;
         Ok(chain)
     }
 
-    fn push<E>(&mut self, piece: Piece, start: f64) -> Result<(), InterpolateError<E>> {
+    fn push<E>(
+        &mut self,
+        piece: Piece,
+        start: f64,
+        limits: CartesianLimits,
+    ) -> Result<(), InterpolateError<E>> {
         let segment = match piece.geometry {
             Geometry::Line { start, end } => Segment::line(start, end),
             Geometry::Fillet { start, end, center, tangent, sweep, .. } => {
@@ -108,15 +135,40 @@ impl Chain {
         if piece.ends_chain {
             self.end = Some(piece.end());
         }
+        // TOPP-RA loses time in the interval where the speed stops changing, and the ramps
+        // from rest, to rest and to and from a slow fillet end near a line's ends: its first
+        // and last intervals are cut geometrically down to an eighth of the Cartesian ramp
+        // (as a single move's refined grid is).
+        let intervals = per_unit.max(1.0);
+        let mut grid = Grid::uniform(intervals as usize);
+        if piece.radius().is_none() {
+            let along = if speed.is_nan() { limits.rapid_velocity } else { speed };
+            let ramp = along * along / (2.0 * limits.acceleration) / length;
+            let refine =
+                ((ramp * intervals / 8.0).ln() / REFINE_RATIO.ln()).ceil().clamp(0.0, MAX_REFINE);
+            if refine > 0.0 && intervals >= 2.0 {
+                grid = Grid::refined(intervals as usize, refine as u32, REFINE_RATIO);
+            } else if refine > 0.0 {
+                grid = Grid::refined(2, refine as u32, REFINE_RATIO);
+            }
+        }
+        let rotation_rate = (segment.rotation() / length).abs();
+        let acceleration = limits.acceleration.min(limits.rotation_acceleration / rotation_rate);
+        let along = if speed.is_nan() { limits.rapid_velocity } else { speed };
+        let along = along.min(limits.rapid_rotation / rotation_rate);
+        let radius = piece.radius().unwrap_or(f64::INFINITY);
+        let cap = (along * along).min(limits.acceleration * radius);
         self.pieces.push_back(ChainPiece {
             segment,
             start,
             length,
-            intervals: (per_unit as usize).max(1),
+            grid,
             line: piece.line,
             speed,
-            rotation_rate: (segment.rotation() / length).abs(),
-            radius: piece.radius().unwrap_or(f64::INFINITY),
+            rotation_rate,
+            radius,
+            acceleration,
+            cap,
             ends_chain: piece.ends_chain,
         });
         Ok(())
@@ -163,7 +215,7 @@ where
         let last = self.chain.pieces[self.chain.pieces.len() - 1];
         let start = last.start + last.length;
         match self.source.next() {
-            Some(Ok(Blended::Piece(piece))) => match self.chain.push(piece, start) {
+            Some(Ok(Blended::Piece(piece))) => match self.chain.push(piece, start, self.limits) {
                 Ok(()) => true,
                 Err(err) => {
                     *self.error = Some(err);
@@ -180,6 +232,38 @@ where
             }
             None => false,
         }
+    }
+
+    /// Starts giving the grid of the current piece: pulls the piece after it (to know the
+    /// speed at its end), and for a line, the extra points where its Cartesian ramps end.
+    fn begin_piece(&mut self) {
+        let current = *self.chain.get(self.chain.piece);
+        let held = self.chain.piece + 1 - self.chain.front < self.chain.pieces.len();
+        let has_next = !current.ends_chain && (held || self.pull());
+        let chain = &mut *self.chain;
+        chain.interval = 0;
+        chain.extra_next = 0;
+        chain.last_u = 0.0;
+        chain.extra = [f64::INFINITY; 2];
+        if current.radius.is_finite() {
+            return;
+        }
+        let x_out = if has_next { current.cap.min(chain.get(chain.piece + 1).cap) } else { 0.0 };
+        let twice = 2.0 * current.acceleration * current.length;
+        let head = (current.cap - chain.x_in) / twice;
+        let tail = (current.cap - x_out) / twice;
+        chain.extra = if head + tail >= 1.0 {
+            // No cruise: the ramps up and down meet.
+            [(x_out - chain.x_in + twice) / (2.0 * twice), f64::INFINITY]
+        } else {
+            [head, 1.0 - tail]
+        };
+        for extra in &mut chain.extra {
+            if !(*extra > 0.0 && *extra < 1.0) {
+                *extra = f64::INFINITY;
+            }
+        }
+        chain.extra.sort_by(f64::total_cmp);
     }
 
     /// The constraints of one side of a grid point into `out` (1 + joints rows); the largest ṡ².
@@ -232,25 +316,40 @@ where
     }
 
     fn point(&mut self, index: usize) -> Option<f64> {
-        let chain = &mut *self.chain;
         if index == 0 {
+            self.chain.x_in = 0.0;
+            self.begin_piece();
+            let chain = &mut *self.chain;
             chain.sides = [(chain.piece, 0.0); 2];
             return Some(chain.get(chain.piece).start);
         }
-        if chain.at_end {
+        if self.chain.at_end {
             return None;
         }
-        chain.interval += 1;
+        let chain = &mut *self.chain;
         let piece = *chain.get(chain.piece);
-        if chain.interval < piece.intervals {
-            let u = chain.interval as f64 / piece.intervals as f64;
+        let on_grid = piece.grid.s(chain.interval + 1);
+        while chain.extra_next < 2 && chain.extra[chain.extra_next] <= chain.last_u + 1e-9 {
+            chain.extra_next += 1;
+        }
+        let extra =
+            if chain.extra_next < 2 { chain.extra[chain.extra_next] } else { f64::INFINITY };
+        let u = if extra < on_grid - 1e-9 {
+            chain.extra_next += 1;
+            extra
+        } else {
+            chain.interval += 1;
+            on_grid
+        };
+        chain.last_u = u;
+        if u < 1.0 {
             chain.sides = [(chain.piece, u); 2];
             return Some(piece.start + u * piece.length);
         }
         let end = piece.start + piece.length;
         let before = (chain.piece, 1.0);
-        if piece.ends_chain || chain.piece + 1 - chain.front >= chain.pieces.len() && !self.pull() {
-            let chain = &mut *self.chain;
+        let next = chain.piece + 1 - chain.front;
+        if piece.ends_chain || next >= chain.pieces.len() {
             chain.at_end = true;
             chain.sides = [before; 2];
             if chain.end.is_none() {
@@ -258,10 +357,10 @@ where
             }
             return Some(end);
         }
-        let chain = &mut *self.chain;
+        chain.x_in = piece.cap.min(chain.pieces[next].cap);
         chain.piece += 1;
-        chain.interval = 0;
         chain.sides = [before, (chain.piece, 0.0)];
+        self.begin_piece();
         Some(end)
     }
 

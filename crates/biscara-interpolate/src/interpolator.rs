@@ -159,8 +159,8 @@ pub(crate) const GRID_MM: f64 = 0.5;
 pub(crate) const GRID_TURN_DEGREES: f64 = 10.0;
 const MIN_INTERVALS: f64 = 2.0;
 /// The refined grid's ratio and most points (see [`optimal_grid`]).
-const REFINE_RATIO: f64 = 0.7;
-const MAX_REFINE: f64 = 100.0;
+pub(crate) const REFINE_RATIO: f64 = 0.7;
+pub(crate) const MAX_REFINE: f64 = 100.0;
 /// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
 /// braking distance from any speed a robot file allows (500 mm/s at 5000 mm/s² brakes in
 /// 25 mm). Holds 2049 grid points of at most 9 constraints: about 200 KB.
@@ -570,7 +570,7 @@ where
     /// Starts a chain of blended moves with its first piece: plans its first window.
     fn begin_chain(&mut self, piece: Piece) -> Result<(), InterpolateError<E>> {
         let line = piece.line;
-        let mut chain = Chain::new(piece)?;
+        let mut chain = Chain::new(piece, self.config.limits)?;
         let mut error = None;
         let mut bounds = ChainBounds {
             chain: &mut chain,

@@ -50,6 +50,8 @@ impl NoteSink {
 pub(crate) struct Reading<'a> {
     pub dialect: Dialect,
     pub subroutine_path: &'a [PathBuf],
+    /// The G64 P of a program that never says G61 or G64.
+    pub blend: Option<f64>,
 }
 
 /// The motions of a G-code program (read as `reading` says, with `origin` as its G54 offset)
@@ -74,6 +76,7 @@ pub(crate) fn read_motions(
                 home: model.home_position(),
                 origin,
                 dialect: reading.dialect,
+                blend: reading.blend,
                 ..GcodeConfig::default()
             };
             // A file is read with jumps (O-word loops and calls); standard input only forwards.

@@ -36,6 +36,10 @@ pub struct SamplingConfig {
     /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
     /// program's own folder (`--subroutine-path`).
     pub subroutine_path: Vec<PathBuf>,
+    /// The corner tolerance of a G-code program that never says G61 or G64 (`--blend`, mm):
+    /// `None` (the default) runs it with an exact stop at every corner, `Some(p)` as if it began
+    /// with `G64 P{p}` (SPEC §6).
+    pub blend: Option<f64>,
 }
 
 impl Default for SamplingConfig {
@@ -50,6 +54,7 @@ impl Default for SamplingConfig {
             fit: false,
             dialect: Dialect::Auto,
             subroutine_path: Vec::new(),
+            blend: None,
         }
     }
 }
@@ -101,8 +106,11 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: &NoteSink,
     ) -> Result<Motions, PipelineError> {
-        let reading =
-            Reading { dialect: self.config.dialect, subroutine_path: &self.config.subroutine_path };
+        let reading = Reading {
+            dialect: self.config.dialect,
+            subroutine_path: &self.config.subroutine_path,
+            blend: self.config.blend,
+        };
         let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
         let motions =
             read_motions(self.model, source, kind, placement.origin, &reading, notes.clone())?;

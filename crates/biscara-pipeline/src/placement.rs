@@ -52,7 +52,11 @@ pub fn place(
         });
     }
     let mut bounds = Bounds::new(model.home_position());
-    let reading = Reading { dialect: config.dialect, subroutine_path: &config.subroutine_path };
+    let reading = Reading {
+        dialect: config.dialect,
+        subroutine_path: &config.subroutine_path,
+        blend: config.blend,
+    };
     for motion in read_motions(model, source, kind, origin, &reading, NoteSink::silent())? {
         bounds.push(&motion?);
     }

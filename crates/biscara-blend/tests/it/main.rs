@@ -71,7 +71,7 @@ fn worst_deviation(pieces: &[Piece], vertices: &[[f64; 4]]) -> f64 {
 fn a_square_corner_gets_a_fillet_within_the_tolerance() {
     let motions = [
         linear(1, [10.0, 0.0, 0.0, 0.0], Some(0.05)),
-        linear(2, [10.0, 10.0, 0.0, 90.0], Some(0.05)),
+        linear(2, [10.0, 10.0, 0.0, 0.0], Some(0.05)),
     ];
     let got = pieces(&blend(&motions, [0.0; 4]));
     assert_eq!(got.len(), 3, "{got:?}");
@@ -82,9 +82,34 @@ fn a_square_corner_gets_a_fillet_within_the_tolerance() {
     let off = ((midpoint[0] - 10.0).powi(2) + midpoint[1].powi(2)).sqrt();
     assert!((off - 0.05).abs() < 1e-9, "{off}");
     assert_eq!(got[0].start(), [0.0; 4]);
-    assert_eq!(got[2].end(), [10.0, 10.0, 0.0, 90.0]);
+    assert_eq!(got[2].end(), [10.0, 10.0, 0.0, 0.0]);
     assert!(got[2].ends_chain && !got[0].ends_chain && !got[1].ends_chain);
     assert_eq!((got[0].line, got[1].line, got[2].line), (1, 1, 2));
+}
+
+#[test]
+fn c_rates_that_would_jump_stop_the_robot() {
+    // C turns on the second move: its rate along the path would jump at the fillet.
+    let turning = [
+        linear(1, [10.0, 0.0, 0.0, 0.0], Some(0.05)),
+        linear(2, [10.0, 10.0, 0.0, 90.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&turning, [0.0; 4]));
+    assert_eq!(got.len(), 2, "{got:?}");
+    assert!(got[0].ends_chain && got[0].radius().is_none());
+    // Straight on with C turning at the same rate: no stop; at another rate: a stop.
+    let same = [
+        linear(1, [10.0, 0.0, 0.0, 10.0], Some(0.05)),
+        linear(2, [30.0, 0.0, 0.0, 30.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&same, [0.0; 4]));
+    assert!(!got[0].ends_chain && got[1].ends_chain, "{got:?}");
+    let other = [
+        linear(1, [10.0, 0.0, 0.0, 10.0], Some(0.05)),
+        linear(2, [30.0, 0.0, 0.0, 10.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&other, [0.0; 4]));
+    assert!(got[0].ends_chain && got[1].ends_chain, "{got:?}");
 }
 
 #[test]
