@@ -174,6 +174,12 @@ impl Chain {
         Ok(())
     }
 
+    /// Number of pieces held.
+    #[cfg(test)]
+    pub(crate) fn held(&self) -> usize {
+        self.pieces.len()
+    }
+
     fn get(&self, index: usize) -> &ChainPiece {
         &self.pieces[index - self.front]
     }
@@ -375,5 +381,62 @@ where
         } else {
             x_max.min(self.side(after, right))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::convert::Infallible;
+
+    use biscara_motion::{Feed, Motion, MotionKind};
+
+    use crate::{CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit, Profile};
+
+    /// A zigzag of `count` chords of 0.5 mm turning ±3° under G64 P0.05: one chain.
+    fn zigzag(count: usize) -> impl Iterator<Item = Result<Motion, Infallible>> {
+        let feed = Feed { mm_per_min: 6000.0, inverse_time: false };
+        let mut point = [0.0f64, 0.0, 0.0, 0.0];
+        (0..count).map(move |k| {
+            let heading = if k % 2 == 0 { 3f64.to_radians() } else { -3f64.to_radians() };
+            point = [point[0] + 0.5 * heading.cos(), point[1] + 0.5 * heading.sin(), 0.0, 0.0];
+            let kind = MotionKind::Linear { end: point, feed };
+            Ok(Motion { blend: Some(0.05), ..Motion::new(k + 1, kind) })
+        })
+    }
+
+    /// A chain of 40,000 moves (20 m) is one path of about 80,000 grid intervals: the pieces held
+    /// stay within the planner's window (a grid interval at least per piece), whatever the
+    /// length, and the chain runs at the feed and ends on its last point.
+    #[test]
+    fn a_long_chain_holds_a_window_of_pieces() {
+        let count = 40_000;
+        let config = InterpolationConfig {
+            dt: 0.001,
+            profile: Profile::Optimal,
+            start: [0.0; 4],
+            limits: CartesianLimits {
+                rapid_velocity: 500.0,
+                rapid_rotation: 360.0,
+                acceleration: 5000.0,
+                rotation_acceleration: 7200.0,
+            },
+            grip_time: 0.0,
+        };
+        let mut samples = Interpolator::new(zigzag(count), config, NoSpeedLimit, |_| {});
+        let (mut most, mut last, mut rows) = (0, None, 0usize);
+        while let Some(sample) = samples.next() {
+            last = Some(sample.expect("sample"));
+            rows += 1;
+            most = most.max(samples.held_pieces());
+        }
+        let window = 2 * crate::interpolator::WINDOW + 2;
+        assert!(most > 100 && most <= window, "{most} pieces held");
+        let last = last.expect("samples");
+        let end = zigzag(count).last().and_then(|motion| motion.ok()?.kind.end());
+        assert_eq!(Some(last.pose), end);
+        // 20 m at 100 mm/s (each chord's projection on the x axis is 0.5 cos 3°).
+        let at_feed = count as f64 * 0.5 / 100.0;
+        assert!(last.t >= at_feed * 0.99 && last.t <= at_feed + 0.1, "{} s", last.t);
+        assert_eq!(rows as f64, (last.t / 0.001).round() + 1.0);
     }
 }

@@ -164,7 +164,7 @@ pub(crate) const MAX_REFINE: f64 = 100.0;
 /// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
 /// braking distance from any speed a robot file allows (500 mm/s at 5000 mm/s² brakes in
 /// 25 mm). Holds 2049 grid points of at most 9 constraints: about 200 KB.
-const WINDOW: usize = 1024;
+pub(crate) const WINDOW: usize = 1024;
 
 /// How a move advances in time.
 #[derive(Debug, Clone)]
@@ -652,6 +652,17 @@ where
         }
         self.step += 1;
         Ok(self.sample(pose, line))
+    }
+}
+
+#[cfg(test)]
+impl<I, L, F> Interpolator<I, L, F> {
+    /// Number of blended pieces held (0 outside a chain).
+    pub(crate) fn held_pieces(&self) -> usize {
+        match &self.active {
+            Some(Active::Chain { chain, .. }) => chain.held(),
+            _ => 0,
+        }
     }
 }
 
