@@ -6,14 +6,16 @@
 //! the blender as it needs them and drops those the sampling has passed, so it holds only the
 //! pieces of the planner's window.
 //!
-//! Each piece gets its own grid ([`GRID_MM`], [`GRID_TURN_DEGREES`], at least one interval; a
+//! Each piece gets its own grid ([`GRID_MM`] or [`GRID_SECONDS`] at the feed, whichever is
+//! shorter, [`GRID_TURN_DEGREES`], at least one interval; a
 //! line's ends refined as a single move's are), so that every junction (the ends of every
 //! fillet) is a grid point. TOPP-RA loses a little time in the interval where the speed stops
 //! changing, and nothing when that happens on a grid point: a line also gets the points where
 //! its Cartesian ramps would end, from the speed its neighbours allow at its ends (rest at the
 //! chain's ends, the centripetal limit on a fillet) to its own. The second derivative of the
-//! path jumps at a junction; a junction point carries two sets of constraints, the piece before it at its
-//! end and the piece after it at its start, and the planner keeps both on either side.
+//! path jumps at a junction; a junction point carries two sets of constraints, the piece before
+//! it at its end and the piece after it at its start, each held on its own side of the point
+//! ([`PathConstraints::sided`]).
 
 use std::collections::VecDeque;
 
@@ -22,7 +24,12 @@ use biscara_motion::Motion;
 use biscara_timing::{Constraint, Grid, PathConstraints};
 
 use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO};
-use crate::{CartesianLimits, InterpolateError, MAX_JOINTS, Segment, SpeedLimit};
+use crate::{
+    CartesianLimits, InterpolateError, MAX_JOINTS, RateLimit, Segment, SlowDown, SpeedLimit,
+};
+
+/// The longest time an interval of a chain's grid takes at the programmed speed, s.
+const GRID_SECONDS: f64 = 0.01;
 
 /// One piece of the chain with where it starts along the chain.
 #[derive(Debug, Clone, Copy)]
@@ -44,6 +51,10 @@ struct ChainPiece {
     acceleration: f64,
     cap: f64,
     ends_chain: bool,
+    /// The programmed speed (mm/s) and the lowest a joint velocity or C allows at its grid
+    /// points, when lower.
+    programmed: f64,
+    slowest: Option<RateLimit>,
 }
 
 /// The state of a chain between calls: the pieces held and where the grid has got to.
@@ -70,6 +81,10 @@ pub(crate) struct Chain {
     sides: [(usize, f64); 2],
     /// The pose where the chain ends (known once its last piece is pulled).
     pub(crate) end: Option<[f64; 4]>,
+    /// The slowed pieces passed (one report per line), for the interpolator to pass on, and
+    /// the line reported last.
+    pub(crate) reports: Vec<SlowDown>,
+    reported: usize,
     /// A motion the blender gave where a piece was expected (never, by its contract): the
     /// interpolator runs it after the chain.
     pub(crate) deferred: Option<Motion>,
@@ -93,6 +108,8 @@ impl Chain {
             at_end: false,
             sides: [(0, 0.0); 2],
             end: None,
+            reports: Vec::new(),
+            reported: 0,
             deferred: None,
         };
         chain.push(first, 0.0, limits)?;
@@ -125,7 +142,11 @@ impl Chain {
                 per_second
             }
         };
-        let per_unit = (length / GRID_MM + segment.turning() / GRID_TURN_DEGREES).ceil();
+        // At most GRID_MM, and at most GRID_SECONDS at the feed: TOPP-RA's loss where the
+        // optimum switches off the grid is a part of one interval's time.
+        let along = if speed.is_nan() { limits.rapid_velocity } else { speed };
+        let spacing = GRID_MM.min(along * GRID_SECONDS).max(GRID_MM / 100.0);
+        let per_unit = (length / spacing + segment.turning() / GRID_TURN_DEGREES).ceil();
         if !(length.is_finite() && length > 0.0 && per_unit < 1e9) {
             return Err(InterpolateError::Motion {
                 line: piece.line,
@@ -142,19 +163,15 @@ impl Chain {
         let intervals = per_unit.max(1.0);
         let mut grid = Grid::uniform(intervals as usize);
         if piece.radius().is_none() {
-            let along = if speed.is_nan() { limits.rapid_velocity } else { speed };
             let ramp = along * along / (2.0 * limits.acceleration) / length;
             let refine =
                 ((ramp * intervals / 8.0).ln() / REFINE_RATIO.ln()).ceil().clamp(0.0, MAX_REFINE);
-            if refine > 0.0 && intervals >= 2.0 {
-                grid = Grid::refined(intervals as usize, refine as u32, REFINE_RATIO);
-            } else if refine > 0.0 {
-                grid = Grid::refined(2, refine as u32, REFINE_RATIO);
+            if refine > 0.0 {
+                grid = Grid::refined((intervals as usize).max(2), refine as u32, REFINE_RATIO);
             }
         }
         let rotation_rate = (segment.rotation() / length).abs();
         let acceleration = limits.acceleration.min(limits.rotation_acceleration / rotation_rate);
-        let along = if speed.is_nan() { limits.rapid_velocity } else { speed };
         let along = along.min(limits.rapid_rotation / rotation_rate);
         let radius = piece.radius().unwrap_or(f64::INFINITY);
         let cap = (along * along).min(limits.acceleration * radius);
@@ -169,6 +186,8 @@ impl Chain {
             radius,
             acceleration,
             cap,
+            programmed: along,
+            slowest: None,
             ends_chain: piece.ends_chain,
         });
         Ok(())
@@ -184,6 +203,25 @@ impl Chain {
         &self.pieces[index - self.front]
     }
 
+    /// Reports `piece` if it was slowed and its line has not been reported yet.
+    fn report(&mut self, piece: ChainPiece) {
+        if let Some(slowest) = piece.slowest
+            && piece.line != self.reported
+        {
+            self.reported = piece.line;
+            let factor = slowest.rate / piece.programmed;
+            self.reports.push(SlowDown { line: piece.line, cause: slowest.cause, factor });
+        }
+    }
+
+    /// At the chain's end: reports the pieces still held.
+    pub(crate) fn finish(&mut self) {
+        while let Some(piece) = self.pieces.pop_front() {
+            self.report(piece);
+            self.front += 1;
+        }
+    }
+
     /// The pose at chain parameter `s` and the line of its piece; drops the pieces before it.
     pub(crate) fn pose(&mut self, s: f64) -> ([f64; 4], usize) {
         while self.pieces.len() > 1 && self.front < self.piece {
@@ -191,6 +229,7 @@ impl Chain {
             if s <= first.start + first.length {
                 break;
             }
+            self.report(first);
             self.pieces.pop_front();
             self.front += 1;
         }
@@ -281,7 +320,13 @@ where
         out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
         // A rapid piece (NaN) runs at the rapid speed.
         let along = if piece.speed.is_nan() { limits.rapid_velocity } else { piece.speed };
-        let mut speed = along.min(limits.rapid_rotation / piece.rotation_rate);
+        let mut speed = along;
+        let mut slowest = None;
+        let rotation = limits.rapid_rotation / piece.rotation_rate;
+        if rotation < speed {
+            speed = rotation;
+            slowest = Some(RateLimit { rate: rotation, cause: "C rotation" });
+        }
         // The acceleration towards a fillet's centre within the path acceleration too.
         let mut x_max = (speed * speed).min(limits.acceleration * piece.radius);
         let joints = out.len() - 1;
@@ -305,6 +350,13 @@ where
             let joint = bound.max_velocity / q1.abs();
             if joint < speed {
                 speed = joint;
+                slowest = Some(RateLimit { rate: joint, cause: bound.name });
+            }
+        }
+        if let Some(slowest) = slowest {
+            let held = &mut self.chain.pieces[index - self.chain.front];
+            if held.slowest.is_none_or(|known| slowest.rate < known.rate) {
+                held.slowest = Some(slowest);
             }
         }
         x_max = x_max.min(speed * speed);
@@ -319,6 +371,10 @@ where
 {
     fn count(&self) -> usize {
         2 * (1 + self.limit.joint_bounds().len().min(MAX_JOINTS))
+    }
+
+    fn sided(&self) -> bool {
+        true
     }
 
     fn point(&mut self, index: usize) -> Option<f64> {

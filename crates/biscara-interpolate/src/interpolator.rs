@@ -649,6 +649,10 @@ where
         }
         if *done == *steps {
             pose = chain.end.unwrap_or(pose);
+            chain.finish();
+        }
+        for report in chain.reports.drain(..) {
+            (self.on_slow)(&report);
         }
         self.step += 1;
         Ok(self.sample(pose, line))

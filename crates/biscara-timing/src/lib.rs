@@ -110,6 +110,14 @@ pub trait PathConstraints {
         let _ = index;
         None
     }
+
+    /// Whether each point's rows come in two halves: the first holds on the interval before
+    /// the point, the second on the interval after it (where the path's curvature jumps, such
+    /// as where a line meets an arc, the two differ). `false` by default: every row holds on
+    /// both sides. `count()` must then be even.
+    fn sided(&self) -> bool {
+        false
+    }
 }
 
 /// A path that cannot be timed.

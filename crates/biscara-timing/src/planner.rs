@@ -164,6 +164,8 @@ pub struct TimeOptimal {
     elapsed: f64,
     /// Whether the path gives its own grid points ([`plan_streamed`](Self::plan_streamed)).
     streamed: bool,
+    /// Whether the path's rows are sided ([`PathConstraints::sided`]).
+    sided: bool,
 }
 
 impl TimeOptimal {
@@ -221,6 +223,7 @@ impl TimeOptimal {
     ) -> Result<(), TimingError> {
         self.window = window.max(1);
         self.count = path.count();
+        self.sided = path.sided() && self.count.is_multiple_of(2);
         self.duration = None;
         self.first = 0;
         self.s.clear();
@@ -331,7 +334,6 @@ impl TimeOptimal {
     #[inline]
     fn u_range_at<const LOWER: bool>(&self, local: usize, x: f64) -> (f64, f64, bool) {
         let step = self.s[local + 1] - self.s[local];
-        let count = self.count;
         let (mut u_lo, mut u_hi, mut x_ok) = (f64::NEG_INFINITY, f64::INFINITY, true);
         let mut bound = |alpha: f64, beta: f64, lo: f64, hi: f64| {
             let scale = alpha.abs().max(beta.abs());
@@ -352,10 +354,11 @@ impl TimeOptimal {
                 u_lo = u_lo.max((lower - beta * x) * inverse);
             }
         };
-        for row in &self.rows[local * count..(local + 1) * count] {
+        let (start, end) = self.stage_ranges(local);
+        for row in &self.rows[start] {
             bound(row.a, row.b, row.lo - row.c, row.hi - row.c);
         }
-        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+        for row in &self.rows[end] {
             bound(row.a + 2.0 * step * row.b, row.b, row.lo - row.c, row.hi - row.c);
         }
         bound(2.0 * step, 1.0, 0.0, self.k_max[local + 1]);
@@ -491,18 +494,34 @@ impl TimeOptimal {
         Ok(())
     }
 
+    /// Where in `rows` the constraints of the stage from held point `local` to the next are: at
+    /// its start and at its end. A sided path's points carry the rows that hold before them
+    /// (first half) and after them (second half): a stage takes the second half of its start's
+    /// and the first half of its end's.
+    #[inline]
+    fn stage_ranges(&self, local: usize) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+        let count = self.count;
+        let (start, end) = (local * count, (local + 1) * count);
+        if self.sided {
+            let half = count / 2;
+            (start + half..start + count, end..end + half)
+        } else {
+            (start..start + count, end..end + count)
+        }
+    }
+
     /// The half-planes in (u, x) of the stage from held point `local` to the next: every
     /// constraint at both ends of the interval, and the next point in its controllable set (only
     /// the upper bounds on u with `uppers_only`).
     fn build_stage(&mut self, local: usize, uppers_only: bool) {
         let step = self.s[local + 1] - self.s[local];
-        let count = self.count;
         self.polygon.reset(uppers_only);
-        for row in &self.rows[local * count..(local + 1) * count] {
+        let (start, end) = self.stage_ranges(local);
+        for row in &self.rows[start] {
             self.polygon.push_range(row.a, row.b, row.lo - row.c, row.hi - row.c);
         }
         // At the interval's end, x_{i+1} = x + 2Δu: a'·u + b'·(x + 2Δu).
-        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+        for row in &self.rows[end] {
             self.polygon.push_range(
                 row.a + 2.0 * step * row.b,
                 row.b,
@@ -737,6 +756,45 @@ mod tests {
             TimeOptimal::default().plan_streamed(&mut one, 10),
             Err(TimingError::NoIntervals)
         );
+    }
+
+    /// |s̈| ≤ 4 everywhere but on the side before s = 0.05 (in the ramp up), on which
+    /// |s̈| ≤ `before`; with `sided`, each side holds only on its own interval.
+    struct Switching {
+        before: f64,
+        sided: bool,
+    }
+
+    impl PathConstraints for Switching {
+        fn count(&self) -> usize {
+            2
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            let row = |limit: f64| Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -limit, hi: limit };
+            let before = if s == 0.05 { self.before } else { 4.0 };
+            out[0] = row(before);
+            out[1] = row(4.0);
+            1.0
+        }
+        fn sided(&self) -> bool {
+            self.sided
+        }
+    }
+
+    #[test]
+    fn sided_rows_hold_on_their_own_side() {
+        let duration = |before: f64, sided: bool| {
+            let mut path = Switching { before, sided };
+            TimeOptimal::new(&mut path, Grid::uniform(100), 4096).unwrap().duration().unwrap()
+        };
+        // The same rows on both sides: sided or not, the same plan.
+        assert_eq!(duration(4.0, true), duration(4.0, false));
+        // A tight bound only on the interval before s = 0.05: sided, the interval after it is
+        // free to accelerate, so the plan is faster than with the bound on both sides; both
+        // slower than without it.
+        let (sided, both) = (duration(0.01, true), duration(0.01, false));
+        assert!(sided < both, "{sided} {both}");
+        assert!(sided > duration(4.0, true));
     }
 
     struct Blocked;
