@@ -164,8 +164,10 @@ pub struct TimeOptimal {
     elapsed: f64,
     /// Whether the path gives its own grid points ([`plan_streamed`](Self::plan_streamed)).
     streamed: bool,
-    /// Whether the path's rows are sided ([`PathConstraints::sided`]).
-    sided: bool,
+    /// The rows of a point a stage skips at its start and takes at its end: 0 and `count`, or
+    /// for a sided path ([`PathConstraints::sided`]) `count / 2` and `count / 2`.
+    skip: usize,
+    take: usize,
 }
 
 impl TimeOptimal {
@@ -223,7 +225,9 @@ impl TimeOptimal {
     ) -> Result<(), TimingError> {
         self.window = window.max(1);
         self.count = path.count();
-        self.sided = path.sided() && self.count.is_multiple_of(2);
+        let sided = path.sided() && self.count.is_multiple_of(2);
+        (self.skip, self.take) =
+            if sided { (self.count / 2, self.count / 2) } else { (0, self.count) };
         self.duration = None;
         self.first = 0;
         self.s.clear();
@@ -500,14 +504,8 @@ impl TimeOptimal {
     /// and the first half of its end's.
     #[inline]
     fn stage_ranges(&self, local: usize) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
-        let count = self.count;
-        let (start, end) = (local * count, (local + 1) * count);
-        if self.sided {
-            let half = count / 2;
-            (start + half..start + count, end..end + half)
-        } else {
-            (start..start + count, end..end + count)
-        }
+        let (start, end) = (local * self.count, (local + 1) * self.count);
+        (start + self.skip..end, end..end + self.take)
     }
 
     /// The half-planes in (u, x) of the stage from held point `local` to the next: every
