@@ -76,7 +76,7 @@ impl Pending {
 
 /// Joins the straight moves programmed under G64 by fillets; see the crate documentation.
 ///
-/// Holds one motion of look-ahead and at most three items to yield: memory does not grow with
+/// Holds one motion of look-ahead and at most four items to yield: memory does not grow with
 /// the program.
 #[derive(Debug)]
 pub struct Blender<I> {
@@ -155,7 +155,13 @@ where
                     if norm(sub(xyz(cut), xyz(previous.start))) > 1e-9 {
                         self.out.push_back(Blended::Piece(previous.piece(cut, false)));
                     }
-                    self.out.push_back(Blended::Piece(fillet));
+                    if previous.speed == next.speed {
+                        self.out.push_back(Blended::Piece(fillet));
+                    } else {
+                        let [first, second] = halves(fillet, next.line, next.speed);
+                        self.out.push_back(Blended::Piece(first));
+                        self.out.push_back(Blended::Piece(second));
+                    }
                     next.start = next.at(trim);
                 }
             }
@@ -212,10 +218,26 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
     let fillet = Piece {
         line: a.line,
         geometry: Geometry::Fillet { start, end, center, radius, tangent: ua, sweep: turn },
-        speed: a.speed.slower(b.speed),
+        speed: a.speed,
         ends_chain: false,
     };
     Corner::Fillet { trim, fillet }
+}
+
+/// A fillet between moves of different speeds, cut at its middle: the first half keeps the
+/// speed (and line) of the move before the corner, the second takes `line` and `speed`, those
+/// of the move after it — each half replaces a part of its own move.
+fn halves(fillet: Piece, line: usize, speed: Speed) -> [Piece; 2] {
+    let Geometry::Fillet { start, end, center, radius, tangent, sweep } = fillet.geometry else {
+        return [fillet, fillet];
+    };
+    let middle = fillet.point(0.5);
+    let half = sweep / 2.0;
+    let first = Geometry::Fillet { start, end: middle, center, radius, tangent, sweep: half };
+    let turned = fillet.tangent(0.5);
+    let second =
+        Geometry::Fillet { start: middle, end, center, radius, tangent: turned, sweep: half };
+    [Piece { geometry: first, ..fillet }, Piece { line, geometry: second, speed, ..fillet }]
 }
 
 impl<I, E> Iterator for Blender<I>

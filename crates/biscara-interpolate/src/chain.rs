@@ -205,8 +205,10 @@ impl Chain {
 
     /// Reports `piece` if it was slowed and its line has not been reported yet.
     fn report(&mut self, piece: ChainPiece) {
+        // (Below the programmed speed by more than rounding: a vertical move at d4's limit.)
         if let Some(slowest) = piece.slowest
             && piece.line != self.reported
+            && slowest.rate < piece.programmed * (1.0 - 1e-9)
         {
             self.reported = piece.line;
             let factor = slowest.rate / piece.programmed;
