@@ -104,6 +104,25 @@ where
         }
     }
 
+    /// Whether nothing waits in the blender: its next item would be the source's next motion.
+    /// A caller may then take motions from [`source`](Self::source) itself and hand the
+    /// blender only those under G64 ([`take_from`](Self::take_from)).
+    pub fn is_idle(&self) -> bool {
+        self.out.is_empty() && self.pending.is_none() && !self.done
+    }
+
+    /// The motions being blended.
+    pub fn source(&mut self) -> &mut I {
+        &mut self.motions
+    }
+
+    /// Takes `motion`, which starts at `from`, as if it had come from the source (for a
+    /// caller that reads the source itself while the blender is idle).
+    pub fn take_from(&mut self, motion: Motion, from: [f64; 4]) {
+        self.position = from;
+        self.take(motion);
+    }
+
     /// Whether to blend at all: with `false`, every motion passes unchanged (an exact stop at
     /// every corner, for timing laws that cannot run through one).
     pub fn blending(self, enabled: bool) -> Blender<I> {

@@ -256,6 +256,8 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
 pub struct Interpolator<I, L, F> {
     /// The motions, their corners blended where they ask for it (optimal profile only).
     motions: Blender<I>,
+    /// Whether corners under G64 are blended (the optimal profile).
+    blending: bool,
     limit: L,
     /// The optimal profile's planner, reused from move to move (no allocation per move).
     planner: TimeOptimal,
@@ -304,6 +306,7 @@ where
         let blending = config.profile == Profile::Optimal;
         Interpolator {
             motions: Blender::new(motions, config.start).blending(blending),
+            blending,
             limit,
             planner: TimeOptimal::default(),
             on_slow,
@@ -782,6 +785,28 @@ where
             }
             if self.finished {
                 return None;
+            }
+            // Motions that are not blended go straight from the source: the blender sees only
+            // those under G64 (and what follows them until their chain ends).
+            if self.motions.is_idle() {
+                match self.motions.source().next() {
+                    None => {
+                        self.finished = true;
+                        return None;
+                    }
+                    Some(Err(err)) => {
+                        self.finished = true;
+                        return Some(Err(InterpolateError::Input(err)));
+                    }
+                    Some(Ok(motion)) if motion.blend.is_none() || !self.blending => {
+                        if let Err(err) = self.begin(motion) {
+                            self.finished = true;
+                            return Some(Err(err));
+                        }
+                    }
+                    Some(Ok(motion)) => self.motions.take_from(motion, self.pose),
+                }
+                continue;
             }
             match self.motions.next() {
                 None => {

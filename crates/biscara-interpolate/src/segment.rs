@@ -163,6 +163,7 @@ impl Segment {
     }
 
     /// The pose at path parameter `s` (exactly `end` at `s = 1`).
+    #[inline]
     pub fn point(&self, s: f64) -> [f64; 4] {
         if s >= 1.0 {
             return self.end;
