@@ -1,8 +1,9 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara::gcode::Dialect;
+use biscara::gcode::{Dialect, Tool, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -86,9 +87,15 @@ pub(crate) struct PlacementArgs {
     )]
     pub(crate) origin: Option<[f64; 4]>,
     /// Place the program in the workspace: shift it in X and Y so that its bounding box (arcs
-    /// included) is centred in the largest rectangle of `biscara workspace`; z and c unchanged.
-    /// The offset is reported on stderr; a program larger than the rectangle is an error.
-    #[arg(long, help = "Centre the program in the workspace rectangle (offset on stderr)")]
+    /// included) is centred in the largest rectangle of `biscara workspace`, turned by 90° about
+    /// Z when it fits only that way, and its Z range centred in the Z stroke when it lies outside.
+    /// Programs that zero themselves with G92 at their start are placed too. The placement is
+    /// reported on stderr; a program that fits neither way is an error that says by how much.
+    #[arg(
+        long,
+        help = "Centre the program in the workspace rectangle, turned by 90° if only that fits, \
+                Z into the stroke (placement on stderr)"
+    )]
     pub(crate) fit: bool,
 }
 
@@ -106,9 +113,24 @@ pub(crate) struct DialectArgs {
         help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
+    /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,
+    /// S and E mean. Without either, the tool is inferred from the program (noted on stderr),
+    /// the gripper when nothing tells.
+    #[arg(
+        long,
+        value_name = "KIND",
+        value_parser = parse_tool,
+        help = "gripper, laser, spindle, extruder or pen (default: the robot file's, else inferred)"
+    )]
+    pub(crate) tool: Option<Tool>,
 }
 
-/// The files a G-code program may read besides itself.
+fn parse_tool(text: &str) -> Result<Tool, String> {
+    Tool::from_name(text)
+        .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
+}
+
+/// The files a G-code program may read besides itself (SPEC §4.2 tier 3).
 #[derive(Debug, Args)]
 pub(crate) struct GcodeFilesArgs {
     /// A folder where file subroutines are looked for: `o<name> call` of a subroutine the
@@ -116,6 +138,25 @@ pub(crate) struct GcodeFilesArgs {
     /// folders, in order (LinuxCNC's SUBROUTINE_PATH). May be given more than once.
     #[arg(long, value_name = "DIR", help = "Folder of file subroutines (o<name> call → name.ngc)")]
     pub(crate) subroutine_path: Vec<PathBuf>,
+    /// LinuxCNC's tool table (`.tbl`, millimetres): the tools' lengths for G43 and diameters.
+    /// Without it, every tool has zero length and diameter, and a note says so when the program
+    /// uses them.
+    #[arg(
+        long,
+        value_name = "FILE",
+        help = "LinuxCNC tool table (.tbl, mm) for G43 tool lengths and tool diameters"
+    )]
+    pub(crate) tool_table: Option<PathBuf>,
+}
+
+impl GcodeFilesArgs {
+    /// The tool table, read.
+    pub(crate) fn tool_table(&self) -> anyhow::Result<Option<Arc<ToolTable>>> {
+        match &self.tool_table {
+            None => Ok(None),
+            Some(path) => Ok(Some(Arc::new(ToolTable::read(path)?))),
+        }
+    }
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
@@ -149,17 +190,19 @@ pub(crate) struct SamplingArgs {
 
 impl SamplingArgs {
     /// The pipeline's sampling configuration.
-    pub(crate) fn config(&self) -> SamplingConfig {
-        SamplingConfig {
+    pub(crate) fn config(&self) -> anyhow::Result<SamplingConfig> {
+        Ok(SamplingConfig {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
             origin: self.placement.origin,
             fit: self.placement.fit,
             dialect: self.dialect.dialect,
+            tool: self.dialect.tool,
             subroutine_path: self.files.subroutine_path.clone(),
+            tool_table: self.files.tool_table()?,
             blend: self.blend.blend,
-        }
+        })
     }
 }
 

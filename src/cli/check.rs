@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
+use biscara::gcode::Tool;
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
 use biscara::robot::Checker;
 use clap::Args;
 
@@ -50,15 +51,41 @@ pub(crate) struct CheckArgs {
     sampling: SamplingArgs,
 }
 
+/// What only the tool can get wrong at a sample (SPEC §1.6): a laser burning or an extruder
+/// feeding during a rapid move.
+fn tool_problem(tool: Tool, state: &ToolState) -> Option<(&'static str, String, f64)> {
+    if !state.rapid {
+        return None;
+    }
+    match tool {
+        Tool::Laser if state.laser_power > 0.0 => Some((
+            "laser on during a rapid move",
+            format!("the laser burns at power S{} during a G0 move", state.laser_power),
+            state.laser_power,
+        )),
+        Tool::Extruder if state.move_extrude_mm > 0.0 => Some((
+            "extrusion during a rapid move",
+            format!("the extruder feeds {:.3} mm during a G0 move", state.move_extrude_mm),
+            state.move_extrude_mm,
+        )),
+        _ => None,
+    }
+}
+
 pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
     let mut checker = Checker::new(model, scene);
-    for sample in
-        Pipeline::new(model, args.sampling.config()).samples(&source, kind, notes.sink())?
-    {
-        checker.push(&sample?);
+    let mut samples =
+        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
+    let tool = samples.tool();
+    for sample in samples {
+        let (sample, state) = sample?;
+        checker.push(&sample);
+        if let Some((subject, detail, severity)) = tool_problem(tool, &state) {
+            checker.push_tool_problem(&sample, subject, detail, severity);
+        }
     }
     notes.finish();
     let report = checker.finish();

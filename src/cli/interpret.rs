@@ -16,15 +16,22 @@ use super::files::{FileSource, write_output};
 /// frame (offsets applied), millimetres and degrees; feeds in mm/min.
 ///
 /// The language is LinuxCNC's RS274/NGC for the axes X Y Z C: G0 G1 G2 G3 (I J K or R, full
-/// circles, P turns, helical, G17/G18/G19), G4, G10 L2/L20, G20/G21 (inches become mm), G28/G30
+/// circles, P turns, helical, G17/G18/G19), G4, G10 L2/L20 (L2 R: a system rotated about Z),
+/// G10 L0, polar `@` `^`, G20/G21 (inches become mm), G28/G30
 /// (to the robot's home pose unless set with G28.1/G30.1), G53, G54–G59.3, G90/G91, G90.1/G91.1,
-/// G92 G92.1 G92.2 G92.3, G93/G94, G40 G49 G80 (accepted, no effect here), G61 G61.1 G64 P (path
-/// control: each move under G64 carries `"blend":P`, in mm, 0 when P is not given; a Q up to P is
-/// accepted, no collinear merging is done), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4
-/// (place), M5 (gripper off), M6 M7 M8 M9, F S T; numbered and named parameters and
-/// expressions. The program starts at the robot's home pose, under exact stop (G61).
+/// G92 G92.1 G92.2 G92.3, G93/G94, G40 G41 G42 G41.1 G42.1 (cutter radius compensation, in G17
+/// or G18; the D of G41/G42 names a tool of --tool-table, G41.1/G42.1 D give the diameter), T M6
+/// M61 G43 G43.1 G43.2 G49 G10 L1/L10/L11 (tools, with --tool-table), canned cycles G73 G74
+/// G81–G89 G98 G99 G80, G52, M70–M73, M100–M199 M19 M62–M68 (events), M48–M53 and `$0`/`$-1`
+/// (no effect here), G61 G61.1 G64 P (path control: each
+/// move under G64 carries `"blend":P`, in mm, 0 when P is not given; a Q up to P is accepted, no
+/// collinear merging is done), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
+/// (gripper off), M7 M8 M9, F S; numbered and named parameters and expressions; O-word
+/// subroutines (also from files, with --subroutine-path) and control flow; G5 and G5.1 splines
+/// in G17 (straight moves within 0.001 mm of the curve, on the spline's line). The program
+/// starts at the robot's home pose, under exact stop (G61).
 ///
-/// O-words, cutter compensation, canned cycles and the other codes LinuxCNC knows but this
+/// NURBS (G5.2) and the other codes LinuxCNC knows but this
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.
@@ -63,7 +70,9 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
         origin: placement.origin,
         fit: placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
         subroutine_path: args.files.subroutine_path.clone(),
+        tool_table: args.files.tool_table()?,
         ..SamplingConfig::default()
     };
     let notes = NoteReporter::default();

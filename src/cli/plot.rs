@@ -3,9 +3,11 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
 use biscara::robot::Workspace;
-use biscara::view::{JointCurves, ProgramTrace, TopView, draw_joints, draw_top_view};
+use biscara::view::{
+    JointCurves, ProcessStrokes, ProgramTrace, TopView, draw_joints, draw_top_view, zoom_region,
+};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs};
@@ -43,6 +45,10 @@ pub(crate) struct PlotArgs {
     /// Boxes around the robot to draw (JSON, as for check).
     #[arg(long, value_name = "FILE")]
     scene: Option<PathBuf>,
+    /// Draw only the tool's work (or, for the gripper, the path without the travel from and
+    /// to the home pose) with a margin, instead of the whole workspace.
+    #[arg(long, conflicts_with = "joints")]
+    zoom: bool,
     /// Grid step of the workspace, millimetres.
     #[arg(long, value_name = "MM", default_value = "2")]
     step: f64,
@@ -60,13 +66,24 @@ fn parse_time(text: &str) -> Result<f64, String> {
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
     let (source, kind) = args.program.open()?;
-    let at = if args.at.is_empty() { vec![0.0] } else { args.at.clone() };
+    // Zoomed on the work, the robot is drawn only when asked for.
+    let at = match args.at.is_empty() {
+        true if args.zoom => Vec::new(),
+        true => vec![0.0],
+        false => args.at.clone(),
+    };
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
-    for sample in
-        Pipeline::new(model, args.sampling.config()).samples(&source, kind, notes.sink())?
-    {
-        trace.push(&sample?);
+    let mut samples =
+        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
+    let tool = samples.tool();
+    let max_power = model.robot().tool.max_power;
+    let mut process = ProcessStrokes::default();
+    for sample in samples {
+        let (sample, state) = sample?;
+        trace.push(&sample);
+        let point = [sample.pose[0], sample.pose[1]];
+        process.push(point, sample.line, state.strength(tool, max_power));
     }
     for t in trace.missed_times() {
         let end = trace.duration();
@@ -90,8 +107,11 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             workspace: Some(&workspace),
             rectangle: Some(&rectangle),
             path: &trace.path,
+            process: process.strokes(),
+            process_label: ToolState::legend(tool),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
+            region: if args.zoom { zoom_region(process.strokes(), &trace.path) } else { None },
         };
         draw_top_view(&view, format).map_err(|err| anyhow!("{err}"))?
     };

@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use biscara::gcode::Tool;
 use biscara::interpolate::PathCsvWriter;
 use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
-use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
+use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, ToolState};
 use clap::{Args, ValueEnum};
 
 use super::args::{ProgramArgs, SamplingArgs};
@@ -45,8 +46,13 @@ pub(crate) struct InterpolateArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
-    /// Add a `gripper` column: 1 from a pick to the next place.
-    #[arg(long)]
+    /// Add the tool's column (SPEC §1.6): `gripper` (1 from a pick to the next place),
+    /// `laser_power` (the S power while on, 0 off), `spindle_rpm` (negative: M4),
+    /// `extruded_mm` (filament fed since the start) or `pen_down` (1 down, 0 up).
+    #[arg(
+        long,
+        help = "Add the tool's column: gripper, laser_power, spindle_rpm, extruded_mm or pen_down"
+    )]
     events: bool,
 }
 
@@ -81,6 +87,13 @@ pub(crate) struct JointsArgs {
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
     angle_unit: AngleUnitArg,
+    /// Add the tool's column after the joints, as `interpolate --events` does (SPEC §1.6):
+    /// `gripper`, `laser_power`, `spindle_rpm`, `extruded_mm` or `pen_down`.
+    #[arg(
+        long,
+        help = "Add the tool's column: gripper, laser_power, spindle_rpm, extruded_mm or pen_down"
+    )]
+    events: bool,
 }
 
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
@@ -89,7 +102,31 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
         return Err(anyhow!("interpolate reads G-code or an inter-file, not a path CSV"));
     }
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    if args.events {
+        let mut samples = pipeline.tool_samples(&source, kind, notes.sink())?;
+        let tool = samples.tool();
+        write_output(args.output.as_deref(), |out| {
+            let precision = usize::from(args.sampling.precision);
+            let mut writer = if tool == Tool::Gripper {
+                PathCsvWriter::new(out, precision, true)?
+            } else {
+                PathCsvWriter::with_columns(out, precision, ToolState::columns(tool))?
+            };
+            for sample in samples {
+                let (sample, state) = sample?;
+                if tool == Tool::Gripper {
+                    writer.write(&sample)?;
+                } else {
+                    writer.write_with(&sample, &[state.value(tool)])?;
+                }
+            }
+            writer.finish()?;
+            Ok(())
+        })?;
+        notes.finish();
+        return Ok(());
+    }
     let samples = pipeline.samples(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer =
@@ -107,8 +144,7 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config());
-    let mut samples = pipeline.joints(&source, kind, notes.sink())?;
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
     let format = JointCsvFormat {
         angle_unit: match args.angle_unit {
             AngleUnitArg::Rad => AngleUnit::Radians,
@@ -117,6 +153,22 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
+    if args.events {
+        let mut samples = pipeline.tool_joints(&source, kind, notes.sink())?;
+        let tool = samples.tool();
+        write_output(args.output.as_deref(), |out| {
+            let mut writer = JointCsvWriter::with_columns(out, format, ToolState::columns(tool))?;
+            while let Some(row) = samples.next_sample() {
+                let (row, state) = row?;
+                writer.write_with(row, &[state.value(tool)])?;
+            }
+            writer.finish()?;
+            Ok(())
+        })?;
+        notes.finish();
+        return Ok(());
+    }
+    let mut samples = pipeline.joints(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer = JointCsvWriter::new(out, format)?;
         while let Some(row) = samples.next_sample() {

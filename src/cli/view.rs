@@ -3,8 +3,11 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use biscara::gcode::Tool;
 use biscara::joints::read_joint_csv;
-use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::pipeline::{
+    Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig, ToolState,
+};
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
@@ -19,7 +22,11 @@ use super::files::{FileSource, display_path, file_name, load_scene, open_input, 
 ///
 /// A top view (X–Y) and a side view (Y–Z) of the robot — base, links, elbows, Z column,
 /// gripper — with the tool's trace, the scene's boxes, and with --program the programmed path,
-/// the pick (M3) and place (M4) events and the program line being executed. Play/pause, speed
+/// the pick (M3) and place (M4) events and the program line being executed. For a laser, an
+/// extruder, a pen or a spindle (--tool, the robot file, or inferred from the program) it draws
+/// the work done so far apart from travel, also in a third view zoomed on the work: the burnt
+/// trace (darker for more power), the deposited track layer by layer (the current layer
+/// brightest), the pen's strokes, the cuts. Play/pause, speed
 /// and a time slider; the time, joint values, tool pose and program line are shown as it plays.
 /// The file needs no network and no other file: its data and JavaScript are inside. Opening it
 /// as `view.html#t=2.5` shows the robot paused at t = 2.5 s; without `#t=` it plays from the
@@ -100,13 +107,25 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         origin: args.placement.origin,
         fit: args.placement.fit,
         dialect: args.dialect.dialect,
+        tool: args.dialect.tool,
         subroutine_path: args.files.subroutine_path.clone(),
         blend: args.blend.blend,
+        tool_table: args.files.tool_table()?,
     };
     let mut end = 0.0;
-    for sample in Pipeline::new(model, config).samples(&source, kind, |_| {})? {
-        let sample = sample?;
+    let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
+    let tool = samples.tool();
+    if tool != Tool::Gripper {
+        viewer.set_tool(tool.name(), ToolState::legend(tool));
+    }
+    let max_power = model.robot().tool.max_power;
+    for sample in samples {
+        let (sample, state) = sample?;
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
+        if tool != Tool::Gripper {
+            let strength = state.strength(tool, max_power);
+            viewer.push_process_sample(sample.t, sample.pose, sample.line, strength);
+        }
         end = sample.t;
     }
     if (duration - end).abs() > 1e-6 + viewer.time_step().unwrap_or(0.0) {

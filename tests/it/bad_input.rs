@@ -9,7 +9,7 @@ use crate::util::{biscara, repo_root, temp_dir};
 
 /// Each reader: its folder, its file extension, and the command that reads it (`{}` is the
 /// file, `{out}` the output that must not appear; `check` gets a good program, [`PROGRAM`]).
-const READERS: [(&str, &str, &[&str]); 7] = [
+const READERS: [(&str, &str, &[&str]); 8] = [
     ("points", "txt", &["clf", "{}", "-o", "{out}"]),
     ("cl", "cl", &["post", "{}", "-o", "{out}"]),
     ("gcode", "ngc", &["interpret", "{}", "-o", "{out}"]),
@@ -17,6 +17,7 @@ const READERS: [(&str, &str, &[&str]); 7] = [
     ("path", "csv", &["joints", "--from", "path", "{}", "-o", "{out}"]),
     ("jsonl", "jsonl", &["interpolate", "--from", "jsonl", "{}", "-o", "{out}"]),
     ("scene", "json", &["check", "--scene", "{}", "program.jsonl", "-o", "{out}"]),
+    ("tool_table", "tbl", &["check", "--tool-table", "{}", "program.jsonl", "-o", "{out}"]),
 ];
 
 /// A clean program, for the commands that read a bad file beside a good program.

@@ -108,6 +108,68 @@ fn colour_centroid(image: &(u32, u32, Vec<[u8; 3]>), colour: [u8; 3]) -> ([f64; 
     ([sum[0] / n, sum[1] / n], count)
 }
 
+/// Chromium, or `None` (the test then passes with a note, except under `CI=true`).
+fn chromium_or_skip() -> Option<PathBuf> {
+    let binary = chromium();
+    if binary.is_none() {
+        let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
+        assert!(!in_ci, "chromium is missing, and CI=true requires it (apt-get install chromium)");
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!("SKIPPED: browser test: chromium not found (apt-get install chromium)");
+        }
+    }
+    binary
+}
+
+/// How many pixels of `colour` (±6 per channel) the whole page shows above the legend.
+fn colour_count(image: &(u32, u32, Vec<[u8; 3]>), colour: [u8; 3]) -> usize {
+    let (width, height, pixels) = image;
+    let above = (*height * 85 / 100 * width) as usize;
+    pixels[..above]
+        .iter()
+        .filter(|pixel| pixel.iter().zip(colour).all(|(&a, b)| a.abs_diff(b) <= 6))
+        .count()
+}
+
+/// The laser's burnt trace at full power (SPEC §1.6): the viewer's colour at strength 1.
+const BURNT: [u8; 3] = [30, 15, 5];
+
+/// The laser engraving's view (issue 14): before the laser is on nothing is burnt; at 12 s the
+/// frame burnt so far is drawn in the full-power colour (in the top view and the zoomed view of
+/// the work) and the readout says the laser is on.
+#[test]
+fn the_laser_view_shows_the_burnt_trace_growing() {
+    let Some(binary) = chromium_or_skip() else { return };
+    let dir = temp_dir("browser-laser");
+    let program = crate::util::repo_root().join("data/programs/laser_engraving.ngc");
+    let program = program.to_str().expect("path");
+    let origin = ["--origin", "-30,250,0,0"];
+    biscara(&dir, &[&["joints", program, "-o", "traj.csv"][..], &origin].concat()).success();
+    let view = ["view", "traj.csv", "--program", program, "-o", "view.html"];
+    biscara(&dir, &[&view[..], &origin].concat()).success();
+    let page = dir.join("view.html").canonicalize().expect("view.html");
+    let artefacts = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser");
+    std::fs::create_dir_all(&artefacts).expect("artefact dir");
+    let mut burnt = Vec::new();
+    for (moment, readout) in [("0.3", "<b id=\"grip\">off</b>"), ("12", "on, 100 % power")] {
+        let url = format!("file://{}#t={moment}", page.display());
+        let profile = temp_dir("chromium-profile");
+        let (dom, stderr) = run_chromium(&binary, &profile, &url, &["--dump-dom".to_owned()]);
+        assert_no_console_messages(&stderr, &url);
+        assert!(dom.contains("data-status=\"ready\"") && dom.contains(readout), "{url}: {dom}");
+        let shot = artefacts.join(format!("laser-t{moment}.png"));
+        let _ = std::fs::remove_file(&shot);
+        let profile = temp_dir("chromium-profile");
+        let (_, stderr) =
+            run_chromium(&binary, &profile, &url, &[format!("--screenshot={}", shot.display())]);
+        assert_no_console_messages(&stderr, &url);
+        burnt.push(colour_count(&decode(&shot), BURNT));
+    }
+    // The frame burnt so far, in the top view and the zoomed view of the work.
+    assert!(burnt[0] < 20 && burnt[1] > 1000, "burnt-trace pixels at 0.3 s and 12 s: {burnt:?}");
+}
+
 #[test]
 fn the_demo_view_renders_in_chromium_and_the_robot_moves() {
     let Some(binary) = chromium() else {

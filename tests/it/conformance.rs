@@ -20,11 +20,22 @@ use biscara::motion::{Motion, MotionKind};
 use crate::rs274::{self, Outcome};
 use crate::util::{repo_root, temp_dir};
 
+/// The configuration rs274 is matched with: the defaults but rs274's path control mode (G64 with
+/// no tolerance, where `interpret` starts in exact stop), and the program's own tool table
+/// (`NAME.tbl`) when it has one.
+fn config(path: &Path) -> Config {
+    Config {
+        tool_table: rs274::own_table(path).map(std::sync::Arc::new),
+        blend: Some(0.0),
+        ..Config::default()
+    }
+}
+
 /// The interpreter on the file `path`, started like rs274 (at 0,0,0,0 with G28/G30 at 0), with
 /// file subroutines beside it (rs274 runs in the program's folder and finds them there).
 fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret_seekable(BufReader::new(file), &Config::default())
+    interpret_seekable(BufReader::new(file), &config(path))
         .with_subroutines(Some(path.to_path_buf()), Vec::new())
 }
 
@@ -45,8 +56,15 @@ fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeErro
     (motions.clone(), Ok(motions))
 }
 
+/// Our motions without the events of codes rs274 has no motion for (M19, M62–M68, M100–M199):
+/// its canon prints them as calls the comparison does not read.
+fn without_codes(ours: &[Motion]) -> Vec<Motion> {
+    ours.iter().filter(|m| !matches!(m.kind, MotionKind::Code { .. })).copied().collect()
+}
+
 /// The first difference between our motions and rs274's, if any.
 fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
+    let ours = &without_codes(ours)[..];
     let unit = if inches { 25.4 } else { 1.0 };
     // Each printed number is rounded to 1e-4 of the unit; an absolute position sums up to three.
     let length_tolerance = 1.5e-4 * unit + 1e-9;
@@ -127,6 +145,19 @@ enum Verdict {
     BothRefuse,
     /// We refuse a value LinuxCNC would pass on: not finite, or a position beyond ±1e6 mm.
     Stricter,
+    /// rs274 refuses a user M code (M100–M199) for want of its program; we record it as an
+    /// event (SPEC §4.2) and match up to it.
+    UserMCode,
+    /// We refuse what this robot cannot do (lathe, spindle-synchronised motion, probing).
+    CannotRun,
+}
+
+/// Whether rs274's `message` refuses a user M code (M100–M199) it has no program for.
+fn user_m_code(message: &str) -> bool {
+    message
+        .strip_prefix("Unknown m code used: M")
+        .and_then(|number| number.trim().parse::<u32>().ok())
+        .is_some_and(|number| (100..=199).contains(&number))
 }
 
 /// Whether `err` is one of our deliberate refusals of values LinuxCNC lets through.
@@ -140,18 +171,28 @@ fn stricter(err: &GcodeError) -> bool {
 fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let theirs = rs274::run(path, dir);
     let (before, ours) = ours_with_partial(path);
+    let before = without_codes(&before);
     match (ours, theirs) {
         (Ok(ours), Outcome::Motions(theirs)) => {
+            let ours = without_codes(&ours);
+            let theirs = rs274::expand_splines(&ours, &theirs);
             compare(&ours, &theirs, uses_inches(path)).map(|()| Verdict::Match)
         }
         (Err(GcodeError::NotSupported { .. }), _) => Ok(Verdict::NotSupported),
+        (Err(GcodeError::CannotRun { .. }), _) => Ok(Verdict::CannotRun),
         (Err(err), _) if stricter(&err) => Ok(Verdict::Stricter),
         (Err(GcodeError::ForeignAxis { .. }), _) => Ok(Verdict::ForeignAxis),
         (Err(err), Outcome::Error { message, before: theirs }) => {
+            let theirs = rs274::expand_splines(&before, &theirs);
             // The same motions up to the block that fails (rs274 may have emitted part of it),
             // and LinuxCNC's message within ours.
             let common = before.len().min(theirs.len());
             compare(&before, &theirs[..common], uses_inches(path))?;
+            if user_m_code(&message) {
+                // rs274 stops at a user M code for want of its program; we read on (to a
+                // refusal of our own further on).
+                return Ok(Verdict::UserMCode);
+            }
             if theirs.len() > before.len() + 3 || before.len() > theirs.len() {
                 return Err(format!(
                     "both refuse, ours after {} motions, rs274 after {}: {err} / {message}",
@@ -165,6 +206,13 @@ fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
                 ));
             }
             Ok(Verdict::BothRefuse)
+        }
+        (Ok(ours), Outcome::Error { message, before: theirs }) if user_m_code(&message) => {
+            let ours = without_codes(&ours);
+            let theirs = rs274::expand_splines(&ours, &theirs);
+            let common = ours.len().min(theirs.len());
+            compare(&ours[..common], &theirs, uses_inches(path))?;
+            Ok(Verdict::UserMCode)
         }
         (Ok(_), Outcome::Error { message, .. }) => {
             Err(format!("rs274 refuses ({message}), we accept"))
@@ -221,8 +269,17 @@ fn hand_written_cases_conform() {
             }
         } else if name.starts_with("unsupported_") {
             match ours {
-                Err(GcodeError::NotSupported { .. }) => None,
+                Err(GcodeError::NotSupported { .. } | GcodeError::CannotRun { .. }) => None,
                 other => Some(format!("not refused as unsupported: {other:?}")),
+            }
+        } else if name.starts_with("user_m_") {
+            match (&ours, &theirs) {
+                (Ok(motions), Outcome::Error { message, .. }) if user_m_code(message) => motions
+                    .iter()
+                    .any(|m| matches!(m.kind, MotionKind::Code { .. }))
+                    .then_some(())
+                    .map_or(Some("no code event".to_owned()), |()| None),
+                _ => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
             }
         } else if name.starts_with("axis_") {
             match ours {
@@ -232,6 +289,8 @@ fn hand_written_cases_conform() {
         } else {
             match (ours, theirs) {
                 (Ok(ours), Outcome::Motions(theirs)) => {
+                    let ours = without_codes(&ours);
+                    let theirs = rs274::expand_splines(&ours, &theirs);
                     compare(&ours, &theirs, uses_inches(case)).err()
                 }
                 (ours, theirs) => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
@@ -287,7 +346,7 @@ fn linuxcnc_examples_match_or_are_refused() {
     let mut seen = std::collections::HashSet::new();
     let files = programs.len();
     programs.retain(|path| seen.insert(std::fs::read(path).unwrap_or_default()));
-    let mut counts = [0usize; 5];
+    let mut counts = [0usize; 7];
     let mut differ = Vec::new();
     let mut matched = Vec::new();
     for program in &programs {
@@ -306,18 +365,86 @@ fn linuxcnc_examples_match_or_are_refused() {
         eprintln!(
             "LinuxCNC examples: {} distinct programs ({files} files): {} match, {} refused as \
              not supported yet (O-words, canned cycles, …), {} refused for A/B/U/V/W axis words, \
-             {} refused by rs274 itself and by us, {} differ",
+             {} refused by rs274 itself and by us, {} with user M codes (events here, refused by \
+             rs274 without their programs), {} refused as this robot cannot do them (lathe, \
+             spindle-synchronised motion, probing), {} differ",
             programs.len(),
             counts[Verdict::Match as usize],
             counts[Verdict::NotSupported as usize],
             counts[Verdict::ForeignAxis as usize],
             counts[Verdict::BothRefuse as usize],
+            counts[Verdict::UserMCode as usize],
+            counts[Verdict::CannotRun as usize],
             differ.len()
         );
         eprintln!("matching: {}", matched.join(", "));
     }
     assert!(!programs.is_empty(), "no example programs found in {EXAMPLE_FOLDERS:?}");
     assert!(differ.is_empty(), "{} examples differ:\n{}", differ.len(), differ.join("\n"));
+}
+
+/// `text` with every G41/G42 (and its `D1`) made a G41.1/G42.1 with a diameter of `diameter`.
+fn with_tool_diameter(text: &str, diameter: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        let lower = line.to_ascii_lowercase();
+        let mut rest = 0;
+        let mut start = 0;
+        while let Some(found) = lower[start..].find("g4").map(|at| start + at) {
+            let after = found + 3;
+            let code = lower.as_bytes().get(found + 2).copied();
+            let dotted = lower.as_bytes().get(after) == Some(&b'.');
+            if matches!(code, Some(b'1' | b'2')) && !dotted {
+                out.push_str(&line[rest..after]);
+                out.push_str(&format!(".1 D{diameter}"));
+                rest = after;
+                if lower[after..].starts_with(" d1") {
+                    rest += 3;
+                }
+            }
+            start = found + 2;
+        }
+        out.push_str(&line[rest..]);
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn linuxcnc_compensation_examples_conform_with_a_real_tool() {
+    // LinuxCNC's cutter compensation examples name tools (G41 D1), which have diameter 0 in
+    // the table both are given: here they get a real diameter instead.
+    if !rs274::available("linuxcnc_compensation_examples_conform_with_a_real_tool") {
+        return;
+    }
+    let dir = temp_dir("conformance-comp-examples");
+    let folder = Path::new("/usr/share/doc/linuxcnc/examples/nc_files");
+    // (lathecomp.ngc also needs G43, not here yet.)
+    let names = ["comp-g1", "comp", "comp311", "comp311_2"];
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for name in names {
+        let Ok(text) = std::fs::read_to_string(folder.join(format!("{name}.ngc"))) else {
+            continue;
+        };
+        for diameter in ["0.125", "0.05"] {
+            let program = with_tool_diameter(&text, diameter);
+            assert!(program.contains(".1 D"), "{name}: no G41/G42 found");
+            let path = dir.join(format!("{name}-{diameter}.ngc"));
+            std::fs::write(&path, &program).expect("write");
+            checked += 1;
+            match check(&path, &dir) {
+                Ok(Verdict::Match) => {}
+                Ok(other) => failures.push(format!("{name} D{diameter}: {other:?}")),
+                Err(problem) => failures.push(format!("{name} D{diameter}: {problem}")),
+            }
+        }
+    }
+    if checked == 0 {
+        let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+        assert!(!ci, "LinuxCNC's compensation examples are missing under CI=true");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// A tiny deterministic generator (xorshift64*), so every run checks the same programs.
@@ -451,7 +578,7 @@ fn random_control(rng: &mut Rng, label: &mut u32) -> String {
 }
 
 /// A random program of the supported language: modes, offsets, moves (some arcs will not
-/// close: both interpreters must then refuse them alike), O-word control flow.
+/// close: both interpreters must then refuse them alike), O-word control flow, G5/G5.1 splines.
 fn random_program(rng: &mut Rng) -> String {
     let mut text = format!("{RANDOM_SUBROUTINES}G0 X0 Y0 Z0 C0\nF500\n#<p1> = 0.5\n");
     let mut label = 100;
@@ -465,7 +592,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(22) {
+        let line = match rng.below(26) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -525,6 +652,61 @@ fn random_program(rng: &mut Rng) -> String {
             16 => format!("G0 X[{}] Y[{}]", random_expression(rng, 3), random_expression(rng, 2)),
             17 => format!("#<p{}>={} G0 X[#<_x> + 1]", rng.below(3), rng.coordinate()),
             18 | 19 => random_control(rng, &mut label),
+            20 | 21 => {
+                // A canned cycle, its words sometimes left to stick from the last one.
+                let code = rng.pick(&["G81", "G82", "G83", "G73", "G85", "G86", "G89", "G84"]);
+                let mut words = format!("{code} {}", two_axes(rng));
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" R{}", rng.coordinate()));
+                }
+                if rng.below(4) != 0 {
+                    words.push_str(&format!(" Z{}", rng.coordinate()));
+                }
+                if matches!(code, "G82" | "G86" | "G89") && rng.below(4) != 0 {
+                    words.push_str(&format!(" P{}", rng.below(3)));
+                }
+                if matches!(code, "G83" | "G73") && rng.below(4) != 0 {
+                    words.push_str(&format!(" Q{}", 1 + rng.below(8)));
+                }
+                if rng.below(4) == 0 {
+                    words.push_str(&format!(" L{}", rng.below(4)));
+                }
+                format!("{} {words}", rng.pick(&["", "G98", "G99"]))
+            }
+            22 => rng.pick(&["G80", "G98", "G99", "X1 Y2", "G91 X1", "G90 X3 Z-1"]).to_owned(),
+            23 => match rng.below(6) {
+                0 => format!("G43.1 Z{}", rng.coordinate()),
+                1 => format!("G43 H{}", rng.below(4)),
+                2 => {
+                    format!("G10 L1 P{} Z{} R{}", 1 + rng.below(3), rng.coordinate(), rng.below(5))
+                }
+                3 => format!(
+                    "G10 L{} P{} Z{}",
+                    rng.pick(&["10", "11"]),
+                    1 + rng.below(3),
+                    rng.coordinate()
+                ),
+                4 => format!("T{} M6", rng.below(4)),
+                _ => rng.pick(&["G49", "G43", "G43.2 H1", "M61 Q2"]).to_owned(),
+            },
+            25 => {
+                // A spline: G5 (sometimes without I J: it continues from the last G5's P Q, or
+                // G87's I J) or G5.1; now and then outside G17, which both refuse.
+                let plane = if rng.below(5) == 0 { "" } else { "G17 " };
+                let end =
+                    format!("X[#<_x> + {}] Y[#<_y> - {}]", rng.coordinate(), rng.coordinate());
+                let (i, j) = (rng.coordinate(), rng.coordinate());
+                let (p, q) = (rng.coordinate(), rng.coordinate());
+                let words = match rng.below(4) {
+                    0 => format!("G5.1 {end} I{i} J{j}"),
+                    1 => format!("G5 {end} P{p} Q{q}"),
+                    _ => format!("G5 {end} I{i} J{j} P{p} Q{q}"),
+                };
+                // Then a straight move to where the spline ended: rs274 prints that point (its
+                // NURBS_FEED does not), and its canon learns it (an M6 takes its position
+                // back from the canon, which does not follow a NURBS).
+                format!("G94 {plane}{words} F{}\nG1 X#<_x> Y#<_y>", 100 + rng.below(900))
+            }
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };
         text.push_str(&line);
@@ -564,6 +746,234 @@ fn random_programs_conform() {
              refused by us only for a value that is not finite or beyond ±1e6 mm"
         );
     }
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+}
+
+/// A random profile under cutter compensation (G41.1/G42.1 with a diameter or G41/G42 with a
+/// tool of [`COMP_TOOLS`], in G17 or G18):
+/// lines, rapids, closed arcs in I J K and R form, depth moves, events, the odd G40 and G20,
+/// then an exit move. Many corners will gouge: both interpreters must then refuse alike.
+fn random_comp_program(rng: &mut Rng) -> String {
+    let xz = rng.below(4) == 0;
+    let (plane, a, b, i, j, depth) =
+        if xz { ("G18", "Z", "X", "K", "I", "Y") } else { ("G17", "X", "Y", "I", "J", "Z") };
+    let mut text = format!("G21 G90 {plane} F400\nG0 {a}0 {b}0 {depth}0\n");
+    let mut on = false;
+    // The programmed point, to write closed arcs.
+    let (mut pa, mut pb) = (0.0_f64, 0.0_f64);
+    for _ in 0..(4 + rng.below(14)) {
+        if !on {
+            // G41/G42 D name tools of the table beside (COMP_TOOLS), G41.1/G42.1 D diameters.
+            let side = rng.pick(&["G41.1", "G42.1", "G41", "G42"]);
+            let d = match side {
+                "G41" | "G42" => rng.pick(&["1", "2", "3", "4", "0"]).to_owned(),
+                _ => rng.pick(&["1", "2", "3.5", "5", "0.5", "-2"]).to_owned(),
+            };
+            text.push_str(&format!("{side} D{d}\n"));
+            on = true;
+        }
+        let na = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let nb = (rng.below(6001) as f64 / 100.0 - 30.0).round();
+        let line = match rng.below(14) {
+            0..=4 => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb}")
+            }
+            5 => {
+                (pa, pb) = (na, nb);
+                format!("G0 {a}{na} {b}{nb}")
+            }
+            6 | 7 => {
+                // A closed arc about a centre at a random offset.
+                let (oa, ob) = (rng.below(21) as f64 - 10.0, rng.below(21) as f64 - 10.0);
+                let radius = oa.hypot(ob);
+                if radius < 0.5 {
+                    continue;
+                }
+                let angle = rng.below(360) as f64 * std::f64::consts::PI / 180.0;
+                let (ca, cb) = (pa + oa, pb + ob);
+                let (ea, eb) = (ca + radius * angle.cos(), cb + radius * angle.sin());
+                let (ea, eb) = ((ea * 1e4).round() / 1e4, (eb * 1e4).round() / 1e4);
+                let code = rng.pick(&["G2", "G3"]);
+                let line = format!("{code} {a}{ea:.4} {b}{eb:.4} {i}{oa} {j}{ob}");
+                (pa, pb) = (ea, eb);
+                line
+            }
+            8 => {
+                let code = rng.pick(&["G2", "G3"]);
+                let half = (na - pa).hypot(nb - pb) / 2.0;
+                let sign = rng.pick(&["", "-"]);
+                let r = (half + rng.below(15) as f64).max(0.5);
+                (pa, pb) = (na, nb);
+                format!("{code} {a}{na} {b}{nb} R{sign}{r:.4}")
+            }
+            9 => format!("G1 {depth}{}", rng.coordinate()),
+            10 => {
+                rng.pick(&["G4 P0.5", "M3", "M5", "G91 G1 X2 G90", "G20", "G21", "C30"]).to_owned()
+            }
+            11 => {
+                on = false;
+                (pa, pb) = (na, nb);
+                format!("G40 G1 {a}{na} {b}{nb}")
+            }
+            _ => {
+                (pa, pb) = (na, nb);
+                format!("G1 {a}{na} {b}{nb} C{}", rng.coordinate())
+            }
+        };
+        text.push_str(&line);
+        text.push('\n');
+        if line.starts_with("G20") {
+            text.push_str("G21\n");
+        }
+    }
+    text.push_str(&format!("G40 G1 {a}40 {b}40\nM2\n"));
+    text
+}
+
+/// The tool table beside each random compensated profile.
+const COMP_TOOLS: &str = "T1 P1 D2\nT2 P2 D5\nT3 P3 D0.8 Z3\nT4 P4 D3.175\n";
+
+#[test]
+fn random_cutter_comp_programs_conform() {
+    if !rs274::available("random_cutter_comp_programs_conform") {
+        return;
+    }
+    let dir = temp_dir("conformance-random-comp");
+    let mut rng = Rng(0x00c0_77e2_c0b9_0001);
+    let mut failures = Vec::new();
+    let (mut accepted, mut refused) = (0, 0);
+    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..count {
+        let program = random_comp_program(&mut rng);
+        let path = dir.join(format!("comp{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        std::fs::write(path.with_extension("tbl"), COMP_TOOLS).expect("write the tool table");
+        match check(&path, &dir) {
+            Ok(Verdict::Match) => accepted += 1,
+            Ok(Verdict::BothRefuse) => refused += 1,
+            Ok(other) => failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("random compensated programs: {accepted} match, {refused} refused by both alike");
+    }
+    assert!(accepted >= count / 10, "only {accepted} of {count} random profiles were accepted");
+    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+}
+
+/// A random program in the XY plane of rotated coordinate systems (G10 L2 R), with polar
+/// coordinates (`@`, `^`, absolute and incremental, in moves, arcs and canned cycles), G92,
+/// G53, G28/G30 and the no-motion codes M19, M48–M53, M62–M68 and the `$` word.
+fn random_rotated_program(rng: &mut Rng) -> String {
+    let mut text = String::from("G21 G17 G90\nG0 X1 Y1 Z0\nF300\n");
+    for _ in 0..(5 + rng.below(20)) {
+        let line = match rng.below(16) {
+            0 => format!(
+                "G10 L2 P{} X{} Y{} R{}",
+                rng.below(3),
+                rng.coordinate(),
+                rng.coordinate(),
+                rng.coordinate()
+            ),
+            // The system in force (rs274's L20 of another rotated system is refused here).
+            1 => format!("G10 L20 P0 {}{}", rng.pick(&["X", "Y"]), rng.coordinate()),
+            2 => rng.pick(&["G54", "G55", "G56", "G90", "G91", "G20", "G21"]).to_owned(),
+            3 | 4 => {
+                let radius = if rng.below(3) == 0 {
+                    String::new()
+                } else {
+                    format!(" @{}", rng.coordinate())
+                };
+                let angle = if rng.below(3) == 0 {
+                    String::new()
+                } else {
+                    format!(" ^{}", rng.coordinate())
+                };
+                format!("{} {radius}{angle}", rng.pick(&["G0", "G1", "G1 Z1"]))
+            }
+            5 => format!("G1 X{} Y{}", rng.coordinate(), rng.coordinate()),
+            6 => {
+                let sign = rng.pick(&["", "-"]);
+                format!(
+                    "{} X[#<_x> + {}] Y[#<_y> + 1] R{sign}{}",
+                    rng.pick(&["G2", "G3"]),
+                    1 + rng.below(10),
+                    6 + rng.below(10)
+                )
+            }
+            7 => format!("G2 @{} ^{} R{}", rng.coordinate(), rng.coordinate(), 5 + rng.below(30)),
+            8 => format!("G92 X{} Y{}", rng.coordinate(), rng.coordinate()),
+            9 => rng
+                .pick(&[
+                    "G92.1",
+                    "G53 G0 X1 Y2",
+                    "G53 G1 X3",
+                    "G28",
+                    "G28.1",
+                    "G30 X1",
+                    "G43.1 X1 Y-2",
+                    "G49",
+                ])
+                .to_owned(),
+            10 => format!(
+                "G81 {} R2 Z-1 L{}",
+                rng.pick(&["^30", "@1", "@1 ^45", "X1 Y2", "^[360/7]"]),
+                1 + rng.below(4)
+            ),
+            11 => "G80".to_owned(),
+            12 => rng
+                .pick(&[
+                    "M62 P1",
+                    "M63 P2",
+                    "M64 P0",
+                    "M65 P3",
+                    "M66 P1 L0",
+                    "M67 E0 Q2",
+                    "M68 E1 Q0",
+                ])
+                .to_owned(),
+            13 => rng.pick(&["M48", "M49", "M50 P0", "M51", "M52 P1", "M53", "M19 R90"]).to_owned(),
+            14 => rng.pick(&["M3 S100 $0", "M4 $-1", "M5 $-1", "S20 $0", "M3 $1"]).to_owned(),
+            _ => "M70\nG10 L2 P0 R15\nM72".to_owned(),
+        };
+        text.push_str(&line);
+        text.push('\n');
+    }
+    text.push_str("M2\n");
+    text
+}
+
+#[test]
+fn random_rotated_programs_conform() {
+    if !rs274::available("random_rotated_programs_conform") {
+        return;
+    }
+    let dir = temp_dir("conformance-random-rotated");
+    let mut rng = Rng(0x0070_7a7e_d0a1_0001);
+    let mut failures = Vec::new();
+    let (mut accepted, mut refused) = (0, 0);
+    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    for index in 0..count {
+        let program = random_rotated_program(&mut rng);
+        let path = dir.join(format!("rotated{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        match check(&path, &dir) {
+            Ok(Verdict::Match) => accepted += 1,
+            Ok(Verdict::BothRefuse) => refused += 1,
+            Ok(other) => failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "random rotated and polar programs: {accepted} match, {refused} refused by both alike"
+        );
+    }
+    assert!(accepted >= count / 10, "only {accepted} of {count} random programs were accepted");
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
 }
 
@@ -674,7 +1084,7 @@ fn token_soups_are_refused_alike() {
     let dir = temp_dir("conformance-soup");
     let mut rng = Rng(0x0000_50c0_ffee_d00d);
     let mut failures = Vec::new();
-    let mut counts = [0usize; 5];
+    let mut counts = [0usize; 7];
     let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
     for index in 0..total {
         let program = token_soup(&mut rng);
@@ -691,7 +1101,9 @@ fn token_soups_are_refused_alike() {
             "token soups: {} match, {} refused alike, {} refused here as not supported",
             counts[Verdict::Match as usize],
             counts[Verdict::BothRefuse as usize],
-            counts[Verdict::NotSupported as usize] + counts[Verdict::ForeignAxis as usize],
+            counts[Verdict::NotSupported as usize]
+                + counts[Verdict::ForeignAxis as usize]
+                + counts[Verdict::CannotRun as usize],
         );
     }
     assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));

@@ -27,11 +27,7 @@ enum Expect {
     Read(&'static str),
     /// Refused with a `FILE:LINE:COL` error containing one of these texts.
     Refused(&'static [&'static str]),
-    /// Needs LinuxCNC features added on another branch: refused, for now, with one of these.
-    Pending(&'static [&'static str]),
 }
-
-const NOT_YET: &[&str] = &["is not supported yet", "Unknown m code used: M101"];
 
 /// Every program of the folder, with what it must do.
 const PROGRAMS: &[(&str, Expect)] = &[
@@ -46,31 +42,37 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/fengrave-140-text.ngc", Expect::Read("linuxcnc")),
     ("mill/freecad-grbl-ecscentric-cut.nc", Expect::Read("grbl")),
     ("mill/fusion-grbl-clamp-base.nc", Expect::Read("linuxcnc")),
-    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Pending(NOT_YET)),
-    ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Pending(NOT_YET)),
-    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Pending(NOT_YET)),
+    ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Read("linuxcnc")),
+    // G41 with a P word (Mach3's compensation radius) says Mach3.
+    ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Read("mach3")),
+    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("linuxcnc")),
     ("mill/gcodetools-puzzle03.gcode", Expect::Read("linuxcnc")),
     ("mill/jscut-jsdc-engrave.gcode", Expect::Read("grbl")),
     ("mill/openvoronoi-ttt-vcarve.ngc", Expect::Read("linuxcnc")),
     ("mill/partkam-plate.nc", Expect::Read("linuxcnc")),
     ("mill/pycam-tiny-cat-outline.ngc", Expect::Read("linuxcnc")),
-    ("mill/solidworkscam-motor-offset-g41d.tap", Expect::Pending(NOT_YET)),
+    ("mill/solidworkscam-motor-offset-g41d.tap", Expect::Read("mach3")),
     ("mill/supercam-girl-inch.gcode", Expect::Read("linuxcnc")),
     ("mill/viaconstructor-all.ngc", Expect::Read("linuxcnc")),
     ("other/camotics-tpl-cds.gcode", Expect::Read("linuxcnc")),
     ("other/flatcam-inferred-bcnc-sample.gcode", Expect::Read("grbl")),
     ("other/gcode-exporter-pcb-reprap.gcode", Expect::Read("marlin")),
     ("other/gmax-4axis-rotation-a.ngc", Expect::Refused(&["A axis word"])),
+    // Its subroutine files are not shipped with it: rs274 refuses it with the same message.
     (
         "other/handwritten-linuxcnc-external-subs.ngc",
-        Expect::Refused(&["G10 L1 is not supported yet", "pocket_circ"]),
+        Expect::Refused(&["EOF in file:", "seeking o-word: o<drill_man> from line: 71"]),
     ),
     (
         "other/handwritten-linuxcnc-spool-owords-b.nc",
         Expect::Refused(&["B axis word", "O-word is not supported yet"]),
     ),
     ("other/millmasterpro-mastercam-hdr-g70.nc", Expect::Refused(&["Bad character '/' used"])),
-    ("other/pcb2gcode-autolevel-linuxcnc-back.ngc", Expect::Pending(NOT_YET)),
+    // Probing (G38.2) for the autolevel: this robot has no probe input.
+    (
+        "other/pcb2gcode-autolevel-linuxcnc-back.ngc",
+        Expect::Refused(&["G38.2 is refused: probing"]),
+    ),
     ("plotter/estlcam10-crown-plotter.gcode", Expect::Read("grbl")),
     ("plotter/gcodeplot-3rect.gcode", Expect::Read("marlin")),
     ("plotter/rotrics-studio-dexarm-quote.gcode", Expect::Read("marlin")),
@@ -159,14 +161,7 @@ fn every_real_program_is_read_as_its_firmware_reads_it() {
                     failures.push(format!("{name} ({dialect}): {message}"));
                 }
             }
-            Expect::Refused(texts) | Expect::Pending(texts) => {
-                let pending = matches!(expect, Expect::Pending(_));
-                if run.code == 0 && pending {
-                    failures.push(format!(
-                        "{name}: now accepted: give it its dialect in the table (Expect::Read)"
-                    ));
-                    continue;
-                }
+            Expect::Refused(texts) => {
                 let located = format!("biscara: error: {program}:");
                 let rest = run.stderr.strip_prefix(&located).unwrap_or("");
                 let line_col: Vec<&str> = rest.splitn(3, ':').take(2).collect();
@@ -215,6 +210,13 @@ enum Step {
     },
     Dwell {
         seconds: f64,
+    },
+    /// A move under Mach3's G41/G42 P (cutter compensation by `radius`): the tool's end lies
+    /// beside the programmed `end`, at least the radius from it and at most √2 times (a corner
+    /// of up to 90° with the next move), at the programmed Z.
+    Compensated {
+        end: [f64; 4],
+        radius: f64,
     },
 }
 
@@ -271,6 +273,13 @@ fn compare(ours: &[Motion], expected: &[(usize, Step)]) -> Result<(), String> {
                     }
             }
             (Step::Dwell { seconds: a }, Step::Dwell { seconds: b }) => close(*a, *b),
+            (
+                Step::Linear { end: a, .. } | Step::Arc { end: a, .. },
+                Step::Compensated { end: b, radius },
+            ) => {
+                let beside = (a[0] - b[0]).hypot(a[1] - b[1]);
+                close(a[2], b[2]) && beside >= radius - 1e-6 && beside <= radius * 2f64.sqrt()
+            }
             _ => false,
         };
         if !same || lines[index] != *line {
@@ -294,7 +303,8 @@ fn compare(ours: &[Motion], expected: &[(usize, Step)]) -> Result<(), String> {
 /// A reader of the plain G-code these programs use, as their firmware documents it: words,
 /// comments, G0–G3 (I J K offsets or R), G4, G17–G19, G20/G21, G28, G90/G91, G92 (with E),
 /// M82/M83, `#n = value` parameters; per dialect: Marlin's one command per line and its G4 and
-/// G28, Grbl's `$` lines, Mach3's nested comments and program numbers. Positions in mm.
+/// G28, Grbl's `$` lines, Mach3's nested comments, program numbers and G41/G42 P
+/// (checked as [`Step::Compensated`]). Positions in mm.
 struct Reader<'a> {
     dialect: &'static str,
     home: [f64; 4],
@@ -310,6 +320,8 @@ struct Reader<'a> {
     e: f64,
     e_relative: bool,
     params: std::collections::HashMap<u32, f64>,
+    /// Mach3's cutter compensation radius (mm) while G41/G42 P is in force.
+    compensation: Option<f64>,
 }
 
 impl<'a> Reader<'a> {
@@ -327,6 +339,7 @@ impl<'a> Reader<'a> {
             e: 0.0,
             e_relative: false,
             params: std::collections::HashMap::new(),
+            compensation: None,
         }
     }
 
@@ -434,7 +447,15 @@ impl<'a> Reader<'a> {
                     .chain(words_no_n[1..].iter().copied().filter(|(l, _)| !matches!(l, 'G' | 'M')))
                     .collect();
             }
+            let before = steps.len();
             self.block(number, &words, &mut steps);
+            if let Some(radius) = self.compensation {
+                for (_, step) in &mut steps[before..] {
+                    if let Step::Linear { end, .. } | Step::Arc { end, .. } = *step {
+                        *step = Step::Compensated { end, radius };
+                    }
+                }
+            }
         }
         steps
     }
@@ -457,6 +478,11 @@ impl<'a> Reader<'a> {
         }
         for &code in &g {
             match code {
+                // Mach3's G41/G42 P: the compensation radius (Mach3 only; G40 ends it).
+                410 | 420 if self.dialect == "mach3" => {
+                    self.compensation = word('P').map(|radius| radius * self.unit(0));
+                }
+                400 => self.compensation = None,
                 170 | 180 | 190 => self.plane = code as usize / 10,
                 200 => self.inches = true,
                 210 => self.inches = false,

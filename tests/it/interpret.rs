@@ -17,7 +17,7 @@ fn programs_in_data_match_their_golden_inter_files() {
     let mut programs: Vec<_> = std::fs::read_dir(repo_root().join("data/programs"))
         .expect("data/programs")
         .map(|entry| entry.expect("entry").path())
-        .filter(|path| path.extension().is_some_and(|e| e == "ngc"))
+        .filter(|path| path.extension().is_some_and(|e| e == "ngc" || e == "gcode"))
         .collect();
     programs.sort();
     assert!(!programs.is_empty());
@@ -124,7 +124,7 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 W1\nM2\n".to_vec(), "W axis word"),
         (b"G0 X[1/0]\nM2\n".to_vec(), "job.ngc:1:7: Attempt to divide by zero"),
         (b"G7.5\nM2\n".to_vec(), "job.ngc:1:1: Unknown g code used"),
-        (b"M123\nM2\n".to_vec(), "job.ngc:1:1: Unknown m code used: M123"),
+        (b"M223\nM2\n".to_vec(), "job.ngc:1:1: M-code greater than 199: M223"),
         (b"G1 X1\nM2\n".to_vec(), "job.ngc:1:1: Cannot do g1 with zero feed rate"),
         (b"G0 X1 NaN\nM2\n".to_vec(), "job.ngc:1:7: Bad character 'n' used"),
         (b"G0 Xinf\nM2\n".to_vec(), "job.ngc:1:5: Unknown word where unary operation could be"),
@@ -137,10 +137,17 @@ fn bad_programs_get_a_clear_error_and_no_output() {
         (b"G0 X1\n\xff\xfe\x00\x01\nM2\n".to_vec(), "job.ngc:2:1: Bad character byte 0xff used"),
         (b"\x7fELF\x02\x01\x01\x00".to_vec(), "job.ngc:1:1: Bad character byte 0x7f used"),
         (b"G0 X1 Q2\nM2\n".to_vec(), "job.ngc:1:7: Q word with no"),
-        (b"G41 G1 X1 F10\nM2\n".to_vec(), "job.ngc:1:1: G41 is not supported yet"),
-        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: G81 is not supported yet (canned cycle)"),
-        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is not supported yet (threading)"),
-        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is not supported yet"),
+        (b"G5.2 X1 Y1 P1 L3 F10\nM2\n".to_vec(), "job.ngc:1:1: G5.2 is not supported yet"),
+        (b"G18 G5 X1 Y1 I0 J1 P1 Q0 F10\nM2\n".to_vec(), "job.ngc:1:5: Splines must be in the XY"),
+        (b"G5.1 X1 Y1 I0 F10\nM2\n".to_vec(), "job.ngc:1:1: Must specify both I and J with G5.1"),
+        (
+            b"G41.1 D4 F10\nG1 X1\nM2\n".to_vec(),
+            "job.ngc:2:1: Length of cutter compensation entry move is not greater than the tool \
+             radius",
+        ),
+        (b"G81 X1 Z-1 R1\nM2\n".to_vec(), "job.ngc:1:1: Cannot feed with zero feed rate"),
+        (b"G33 Z-1 K1\nM2\n".to_vec(), "G33 is refused: spindle-synchronised motion"),
+        (b"G76 P1 Z-1\nM2\n".to_vec(), "G76 is refused: a lathe code"),
         (b"o100 endsub\nM2\n".to_vec(), "job.ngc:1:1: 1: not in a subroutine definition"),
         (
             format!("G0 X1 ({})\nM2\n", "x".repeat(10 * 1024 * 1024)).into_bytes(),

@@ -15,6 +15,7 @@ mod optimal_profile;
 mod programming;
 mod robustness;
 mod rs274;
+mod tool;
 mod toppra;
 mod util;
 mod view_cli;

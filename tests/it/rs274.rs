@@ -15,6 +15,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
 
+use biscara::gcode::ToolTable;
 use biscara::motion::{Feed, Motion, MotionKind, Plane};
 
 /// Where `rs274` is looked for.
@@ -60,8 +61,32 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     let output = dir.join("rs274.out");
-    let tools = dir.join("tools.tbl");
-    if !tools.exists() {
+    let mut tools = dir.join("tools.tbl");
+    if let Some(table) = own_table(program) {
+        // The program's own table (mm), in the standalone's machine units (inches).
+        tools = dir.join("own-tools.tbl");
+        let text: String = table
+            .entries()
+            .iter()
+            .map(|e| {
+                let inch = |mm: f64| mm / 25.4;
+                format!(
+                    "T{} P{} X{:.12} Y{:.12} Z{:.12} C{:.12} D{:.12} I{} J{} Q{}\n",
+                    e.tool,
+                    e.pocket,
+                    inch(e.offset[0]),
+                    inch(e.offset[1]),
+                    inch(e.offset[2]),
+                    e.offset[3],
+                    inch(e.diameter),
+                    e.front_angle,
+                    e.back_angle,
+                    e.orientation
+                )
+            })
+            .collect();
+        std::fs::write(&tools, text).expect("write the tool table");
+    } else if !tools.exists() {
         let table: String = (1..1000).map(|tool| format!("T{tool} P{tool} Z0 D0\n")).collect();
         std::fs::write(&tools, table).expect("write the tool table");
     }
@@ -103,6 +128,12 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     Outcome::Error { message, before: motions }
 }
 
+/// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`), read as `interpret` reads it.
+pub fn own_table(program: &Path) -> Option<ToolTable> {
+    let path = program.with_extension("tbl");
+    path.exists().then(|| ToolTable::read(&path).expect("read the program's tool table"))
+}
+
 /// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).
 fn numbers(arguments: &str) -> Vec<f64> {
     arguments.split([',', ' ']).filter_map(|part| part.trim().parse::<f64>().ok()).collect()
@@ -115,9 +146,14 @@ pub fn parse(canon: &str) -> Vec<Motion> {
     let mut factor = 1.0;
     let mut g5x = [0.0; 4];
     let mut g92 = [0.0; 4];
+    let mut tlo = [0.0; 4];
     let mut plane = Plane::Xy;
+    // SET_XY_ROTATION: the system's rotation about Z, degrees (canon: rot(p + g92) + g5x + tlo).
+    let mut rotation = 0.0_f64;
     let mut feed = 0.0;
-    let mut blend = None;
+    // rs274's canon starts in CANON_CONTINUOUS with no tolerance (LinuxCNC's G64 by default);
+    // canned cycles restore it after their exact-path moves.
+    let mut blend = Some(0.0);
     let lines: Vec<&str> = canon
         .lines()
         .map(|line| {
@@ -138,12 +174,17 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             None => (*line, ""),
         };
         let values = numbers(arguments);
+        let turn = |x: f64, y: f64| -> [f64; 2] {
+            let t = rotation.to_radians();
+            [x * t.cos() - y * t.sin(), x * t.sin() + y * t.cos()]
+        };
         let pose = |v: &[f64]| -> [f64; 4] {
+            let [x, y] = turn(v[0] * factor + g92[0], v[1] * factor + g92[1]);
             [
-                v[0] * factor + g5x[0] + g92[0],
-                v[1] * factor + g5x[1] + g92[1],
-                v[2] * factor + g5x[2] + g92[2],
-                v[5] + g5x[3] + g92[3],
+                x + g5x[0] + tlo[0],
+                y + g5x[1] + tlo[1],
+                v[2] * factor + g5x[2] + g92[2] + tlo[2],
+                v[5] + g5x[3] + g92[3] + tlo[3],
             ]
         };
         match name {
@@ -153,6 +194,10 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             "SET_G5X_OFFSET" => {
                 g5x = [values[1] * factor, values[2] * factor, values[3] * factor, values[6]];
             }
+            "USE_TOOL_LENGTH_OFFSET" => {
+                tlo = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
+            }
+            "SET_XY_ROTATION" => rotation = values[0],
             "SET_G92_OFFSET" => {
                 g92 = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
             }
@@ -193,9 +238,13 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 program[normal] = values[5];
                 program[5] = values[8];
                 let end = pose(&program);
-                let offsets = [g5x[0] + g92[0], g5x[1] + g92[1], g5x[2] + g92[2]];
-                let center =
-                    [values[2] * factor + offsets[first], values[3] * factor + offsets[second]];
+                // The centre is turned as the points are (XY arcs: rs274 rotates no other plane's
+                // arcs, which are refused here).
+                let mut point = [0.0; 6];
+                point[first] = values[2];
+                point[second] = values[3];
+                let centre = pose(&point);
+                let center = [centre[first], centre[second]];
                 let rotation = values[4];
                 push(
                     &mut motions,
@@ -210,6 +259,17 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                     blend,
                 );
             }
+            // A G5/G5.1 spline: rs274's canon prints the number of control points, not where the
+            // curve goes. A linear move with an end that is not a number stands for it; see
+            // `expand_splines`.
+            "NURBS_FEED" => push(
+                &mut motions,
+                MotionKind::Linear {
+                    end: [f64::NAN; 4],
+                    feed: Feed { mm_per_min: feed, inverse_time: false },
+                },
+                blend,
+            ),
             "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
             "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
             "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place, None),
@@ -230,4 +290,42 @@ pub fn parse(canon: &str) -> Vec<Motion> {
         }
     }
     motions
+}
+
+/// Whether `motion` stands for one of rs274's `NURBS_FEED`s (see [`parse`]).
+pub fn is_spline(motion: &Motion) -> bool {
+    matches!(motion.kind, MotionKind::Linear { end, .. } if end[0].is_nan())
+}
+
+/// rs274's motions with each spline (`NURBS_FEED`) replaced by the straight moves `ours` made
+/// of it: the moves of one line that stand where the spline stands in the sequence, with
+/// rs274's feed and blend. Their ends are ours (rs274 does not print the curve's points); where
+/// the curve ends is checked by the motions after it, which start there (a program ends with
+/// moves that show the position). A spline with no straight move of ours in its place is left
+/// as it is, and so differs.
+pub fn expand_splines(ours: &[Motion], theirs: &[Motion]) -> Vec<Motion> {
+    let mut expanded = Vec::with_capacity(theirs.len());
+    let mut at = 0;
+    for motion in theirs {
+        let ours_here = ours.get(at);
+        match (is_spline(motion), motion.kind, ours_here) {
+            (true, MotionKind::Linear { feed, .. }, Some(first))
+                if matches!(first.kind, MotionKind::Linear { .. }) =>
+            {
+                let line = first.line;
+                while let Some(our) = ours.get(at)
+                    && our.line == line
+                    && let MotionKind::Linear { end, .. } = our.kind
+                {
+                    expanded.push(Motion { kind: MotionKind::Linear { end, feed }, ..*motion });
+                    at += 1;
+                }
+            }
+            _ => {
+                expanded.push(*motion);
+                at += 1;
+            }
+        }
+    }
+    expanded
 }

@@ -155,3 +155,57 @@ fn view_samples_the_program_as_the_trajectory_was_made() {
     let bad = biscara(&dir, &["view", "slow.csv", "--program", "out/job.ngc", "--grip-time", "-1"]);
     assert_eq!(bad.code, 2, "{bad}");
 }
+
+/// The numbers of a page's data array `"name":[…]`.
+fn page_numbers(page: &str, name: &str) -> Vec<f64> {
+    let rest = page.split(&format!("\"{name}\":[")).nth(1).expect(name);
+    let list = &rest[..rest.find(']').expect("]")];
+    list.split(',').filter(|v| !v.is_empty()).map(|v| v.parse().expect("number")).collect()
+}
+
+/// The print's page holds its track layer by layer and the pen's its strokes (issue 14): the
+/// process points `[t, x, y, z, strength, start]`, only where the tool works.
+#[test]
+fn view_holds_the_print_track_by_layer_and_the_pen_strokes() {
+    let dir = temp_dir("view-process");
+    let root = crate::util::repo_root();
+    for (program, origin, tool, layers) in [
+        ("print_square.gcode", "-10,270,0,0", "extruder", 2),
+        ("pen_plot.ngc", "-30,280,10,0", "pen", 1),
+    ] {
+        let path = root.join("data/programs").join(program);
+        let path = path.to_str().expect("path");
+        let placed = ["--origin", origin];
+        biscara(&dir, &[&["joints", path, "-o", "traj.csv"][..], &placed].concat()).success();
+        let run = biscara(&dir, &[&["view", "traj.csv", "--program", path][..], &placed].concat());
+        let page = &run.success().stdout;
+        assert!(page.contains(&format!("\"tool\":{{\"kind\":\"{tool}\"")), "{program}");
+        let points = page_numbers(page, "process");
+        assert!(
+            points.len() > 6 * 50 && points.len().is_multiple_of(6),
+            "{program}: {}",
+            points.len()
+        );
+        let mut heights: Vec<f64> = points.chunks(6).map(|p| p[3]).collect();
+        heights.dedup();
+        assert_eq!(heights.len(), layers, "{program}: layer heights {heights:?}");
+        // Strokes: the print's walls and infills, the pen's star and circle.
+        let strokes = points.chunks(6).filter(|p| p[5] == 1.0).count();
+        assert_eq!(strokes, if tool == "pen" { 2 } else { 4 }, "{program}");
+        // Every point is on the work: the print's 20 mm square, the pen's star-in-a-circle.
+        for p in points.chunks(6) {
+            let inside = match tool {
+                "pen" => (p[1] + 0.0).hypot(p[2] - 310.0) <= 25.0 + 1e-3,
+                _ => {
+                    (-10.0 - 1e-3..=10.0 + 1e-3).contains(&p[1])
+                        && (270.0 - 1e-3..=290.0 + 1e-3).contains(&p[2])
+                }
+            };
+            assert!(inside, "{program}: {p:?} is not on the work");
+        }
+        // The work starts and stops: on (1) and off (−1) alternate.
+        let work = page_numbers(page, "work");
+        let states: Vec<f64> = work.chunks(2).map(|w| w[1]).collect();
+        assert_eq!(states.len(), 2 * strokes, "{program}: {states:?}");
+    }
+}

@@ -362,7 +362,8 @@ fn fit_refuses_a_program_larger_than_the_rectangle() {
     let run = biscara(&dir, &["joints", "job.jsonl", "--fit", "-o", "traj.csv"]);
     run.expect_code(1).stderr_has(
         "job.jsonl: --fit: the program's XY extent 500.000 x 100.000 mm does not fit the \
-         workspace rectangle 464.000 x 210.000 mm: 36.000 mm too wide in X",
+         workspace rectangle 464.000 x 210.000 mm: as programmed, 36.000 mm too wide in X; \
+         turned by 90° about Z, 290.000 mm too tall in Y",
     );
     assert!(!dir.join("traj.csv").exists());
     biscara(&dir, &["check", "-", "--fit"]).expect_code(1).stderr_has("not standard input");

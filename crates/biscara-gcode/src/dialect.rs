@@ -117,7 +117,7 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// Decides the dialect of a program from its first bytes (`auto`): the first generator comment
 /// that names a firmware or a program written for one wins; otherwise the first line only one
 /// dialect can read (E words or printer M-codes → Marlin, `$` lines or K in an XY arc → Grbl,
-/// nested comments or an `O0001` program number → Mach3, LinuxCNC's O-words or named parameters
+/// nested comments, an `O0001` program number or G41/G42 with a P word → Mach3, LinuxCNC's O-words or named parameters
 /// → LinuxCNC). Only complete lines are looked at (all of them when `complete` says the text is
 /// the whole program). `None` when nothing decides.
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
@@ -310,6 +310,8 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
     let mut motion_arc = false;
     let mut k_word = false;
     let mut g_motion = false;
+    let mut compensation = false;
+    let mut p_word = false;
     for (at, &byte) in squeezed.iter().enumerate() {
         let previous = if at == 0 { b' ' } else { squeezed[at - 1] };
         if previous.is_ascii_alphabetic() {
@@ -333,14 +335,23 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
                 Some(18 | 19) => *plane_xy = false,
                 Some(29) => return Some((Dialect::Marlin, "Marlin's G29 (bed levelling)")),
                 Some(92) => g_motion = true,
+                // G41/G42, not G41.1/G42.1 (whose D is a diameter).
+                Some(41 | 42) => {
+                    let digits = squeezed[at + 1..].iter().take_while(|b| b.is_ascii_digit());
+                    compensation = squeezed.get(at + 1 + digits.count()) != Some(&b'.');
+                }
                 _ => {}
             },
             b'k' => k_word = true,
+            b'p' => p_word = true,
             _ => {}
         }
     }
     if e_word && g_motion {
         return Some((Dialect::Marlin, "an E (extruder) word"));
+    }
+    if compensation && p_word {
+        return Some((Dialect::Mach3, "Mach3's compensation radius in a G41/G42 P word"));
     }
     if k_word && motion_arc && *plane_xy {
         return Some((Dialect::Grbl, "a K word in an XY-plane arc (Grbl ignores it)"));
@@ -632,6 +643,10 @@ mod tests {
         check("G18\nG2 X1 Z1 I1 K0 F100\n", None);
         check("(a (b) c)\n", Some(Dialect::Mach3));
         check("O0001\n", Some(Dialect::Mach3));
+        check("G1 G41 X2.995 Y-2.005 P1.587\n", Some(Dialect::Mach3));
+        check("G1 G42 P2 X1\n", Some(Dialect::Mach3));
+        check("G41.1 D3 X1\nG4 P1\n", None);
+        check("G41 D1 X1\n", None);
         check("o100 sub\n", Some(Dialect::Linuxcnc));
         check("#<depth> = 2\n", Some(Dialect::Linuxcnc));
         // An E inside a comment, or a word such as G92 X0 alone, decides nothing.

@@ -80,7 +80,7 @@ pub enum GcodeError {
         message: String,
     },
     /// Occurs for a code of LinuxCNC's language that this interpreter does not implement yet
-    /// (O-words, cutter compensation, canned cycles, threading, …): refused rather than
+    /// (O-words, splines, canned cycles, threading, …): refused rather than
     /// interpreted wrongly.
     #[error("{at}: {code} is not supported yet{}", note_suffix(note))]
     NotSupported {
@@ -90,6 +90,17 @@ pub enum GcodeError {
         code: String,
         /// What it is, when that helps.
         note: &'static str,
+    },
+    /// Occurs for a code of LinuxCNC's language this robot cannot do: lathe modes and cycles,
+    /// spindle-synchronised motion, probing (SPEC §4.2).
+    #[error("{at}: {code} is refused: {reason}")]
+    CannotRun {
+        /// Where.
+        at: Location,
+        /// The code, as LinuxCNC names it (`G33`, `G38.2`).
+        code: String,
+        /// Why this robot cannot do it.
+        reason: &'static str,
     },
     /// Occurs for an A, B, U, V or W word: the robot's axes are X Y Z C.
     #[error("{at}: {letter} axis word: this robot has the axes X Y Z C only")]
@@ -133,6 +144,7 @@ impl GcodeError {
             | GcodeError::Syntax { at, .. }
             | GcodeError::Invalid { at, .. }
             | GcodeError::NotSupported { at, .. }
+            | GcodeError::CannotRun { at, .. }
             | GcodeError::ForeignAxis { at, .. } => at.line,
         }
     }
@@ -144,6 +156,7 @@ impl GcodeError {
             | GcodeError::Syntax { at, .. }
             | GcodeError::Invalid { at, .. }
             | GcodeError::NotSupported { at, .. }
+            | GcodeError::CannotRun { at, .. }
             | GcodeError::ForeignAxis { at, .. } => Some(at),
             _ => None,
         }

@@ -17,12 +17,29 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
-use crate::tool::Tool;
+use crate::tool::{Tool, ToolInference};
+use crate::tool_table::ToolTable;
 
+/// Canned cycles: G73, G74, G81–G89, G98/G99.
+mod canned;
 /// O-word control flow: subroutines, conditions and loops (SPEC §4.2 tier 3).
 mod control;
+/// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
+mod cutter_comp;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
+/// M19, M48–M53, M62–M68 and the `$` word.
+mod io_codes;
+/// M70–M73: the modal state saved and restored.
+mod modal_state;
+/// Polar coordinates (`@`, `^`).
+mod polar;
+/// G10 L2 R: coordinate systems rotated about Z.
+mod rotation;
+/// G5 and G5.1 splines, run as straight moves.
+mod spline;
+/// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
+mod tools;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -41,7 +58,7 @@ const MAX_COORDINATE: f64 = 1e6;
 const AXES: [u8; 4] = [b'x', b'y', b'z', b'c'];
 
 /// How to start interpreting a program.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Config {
     /// The pose the robot is in before the first line, `[x, y, z, c]` in millimetres and
     /// degrees, base frame; also where G28 and G30 go until G28.1 or G30.1 set them.
@@ -49,6 +66,10 @@ pub struct Config {
     /// The G54 offset in force before the first line, `[x, y, z, c]` (mm, degrees): shifts the
     /// whole program (`--origin`).
     pub origin: [f64; 4],
+    /// Where the robot is before the first line when that is not `home` (`[x, y, z, c]`, mm and
+    /// degrees, base frame): a program that makes its start point its zero (`G92 X0 Y0`) is
+    /// placed by moving its start (`--fit`). `None`: at `home`. G28 and G30 still go to `home`.
+    pub start: Option<[f64; 4]>,
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
@@ -58,9 +79,16 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
     pub tool: Tool,
+    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES) ([`crate::infer_tool`]);
+    /// `tool` is kept when nothing tells. See [`Interpreter::tool_inference`].
+    pub infer_tool: bool,
     /// The path-control mode before the program says one (`--blend`): `None`, exact stop, by
     /// default; `Some(p)` as if the program began with `G64 P{p}`. See [`Motion::blend`].
     pub blend: Option<f64>,
+    /// LinuxCNC's tool table (`--tool-table`): the tools' offsets (G43) and diameters. `None`:
+    /// every tool has zero length and diameter ([`Interpreter::tools_without_table`] says
+    /// whether the program used them).
+    pub tool_table: Option<std::sync::Arc<ToolTable>>,
 }
 
 impl Default for Config {
@@ -68,10 +96,13 @@ impl Default for Config {
         Config {
             home: [0.0; 4],
             origin: [0.0; 4],
+            start: None,
             block_delete: false,
             dialect: Dialect::Linuxcnc,
             tool: Tool::Gripper,
+            infer_tool: false,
             blend: None,
+            tool_table: None,
         }
     }
 }
@@ -114,6 +145,10 @@ pub struct Interpreter<R> {
     detection: Option<Detection>,
     summary: Summary,
     tool: Tool,
+    /// Whether the tool is still to be inferred from the look-ahead.
+    infer_tool: bool,
+    /// What the inference found.
+    tool_inference: Option<ToolInference>,
     /// Whether the tool is on (M3/M4 until M5 or M6).
     tool_on: bool,
     /// MakerBot's flavour: the A word is the extruder.
@@ -125,6 +160,9 @@ pub struct Interpreter<R> {
     pending_extrude: Option<f64>,
     /// Whether any motion was emitted (an empty program is not a program).
     moved: bool,
+    /// The axes (x y z c) a G92 named before the first motion: the program made its start
+    /// point its zero there.
+    zeroed_at_start: [bool; 4],
     /// O-word control flow.
     control: Box<control::Control>,
 }
@@ -157,11 +195,26 @@ struct State {
     origin: [f64; 4],
     axis_offset: [f64; 4],
     system: usize,
+    /// The rotation of the system in force about Z, degrees (G10 L2 R; 0: none).
+    rotation: f64,
     params: Params,
     line: usize,
     speed: f64,
-    tool: f64,
-    selected_tool: f64,
+    /// The tool length offset in force (G43…), in the program units in force when it was set:
+    /// as in rs274, a change of units does not convert it (it is used so by later G43, G49,
+    /// G53, G28 and G10 L10), though the machine keeps the offset it was given
+    /// ([`State::tool_offset_mm`]).
+    tool_offset: [f64; 4],
+    /// The tool length offset the machine applies, mm and degrees.
+    tool_offset_mm: [f64; 4],
+    /// How far tool length offsets set since the last move have shifted the current point:
+    /// rs274 takes its position back from the last move after M6 (its canon does not follow).
+    tool_shift: [f64; 4],
+    tools: tools::Tools,
+    /// The canned cycles' retract mode and sticky values.
+    cycle: canned::CycleState,
+    /// The modal state M70/M73 saved.
+    modal_stack: modal_state::ModalStack,
     spindle: u16,
     mist: bool,
     flood: bool,
@@ -170,6 +223,8 @@ struct State {
     /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
     /// G61/G61.1.
     blend: Option<f64>,
+    /// Cutter radius compensation and the motions it holds back.
+    comp: cutter_comp::CutterComp,
 }
 
 impl State {
@@ -181,7 +236,8 @@ impl State {
             params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
         }
         params.set(COORDINATE_SYSTEM, 1.0);
-        let current = std::array::from_fn(|axis| config.home[axis] - config.origin[axis]);
+        let start = config.start.unwrap_or(config.home);
+        let current = std::array::from_fn(|axis| start[axis] - config.origin[axis]);
         let mut state = State {
             metric: true,
             incremental: false,
@@ -195,16 +251,22 @@ impl State {
             origin: config.origin,
             axis_offset: [0.0; 4],
             system: 1,
+            rotation: 0.0,
             params,
             line: 0,
             speed: 0.0,
-            tool: 0.0,
-            selected_tool: 0.0,
+            tool_offset: [0.0; 4],
+            tool_offset_mm: [0.0; 4],
+            tool_shift: [0.0; 4],
+            tools: tools::Tools::new(config.tool_table.as_deref()),
+            cycle: canned::CycleState::default(),
+            modal_stack: modal_state::ModalStack::default(),
             spindle: 5,
             mist: false,
             flood: false,
             owords: control::Values::default(),
             blend: config.blend,
+            comp: cutter_comp::CutterComp::new(),
         };
         state.publish_position();
         state
@@ -226,8 +288,12 @@ impl State {
 
     /// A position in the current coordinate system → absolute mm and degrees.
     fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
+        if self.rotation != 0.0 {
+            return self.absolute_rotated(position);
+        }
         std::array::from_fn(|axis| {
             self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
+                + self.tool_offset_mm[axis]
         })
     }
 
@@ -242,7 +308,7 @@ impl State {
 impl Predefined for State {
     fn predefined(&self, name: &[u8]) -> Option<f64> {
         let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| self.current[axis] + self.origin[axis] + self.axis_offset[axis];
+        let machine = |axis: usize| self.machine(self.current)[axis];
         Some(match name {
             b"_x" => self.current[0],
             b"_y" => self.current[1],
@@ -272,12 +338,14 @@ impl Predefined for State {
                 Plane::Yz => 190.0,
             },
             b"_motion_mode" => self.motion.map_or(800.0, f64::from),
-            b"_ccomp" => 400.0,
+            b"_ccomp" => self.comp.code(),
             b"_feed" => self.feed_rate,
             b"_rpm" => self.speed,
-            b"_current_tool" => self.tool,
-            b"_selected_tool" => self.selected_tool,
-            b"_current_pocket" | b"_selected_pocket" | b"_tool_offset" => 0.0,
+            b"_current_tool" => f64::from(self.tools.spindle.tool),
+            b"_selected_tool" => self.tools.selected_tool,
+            b"_current_pocket" => self.tools.current_pocket,
+            b"_selected_pocket" => self.tools.selected_pocket,
+            b"_tool_offset" => flag(self.tools.offset_active),
             b"_spindle_on" => flag(self.spindle != 5),
             b"_spindle_cw" => flag(self.spindle == 3),
             b"_mist" => flag(self.mist),
@@ -324,12 +392,15 @@ impl<R: BufRead> Interpreter<R> {
             detection: None,
             summary: Summary::default(),
             tool: config.tool,
+            infer_tool: config.infer_tool,
+            tool_inference: None,
             tool_on: false,
             makerbot: false,
             e_position: 0.0,
             e_relative: false,
             pending_extrude: None,
             moved: false,
+            zeroed_at_start: [false; 4],
             control: Box::default(),
         }
         .with_line_limit()
@@ -351,6 +422,7 @@ impl<R: BufRead> Interpreter<R> {
             FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
             FaultKind::Invalid => GcodeError::Invalid { at, message: fault.message },
             FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
+            FaultKind::Cannot { code, reason } => GcodeError::CannotRun { at, code, reason },
             FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
         }
     }
@@ -360,6 +432,9 @@ impl<R: BufRead> Interpreter<R> {
         if self.undecided {
             self.decide()?;
         }
+        if self.infer_tool {
+            self.infer_tool()?;
+        }
         loop {
             let more = self
                 .lines
@@ -368,6 +443,9 @@ impl<R: BufRead> Interpreter<R> {
             if !more {
                 if let Some(err) = self.control_end() {
                     return Err(err);
+                }
+                if self.dialect != Dialect::Linuxcnc {
+                    self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
                 }
                 return self.end_of_input();
             }
@@ -386,6 +464,8 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 self.percent = Percent::Absent;
             } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                // rs274 never sends the motions cutter compensation holds at a closing `%`.
+                self.state.comp.discard();
                 self.finished = true;
                 return Ok(());
             }
@@ -458,7 +538,12 @@ impl<R: BufRead> Interpreter<R> {
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
         let blend = kind.end().and(self.state.blend);
-        self.queue.push_back(Motion { line: self.state.line, kind, extrude, blend });
+        let motion = Motion { line: self.state.line, kind, extrude, blend };
+        if self.state.comp.holding() {
+            self.state.comp.hold(motion);
+        } else {
+            self.queue.push_back(motion);
+        }
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution.
@@ -468,19 +553,30 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         self.check_support()?;
-        let g = self.block.g;
-        let m = self.block.m;
-        let motion_code = g[1];
-        let group0 = g[0];
-        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 920);
+        if self.block.extra.is_some() {
+            self.check_polar_words()?;
+        }
+        let motion_code = self.block.g[1];
+        let group0 = self.block.g[0];
+        let axis_words =
+            AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
+        // rs274 checks a spline's axis words first of all.
+        if let Some(code) = motion_code
+            && spline::is_spline(code.code)
+            && !axis_words
+        {
+            return Err(self.code_fault(code, "All axes missing with motion code"));
+        }
+        let uses_axes = |code: u16| matches!(code, 100 | 280 | 300 | 520 | 920);
         // check_g_codes / check_other_codes
         if let (Some(zero), Some(_)) = (group0, motion_code)
             && uses_axes(zero.code)
         {
             return Err(self.code_fault(zero, "Cannot use two g codes that both use axis values"));
         }
-        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code));
+        // G43.1 and G43.2 use the axis words too (without making the modal motion move).
+        let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code))
+            || self.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         let modal_motion = match motion_code {
             Some(code) => Some(code.code),
             None => self.state.motion,
@@ -508,7 +604,7 @@ impl<R: BufRead> Interpreter<R> {
             if !matches!(motion_to_be, Some(0 | 10)) {
                 return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
             }
-            let incremental = match g[3] {
+            let incremental = match self.block.g[3] {
                 Some(code) => code.code == 910,
                 None => self.state.incremental,
             };
@@ -544,7 +640,7 @@ impl<R: BufRead> Interpreter<R> {
         }
 
         // 3. feed mode
-        if let Some(code) = g[5] {
+        if let Some(code) = self.block.g[5] {
             if code.code == 930 {
                 self.state.inverse_time = true;
             } else {
@@ -560,38 +656,67 @@ impl<R: BufRead> Interpreter<R> {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
+        if self.block.extra.is_some() {
+            self.check_spindle_number()?;
+        }
         // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
         // for a laser or spindle that is on).
         if let Some(s) = self.block.word(b's') {
             let changed = s.value != self.state.speed;
             self.state.speed = s.value;
             let powered = matches!(self.tool, Tool::Laser | Tool::Spindle);
-            if changed && powered && self.tool_on && m[7].is_none() {
+            if changed && powered && self.tool_on && self.block.m[7].is_none() {
                 self.tool_event(self.state.spindle);
             }
         }
-        if let Some(t) = self.block.word(b't') {
-            // Not negative: the reader refuses that.
-            self.state.selected_tool = t.value;
+        // (Calls into the tier-3 modules only when the block has their words: every line
+        // passes here.)
+        if self.block.word(b't').is_some() {
+            self.select_tool()?;
         }
-        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off)
-        if m[6].is_some() {
-            self.state.tool = self.state.selected_tool;
-            self.state.spindle = 5;
-            self.tool_event(5);
+        // 7. digital and analog outputs and inputs
+        if self.block.m[5].is_some() {
+            self.io_output()?;
+        }
+        // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
+        // tool is in the spindle.
+        if let Some(code) = self.block.m[6] {
+            if code.code == 61 {
+                self.set_current_tool(code)?;
+            } else {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change tools with cutter radius compensation on",
+                )?;
+                self.change_tool();
+                self.state.spindle = 5;
+                self.tool_event(5);
+            }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = m[7] {
+        if let Some(code) = self.block.m[7].filter(|code| code.code >= 70) {
+            self.modal_state(code)?;
+        } else if self.block.m[7].is_some_and(|code| code.code == 19) {
+            self.orient_spindle()?;
+        } else if let Some(code) = self.block.m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }
         // 11. coolant
-        if let Some(code) = m[8] {
+        if let Some(code) = self.block.m[8] {
             match code.code {
                 7 => self.state.mist = true,
                 8 => self.state.flood = true,
                 _ => (self.state.mist, self.state.flood) = (false, false),
             }
+        }
+        // overrides
+        if self.block.m[9].is_some() {
+            self.overrides()?;
+        }
+        // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
+        if let Some(code) = self.block.m[10] {
+            self.record(&format!("M{}", code.code), true);
         }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)
@@ -605,23 +730,34 @@ impl<R: BufRead> Interpreter<R> {
             self.emit(MotionKind::Dwell { seconds: p.value });
         }
         // 15. plane
-        if let Some(code) = g[2] {
-            self.state.plane = match code.code {
+        if let Some(code) = self.block.g[2] {
+            let plane = match code.code {
                 170 => Plane::Xy,
                 180 => Plane::Xz,
                 _ => Plane::Yz,
             };
+            if plane != self.state.plane {
+                self.refuse_with_comp(
+                    (code.at, code.end),
+                    "Cannot change planes with cutter radius compensation on",
+                )?;
+            }
+            self.state.plane = plane;
         }
         // 16. length units
-        if let Some(code) = g[6] {
+        if let Some(code) = self.block.g[6] {
             self.set_units(code.code == 210);
         }
-        // 17. path control mode
-        if let Some(code) = g[13] {
-            self.set_path_control(code)?;
+        // 17. cutter radius compensation
+        if self.block.g[7].is_some() {
+            self.set_cutter_comp()?;
+        }
+        // 18. tool length offset
+        if let Some(code) = self.block.g[8] {
+            self.tool_length_offset(code)?;
         }
         // 19. coordinate system
-        if let Some(code) = g[12] {
+        if let Some(code) = self.block.g[12] {
             let system = match code.code {
                 540 => 1,
                 550 => 2,
@@ -633,35 +769,62 @@ impl<R: BufRead> Interpreter<R> {
                 592 => 8,
                 _ => 9,
             };
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change coordinate systems with cutter radius compensation on",
+            )?;
             self.select_system(system);
         }
+        // 20. path control mode
+        if let Some(code) = self.block.g[13] {
+            self.set_path_control(code)?;
+        }
         // 21. distance modes
-        if let Some(code) = g[3] {
+        if let Some(code) = self.block.g[3] {
             self.state.incremental = code.code == 910;
         }
-        if let Some(code) = g[4] {
+        if let Some(code) = self.block.g[4] {
             self.state.ijk_absolute = code.code == 901;
         }
         // 23. G10, G28, G30, G92 family
         if let Some(zero) = group0 {
             match zero.code {
                 100 => self.set_coordinate_data(zero)?,
-                280 | 300 => self.go_home(zero)?,
+                280 | 300 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot use g28 or g30 with cutter radius comp",
+                    )?;
+                    self.go_home(zero)?;
+                }
                 281 | 301 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot set reference point with cutter compensation in effect",
+                    )?;
                     let base = if zero.code == 281 { G28_HOME } else { G30_HOME };
-                    for axis in 0..4 {
-                        let machine = self.state.current[axis]
-                            + self.state.origin[axis]
-                            + self.state.axis_offset[axis];
+                    let machine = self.state.machine(self.state.current);
+                    for (axis, machine) in machine.into_iter().enumerate() {
                         let value = self.state.to_mm(axis, machine);
                         self.state.params.set(base + axis_slot(axis), value);
                     }
                 }
-                920 => self.set_axis_offsets(zero)?,
+                920 | 520 => {
+                    self.refuse_with_comp(
+                        (zero.at, zero.end),
+                        "Cannot change axis offsets with cutter radius comp",
+                    )?;
+                    if zero.code == 920 {
+                        self.set_axis_offsets(zero)?;
+                    } else {
+                        self.set_local_offsets();
+                    }
+                }
                 _ => {}
             }
         }
-        if let Some(code) = g[11] {
+        // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
+        if let Some(code) = self.block.g[11].filter(|_| !self.state.comp.on()) {
             if code.code == 923 {
                 let offsets = std::array::from_fn(|axis| {
                     let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
@@ -677,22 +840,38 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
         }
+        // 22. retract mode
+        if let Some(code) = self.block.g[10] {
+            self.state.cycle.retract_to_old = code.code == 980;
+        }
         // 24. motion
-        if let Some(code) = motion_code {
+        let previous_motion = self.state.motion;
+        // A spline leaves the modal motion as it was.
+        if let Some(code) = motion_code.filter(|code| !spline::is_spline(code.code)) {
             self.state.motion = if code.code == 800 { None } else { Some(code.code) };
+            if !canned::is_cycle(code.code) {
+                self.state.cycle.initial_level = None;
+            }
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
+            if self.block.extra.is_some() {
+                self.apply_polar(motion, g53)?;
+            }
             match motion {
                 0 | 10 => self.straight(motion, g53)?,
-                _ => self.arc(motion == 20)?,
+                20 | 30 => self.arc(motion == 20)?,
+                50 | 51 => self.spline(motion)?,
+                _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }
         self.check_range()?;
         // 25. stop
-        if let Some(code) = m[4] {
+        if let Some(code) = self.block.m[4] {
+            self.flush_cutter_comp()?;
             match code.code {
                 2 | 30 => {
+                    self.state.comp = cutter_comp::CutterComp::new();
                     self.emit(MotionKind::End);
                     self.finished = true;
                 }
@@ -706,18 +885,16 @@ impl<R: BufRead> Interpreter<R> {
     /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
     /// 240-digit number), rather than passing them on.
     fn check_range(&self) -> Result<(), Fault> {
+        let far = |value: &f64| value.abs() > MAX_COORDINATE;
         for motion in &self.queue {
-            let mut values = [0.0; 6];
-            let mut count = 0;
-            if let Some(end) = motion.kind.end() {
-                values[..4].copy_from_slice(&end);
-                count = 4;
-            }
-            if let MotionKind::Arc { center, .. } = motion.kind {
-                values[4..].copy_from_slice(&center);
-                count = 6;
-            }
-            if let Some(value) = values[..count].iter().find(|value| value.abs() > MAX_COORDINATE) {
+            let value = match &motion.kind {
+                MotionKind::Arc { end, center, .. } => end.iter().chain(center).copied().find(far),
+                MotionKind::Rapid { end } | MotionKind::Linear { end, .. } => {
+                    end.iter().copied().find(far)
+                }
+                kind => kind.end().and_then(|end| end.into_iter().find(far)),
+            };
+            if let Some(value) = value {
                 let word = self.first_axis_word().map_or((0, 1), |word| (word.at, word.end));
                 return Err(self.fault_at(
                     word.0,
@@ -733,7 +910,10 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn first_axis_word(&self) -> Option<Word> {
-        AXES.iter().filter_map(|&letter| self.block.word(letter)).min_by_key(|word| word.at)
+        AXES.iter()
+            .filter_map(|&letter| self.block.word(letter))
+            .chain(self.first_polar_word())
+            .min_by_key(|word| word.at)
     }
 
     /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
@@ -762,7 +942,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 Ok(())
             }
-            920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+            520 | 920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
                 Err(self.code_fault(zero, "All axes missing with g52 or g92"))
             }
             _ => Ok(()),
@@ -772,14 +952,24 @@ impl<R: BufRead> Interpreter<R> {
     /// Refuses codes and words this interpreter does not implement.
     fn check_support(&self) -> Result<(), Fault> {
         for code in self.block.g.iter().flatten() {
-            if let Some((_, Support::No(note))) = g_group(code.code) {
-                let name = if code.code % 10 == 0 {
+            let name = || {
+                if code.code % 10 == 0 {
                     format!("G{}", code.code / 10)
                 } else {
                     format!("G{}.{}", code.code / 10, code.code % 10)
-                };
-                let (first, last) = self.span(code.at, code.end);
-                return Err(Fault::not_supported(first, last, name, note));
+                }
+            };
+            // The span only for a refusal: this runs on every code of every line.
+            match g_group(code.code) {
+                Some((_, Support::No(note))) => {
+                    let (first, last) = self.span(code.at, code.end);
+                    return Err(Fault::not_supported(first, last, name(), note));
+                }
+                Some((_, Support::Cannot(reason))) => {
+                    let (first, last) = self.span(code.at, code.end);
+                    return Err(Fault::cannot(first, last, name(), reason));
+                }
+                _ => {}
             }
         }
         for code in self.block.m.iter().flatten() {
@@ -797,39 +987,75 @@ impl<R: BufRead> Interpreter<R> {
         let block = &self.block;
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
+        let g5 = motion == Some(50);
+        let spline = g5 || motion == Some(51);
         let g10 = group0 == Some(100);
-        let checks: [(u8, bool, &str); 7] = [
-            (
-                b'd',
-                false,
-                "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
-            ),
-            (b'e', false, "E word with no G70, G76, M66, M67 or M68 to use it"),
-            (b'h', false, "H word with no G43 or G76 to use it"),
-            (
-                b'i',
-                arc || g10,
-                "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
-            ),
-            (b'j', arc || g10, "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it"),
-            (b'k', arc, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
-            (
-                b'l',
-                g10,
-                "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 \
-                 or NURBS code",
-            ),
-        ];
-        for (letter, used, message) in checks {
-            if let Some(word) = block.word(letter)
-                && !used
+        let comp_on = block.g[7].is_some_and(|code| code.code != 400);
+        let cycle = motion.is_some_and(canned::is_cycle);
+        let g87 = motion == Some(870);
+        if cycle && let Some(c) = block.word(b'c') {
+            return Err(self.word_fault(c, "Cannot put a c in canned cycle"));
+        }
+        if block.extra.is_some() {
+            // rs274 checks the `$` word between D and E.
+            if let Some(d) = block.word(b'd')
+                && !comp_on
             {
+                return Err(self.word_fault(
+                    d,
+                    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+                ));
+            }
+            self.check_dollar()?;
+        }
+        // The use of a word is looked at only when the block has it: this runs on every line.
+        for letter in [b'd', b'e', b'h', b'i', b'j', b'k', b'l'] {
+            let Some(word) = block.word(letter) else { continue };
+            let (used, message) = match letter {
+                b'd' => (
+                    comp_on,
+                    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it",
+                ),
+                b'e' => (self.io_uses_e(), "E word with no G70, G76, M66, M67 or M68 to use it"),
+                b'h' => (
+                    block.g[8].is_some_and(|code| matches!(code.code, 430 | 432)),
+                    "H word with no G43 or G76 to use it",
+                ),
+                b'i' => (
+                    arc || spline || g10 || g87,
+                    "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it",
+                ),
+                b'j' => (
+                    arc || spline || g10 || g87,
+                    "J word with no G2, G3, G5, G5.1, G10, G76 or G87 to use it",
+                ),
+                b'k' => (arc || g87, "K word with no G2, G3, G33, G33.1, G76, or G87 to use it"),
+                _ => (
+                    g10 || comp_on || cycle || self.io_uses_l(),
+                    "L word with no G10, cutter compensation, canned cycle, digital/analog input, \
+                     M98 or NURBS code",
+                ),
+            };
+            if !used {
                 return Err(self.word_fault(word, message));
             }
         }
-        if let Some(p) = block.word(b'p') {
+        // Mach3 takes the compensation radius from a P word (G41 P1.5): G41/G42 use it.
+        let mach3_radius = self.dialect == Dialect::Mach3
+            && block.g[7].is_some_and(|code| matches!(code.code, 410 | 420));
+        if let Some(p) = block.word(b'p')
+            && !mach3_radius
+        {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            let used = arc || matches!(group0, Some(40 | 100)) || g64;
+            let dwell_cycle = matches!(motion, Some(740 | 820 | 840 | 860 | 880 | 890));
+            let user_m = block.m[10].is_some();
+            let used = arc
+                || g5
+                || matches!(group0, Some(40 | 100))
+                || g64
+                || dwell_cycle
+                || user_m
+                || self.io_uses_p();
             if !used {
                 return Err(self.word_fault(
                     p,
@@ -838,6 +1064,7 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             // The turns of an arc, checked here with the block, before the arc's own checks.
+            self.m19_p_integer(p)?;
             if arc && (round_to_int(p.value) - p.value).abs() > 0.001 {
                 return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));
             }
@@ -847,7 +1074,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(q) = block.word(b'q') {
             let g64 = block.g[13].is_some_and(|code| code.code == 640);
-            if !g64 && !g10 {
+            let m61 = block.m[6].is_some_and(|code| code.code == 61);
+            let peck = matches!(motion, Some(730 | 830));
+            if !g5 && !g64 && !g10 && !m61 && !peck && block.m[10].is_none() && !self.io_uses_q() {
                 return Err(self.word_fault(
                     q,
                     "Q word with no G5, G10, G64, G73, G76, G83, M19, M66, M67, M68 or user M code \
@@ -855,8 +1084,9 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
         }
+        let m19 = block.m[7].is_some_and(|code| code.code == 19);
         if let Some(r) = block.word(b'r')
-            && !(arc || g10)
+            && !(arc || g10 || cycle || m19)
         {
             return Err(self.word_fault(r, "R word with no g code that uses it"));
         }
@@ -898,24 +1128,18 @@ impl<R: BufRead> Interpreter<R> {
             return;
         }
         let scale = if metric { MM_PER_INCH } else { 1.0 / MM_PER_INCH };
+        self.state.comp.scale(scale);
         for axis in 0..3 {
             self.state.current[axis] *= scale;
             self.state.origin[axis] *= scale;
             self.state.axis_offset[axis] *= scale;
+            // rs274 keeps the tool length offset's number: it changes with the units.
         }
         self.state.metric = metric;
     }
 
     fn select_system(&mut self, system: usize) {
-        let base = coordinate_system_base(system);
-        for axis in 0..4 {
-            let origin =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            self.state.current[axis] += self.state.origin[axis] - origin;
-            self.state.origin[axis] = origin;
-        }
-        self.state.system = system;
-        self.state.params.set(COORDINATE_SYSTEM, system as f64);
+        self.change_system(system, false);
     }
 
     /// G10 L2 and L20.
@@ -928,14 +1152,18 @@ impl<R: BufRead> Interpreter<R> {
         let l_value = l.value as i64;
         match l_value {
             2 | 20 => {}
-            0 | 1 | 10 | 11 => {
-                let (first, last) = self.span(code.at, l.end.max(code.end));
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    format!("G10 L{l_value}"),
-                    "tool table",
-                ));
+            1 | 10 | 11 => return self.set_tool_data(code, l_value),
+            0 => {
+                // Reloading the tool table: rs274 keeps the table as the program changed it,
+                // and refuses while a tool is in the spindle.
+                let loaded = self.state.tools.spindle.tool;
+                if loaded > 0 {
+                    return Err(self.code_fault(
+                        code,
+                        format!("G10 L0 not allowed with loaded tool <{loaded}>"),
+                    ));
+                }
+                return Ok(());
             }
             _ => {
                 return Err(
@@ -950,24 +1178,43 @@ impl<R: BufRead> Interpreter<R> {
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));
             }
         };
-        if let Some(r) = self.block.word(b'r') {
-            let (first, last) = self.span(r.at, r.end);
-            return Err(Fault::not_supported(first, last, "G10 R", "coordinate system rotation"));
+        if system == 0 || system == self.state.system {
+            self.refuse_with_comp(
+                (code.at, code.end),
+                "Cannot change the active coordinate system with cutter radius compensation on",
+            )?;
+        }
+        let r = self.block.word(b'r');
+        if let Some(r) = r
+            && l_value == 20
+        {
+            return Err(self.word_fault(r, "R not allowed in G10 L20"));
         }
         let system = if system == 0 { self.state.system } else { system };
         let base = coordinate_system_base(system);
+        let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(code, system)? } else { None };
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
-            let origin = if l_value == 2 {
-                word.value
-            } else {
-                self.state.current[axis] + self.state.origin[axis] - word.value
+            let origin = match rotated_l20 {
+                Some(xy) if axis < 2 => xy[axis],
+                _ if l_value == 2 => word.value,
+                _ => self.state.current[axis] + self.state.origin[axis] - word.value,
             };
             let value = self.state.to_mm(axis, origin);
             self.state.params.set(base + axis_slot(axis), value);
         }
+        if let Some(xy) = rotated_l20 {
+            // In a rotated system both X and Y change, whichever was given.
+            for (axis, value) in xy.into_iter().enumerate() {
+                let value = self.state.to_mm(axis, value);
+                self.state.params.set(base + axis_slot(axis), value);
+            }
+        }
+        if let Some(r) = r {
+            self.state.params.set(rotation::rotation_parameter(system), r.value);
+        }
         if system == self.state.system {
-            self.select_system(system);
+            self.change_system(system, true);
         }
         Ok(())
     }
@@ -980,6 +1227,7 @@ impl<R: BufRead> Interpreter<R> {
         let mut offsets = self.state.axis_offset;
         for (axis, &letter) in AXES.iter().enumerate() {
             if let Some(word) = self.block.word(letter) {
+                self.zeroed_at_start[axis] |= !self.moved;
                 offsets[axis] =
                     self.state.current[axis] + self.state.axis_offset[axis] - word.value;
             }
@@ -993,6 +1241,23 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// G52: local offsets, kept in G92's offsets (as LinuxCNC does): the given axes' offsets
+    /// become the given values.
+    fn set_local_offsets(&mut self) {
+        let mut offsets = self.state.axis_offset;
+        for (axis, &letter) in AXES.iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                offsets[axis] = word.value;
+            }
+        }
+        self.apply_axis_offsets(offsets);
+        for (axis, offset) in offsets.into_iter().enumerate() {
+            let value = self.state.to_mm(axis, offset);
+            self.state.params.set(G92_OFFSET + axis_slot(axis), value);
+        }
+        self.state.params.set(G92_ENABLED, 1.0);
+    }
+
     fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {
         for (axis, offset) in offsets.into_iter().enumerate() {
             self.state.current[axis] += self.state.axis_offset[axis] - offset;
@@ -1002,13 +1267,28 @@ impl<R: BufRead> Interpreter<R> {
 
     /// End point of a move (`find_ends`).
     fn find_ends(&self, g53: bool) -> [f64; 4] {
+        let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());
+        // Without compensation the base is the current point (checked once, not per axis).
+        let comp = self.state.comp.on() && !g53;
         std::array::from_fn(|axis| {
+            if let Some(Some(xy)) = rotated
+                && axis < 2
+            {
+                return xy[axis];
+            }
             let word = self.block.word(AXES[axis]).map(|word| word.value);
-            let current = self.state.current[axis];
+            let current = if comp {
+                self.state.comp.base(axis, self.state.plane).unwrap_or(self.state.current[axis])
+            } else {
+                self.state.current[axis]
+            };
             match word {
                 None => current,
                 Some(value) if g53 => {
-                    value - self.state.origin[axis] - self.state.axis_offset[axis]
+                    value
+                        - self.state.origin[axis]
+                        - self.state.axis_offset[axis]
+                        - self.state.tool_offset[axis]
                 }
                 Some(value) if self.state.incremental => current + value,
                 Some(value) => value,
@@ -1023,13 +1303,15 @@ impl<R: BufRead> Interpreter<R> {
         let base = if code.code == 280 { G28_HOME } else { G30_HOME };
         let any = AXES.iter().any(|&letter| self.block.word(letter).is_some());
         let mut end = intermediate;
+        let home = std::array::from_fn(|axis| {
+            self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
+        });
+        let home = self.state.program_of(home);
         for (axis, &letter) in AXES.iter().enumerate() {
             if any && self.block.word(letter).is_none() {
                 continue;
             }
-            let machine =
-                self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)));
-            end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
+            end[axis] = home[axis];
         }
         self.move_to(end, None);
         Ok(())
@@ -1043,10 +1325,15 @@ impl<R: BufRead> Interpreter<R> {
             Some(feed) => MotionKind::Linear { end: absolute, feed },
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
     }
 
     fn straight(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
+        self.comp_straight_seen();
         let end = self.find_ends(g53);
+        if motion == 0 && self.state.comp.active() {
+            return self.comp_straight(true, end, None, g53);
+        }
         if motion == 0 {
             self.move_to(end, None);
             return Ok(());
@@ -1060,7 +1347,8 @@ impl<R: BufRead> Interpreter<R> {
                     "F word missing with inverse time g1 move",
                 ));
             };
-            let length = straight_length(self.state.current, end);
+            let start = self.comp_start().unwrap_or(self.state.current);
+            let length = straight_length(start, end);
             let rate = (length * f.value).max(0.1);
             Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
         } else {
@@ -1078,16 +1366,21 @@ impl<R: BufRead> Interpreter<R> {
             }
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.state.comp.active() {
+            return self.comp_straight(false, end, Some(feed), g53);
+        }
         self.move_to(end, Some(feed));
         Ok(())
     }
 
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
     fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
+        self.comp_arc_allowed()?;
         let code_at = self.block.g[1].map_or_else(
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
         );
+        self.check_rotated_arc(code_at)?;
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
@@ -1173,7 +1466,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         };
         let end = self.find_ends(false);
-        let current = self.state.current;
+        self.comp_arc_checks(clockwise, end, r.map(|r| r.value))?;
+        let current = self.comp_start().unwrap_or(self.state.current);
         let (c1, c2) = (current[first], current[second]);
         let (e1, e2) = (end[first], end[second]);
         let inch = !self.state.metric;
@@ -1270,6 +1564,12 @@ impl<R: BufRead> Interpreter<R> {
         } else {
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };
+        if self.comp_arcs() {
+            let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+            let center = [center1, center2];
+            let arc = cutter_comp::CompArc { start: current, end, center, turn, feed };
+            return self.comp_arc(arc);
+        }
         let mut center_position = self.state.current;
         center_position[first] = center1;
         center_position[second] = center2;
@@ -1284,6 +1584,7 @@ impl<R: BufRead> Interpreter<R> {
             feed,
         });
         self.state.current = end;
+        self.state.tool_shift = [0.0; 4];
         Ok(())
     }
 }

@@ -32,6 +32,7 @@ pub(crate) enum FaultKind {
     Syntax,
     Invalid,
     NotSupported { code: String, note: &'static str },
+    Cannot { code: String, reason: &'static str },
     ForeignAxis(char),
 }
 
@@ -42,6 +43,10 @@ impl Fault {
 
     pub(crate) fn invalid(start: usize, end: usize, message: impl Into<String>) -> Fault {
         Fault { start, end, kind: FaultKind::Invalid, message: message.into() }
+    }
+
+    pub(crate) fn cannot(start: usize, end: usize, code: String, reason: &'static str) -> Fault {
+        Fault { start, end, kind: FaultKind::Cannot { code, reason }, message: String::new() }
     }
 
     pub(crate) fn not_supported(

@@ -6,14 +6,17 @@
 //! groups and their checks, the order of execution within a block, numbered and named
 //! parameters, expressions with LinuxCNC's operators, precedence and functions, arcs in the
 //! I J K and R forms with LinuxCNC's tolerances, G20 inches, the G54–G59.3, G92 and G53
-//! offsets, G28/G30, G93 inverse time — and emits every move as absolute millimetres and
+//! offsets, G28/G30, G93 inverse time, cutter radius compensation — and emits every move as absolute millimetres and
 //! degrees in the robot's base frame. It streams: the interpreter is an iterator over an
 //! [`std::io::BufRead`] that holds one line at a time.
 //!
 //! It deliberately does not: know the robot (no kinematics; the home pose is a plain number),
-//! print, or guess. O-word control flow, cutter compensation, canned cycles, threading and the
-//! other codes outside SPEC §4.2's tiers 1 and 2 are refused with "… is not supported yet",
-//! never interpreted wrongly; A, B, U, V and W words are errors.
+//! print, or guess. Of tier 3 it reads tool offsets with a LinuxCNC tool table
+//! ([`Config::tool_table`], [`ToolTable`]), canned cycles, cutter radius compensation, G52,
+//! M70–M73 and user M codes (events), G5/G5.1 splines in G17 (as straight moves within
+//! 0.001 mm of the curve); NURBS and the rest are refused with "… is not supported yet", never
+//! interpreted wrongly; lathe codes, spindle-synchronised motion and probing are
+//! refused as this robot cannot do them; A, B, U, V and W words are errors.
 //!
 //! Where it differs from LinuxCNC, on purpose:
 //! - A, B, U, V, W words are errors (LinuxCNC machines may have those axes; this robot has not).
@@ -21,8 +24,13 @@
 //!   LinuxCNC stores its configured user unit (the standalone `rs274` uses inches).
 //! - A value that is not finite (`EXP[1000]`), a position beyond ±1e6 mm and a negative dwell
 //!   (`G4 P-0.5`) are errors.
-//! - `$` (spindle), `@` and `^` (polar coordinates) words are refused as not supported yet.
+//! - M19 and M62–M68 are events (`code`), M48–M53 do nothing; of the `$` (spindle) word only
+//!   what rs274 takes with one spindle (0, or −1 for all) is accepted.
+//! - In a rotated coordinate system (G10 L2 R), arcs outside the XY plane, G10 L10/L11 with X or
+//!   Y, and G10 L20 of another rotated system are refused as not supported yet.
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
+//! - The tool table is in millimetres, and 5401–5410 hold millimetres (rs274's hold inches);
+//!   a tool table line LinuxCNC would skip is an error.
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
@@ -73,6 +81,7 @@ mod lexer;
 mod params;
 mod parser;
 mod tool;
+mod tool_table;
 
 pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
@@ -80,4 +89,5 @@ pub use dialect::{
 pub use error::{GcodeError, Location};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
 pub use lexer::{Forward, Seekable};
-pub use tool::Tool;
+pub use tool::{Tool, ToolInference, infer_tool};
+pub use tool_table::{ToolEntry, ToolTable, ToolTableError};

@@ -19,59 +19,74 @@ pub(crate) enum Support {
     Yes,
     /// Part of LinuxCNC's language, refused with "… is not supported yet".
     No(&'static str),
+    /// Part of LinuxCNC's language that this robot cannot do (lathe, spindle-synchronised
+    /// motion, probing; SPEC §4.2): refused, with why.
+    Cannot(&'static str),
 }
+
+/// Why spindle-synchronised motion is refused.
+const NO_SPINDLE_SYNC: &str = "spindle-synchronised motion needs a spindle encoder and a rotating tool axis this robot has not";
+/// Why lathe codes are refused.
+const NO_LATHE: &str = "a lathe code; this robot is an X Y Z C arm, not a lathe";
 
 /// The modal group of G code `code` (ten times the number: G59.3 = 593) and whether it is
 /// implemented; `None` for a code LinuxCNC does not know.
 pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
-    use Support::{No, Yes};
-    let cycle = No("canned cycle");
+    use Support::{Cannot, No, Yes};
     Some(match code {
         40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 => (0, Yes),
         // LinuxCNC puts G92.1, G92.2 and G92.3 in a group of their own (they may stand with G28).
         921..=923 => (11, Yes),
-        520 => (0, No("local offset G52")),
+        520 => (0, Yes),
         0 | 10 | 20 | 30 | 800 => (1, Yes),
-        50..=53 => (1, No("spline")),
-        330 | 331 | 760 => (1, No("threading")),
-        382..=385 => (1, No("probing")),
-        730 | 740 | 810..=890 => (1, cycle),
-        700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, No("lathe cycle")),
+        // G5 and G5.1: straight moves along the curve (interpreter/spline.rs).
+        50 | 51 => (1, Yes),
+        // rs274 hands G5.2/G5.3 NURBS to the motion planner without the points of their path.
+        52 | 53 => (1, No("NURBS: LinuxCNC's rs274 passes it on without its path")),
+        330 | 331 => (1, Cannot(NO_SPINDLE_SYNC)),
+        760 => (1, Cannot(NO_LATHE)),
+        382..=385 => (1, Cannot("probing needs a probe input this robot has not")),
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => (1, Yes),
+        700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, Cannot(NO_LATHE)),
         170 | 180 | 190 => (2, Yes),
         171 | 181 | 191 => (2, No("UVW plane")),
         900 | 910 => (3, Yes),
         901 | 911 => (4, Yes),
         930 | 940 => (5, Yes),
-        950 => (5, No("feed per revolution")),
+        950 => (5, Cannot(NO_SPINDLE_SYNC)),
         200 | 210 => (6, Yes),
         400 => (7, Yes),
-        410 | 420 | 411 | 421 => (7, No("cutter radius compensation")),
+        410 | 420 | 411 | 421 => (7, Yes),
         490 => (8, Yes),
-        430..=432 => (8, No("tool length offset")),
+        430..=432 => (8, Yes),
         980 | 990 => (10, Yes),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => (12, Yes),
         610 | 611 | 640 => (13, Yes),
         970 => (14, Yes),
-        960 => (14, No("constant surface speed")),
-        80 => (15, Yes),
-        70 => (15, No("lathe diameter mode")),
+        960 => (14, Cannot(NO_SPINDLE_SYNC)),
+        70 | 80 => (15, Cannot(NO_LATHE)),
         _ => return None,
     })
 }
 
 /// The modal group of M code `code` and whether it is implemented; `None` when unknown.
 pub(crate) fn m_group(code: u16) -> Option<(usize, Support)> {
-    use Support::{No, Yes};
+    use Support::Yes;
     Some(match code {
         0 | 1 | 2 | 30 | 60 => (4, Yes),
-        6 => (6, Yes),
-        61 => (6, No("set current tool")),
+        6 | 61 => (6, Yes),
         3..=5 => (7, Yes),
-        19 => (7, No("spindle orientation")),
+        // Spindle orientation: an event here (interpreter/io_codes.rs).
+        19 => (7, Yes),
         7..=9 => (8, Yes),
-        48..=53 => (9, No("override control")),
-        62..=68 => (5, No("digital/analog output")),
-        70..=73 => (4, No("modal state save/restore")),
+        // Override switches: accepted, nothing to do in a simulation.
+        48..=53 => (9, Yes),
+        // Digital and analog outputs, waiting for an input: events here.
+        62..=68 => (5, Yes),
+        // rs274 refuses M70 with M3, M4 or M5: one group.
+        70..=73 => (7, Yes),
+        // User M codes: an event here (there is no external program to run).
+        100..=199 => (10, Yes),
         _ => return None,
     })
 }
@@ -107,6 +122,20 @@ pub(crate) struct Block {
     pub named: Vec<(usize, usize, f64)>,
     /// Whether the line holds nothing but (perhaps) a line number, a comment or `/`.
     pub empty: bool,
+    /// `@`, `^` (polar radius and angle) and `$` (spindle number): rare, kept out of
+    /// [`Block::letters`]; the last `@` or `^` of a line counts, as in LinuxCNC.
+    pub extra: Option<Box<ExtraWords>>,
+}
+
+/// The words LinuxCNC reads besides the letters: polar coordinates and the spindle number.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct ExtraWords {
+    /// `@`: the polar radius.
+    pub radius: Option<Word>,
+    /// `^`: the polar angle, degrees.
+    pub theta: Option<Word>,
+    /// `$`: the spindle.
+    pub spindle: Option<Word>,
 }
 
 impl Block {
@@ -118,6 +147,21 @@ impl Block {
         self.numbered.clear();
         self.named.clear();
         self.empty = true;
+        if let Some(extra) = &mut self.extra {
+            **extra = ExtraWords::default();
+        }
+    }
+
+    /// The `@`, `^` and `$` words of the line, if any.
+    pub(crate) fn extra(&self) -> Option<&ExtraWords> {
+        self.extra.as_deref().filter(|extra| {
+            extra.radius.is_some() || extra.theta.is_some() || extra.spindle.is_some()
+        })
+    }
+
+    /// Whether the line has a polar coordinate (`@` or `^`).
+    pub(crate) fn polar(&self) -> bool {
+        self.extra().is_some_and(|extra| extra.radius.is_some() || extra.theta.is_some())
     }
 
     /// The word for `letter` (lower case).
@@ -328,7 +372,9 @@ impl<'a> Reader<'a> {
         self.pos = pos;
     }
 
-    /// One word, setting or comment (`read_one_item`).
+    /// One word, setting or comment (`read_one_item`). Inlined into `read_block`'s loop, as it
+    /// was before O-words called it too (2 % of `interpret`'s instructions as a call).
+    #[inline(always)]
     pub(crate) fn read_item(&mut self, block: &mut Block) -> Result<(), Fault> {
         let start = self.pos;
         let letter = self.peek();
@@ -342,17 +388,25 @@ impl<'a> Reader<'a> {
                 return self.read_setting(block);
             }
             b'@' | b'^' | b'$' => {
-                // LinuxCNC reads these words' values first (polar coordinates, spindle number).
+                block.empty = false;
+                let extra = block.extra.get_or_insert_with(Box::default);
+                if letter == b'$' && extra.spindle.is_some() {
+                    return Err(self.syntax(
+                        start,
+                        start + 1,
+                        "Multiple spindle choice ($) words on one line",
+                    ));
+                }
                 self.pos += 1;
-                self.read_real_value()?;
-                let (first, last) = self.span(start, self.pos);
-                let note = if letter == b'$' { "spindle selection" } else { "polar coordinates" };
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    format!("the {} word", char::from(letter)),
-                    note,
-                ));
+                let value = self.read_real_value()?;
+                let word = Some(Word { value, at: start, end: self.pos });
+                let extra = block.extra.get_or_insert_with(Box::default);
+                match letter {
+                    b'@' => extra.radius = word,
+                    b'^' => extra.theta = word,
+                    _ => extra.spindle = word,
+                }
+                return Ok(());
             }
             b'a' | b'b' | b'u' | b'v' | b'w' => {
                 let (first, _) = self.span(start, start + 1);
@@ -412,6 +466,9 @@ impl<'a> Reader<'a> {
             b's' if value < 0.0 => {
                 return Err(self.invalid(start, self.pos, "Negative spindle speed used"));
             }
+            b'l' if value < 0.0 => {
+                return Err(self.invalid(start, self.pos, "Negative l word used"));
+            }
             // Checked as it is read (`read_t`), before the rest of the line.
             b't' if value < 0.0 => {
                 return Err(self.invalid(start, self.pos, "Negative tool id (tool not found)"));
@@ -441,7 +498,14 @@ impl<'a> Reader<'a> {
         let Some((group, _)) = g_group(code) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
-        if block.g[group].is_some() {
+        if let Some(before) = block.g[group] {
+            // rs274's `read_g` lets G80 share a block with another motion code, which wins.
+            if group == 1 && (before.code == 800 || code == 800) {
+                if before.code == 800 {
+                    block.g[group] = Some(Code { code, at: start, end });
+                }
+                return Ok(());
+            }
             return Err(self.syntax(start, end, "Two g codes used from same modal group"));
         }
         block.g[group] = Some(Code { code, at: start, end });

@@ -19,3 +19,190 @@ pub enum Tool {
     /// A pen: M3 and M4 put it down, M5 lifts it; S has no effect.
     Pen,
 }
+
+impl Tool {
+    /// Every kind, in the order of SPEC §1.6.
+    pub const ALL: [Tool; 5] =
+        [Tool::Gripper, Tool::Laser, Tool::Spindle, Tool::Extruder, Tool::Pen];
+
+    /// The name of `robot.json` and `--tool`: `gripper`, `laser`, `spindle`, `extruder`, `pen`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tool::Gripper => "gripper",
+            Tool::Laser => "laser",
+            Tool::Spindle => "spindle",
+            Tool::Extruder => "extruder",
+            Tool::Pen => "pen",
+        }
+    }
+
+    /// The kind named `name` (see [`Tool::name`]); `None` for any other name.
+    pub fn from_name(name: &str) -> Option<Tool> {
+        Tool::ALL.into_iter().find(|tool| tool.name() == name)
+    }
+}
+
+impl std::fmt::Display for Tool {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The tool a program was written for, as [`infer_tool`] decided it, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ToolInference {
+    /// The tool.
+    pub tool: Tool,
+    /// What in the program told, for the note.
+    pub reason: String,
+    /// The 1-based line that told, when one did.
+    pub line: Option<usize>,
+}
+
+/// The tool `text` (a program's first bytes) was written for, from what it uses, in this order:
+/// printer codes (M82, M83, M104, M109) → extruder; a comment that names a laser → laser; a
+/// comment that names a pen or a plotter → pen; a non-zero E word on a move → extruder; M4
+/// (Grbl's dynamic laser power) with S → laser; M3 or M4 with S and Z words → spindle; M3 or M4
+/// with S and no Z word → laser. M3 and M4 with no S word are the gripper's pick and place.
+/// `None` when nothing tells (the caller keeps the gripper).
+pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
+    let text = String::from_utf8_lossy(text);
+    let found = |tool: Tool, reason: &str, line: usize| {
+        Some(ToolInference { tool, reason: reason.to_owned(), line: Some(line) })
+    };
+    let (mut spindle_word, mut s_word, mut z_word) = (None, false, false);
+    let (mut laser_comment, mut pen_comment, mut dynamic) = (None, None, None);
+    let mut extrusion = None;
+    for (index, raw) in text.lines().enumerate() {
+        let number = index + 1;
+        let lower = raw.to_ascii_lowercase();
+        let (code, comment) = split_comment(&lower);
+        if comment.contains("laser") && laser_comment.is_none() {
+            laser_comment = Some(number);
+        }
+        if (has_word(comment, "pen") || comment.contains("plotter")) && pen_comment.is_none() {
+            pen_comment = Some(number);
+        }
+        let words = words(&code);
+        let has = |letter: u8| words.iter().any(|(l, _)| *l == letter);
+        let is = |letter: u8, value: f64| words.iter().any(|(l, v)| *l == letter && *v == value);
+        let moves = is(b'g', 0.0) || is(b'g', 1.0) || is(b'g', 2.0) || is(b'g', 3.0);
+        if [82.0, 83.0, 104.0, 109.0].iter().any(|&m| is(b'm', m)) {
+            return found(Tool::Extruder, "printer codes (M82, M83, M104, M109)", number);
+        }
+        if moves && words.iter().any(|(l, v)| *l == b'e' && *v != 0.0) && extrusion.is_none() {
+            extrusion = Some(number);
+        }
+        // M3/M4 with no S word anywhere is the paper's gripper (pick, place).
+        if is(b'm', 3.0) || is(b'm', 4.0) {
+            spindle_word.get_or_insert(number);
+            if is(b'm', 4.0) && has(b's') {
+                dynamic.get_or_insert(number);
+            }
+        }
+        s_word |= has(b's');
+        // Any Z in the code: `Z-1`, `Z#<_zcut>`, `Z[#1]`.
+        z_word |= code.contains('z');
+    }
+    if let Some(line) = laser_comment {
+        return found(Tool::Laser, "a comment names a laser", line);
+    }
+    if let Some(line) = pen_comment {
+        return found(Tool::Pen, "a comment names a pen or a plotter", line);
+    }
+    if let Some(line) = extrusion {
+        return found(Tool::Extruder, "E words on moves", line);
+    }
+    if let Some(line) = dynamic {
+        return found(Tool::Laser, "M4 with S: Grbl's dynamic laser power", line);
+    }
+    match spindle_word {
+        Some(line) if z_word && s_word => {
+            found(Tool::Spindle, "M3/M4 with S speed and Z moves: a cutting spindle", line)
+        }
+        Some(line) if s_word => {
+            found(Tool::Laser, "M3/M4 with S power and no Z move: a laser", line)
+        }
+        _ => None,
+    }
+}
+
+/// A line (lower case) split into its code and its comments (`( … )` and `; …`).
+fn split_comment(line: &str) -> (String, &str) {
+    let mut code = String::with_capacity(line.len());
+    let mut depth = 0usize;
+    for (at, ch) in line.char_indices() {
+        match ch {
+            ';' if depth == 0 => return (code, &line[at..]),
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            _ if depth == 0 => code.push(ch),
+            _ => {}
+        }
+    }
+    let comment = line.find('(').map_or("", |at| &line[at..]);
+    (code, comment)
+}
+
+/// Whether `text` holds `word` as a whole word.
+fn has_word(text: &str, word: &str) -> bool {
+    text.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| w == word)
+}
+
+/// The letter-number words of a line of code (lower case), numbers that do not parse skipped.
+fn words(code: &str) -> Vec<(u8, f64)> {
+    let bytes = code.as_bytes();
+    let mut words = Vec::new();
+    let mut at = 0;
+    while at < bytes.len() {
+        let letter = bytes[at];
+        at += 1;
+        if !letter.is_ascii_lowercase() {
+            continue;
+        }
+        let start = at;
+        while at < bytes.len() && (bytes[at].is_ascii_digit() || b"+-. ".contains(&bytes[at])) {
+            at += 1;
+        }
+        let number: String = code[start..at].chars().filter(|c| *c != ' ').collect();
+        if let Ok(value) = number.parse::<f64>() {
+            words.push((letter, value));
+        }
+    }
+    words
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inferred(program: &str) -> Option<Tool> {
+        infer_tool(program.as_bytes()).map(|inference| inference.tool)
+    }
+
+    #[test]
+    fn programs_tell_their_tool() {
+        assert_eq!(inferred("G1 X10 Y10 E0.5 F1200\n"), Some(Tool::Extruder));
+        assert_eq!(inferred("M104 S200\nG1 X1\n"), Some(Tool::Extruder));
+        assert_eq!(inferred("(LaserGRBL)\nM3 S0\nG1 X1 S300\n"), Some(Tool::Laser));
+        assert_eq!(inferred("M4 S500\nG1 X1 F100\nM5\n"), Some(Tool::Laser));
+        assert_eq!(inferred("M3 S0\nG1 X1 F100\nS300\nG1 X2\nM5\n"), Some(Tool::Laser));
+        assert_eq!(inferred("(pen plotter)\nG0 X1\n"), Some(Tool::Pen));
+        assert_eq!(inferred("; pen down\nG0 X1\n"), Some(Tool::Pen));
+        assert_eq!(inferred("; open file\nG0 X1\n"), None);
+        assert_eq!(inferred("S12000 M3\nG0 Z5\nG1 Z-1 F100\n"), Some(Tool::Spindle));
+        assert_eq!(inferred("G0 X1 Y2\nM2\n"), None);
+        // The paper's pick and place: M3 and M4 with no S.
+        assert_eq!(inferred("G0 X1 Z5\nG1 Z0 F60\nM3\nG0 Z5\nM4\nM2\n"), None);
+        // A comment is not code: an E in a comment is no extrusion.
+        assert_eq!(inferred("G1 X1 (E5)\n"), None);
+        // A plotter that says "no extrusion" to a printer firmware.
+        assert_eq!(inferred("G00 E0; no extrusion\nG0 Z8; pen park\n"), Some(Tool::Pen));
+        let inference = infer_tool(b"G0 X1\nM4 S100\n").unwrap();
+        assert_eq!(inference.line, Some(2));
+        for tool in Tool::ALL {
+            assert_eq!(Tool::from_name(tool.name()), Some(tool));
+        }
+        assert_eq!(Tool::from_name("torch"), None);
+    }
+}

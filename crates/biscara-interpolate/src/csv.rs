@@ -29,6 +29,34 @@ impl<W: Write> PathCsvWriter<W> {
         Ok(PathCsvWriter { out, decimals, events, row: RowBuffer::new() })
     }
 
+    /// A writer with `decimals` decimals and the extra columns `columns` after the pose (the
+    /// tool's, SPEC §6 `--events`), whose values [`PathCsvWriter::write_with`] takes; writes the
+    /// header at once.
+    pub fn with_columns(mut out: W, decimals: usize, columns: &[&str]) -> io::Result<Self> {
+        out.write_all(PATH_HEADER.as_bytes())?;
+        for column in columns {
+            write!(out, ",{column}")?;
+        }
+        out.write_all(b"\n")?;
+        Ok(PathCsvWriter { out, decimals, events: false, row: RowBuffer::new() })
+    }
+
+    /// Writes one sample with the values of the extra columns (see
+    /// [`PathCsvWriter::with_columns`]), with the writer's decimals.
+    pub fn write_with(&mut self, sample: &CartesianSample, values: &[f64]) -> io::Result<()> {
+        let [x, y, z, c] = sample.pose;
+        self.row.push_fixed_list([sample.t, x, y, z, c], self.decimals);
+        for value in values {
+            self.row.push(b',');
+            self.row.push_fixed(*value, self.decimals);
+        }
+        self.row.push(b'\n');
+        if self.row.is_full() {
+            self.row.write_to(&mut self.out)?;
+        }
+        Ok(())
+    }
+
     /// Writes one sample.
     pub fn write(&mut self, sample: &CartesianSample) -> io::Result<()> {
         let [x, y, z, c] = sample.pose;

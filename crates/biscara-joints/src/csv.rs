@@ -66,8 +66,26 @@ impl<W: Write> JointCsvWriter<W> {
         Ok(JointCsvWriter { out, format, row: RowBuffer::new() })
     }
 
+    /// A writer in `format` with the extra columns `columns` after the joints (the tool's,
+    /// `joints --events`, SPEC §1.6), whose values [`JointCsvWriter::write_with`] takes; writes
+    /// the header at once.
+    pub fn with_columns(mut out: W, format: JointCsvFormat, columns: &[&str]) -> io::Result<Self> {
+        write!(out, "{}", format.header())?;
+        for column in columns {
+            write!(out, ",{column}")?;
+        }
+        out.write_all(b"\n")?;
+        Ok(JointCsvWriter { out, format, row: RowBuffer::new() })
+    }
+
     /// Writes one sample.
     pub fn write(&mut self, sample: &JointSample) -> io::Result<()> {
+        self.write_with(sample, &[])
+    }
+
+    /// Writes one sample with the values of the extra columns (see
+    /// [`JointCsvWriter::with_columns`]), with the format's decimals.
+    pub fn write_with(&mut self, sample: &JointSample, values: &[f64]) -> io::Result<()> {
         let decimals = self.format.precision;
         let scale = match self.format.angle_unit {
             AngleUnit::Radians => 1.0,
@@ -81,6 +99,10 @@ impl<W: Write> JointCsvWriter<W> {
             let [a1, a2, a3, a4] = scaled(sample.acceleration);
             self.row.push(b',');
             self.row.push_fixed_list([v1, v2, v3, v4, a1, a2, a3, a4], decimals);
+        }
+        for value in values {
+            self.row.push(b',');
+            self.row.push_fixed(*value, decimals);
         }
         self.row.push(b'\n');
         if self.row.is_full() {
@@ -96,6 +118,11 @@ impl<W: Write> JointCsvWriter<W> {
         Ok(self.out)
     }
 }
+
+/// The tool columns `joints --events` may add after the joints (SPEC §1.6), which the reader
+/// reads past.
+pub const TOOL_COLUMNS: [&str; 5] =
+    ["gripper", "laser_power", "spindle_rpm", "extruded_mm", "pen_down"];
 
 /// One row of a joint CSV read back: radians and millimetres whatever the file's angle unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -117,7 +144,12 @@ pub type JointCsvError = CsvError;
 /// streaming; rows come back in radians and millimetres. Lines longer than
 /// [`biscara_text::MAX_LINE_BYTES`] are refused.
 pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
-    JointCsvReader { csv: NumericCsvReader::new(reader), format: None, failed: false }
+    JointCsvReader {
+        csv: NumericCsvReader::new(reader),
+        format: None,
+        tool_column: false,
+        failed: false,
+    }
 }
 
 /// The iterator returned by [`read_joint_csv`]; stops after the first error.
@@ -126,12 +158,20 @@ pub struct JointCsvReader<R> {
     csv: NumericCsvReader<R>,
     /// Known once the header is read.
     format: Option<JointCsvFormat>,
+    /// The header ends with a tool's column (read past).
+    tool_column: bool,
     failed: bool,
 }
 
 impl<R: BufRead> JointCsvReader<R> {
     fn read_format(&mut self) -> Result<JointCsvFormat, JointCsvError> {
-        let header = self.csv.header()?;
+        let header = self.csv.header()?.to_owned();
+        // A tool's column (`joints --events`) after the joints is read past.
+        let (header, tool_column) = match header.rsplit_once(',') {
+            Some((joints, column)) if TOOL_COLUMNS.contains(&column) => (joints, true),
+            _ => (header.as_str(), false),
+        };
+        self.tool_column = tool_column;
         for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
             for derivatives in [false, true] {
                 let format = JointCsvFormat { angle_unit, derivatives, precision: 0 };
@@ -154,7 +194,7 @@ impl<R: BufRead> JointCsvReader<R> {
                 *self.format.insert(format)
             }
         };
-        let columns = if format.derivatives { 13 } else { 5 };
+        let columns = if format.derivatives { 13 } else { 5 } + usize::from(self.tool_column);
         let Some((line, values)) = self.csv.row(columns)? else { return Ok(None) };
         let scale = match format.angle_unit {
             AngleUnit::Radians => 1.0,
@@ -233,6 +273,29 @@ mod tests {
                     None => assert!(!derivatives),
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_tool_column_is_read_past_and_checked() {
+        let format =
+            JointCsvFormat { angle_unit: AngleUnit::Degrees, derivatives: true, precision: 6 };
+        let mut writer = JointCsvWriter::with_columns(Vec::new(), format, &["pen_down"]).unwrap();
+        writer.write_with(&sample(0.0, [10.0, -20.0, 30.0, 40.0]), &[1.0]).unwrap();
+        let text = writer.finish().unwrap();
+        assert!(String::from_utf8_lossy(&text).starts_with("t_s,theta1_deg,"));
+        let rows = read(&text).unwrap();
+        assert_eq!(rows.len(), 1);
+        assert!((rows[0].joints.d4 - 40.0).abs() < 1e-9);
+        let header = "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm";
+        let cases = [
+            (format!("{header},laser_power\n0,0,0,0,0\n"), "2:10: expected 6 fields, found 5"),
+            (format!("{header},power\n0,0,0,0,0,1\n"), "1:1: expected a joint CSV header"),
+            (format!("{header},extruded_mm\n0,0,0,0,0,x\n"), "2:11: `x` is not a"),
+        ];
+        for (input, expected) in cases {
+            let message = read(input.as_bytes()).unwrap_err();
+            assert!(message.starts_with(expected), "{message:?} should start with {expected:?}");
         }
     }
 

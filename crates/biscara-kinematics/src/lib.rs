@@ -43,5 +43,8 @@ pub use kinematics::{
 pub use mode::{AssemblyMode, ParseModeError, Sign, WorkingMode};
 pub use model::RobotModel;
 pub use pose::{Chain, Joint, Joints, Pose};
-pub use robot::{Base, Geometry, JointLimits, JointValues, Links, MotionLimits, Robot, RobotError};
+pub use robot::{
+    Base, Geometry, JointLimits, JointValues, Links, MotionLimits, Robot, RobotError, ToolKind,
+    ToolSpec,
+};
 pub use unwrap::{AngleUnwrapper, Theta3Unwrapper};

@@ -37,6 +37,54 @@ pub struct Robot {
     pub singularity_margin: f64,
     /// Body dimensions used by the virtual robot (collisions, pictures).
     pub geometry: Geometry,
+    /// The end effector (SPEC §1.6): what the program's M3, M4, M5, S and E words drive.
+    pub tool: ToolSpec,
+}
+
+/// The end effector the robot carries (SPEC §1.6).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ToolSpec {
+    /// Its kind; absent (`None`): inferred from each program, the gripper when nothing tells.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<ToolKind>,
+    /// A laser's full power: the S value of 100 % (Grbl's `$30`, 1000 by default).
+    pub max_power: f64,
+}
+
+impl Default for ToolSpec {
+    fn default() -> ToolSpec {
+        ToolSpec { kind: None, max_power: 1000.0 }
+    }
+}
+
+/// The kinds of end effector (SPEC §1.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ToolKind {
+    /// The paper's gripper: M3 picks, M4 places.
+    Gripper,
+    /// A laser: M3/M4 on, S the power, M5 off.
+    Laser,
+    /// A spindle: M3/M4 on, S the speed, M5 off.
+    Spindle,
+    /// A 3D printer's extruder: E words.
+    Extruder,
+    /// A pen: M3/M4 down, M5 up.
+    Pen,
+}
+
+impl ToolKind {
+    /// The name in `robot.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ToolKind::Gripper => "gripper",
+            ToolKind::Laser => "laser",
+            ToolKind::Spindle => "spindle",
+            ToolKind::Extruder => "extruder",
+            ToolKind::Pen => "pen",
+        }
+    }
 }
 
 /// Link lengths of the five-bar, millimetres.
@@ -141,6 +189,7 @@ impl Default for Robot {
             motion: MotionLimits::default(),
             singularity_margin: 5.0,
             geometry: Geometry::default(),
+            tool: ToolSpec::default(),
         }
     }
 }
@@ -296,6 +345,7 @@ impl Robot {
     /// Checks that every value is possible; the error names the first offending key.
     pub fn validate(&self) -> Result<(), RobotError> {
         positive("links.l1", self.links.l1)?;
+        positive("tool.max_power", self.tool.max_power)?;
         positive("links.l2", self.links.l2)?;
         finite("base.b1x", self.base.b1x)?;
         finite("base.b2x", self.base.b2x)?;

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io;
 
-use biscara_gcode::{Detection, Dialect};
+use biscara_gcode::{Detection, Dialect, ToolInference};
 use biscara_interpolate::SlowDown;
 use biscara_robot::{Fit, VirtualRobotError};
 use biscara_text::fixed;
@@ -85,12 +85,20 @@ impl PipelineError {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Note {
-    /// `--fit` placed the program: its extent, the rectangle and the offset.
+    /// `--fit` placed the program: its extent, the rectangle, the offset, the turn, and its Z.
     Placed {
         /// The program's name.
         file: String,
-        /// The placement.
+        /// The placement in XY.
         fit: Fit,
+        /// The program's Z extent as read, `[lowest, highest]` mm (`[+∞, −∞]` when none).
+        z: [f64; 2],
+        /// The robot's Z stroke, `[lowest, highest]` mm.
+        stroke: [f64; 2],
+        /// The Z shift: zero when the Z extent is inside the stroke, else what centres it there.
+        dz: f64,
+        /// Whether the program made its start point its zero with G92, so that its start moved.
+        by_start: bool,
     },
     /// `--dialect auto` chose a dialect (only when something in the program told).
     Dialect {
@@ -98,6 +106,13 @@ pub enum Note {
         file: String,
         /// The dialect and why.
         detection: Detection,
+    },
+    /// No `--tool` and no `tool.kind` in the robot file: the tool was inferred from the program.
+    Tool {
+        /// The program's name.
+        file: String,
+        /// The tool and why.
+        inference: ToolInference,
     },
     /// The program used codes with no motion here (temperatures, fans, `$` lines, …), recorded
     /// as events; one note with their counts.
@@ -117,6 +132,12 @@ pub enum Note {
         /// Each code and how many times it occurs.
         codes: BTreeMap<String, usize>,
     },
+    /// The program used tool offsets (G43, G43.2, G10 L1/L10/L11, M61) with no tool table
+    /// given: every tool has zero length and diameter.
+    ToolsWithoutTable {
+        /// The program's name.
+        file: String,
+    },
     /// A motion runs slower than programmed (a joint or C speed limit).
     SlowedDown {
         /// The program's name.
@@ -129,28 +150,62 @@ pub enum Note {
 impl fmt::Display for Note {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Note::Placed { file, fit } => {
+            Note::Placed { file, fit, z, stroke, dz, by_start } => {
                 let (bounds, rectangle) = (&fit.bounds, &fit.rectangle);
                 let [dx, dy] = fit.offset;
                 let n = |v: f64| fixed(v, 3);
                 write!(
                     f,
-                    "{file}: --fit: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) is \
-                     centred in the workspace rectangle x {}..{}, y {}..{} mm by the offset X{} \
-                     Y{} (z and c unchanged)",
+                    "{file}: --fit: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) ",
                     n(bounds.min[0]),
                     n(bounds.max[0]),
                     n(bounds.min[1]),
                     n(bounds.max[1]),
                     n(bounds.width()),
                     n(bounds.height()),
+                )?;
+                if fit.rotated {
+                    let [hx, hy] = bounds.home();
+                    write!(
+                        f,
+                        "fits the workspace only turned: it is turned by 90° counter-clockwise \
+                         about Z at X{} Y{} (C turns with it), then ",
+                        n(hx),
+                        n(hy)
+                    )?;
+                }
+                write!(
+                    f,
+                    "is centred in the workspace rectangle x {}..{}, y {}..{} mm by the offset X{} \
+                     Y{}",
                     n(rectangle.min[0]),
                     n(rectangle.max[0]),
                     n(rectangle.min[1]),
                     n(rectangle.max[1]),
                     n(dx),
                     n(dy)
-                )
+                )?;
+                if *by_start {
+                    f.write_str(
+                        " (it zeroes itself with G92 at its start: its start point moves)",
+                    )?;
+                }
+                if *dz != 0.0 {
+                    write!(
+                        f,
+                        "; its Z extent {}..{} mm is outside the stroke {}..{} mm: Z moves by {} \
+                         to centre it",
+                        n(z[0]),
+                        n(z[1]),
+                        n(stroke[0]),
+                        n(stroke[1]),
+                        n(*dz)
+                    )
+                } else if fit.rotated {
+                    f.write_str(" (z unchanged)")
+                } else {
+                    f.write_str(" (z and c unchanged)")
+                }
             }
             Note::Dialect { file, detection } => write!(
                 f,
@@ -163,6 +218,13 @@ impl fmt::Display for Note {
                     ""
                 }
             ),
+            Note::Tool { file, inference } => write!(
+                f,
+                "{file}{}: tool: {} ({}; inferred: no --tool and no tool.kind in the robot file)",
+                inference.line.map(|line| format!(":{line}")).unwrap_or_default(),
+                inference.tool,
+                inference.reason
+            ),
             Note::Codes { file, codes } => write!(
                 f,
                 "{file}: codes with no motion here, recorded as events: {}",
@@ -173,6 +235,11 @@ impl fmt::Display for Note {
                 "{file}: codes {dialect} does not know, skipped as it does (\"Unknown command\"), \
                  recorded as events: {}",
                 Counted(codes)
+            ),
+            Note::ToolsWithoutTable { file } => write!(
+                f,
+                "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
+                 given: every tool has zero length and diameter"
             ),
             Note::SlowedDown { file, slow } => write!(
                 f,

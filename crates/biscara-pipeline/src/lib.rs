@@ -41,6 +41,7 @@ mod motions;
 mod pipeline;
 mod placement;
 mod source;
+mod tool;
 
 pub use biscara_kinematics::RobotModel;
 
@@ -50,3 +51,4 @@ pub use kind::ProgramKind;
 pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes};
 pub use placement::{Placement, place};
 pub use source::{ProgramSource, TextSource};
+pub use tool::{ToolJointSamples, ToolSamples, ToolState};

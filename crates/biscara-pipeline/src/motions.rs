@@ -1,19 +1,21 @@
 //! A program's motions: the G-code interpreter or the inter-file reader, errors located, and
 //! what the interpreter has to say (the dialect it chose, the codes it recorded) as notes.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::io::BufRead;
 use std::rc::Rc;
+use std::sync::Arc;
 
 use std::path::{Path, PathBuf};
 
 use biscara_gcode::{
-    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, interpret_seekable,
+    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, Tool, ToolTable,
+    interpret_seekable,
 };
 use biscara_kinematics::RobotModel;
-use biscara_motion::{Motion, Position, read_jsonl};
+use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
 
-use crate::{Note, PipelineError, ProgramKind, ProgramSource};
+use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// A program's motions as read, with errors located in the file.
 pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
@@ -45,25 +47,61 @@ impl NoteSink {
     }
 }
 
-/// How a G-code program is read: its dialect and where its file subroutines are.
+/// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
+/// dialect, its tool (`None`: inferred from the program, the gripper when nothing tells), where
+/// its file subroutines are, the tool table and the default G64 P.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Reading<'a> {
-    pub dialect: Dialect,
-    pub subroutine_path: &'a [PathBuf],
+    pub(crate) origin: Position,
+    pub(crate) start: Option<Position>,
+    pub(crate) dialect: Dialect,
+    pub(crate) tool: Option<Tool>,
+    pub(crate) subroutine_path: &'a [PathBuf],
+    pub(crate) tool_table: Option<&'a Arc<ToolTable>>,
     /// The G64 P of a program that never says G61 or G64.
-    pub blend: Option<f64>,
+    pub(crate) blend: Option<f64>,
 }
 
-/// The motions of a G-code program (read as `reading` says, with `origin` as its G54 offset)
-/// or an inter-file.
+impl<'a> Reading<'a> {
+    /// How `config` says G-code is read, from `origin` and `start`, with `tool`.
+    pub(crate) fn of(
+        config: &'a SamplingConfig,
+        origin: Position,
+        start: Option<Position>,
+        tool: Option<Tool>,
+    ) -> Self {
+        Reading {
+            origin,
+            start,
+            dialect: config.dialect,
+            tool,
+            subroutine_path: &config.subroutine_path,
+            tool_table: config.tool_table.as_ref(),
+            blend: config.blend,
+        }
+    }
+}
+
+/// What a G-code reading tells besides its motions: the axes the program zeroed with G92 before
+/// its first motion, once it is read (see [`Interpreter::zeroed_at_start`]), and the tool it
+/// drives, from its first motion on.
+#[derive(Default, Clone)]
+pub(crate) struct Told {
+    pub(crate) zeroed: Option<Rc<Cell<[bool; 4]>>>,
+    pub(crate) tool: Option<Rc<Cell<Option<Tool>>>>,
+}
+
+/// The motions of a G-code program (read as `reading` says) or an inter-file; what the G-code
+/// reading tells goes to `told`.
 pub(crate) fn read_motions(
     model: &RobotModel,
     source: &dyn ProgramSource,
     kind: ProgramKind,
-    origin: Position,
     reading: &Reading<'_>,
     notes: NoteSink,
+    told: Told,
 ) -> Result<MotionReader, PipelineError> {
+    let Reading { origin, start, dialect, tool, .. } = *reading;
     let file = source.name().to_owned();
     let io_error = |source| PipelineError::Io { file: file.clone(), source };
     match kind {
@@ -75,7 +113,11 @@ pub(crate) fn read_motions(
             let config = GcodeConfig {
                 home: model.home_position(),
                 origin,
-                dialect: reading.dialect,
+                start,
+                dialect,
+                tool: tool.unwrap_or_default(),
+                infer_tool: tool.is_none(),
+                tool_table: reading.tool_table.cloned(),
                 blend: reading.blend,
                 ..GcodeConfig::default()
             };
@@ -88,7 +130,15 @@ pub(crate) fn read_motions(
                 source.path().map(Path::to_path_buf),
                 reading.subroutine_path.to_vec(),
             );
-            Ok(Box::new(GcodeMotions { interpreter, file, notes, finished: false }))
+            Ok(Box::new(GcodeMotions {
+                interpreter,
+                file,
+                notes,
+                told,
+                started: false,
+                tool_said: false,
+                finished: false,
+            }))
         }
         ProgramKind::Path => Err(PipelineError::Unsupported {
             file,
@@ -103,6 +153,9 @@ struct GcodeMotions<R> {
     interpreter: Interpreter<R>,
     file: String,
     notes: NoteSink,
+    told: Told,
+    started: bool,
+    tool_said: bool,
     finished: bool,
 }
 
@@ -126,8 +179,24 @@ impl<R: BufRead> GcodeMotions<R> {
         PipelineError::Program { file: self.file.clone(), error: Box::new(err), snippet }
     }
 
+    /// The tool inferred, once.
+    fn say_tool(&mut self) {
+        if self.tool_said {
+            return;
+        }
+        self.tool_said = true;
+        if let Some(inference) = self.interpreter.tool_inference() {
+            let (file, inference) = (self.file.clone(), inference.clone());
+            self.notes.say(Note::Tool { file, inference });
+        }
+    }
+
     /// The notes of a finished program.
-    fn announce(&self) {
+    fn announce(&mut self) {
+        self.say_tool();
+        if let Some(zeroed) = &self.told.zeroed {
+            zeroed.set(self.interpreter.zeroed_at_start());
+        }
         // A program in which nothing tells the dialects apart is LinuxCNC's, as before the
         // dialects existed: no note.
         if let Some(detection) = self
@@ -136,6 +205,9 @@ impl<R: BufRead> GcodeMotions<R> {
             .filter(|detection| detection.dialect != Dialect::Linuxcnc || detection.line.is_some())
         {
             self.notes.say(Note::Dialect { file: self.file.clone(), detection });
+        }
+        if self.interpreter.tools_without_table() {
+            self.notes.say(Note::ToolsWithoutTable { file: self.file.clone() });
         }
         let summary = self.interpreter.summary();
         if !summary.codes.is_empty() {
@@ -157,7 +229,20 @@ impl<R: BufRead> Iterator for GcodeMotions<R> {
             return None;
         }
         match self.interpreter.next() {
-            Some(Ok(motion)) => Some(Ok(motion)),
+            Some(Ok(motion)) => {
+                if !self.started {
+                    self.started = true;
+                    if let Some(tool) = &self.told.tool {
+                        tool.set(Some(self.interpreter.tool()));
+                    }
+                }
+                // Said at the program's end (M2 or M30: the interpolator may read no further),
+                // so that an error stays the only message of a program that fails.
+                if matches!(motion.kind, MotionKind::End) {
+                    self.say_tool();
+                }
+                Some(Ok(motion))
+            }
             Some(Err(err)) => {
                 self.finished = true;
                 Some(Err(self.located(err)))

@@ -1,8 +1,9 @@
 //! The stages wired once: program → motions → Cartesian samples → joint samples.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara_gcode::Dialect;
+use biscara_gcode::{Dialect, Tool, ToolTable};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -12,9 +13,12 @@ use biscara_joints::{
 };
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;
-use biscara_robot::shift_motion;
 
-use crate::motions::{MotionReader, NoteSink, Reading, read_motions};
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+use crate::motions::{MotionReader, NoteSink, Reading, Told, read_motions};
+use crate::tool::{Recorder, SharedTool, ToolJointSamples, ToolSamples, Track};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
 /// How a program is placed and sampled in time (SPEC §6, §4.2).
@@ -33,6 +37,9 @@ pub struct SamplingConfig {
     pub fit: bool,
     /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
     pub dialect: Dialect,
+    /// The tool the robot carries (`--tool`, SPEC §1.6); `None`: the robot file's `tool.kind`,
+    /// else inferred from the program (with a [`Note::Tool`]), else the gripper.
+    pub tool: Option<Tool>,
     /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
     /// program's own folder (`--subroutine-path`).
     pub subroutine_path: Vec<PathBuf>,
@@ -40,6 +47,9 @@ pub struct SamplingConfig {
     /// `None` (the default) runs it with an exact stop at every corner, `Some(p)` as if it began
     /// with `G64 P{p}` (SPEC §6).
     pub blend: Option<f64>,
+    /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
+    /// length and diameter.
+    pub tool_table: Option<Arc<ToolTable>>,
 }
 
 impl Default for SamplingConfig {
@@ -53,8 +63,10 @@ impl Default for SamplingConfig {
             origin: None,
             fit: false,
             dialect: Dialect::Auto,
+            tool: None,
             subroutine_path: Vec::new(),
             blend: None,
+            tool_table: None,
         }
     }
 }
@@ -89,6 +101,14 @@ impl<'m> Pipeline<'m> {
         &self.config
     }
 
+    /// The tool when the flag or the robot file says which (`None`: inferred from the program).
+    pub fn tool(&self) -> Option<Tool> {
+        self.config.tool.or_else(|| {
+            let kind = self.model.robot().tool.kind?;
+            Tool::from_name(kind.name())
+        })
+    }
+
     /// The program's motions, placed by the configuration's origin and `fit` (which reports a
     /// [`Note::Placed`]). A path CSV has no motions.
     pub fn motions(
@@ -97,7 +117,7 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: impl FnMut(Note) + 'static,
     ) -> Result<Motions, PipelineError> {
-        self.placed_motions(source, kind, &NoteSink::new(notes))
+        self.placed_motions(source, kind, &NoteSink::new(notes), Told::default())
     }
 
     fn placed_motions(
@@ -105,21 +125,16 @@ impl<'m> Pipeline<'m> {
         source: &dyn ProgramSource,
         kind: ProgramKind,
         notes: &NoteSink,
+        told: Told,
     ) -> Result<Motions, PipelineError> {
-        let reading = Reading {
-            dialect: self.config.dialect,
-            subroutine_path: &self.config.subroutine_path,
-            blend: self.config.blend,
-        };
         let placement = place(self.model, source, kind, &self.config, &mut |note| notes.say(note))?;
-        let motions =
-            read_motions(self.model, source, kind, placement.origin, &reading, notes.clone())?;
-        Ok(match placement.shift {
-            None => motions,
-            Some(offset) => {
-                let [x, y, ..] = self.model.home_position();
-                Box::new(motions.map(move |m| m.map(|m| shift_motion(m, offset, [x, y]))))
+        let reading = Reading::of(&self.config, placement.origin, placement.start, self.tool());
+        let motions = read_motions(self.model, source, kind, &reading, notes.clone(), told)?;
+        Ok(match placement.transform {
+            Some(transform) if !transform.is_identity() => {
+                Box::new(motions.map(move |m| m.map(|m| transform.motion(m))))
             }
+            _ => motions,
         })
     }
 
@@ -132,7 +147,34 @@ impl<'m> Pipeline<'m> {
         kind: ProgramKind,
         notes: impl FnMut(Note) + 'static,
     ) -> Result<Samples, PipelineError> {
-        let notes = NoteSink::new(notes);
+        self.recorded_samples(source, kind, NoteSink::new(notes), None)
+    }
+
+    /// The program's Cartesian samples ([`Pipeline::samples`]) with the tool's state at each
+    /// (`--events`, SPEC §1.6, §6): a wrapper over the motions records the tool's events as the
+    /// interpolator reads them, and one over the samples gives each its state. Streaming. A path
+    /// CSV has no tool events: its samples carry the gripper column it has.
+    pub fn tool_samples(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<ToolSamples, PipelineError> {
+        let tool = Rc::new(Cell::new(self.tool()));
+        let track: Rc<RefCell<Option<Track>>> = Rc::default();
+        let recorder = (Rc::clone(&tool), Rc::clone(&track));
+        let samples = self.recorded_samples(source, kind, NoteSink::new(notes), Some(recorder))?;
+        let track = track.borrow_mut().take().unwrap_or_default();
+        Ok(ToolSamples::new(samples, track, tool))
+    }
+
+    fn recorded_samples(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: NoteSink,
+        recorder: Option<(SharedTool, Rc<RefCell<Option<Track>>>)>,
+    ) -> Result<Samples, PipelineError> {
         let file = source.name().to_owned();
         if kind == ProgramKind::Path {
             if self.config.fit {
@@ -145,7 +187,13 @@ impl<'m> Pipeline<'m> {
                 source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;
             return Ok(Samples::Path { reader: read_path_csv(input), file });
         }
-        let motions = self.placed_motions(source, kind, &notes)?;
+        let told = Told { zeroed: None, tool: recorder.as_ref().map(|(tool, _)| Rc::clone(tool)) };
+        let mut motions = self.placed_motions(source, kind, &notes, told)?;
+        if let Some((tool, track)) = recorder {
+            let recorder = Recorder::new(motions, self.model.home_position(), tool);
+            *track.borrow_mut() = Some(recorder.track());
+            motions = Box::new(recorder);
+        }
         let robot = self.model.robot();
         let config = InterpolationConfig {
             dt: self.config.dt,
@@ -177,6 +225,29 @@ impl<'m> Pipeline<'m> {
             trajectory: JointTrajectory::new(samples, self.model.kinematics()),
             file,
         })
+    }
+
+    /// The program's joint samples ([`Pipeline::joints`]) with the tool's state at each
+    /// (`joints --events`, SPEC §1.6, §7): the states of [`Pipeline::tool_samples`] carried to
+    /// the joint samples solved from them. Streaming.
+    pub fn tool_joints(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<ToolJointSamples, PipelineError> {
+        let file = source.name().to_owned();
+        let samples = self.tool_samples(source, kind, notes)?;
+        Ok(ToolJointSamples::new(samples, self.model.kinematics(), file))
+    }
+}
+
+/// A joint-trajectory error located in `file`.
+pub(crate) fn locate(file: &str, err: JointsError<PipelineError>) -> PipelineError {
+    match err {
+        JointsError::Input(err) => err,
+        JointsError::Pose(err) => PipelineError::program(file, err),
+        other => PipelineError::program(file, other),
     }
 }
 
@@ -235,11 +306,7 @@ impl JointSamples {
     #[inline]
     pub fn next_sample(&mut self) -> Option<Result<&JointSample, PipelineError>> {
         let file = &self.file;
-        Some(self.trajectory.next_sample()?.map_err(|err| match err {
-            JointsError::Input(err) => err,
-            JointsError::Pose(err) => PipelineError::program(file, err),
-            other => PipelineError::program(file, other),
-        }))
+        Some(self.trajectory.next_sample()?.map_err(|err| locate(file, err)))
     }
 }
 

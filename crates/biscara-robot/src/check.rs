@@ -26,6 +26,9 @@ pub enum ProblemKind {
     SelfCollision,
     /// A part of the body inside a box of the scene.
     SceneCollision,
+    /// What only the tool can get wrong (SPEC §1.6): a laser burning or an extruder feeding
+    /// during a rapid (G0) move.
+    Tool,
 }
 
 impl ProblemKind {
@@ -39,6 +42,7 @@ impl ProblemKind {
             ProblemKind::Singularity => "singularity",
             ProblemKind::SelfCollision => "self_collision",
             ProblemKind::SceneCollision => "scene_collision",
+            ProblemKind::Tool => "tool",
         }
     }
 
@@ -297,8 +301,31 @@ impl Checker {
         let now = info.index;
         self.close_where(|open| {
             let seen = open.last_index;
-            if open.problem.kind.is_derivative() { seen + 1 < now } else { seen < now }
+            // Derivatives and the tool are recorded after the sample is pushed.
+            let late = open.problem.kind.is_derivative() || open.problem.kind == ProblemKind::Tool;
+            if late { seen + 1 < now } else { seen < now }
         });
+    }
+
+    /// Reports a tool problem (SPEC §1.6) at the sample last [`Checker::push`]ed: `subject`
+    /// names it (`laser on during a rapid move`), `detail` gives its numbers, `severity` ranks
+    /// the samples of one run (the worst is shown).
+    pub fn push_tool_problem(
+        &mut self,
+        sample: &CartesianSample,
+        subject: &str,
+        detail: String,
+        severity: f64,
+    ) {
+        let info = SampleInfo {
+            index: self.count.saturating_sub(1),
+            t: sample.t,
+            line: sample.line,
+            pose: sample.pose,
+        };
+        let finding =
+            Finding { kind: ProblemKind::Tool, subject: subject.to_owned(), severity, detail };
+        self.record(info, finding);
     }
 
     /// Ends the run: the problems in time order and the summary.

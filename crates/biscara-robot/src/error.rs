@@ -46,11 +46,14 @@ pub enum VirtualRobotError {
     /// Occurs when a program has no move, so it has no extent to place.
     #[error("the program has no move: there is nothing to place")]
     NoMoves,
-    /// Occurs when a program's XY extent is wider or taller than the workspace rectangle.
+    /// Occurs when a program's XY extent is wider or taller than the workspace rectangle, as
+    /// programmed and turned by 90° about Z.
     #[error(
         "the program's XY extent {width_mm:.3} x {height_mm:.3} mm does not fit the workspace \
-         rectangle {rect_width_mm:.3} x {rect_height_mm:.3} mm: {}",
-        excess(*.width_mm, *.height_mm, *.rect_width_mm, *.rect_height_mm)
+         rectangle {rect_width_mm:.3} x {rect_height_mm:.3} mm: as programmed, {}; turned by 90° \
+         about Z, {}",
+        excess(*.width_mm, *.height_mm, *.rect_width_mm, *.rect_height_mm),
+        excess(*.height_mm, *.width_mm, *.rect_width_mm, *.rect_height_mm)
     )]
     DoesNotFit {
         /// Width (X) of the program's bounding box, millimetres.

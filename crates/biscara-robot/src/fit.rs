@@ -7,23 +7,30 @@ use biscara_motion::{Motion, MotionKind, Plane};
 
 use crate::{Rectangle, VirtualRobotError};
 
-/// The XY bounding box of a program's moves: every end point, and the true extremes of arcs
+/// The bounding box of a program's moves: every end point, and the true extremes of arcs
 /// (where the circle crosses its axes' directions), millimetres. The start pose before the first
-/// move is not part of the program and is left out, and so are straight moves that end at the
-/// start pose's XY: a CAM program's first `G0 Z…` before any X or Y word, or a return home, stay
-/// at the robot's home when the program is placed (see [`shift_motion`]).
+/// move is not part of the program and is left out of the XY extent, and so are straight moves
+/// that end at the start pose's XY: a CAM program's first `G0 Z…` before any X or Y word, or a
+/// return home, stay at the robot's home when the program is placed (see [`place_motion`]). The
+/// Z extent leaves out only moves that end exactly at the start pose (a return home).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
     /// Smallest x and y, millimetres.
     pub min: [f64; 2],
     /// Largest x and y, millimetres.
     pub max: [f64; 2],
+    /// Smallest and largest z of the program's moves, millimetres (`[+∞, −∞]` when none).
+    pub z: [f64; 2],
     /// The pose the next move starts from.
     current: [f64; 4],
-    /// XY of the start pose.
-    home: [f64; 2],
+    /// The start pose.
+    home: [f64; 4],
     /// Whether any move was seen.
     any: bool,
+    /// Whether a straight move ended at the start pose's XY (left out of the extent).
+    at_home: bool,
+    /// Whether a point at the start pose's Z was left out of the Z extent.
+    at_home_z: bool,
 }
 
 impl Bounds {
@@ -32,9 +39,12 @@ impl Bounds {
         Bounds {
             min: [f64::INFINITY; 2],
             max: [f64::NEG_INFINITY; 2],
+            z: [f64::INFINITY, f64::NEG_INFINITY],
             current: start,
-            home: [start[0], start[1]],
+            home: start,
             any: false,
+            at_home: false,
+            at_home_z: false,
         }
     }
 
@@ -62,12 +72,46 @@ impl Bounds {
         self.max[1] - self.min[1]
     }
 
-    fn include(&mut self, point: [f64; 4]) {
-        for (axis, value) in point.into_iter().take(2).enumerate() {
+    /// The start pose's XY.
+    pub fn home(&self) -> [f64; 2] {
+        [self.home[0], self.home[1]]
+    }
+
+    /// Counts the moves that ended at the start pose's XY as part of the extent: for a program
+    /// that made the start point its zero (`G92 X0 Y0`), where `X0 Y0` is a point of the part.
+    pub fn include_home(&mut self) {
+        if self.at_home {
+            self.include_xy(self.home());
+        }
+    }
+
+    /// Counts the points at the start pose's Z as part of the Z extent: for a program that made
+    /// the start point's Z its zero (`G92 Z0`), where `Z0` is a height of the part.
+    pub fn include_home_z(&mut self) {
+        if self.at_home_z {
+            self.z = [self.z[0].min(self.home[2]), self.z[1].max(self.home[2])];
+        }
+    }
+
+    fn include_xy(&mut self, point: [f64; 2]) {
+        for (axis, value) in point.into_iter().enumerate() {
             self.min[axis] = self.min[axis].min(value);
             self.max[axis] = self.max[axis].max(value);
         }
         self.any = true;
+    }
+
+    fn include(&mut self, point: [f64; 4]) {
+        self.include_xy([point[0], point[1]]);
+        self.include_z(point);
+    }
+
+    fn include_z(&mut self, point: [f64; 4]) {
+        if point[2] == self.home[2] {
+            self.at_home_z = true;
+        } else {
+            self.z = [self.z[0].min(point[2]), self.z[1].max(point[2])];
+        }
     }
 
     /// Adds one motion (events are ignored).
@@ -75,7 +119,10 @@ impl Bounds {
         let start = self.current;
         match motion.kind {
             MotionKind::Rapid { end } | MotionKind::Linear { end, .. } => {
-                if !at_home(end, self.home) {
+                if at_home(end, self.home()) {
+                    self.at_home = true;
+                    self.include_z(end);
+                } else {
                     self.include(end);
                 }
             }
@@ -94,21 +141,45 @@ impl Bounds {
             self.current = end;
         }
     }
+
+    /// The XY extent of the program turned by +90° about the start pose's XY.
+    fn rotated(&self) -> ([f64; 2], [f64; 2]) {
+        let [hx, hy] = self.home();
+        let min = [hx - (self.max[1] - hy), hy + (self.min[0] - hx)];
+        let max = [hx - (self.min[1] - hy), hy + (self.max[0] - hx)];
+        (min, max)
+    }
 }
 
-/// Where a program goes when placed in the workspace rectangle.
+/// Where a program goes when placed in the workspace rectangle: first turned by +90° about the
+/// start pose's XY when `rotated`, then moved by `offset`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {
-    /// The XY offset to add to every position, millimetres.
+    /// The XY offset to add to every position after the turn, millimetres.
     pub offset: [f64; 2],
-    /// The program's bounds before the shift.
+    /// Whether the program is turned by +90° (counter-clockwise seen from above) about the
+    /// start pose's XY: only when it fits the rectangle that way and not as programmed.
+    pub rotated: bool,
+    /// The program's bounds before the turn and the shift.
     pub bounds: Bounds,
     /// The rectangle it was centred in.
     pub rectangle: Rectangle,
 }
 
-/// The offset that centres `bounds` in `rectangle` (SPEC §4.2 `--fit`); fails when the program
-/// is wider or taller than the rectangle, saying by how much.
+impl Fit {
+    /// The placement as a transform of motions, with no Z shift.
+    pub fn transform(&self) -> Transform {
+        Transform {
+            home: self.bounds.home(),
+            rotated: self.rotated,
+            offset: [self.offset[0], self.offset[1], 0.0],
+        }
+    }
+}
+
+/// The offset that centres `bounds` in `rectangle` (SPEC §4.2 `--fit`), turning the program by
+/// 90° about Z only when it fits that way and not as programmed; fails when it fits neither
+/// way, saying by how much in each orientation.
 pub fn fit(bounds: &Bounds, rectangle: &Rectangle) -> Result<Fit, VirtualRobotError> {
     if bounds.is_empty() {
         return Err(VirtualRobotError::NoMoves);
@@ -116,24 +187,117 @@ pub fn fit(bounds: &Bounds, rectangle: &Rectangle) -> Result<Fit, VirtualRobotEr
     let (width, height) = (bounds.width(), bounds.height());
     // Tolerate rounding: a program exactly as wide as the rectangle fits.
     const TOLERANCE_MM: f64 = 1e-9;
-    if width > rectangle.width() + TOLERANCE_MM || height > rectangle.height() + TOLERANCE_MM {
-        return Err(VirtualRobotError::DoesNotFit {
-            width_mm: width,
-            height_mm: height,
-            rect_width_mm: rectangle.width(),
-            rect_height_mm: rectangle.height(),
-        });
-    }
+    let fits = |w: f64, h: f64| {
+        w <= rectangle.width() + TOLERANCE_MM && h <= rectangle.height() + TOLERANCE_MM
+    };
     let center = rectangle.center();
-    let offset = [
-        center[0] - 0.5 * (bounds.min[0] + bounds.max[0]),
-        center[1] - 0.5 * (bounds.min[1] + bounds.max[1]),
-    ];
-    Ok(Fit { offset, bounds: *bounds, rectangle: *rectangle })
+    let centred = |min: [f64; 2], max: [f64; 2]| {
+        [center[0] - 0.5 * (min[0] + max[0]), center[1] - 0.5 * (min[1] + max[1])]
+    };
+    if fits(width, height) {
+        let offset = centred(bounds.min, bounds.max);
+        return Ok(Fit { offset, rotated: false, bounds: *bounds, rectangle: *rectangle });
+    }
+    if fits(height, width) {
+        let (min, max) = bounds.rotated();
+        let offset = centred(min, max);
+        return Ok(Fit { offset, rotated: true, bounds: *bounds, rectangle: *rectangle });
+    }
+    Err(VirtualRobotError::DoesNotFit {
+        width_mm: width,
+        height_mm: height,
+        rect_width_mm: rectangle.width(),
+        rect_height_mm: rectangle.height(),
+    })
 }
 
 fn at_home(end: [f64; 4], home: [f64; 2]) -> bool {
     end[0] == home[0] && end[1] == home[1]
+}
+
+/// A placement of motions: a turn by +90° about `home`'s XY (when `rotated`; C turns with the
+/// program), then a shift by `offset` (`[x, y, z]`, mm). Straight moves that end exactly at
+/// `home` stay there, as a G-code program's moves without X and Y words do when its origin
+/// moves; they are not part of the program's [`Bounds`] either.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Transform {
+    /// The start pose's XY, the centre of the turn, mm.
+    pub home: [f64; 2],
+    /// Whether to turn by +90°.
+    pub rotated: bool,
+    /// The shift after the turn, `[x, y, z]`, mm.
+    pub offset: [f64; 3],
+}
+
+impl Transform {
+    /// Whether the transform changes nothing.
+    pub fn is_identity(&self) -> bool {
+        !self.rotated && self.offset == [0.0; 3]
+    }
+
+    /// The turn of `point` (`[x, y]`) about `home`.
+    fn turn(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        if self.rotated {
+            let [hx, hy] = self.home;
+            [hx - (y - hy), hy + (x - hx)]
+        } else {
+            [x, y]
+        }
+    }
+
+    /// The position moved: turned, then shifted; C turned with the program.
+    pub fn position(&self, [x, y, z, c]: [f64; 4]) -> [f64; 4] {
+        let [x, y] = self.turn([x, y]);
+        let c = if self.rotated { c + 90.0 } else { c };
+        [x + self.offset[0], y + self.offset[1], z + self.offset[2], c]
+    }
+
+    /// The inverse turn of an XY vector: what to shift a program by before the turn so that it
+    /// ends up shifted by `vector` after it (`R⁻¹ v`).
+    pub fn unturn_vector(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        if self.rotated { [y, -x] } else { [x, y] }
+    }
+
+    /// `motion` placed (see [`Transform`]).
+    pub fn motion(&self, motion: Motion) -> Motion {
+        let kind = match motion.kind {
+            MotionKind::Rapid { end } | MotionKind::Linear { end, .. }
+                if at_home(end, self.home) =>
+            {
+                motion.kind
+            }
+            MotionKind::Rapid { end } => MotionKind::Rapid { end: self.position(end) },
+            MotionKind::Linear { end, feed } => {
+                MotionKind::Linear { end: self.position(end), feed }
+            }
+            MotionKind::Arc { end, center, plane, clockwise, turns, feed } => {
+                let [dx, dy, dz] = self.offset;
+                let (center, plane, clockwise) = match (plane, self.rotated) {
+                    (Plane::Xy, _) => {
+                        let [x, y] = self.turn(center);
+                        ([x + dx, y + dy], plane, clockwise)
+                    }
+                    // The centre is in the plane's axes: xz → (z, x), yz → (y, z).
+                    (Plane::Xz, false) => ([center[0] + dz, center[1] + dx], plane, clockwise),
+                    (Plane::Yz, false) => ([center[0] + dy, center[1] + dz], plane, clockwise),
+                    // Turned by +90°: x → y, so an XZ arc (normal +Y) becomes a YZ arc whose
+                    // normal is −X: seen from +X it turns the other way.
+                    (Plane::Xz, true) => {
+                        let [_, y] = self.turn([center[1], 0.0]);
+                        ([y + dy, center[0] + dz], Plane::Yz, !clockwise)
+                    }
+                    // y → −x: a YZ arc (normal +X) becomes an XZ arc with normal +Y.
+                    (Plane::Yz, true) => {
+                        let [x, _] = self.turn([0.0, center[0]]);
+                        ([center[1] + dz, x + dx], Plane::Xz, clockwise)
+                    }
+                };
+                MotionKind::Arc { end: self.position(end), center, plane, clockwise, turns, feed }
+            }
+            other => other,
+        };
+        Motion { kind, ..motion }
+    }
 }
 
 /// `motion` moved by `offset` in X and Y (end points and arc centres; z and c unchanged).
@@ -141,29 +305,12 @@ fn at_home(end: [f64; 4], home: [f64; 2]) -> bool {
 /// G-code program's moves without X and Y words do when its origin moves; they are not part of
 /// the program's [`Bounds`] either.
 pub fn shift_motion(motion: Motion, offset: [f64; 2], home: [f64; 2]) -> Motion {
-    let shift = |mut end: [f64; 4]| {
-        end[0] += offset[0];
-        end[1] += offset[1];
-        end
-    };
-    let kind = match motion.kind {
-        MotionKind::Rapid { end } | MotionKind::Linear { end, .. } if at_home(end, home) => {
-            motion.kind
-        }
-        MotionKind::Rapid { end } => MotionKind::Rapid { end: shift(end) },
-        MotionKind::Linear { end, feed } => MotionKind::Linear { end: shift(end), feed },
-        MotionKind::Arc { end, center, plane, clockwise, turns, feed } => {
-            // The centre is in the plane's axes: xy → (x, y), xz → (z, x), yz → (y, z).
-            let center = match plane {
-                Plane::Xy => [center[0] + offset[0], center[1] + offset[1]],
-                Plane::Xz => [center[0], center[1] + offset[0]],
-                Plane::Yz => [center[0] + offset[1], center[1]],
-            };
-            MotionKind::Arc { end: shift(end), center, plane, clockwise, turns, feed }
-        }
-        other => other,
-    };
-    Motion { kind, ..motion }
+    Transform { home, rotated: false, offset: [offset[0], offset[1], 0.0] }.motion(motion)
+}
+
+/// `motion` placed by `transform` (see [`Transform`]).
+pub fn place_motion(motion: Motion, transform: &Transform) -> Motion {
+    transform.motion(motion)
 }
 
 #[cfg(test)]
@@ -247,7 +394,8 @@ mod tests {
         assert_eq!(
             err.to_string(),
             "the program's XY extent 230.000 x 120.000 mm does not fit the workspace rectangle \
-             200.000 x 100.000 mm: 30.000 mm too wide in X and 20.000 mm too tall in Y"
+             200.000 x 100.000 mm: as programmed, 30.000 mm too wide in X and 20.000 mm too tall \
+             in Y; turned by 90° about Z, 130.000 mm too tall in Y"
         );
         assert_eq!(
             fit(&Bounds::new([0.0; 4]), &rectangle).unwrap_err(),
@@ -281,6 +429,48 @@ mod tests {
         for (axis, shift) in offset.into_iter().enumerate() {
             assert_relative_eq!(b.min[axis], a.min[axis] + shift, epsilon = 1e-9);
             assert_relative_eq!(b.max[axis], a.max[axis] + shift, epsilon = 1e-9);
+        }
+    }
+
+    #[test]
+    fn turned_arcs_in_every_plane_are_the_turned_curves() {
+        // Each arc's points, turned and shifted, are the points of the turned arc.
+        let transform = Transform { home: [5.0, 460.0], rotated: true, offset: [7.0, -3.0, 2.0] };
+        let start = [10.0, 2.0, 3.0, 0.0];
+        for (plane, center, end) in [
+            (Plane::Xy, [4.0, 6.0], [0.0, 10.0, 3.0, 20.0]),
+            (Plane::Xz, [1.0, 4.0], [0.0, 2.0, -1.0, 20.0]),
+            (Plane::Yz, [5.0, 1.0], [10.0, 8.0, 1.0, 20.0]),
+        ] {
+            for clockwise in [true, false] {
+                let motion = arc(1, end, center, clockwise);
+                let motion = Motion {
+                    kind: match motion.kind {
+                        MotionKind::Arc { end, center, clockwise, turns, feed, .. } => {
+                            MotionKind::Arc { end, center, plane, clockwise, turns, feed }
+                        }
+                        other => other,
+                    },
+                    ..motion
+                };
+                let turned = transform.motion(motion);
+                let MotionKind::Arc {
+                    end: e2, center: c2, plane: p2, clockwise: cw2, turns, ..
+                } = turned.kind
+                else {
+                    panic!("{turned:?}")
+                };
+                let original = Segment::arc(start, end, center, plane, clockwise, 1);
+                let moved = Segment::arc(transform.position(start), e2, c2, p2, cw2, turns);
+                for step in 0..=10 {
+                    let s = f64::from(step) / 10.0;
+                    let want = transform.position(original.point(s));
+                    let got = moved.point(s);
+                    for axis in 0..4 {
+                        assert_relative_eq!(got[axis], want[axis], epsilon = 1e-9);
+                    }
+                }
+            }
         }
     }
 }

@@ -47,6 +47,6 @@ pub use body::{Body, Cylinder, Link, LinkName, VirtualRobot};
 pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary};
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
 pub use error::VirtualRobotError;
-pub use fit::{Bounds, Fit, fit, shift_motion};
+pub use fit::{Bounds, Fit, Transform, fit, place_motion, shift_motion};
 pub use scene::{Scene, SceneBox};
 pub use workspace::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, Workspace, reachable};

@@ -25,8 +25,10 @@ pub struct ViewerOptions {
     pub max_path_points: usize,
     /// Most program-line changes kept (for the G-code line shown while playing).
     pub max_line_changes: usize,
-    /// Most pick/place events kept.
+    /// Most pick/place events kept (and as many changes of the tool's work).
     pub max_events: usize,
+    /// Most points of the tool's work kept (the burnt trace, the track, the strokes).
+    pub max_process_points: usize,
 }
 
 impl Default for ViewerOptions {
@@ -37,6 +39,7 @@ impl Default for ViewerOptions {
             max_path_points: 20_000,
             max_line_changes: 20_000,
             max_events: 5_000,
+            max_process_points: 40_000,
         }
     }
 }
@@ -102,6 +105,113 @@ struct Event {
     at: [f64; 3],
 }
 
+/// One point of the tool's work: time, where, how strongly (0…1), whether a stroke starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ProcessPoint {
+    t: f64,
+    at: [f64; 3],
+    strength: f64,
+    start: bool,
+}
+
+/// The tool's work (SPEC §1.6) as strokes of points at least `spacing` apart (doubled, and
+/// every other inner point dropped, when full), and the times its state changes.
+#[derive(Debug)]
+struct Process {
+    /// The tool's name and the legend of its work.
+    tool: Option<(String, String)>,
+    points: Vec<ProcessPoint>,
+    /// The last point kept and the latest sample not kept, of the stroke being drawn.
+    last: Option<ProcessPoint>,
+    pending: Option<ProcessPoint>,
+    spacing: f64,
+    capacity: usize,
+    /// The previous sample's program line.
+    line: Option<usize>,
+    /// (time, strength; −1 when the tool stops working).
+    changes: Vec<(f64, f64)>,
+    max_changes: usize,
+}
+
+impl Process {
+    fn new(capacity: usize, max_changes: usize) -> Process {
+        Process {
+            tool: None,
+            points: Vec::new(),
+            last: None,
+            pending: None,
+            spacing: 0.5,
+            capacity: capacity.max(4),
+            line: None,
+            changes: Vec::new(),
+            max_changes,
+        }
+    }
+
+    fn push(&mut self, t: f64, pose: [f64; 4], line: usize, strength: Option<f64>) {
+        let at = [pose[0], pose[1], pose[2]];
+        // A corner: the previous sample ended a move; keep it.
+        let corner = self.line.replace(line).is_some_and(|previous| previous != line);
+        let was = self.last.map(|point| point.strength);
+        if was != strength && self.changes.len() < self.max_changes {
+            self.changes.push((t, strength.unwrap_or(-1.0)));
+        }
+        let Some(strength) = strength else {
+            self.end_stroke();
+            return;
+        };
+        let point = ProcessPoint { t, at, strength, start: false };
+        match self.last {
+            Some(mut last) if last.strength == strength => {
+                if corner && let Some(pending) = self.pending {
+                    self.keep(pending);
+                    last = pending;
+                }
+                let far = (0..3).map(|k| (at[k] - last.at[k]).powi(2)).sum::<f64>().sqrt()
+                    >= self.spacing;
+                if far {
+                    self.keep(point);
+                } else {
+                    self.pending = Some(point);
+                }
+            }
+            _ => {
+                self.end_stroke();
+                self.keep(ProcessPoint { start: true, ..point });
+            }
+        }
+    }
+
+    /// Keeps the stroke's last sample, so that it ends where the tool stopped.
+    fn end_stroke(&mut self) {
+        if let Some(pending) = self.pending.take() {
+            self.keep(pending);
+        }
+        self.last = None;
+    }
+
+    fn keep(&mut self, point: ProcessPoint) {
+        self.pending = None;
+        self.last = Some(point);
+        self.points.push(point);
+        if self.points.len() > self.capacity {
+            // Every other point inside a stroke goes; a stroke's first and last stay.
+            let points = std::mem::take(&mut self.points);
+            let count = points.len();
+            self.points = points
+                .iter()
+                .enumerate()
+                .filter(|&(index, point)| {
+                    let last_of_stroke = index + 1 == count || points[index + 1].start;
+                    point.start || last_of_stroke || index % 2 == 0
+                })
+                .map(|(_, point)| *point)
+                .collect();
+            self.spacing *= 2.0;
+        }
+    }
+}
+
 /// Gathers a joint trajectory, the programmed path and a scene, and writes the viewer page.
 ///
 /// Push the trajectory's rows with [`Viewer::push_row`], optionally the program's Cartesian
@@ -124,6 +234,7 @@ pub struct Viewer {
     line_text: BTreeMap<usize, String>,
     time_step: Option<f64>,
     previous_t: Option<f64>,
+    process: Process,
 }
 
 impl Viewer {
@@ -136,6 +247,7 @@ impl Viewer {
             frames: Decimator::new(options.max_frames),
             path: Decimator::new(options.max_path_points),
             lines: Decimator::new(options.max_line_changes),
+            process: Process::new(options.max_process_points, options.max_events),
             options,
             current_line: None,
             events: Vec::new(),
@@ -189,6 +301,27 @@ impl Viewer {
             self.events.push(Event { t, pick: gripper, at: [pose[0], pose[1], pose[2]] });
         }
         self.gripper = gripper;
+    }
+
+    /// Names the tool whose work the page shows (SPEC §1.6: `laser`, `extruder`, `pen`,
+    /// `spindle`) and the legend of its work; without it the page shows no process.
+    pub fn set_tool(&mut self, tool: &str, label: &str) {
+        self.process.tool = Some((tool.to_owned(), label.to_owned()));
+    }
+
+    /// Adds the tool's work at one sample of the program: time (s), pose `[x, y, z, c]` (mm,
+    /// degrees), the program line it belongs to (the last sample of a line is kept: a corner)
+    /// and how strongly the tool works there, 0…1 (`None` while it does not: travel). The page
+    /// draws the work done so far, apart from travel: the burnt trace, the deposited track layer
+    /// by layer, the pen's strokes.
+    pub fn push_process_sample(
+        &mut self,
+        t: f64,
+        pose: [f64; 4],
+        line: usize,
+        strength: Option<f64>,
+    ) {
+        self.process.push(t, pose, line, strength);
     }
 
     /// The program lines the page refers to (those of the kept line changes), ascending.
@@ -301,6 +434,25 @@ impl Viewer {
                 event.at[2]
             );
         }
+        json.push_str("],\"tool\":");
+        match &self.process.tool {
+            Some((name, label)) => {
+                let _ = write!(json, "{{\"kind\":{},\"label\":{}}}", string(name), string(label));
+            }
+            None => json.push_str("null"),
+        }
+        let mut points = self.process.points.clone();
+        points.extend(self.process.pending);
+        json.push_str(",\"process\":[");
+        push_numbers(
+            &mut json,
+            points.iter().flat_map(|p| {
+                [p.t, p.at[0], p.at[1], p.at[2], p.strength, f64::from(u8::from(p.start))]
+            }),
+            4,
+        );
+        json.push_str("],\"work\":[");
+        push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
         json.push_str("],\"scene\":[");
         for (index, scene_box) in self.scene.boxes.iter().enumerate() {
             if index > 0 {
@@ -404,6 +556,47 @@ mod tests {
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
         assert_eq!(page.matches("</script>").count(), 2, "the scene name must not end a script");
         assert!(!page.contains("http://") && !page.contains("https://"), "no network");
+    }
+
+    #[test]
+    fn the_process_is_kept_as_strokes_apart_from_travel_and_stays_bounded() {
+        let mut process = Process::new(100, 10);
+        // Burn along x from 0 to 10 mm (0.1 mm a sample), travel, burn at half power.
+        for step in 0..=100 {
+            process.push(f64::from(step), [f64::from(step) * 0.1, 0.0, 0.0, 0.0], 1, Some(1.0));
+        }
+        process.push(101.0, [20.0, 0.0, 0.0, 0.0], 2, None);
+        for step in 0..=10 {
+            process.push(200.0 + f64::from(step), [0.0, f64::from(step), 0.0, 0.0], 3, Some(0.5));
+        }
+        process.end_stroke();
+        let starts: Vec<f64> = process.points.iter().filter(|p| p.start).map(|p| p.t).collect();
+        assert_eq!(starts, [0.0, 200.0], "two strokes");
+        // Points 0.5 mm apart, each stroke ending where the tool stopped.
+        let first: Vec<&ProcessPoint> = process.points.iter().filter(|p| p.t < 150.0).collect();
+        assert_eq!(first.len(), 21);
+        assert_eq!(first.last().map(|p| p.at[0]), Some(10.0));
+        assert!(process.points.iter().all(|p| p.at[0] <= 10.0), "travel is not work");
+        assert_eq!(process.changes, [(0.0, 1.0), (101.0, -1.0), (200.0, 0.5)]);
+        // A corner is kept: the last sample of a line, however close to the last point.
+        let mut corner = Process::new(100, 10);
+        for step in 0..=34 {
+            let x = (f64::from(step) * 0.3).min(10.0);
+            corner.push(f64::from(step), [x, 0.0, 0.0, 0.0], 1, Some(1.0));
+        }
+        for step in 1..=10 {
+            corner.push(40.0 + f64::from(step), [10.0, f64::from(step), 0.0, 0.0], 2, Some(1.0));
+        }
+        assert!(corner.points.iter().any(|p| p.at == [10.0, 0.0, 0.0]), "{:?}", corner.points);
+        // A long job: thinned to the capacity, both ends of every stroke kept.
+        for step in 0..100_000 {
+            let t = 1000.0 + f64::from(step);
+            let strength = if step % 5000 < 4000 { Some(1.0) } else { None };
+            process.push(t, [f64::from(step) * 0.3, 5.0, 0.0, 0.0], 4, strength);
+        }
+        assert!(process.points.len() <= 101, "{}", process.points.len());
+        assert!(process.points.iter().any(|p| p.start && p.t > 90_000.0));
+        assert!(process.changes.len() <= 10);
     }
 
     #[test]

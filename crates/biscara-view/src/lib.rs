@@ -30,5 +30,8 @@ pub use biscara_robot::{Scene, SceneBox};
 pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
-pub use plot::{ImageFormat, JointCurves, TopView, draw_joints, draw_top_view, draw_workspace};
+pub use plot::{
+    ImageFormat, JointCurves, ProcessStroke, ProcessStrokes, TopView, draw_joints, draw_top_view,
+    draw_workspace, zoom_region,
+};
 pub use trace::ProgramTrace;

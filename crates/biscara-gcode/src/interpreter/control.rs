@@ -137,6 +137,8 @@ struct Frame {
     locals: HashMap<Vec<u8>, f64>,
     /// `M98 … L`: the repeats left.
     m98_loop_counter: i64,
+    /// This level's M70/M73 state while a deeper level runs.
+    modes: super::modal_state::ModalStack,
 }
 
 impl Frame {
@@ -150,6 +152,7 @@ impl Frame {
             line: 0,
             locals: HashMap::new(),
             m98_loop_counter: -1,
+            modes: super::modal_state::ModalStack::default(),
         }
     }
 }
@@ -733,8 +736,10 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.line_fault("Too many subroutine levels"));
         }
         let locals = self.state.params.take_locals();
+        let modes = std::mem::take(&mut self.state.modal_stack);
         if let Some(caller) = self.control.frames.last_mut() {
             caller.locals = locals;
+            caller.modes = modes;
         }
         self.control.frames.push(Frame::new(Some(block.name.clone()), block.call_type));
         self.state.owords.level = self.control.level();
@@ -743,9 +748,13 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Back to the caller's level (`leave_context`).
     fn leave_context(&mut self) {
+        // M73: the modal state saved at this level comes back as the subroutine returns.
+        self.restore_on_return();
         if self.control.frames.len() > 1 {
             self.control.frames.pop();
         }
+        let modes = self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.modes));
+        self.state.modal_stack = modes.unwrap_or_default();
         let locals =
             self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.locals));
         self.state.params.restore_locals(locals.unwrap_or_default());

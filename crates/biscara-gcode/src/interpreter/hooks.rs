@@ -15,7 +15,7 @@ use crate::error::GcodeError;
 use crate::lexer::Fault;
 use crate::params::{G28_HOME, axis_slot};
 use crate::parser::Word;
-use crate::tool::Tool;
+use crate::tool::{Tool, ToolInference};
 
 /// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
 const MARLIN_DEFAULT_FEED: f64 = 4000.0;
@@ -65,9 +65,49 @@ impl<R: BufRead> Interpreter<R> {
         })
     }
 
+    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
+    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
+    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
+    pub fn zeroed_at_start(&self) -> [bool; 4] {
+        self.zeroed_at_start
+    }
+
     /// The no-motion codes read so far, with their counts (complete once the iterator ends).
     pub fn summary(&self) -> &Summary {
         &self.summary
+    }
+
+    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
+    /// asked and something told (known once the first motion is read).
+    pub fn tool_inference(&self) -> Option<&ToolInference> {
+        self.tool_inference.as_ref()
+    }
+
+    /// The tool M3, M4, M5 and S drive.
+    pub fn tool(&self) -> Tool {
+        self.tool
+    }
+
+    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
+    pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
+        self.infer_tool = false;
+        self.lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
+            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
+            (self.dialect == Dialect::Marlin).then(|| ToolInference {
+                tool: Tool::Extruder,
+                reason: "read as Marlin G-code: a 3D printer".to_owned(),
+                line: None,
+            })
+        });
+        if let Some(inference) = inference {
+            self.tool = inference.tool;
+            self.tool_inference = Some(inference);
+        }
+        Ok(())
     }
 
     /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.

@@ -212,13 +212,13 @@ fn auto_without_evidence_is_linuxcnc_and_grbl_when_the_end_is_missing() {
 #[test]
 fn auto_reads_ahead_64_kib_at_most() {
     let mut program = "G0 X1\n".repeat(20_000);
-    program.push_str("M104 S200\nM2\n");
+    program.push_str("M204 S200\nM2\n");
     let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
     interpreter.next();
-    // The M104 lies beyond the look-ahead: LinuxCNC, which then refuses it.
+    // The M204 lies beyond the look-ahead: LinuxCNC, which then refuses it.
     assert_eq!(interpreter.dialect(), Dialect::Linuxcnc);
     let err = interpreter.find_map(Result::err).expect("refused");
-    assert!(err.to_string().contains("Unknown m code used: M104"), "{err}");
+    assert!(err.to_string().contains("M-code greater than 199: M204"), "{err}");
 }
 
 #[test]
@@ -264,4 +264,33 @@ fn dialect_names_round_trip() {
         assert_eq!(dialect.to_string().parse::<Dialect>(), Ok(dialect));
     }
     assert!("fanuc".parse::<Dialect>().is_err());
+}
+
+/// Mach3's G41/G42 P (the radius, instead of the tool table's): the same moves as LinuxCNC's
+/// G41.1/G42.1 D with twice that diameter; LinuxCNC itself refuses the P word.
+#[test]
+fn mach3_takes_the_compensation_radius_from_a_p_word() {
+    for side in ["41", "42"] {
+        let body = |comp: &str| {
+            format!(
+                "G21 G17 G90\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 G{comp} X10 Y0\nG1 X10 Y10\n\
+                 G3 X0 Y10 R5\nG1 X0 Y0\nG40 G1 X-5 Y-5\nM30\n"
+            )
+        };
+        let mach3 = read(&body(&format!("{side} P1.5")), Dialect::Mach3);
+        let linuxcnc = read(&body(&format!("{side}.1 D3")), Dialect::Linuxcnc);
+        assert_eq!(ends(&mach3).len(), ends(&linuxcnc).len());
+        for (a, b) in ends(&mach3).iter().zip(ends(&linuxcnc)) {
+            assert!(a.iter().zip(b).all(|(a, b)| (a - b).abs() < 1e-9), "G{side}: {a:?} vs {b:?}");
+        }
+        // Compensated: the first cut ends at least the radius away from the programmed X10 Y0.
+        let cut = ends(&mach3)[2];
+        assert!((cut[0] - 10.0).hypot(cut[1]) > 1.5 - 1e-9, "{cut:?}");
+        let err = refused(&body(&format!("{side} P1.5")), Dialect::Linuxcnc);
+        assert!(err.to_string().contains("P word with no G2"), "{err}");
+    }
+    // Auto reads G41 with a P word as Mach3.
+    let auto = read("G0 X0 Y0\nG1 G41 X10 Y0 P1 F100\nG40 G1 X20\nM30\n", Dialect::Auto);
+    let end = ends(&auto)[1];
+    assert!((end[1] - 1.0).abs() < 1e-9 || (end[1] + 1.0).abs() < 1e-9, "{end:?}");
 }

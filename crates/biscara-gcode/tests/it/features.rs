@@ -89,8 +89,8 @@ fn errors_point_at_the_word() {
     let err = error("G0 X1\n  G0 Z2 A3\nM2\n");
     assert_eq!(err.to_string(), "2:9: A axis word: this robot has the axes X Y Z C only");
     assert!(matches!(err, GcodeError::ForeignAxis { letter: 'A', .. }));
-    let err = error("G0 X1\nG83 X1 Z-1 R1 Q1 F10\nM2\n");
-    assert_eq!(err.to_string(), "2:1: G83 is not supported yet (canned cycle)");
+    let err = error("G0 X1\nG83 X1 Z-1 R1 F10\nM2\n");
+    assert_eq!(err.to_string(), "2:1: Q word missing with g83");
     let err = error("o10 if [1]\nG0 X1\no10 endif\no10 if [1]\no10 endif\nM2\n");
     assert_eq!(
         err.to_string(),
@@ -209,4 +209,136 @@ fn naive_cam_merging_is_refused_where_it_is_asked_for() {
     let config = Config::default();
     assert_eq!(blends("G64 P0.05 Q0.05\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
     assert_eq!(blends("G64 P0.05 Q0.01\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+}
+
+/// The XY end of a move (of any kind with one).
+fn xy(kind: &MotionKind) -> [f64; 2] {
+    let end = kind.end().unwrap_or_else(|| panic!("no end: {kind:?}"));
+    [end[0], end[1]]
+}
+
+#[track_caller]
+fn assert_near(got: [f64; 2], want: [f64; 2]) {
+    assert!(
+        (got[0] - want[0]).abs() < 1e-9 && (got[1] - want[1]).abs() < 1e-9,
+        "{got:?} != {want:?}"
+    );
+}
+
+#[test]
+fn cutter_compensation_offsets_the_path_and_rounds_convex_corners() {
+    // A 20 mm square cut on its outside with a 4 mm tool on the left of the path (clockwise):
+    // entry perpendicular to the first side, an arc about each corner, exit back to the line.
+    let program = "G21 G90 F100 G0 X0 Y0\nG41.1 D4\nG1 X0 Y20\nG1 X20\nG1 Y0\nG40 G1 X0 Y0\nM2\n";
+    let got = motions(&program.replace("G0 X0 Y0", "G0 X0 Y-10"), [0.0; 4]);
+    let kinds: Vec<&MotionKind> = got.iter().map(|(_, kind)| kind).collect();
+    // The entry: to one radius left of (0, 20) seen from (0, -10).
+    assert_near(xy(kinds[1]), [-2.0, 20.0]);
+    // Round the corner (0, 20) clockwise to one radius above it.
+    let MotionKind::Arc { center, clockwise: true, .. } = *kinds[2] else { panic!("{kinds:?}") };
+    assert_near(center, [0.0, 20.0]);
+    assert_near(xy(kinds[2]), [0.0, 22.0]);
+    assert_near(xy(kinds[3]), [20.0, 22.0]);
+    assert_near(xy(kinds[4]), [22.0, 20.0]);
+    assert_near(xy(kinds[5]), [22.0, 0.0]);
+    // G40: the exit move goes to the programmed point itself.
+    assert_near(xy(kinds[6]), [0.0, 0.0]);
+    // Each held move carries its own line.
+    assert_eq!(got[3].0, 4);
+    assert_eq!(got[5].0, 5);
+}
+
+#[test]
+fn cutter_compensation_shortens_moves_into_concave_corners() {
+    // A tool on the right turning right: the first move stops one radius before the wall.
+    let start = "G21 G90 F100 G0 X0 Y0\nG42.1 D2\nG1 X10\n";
+    let got = motions(&format!("{start}G1 Y-10\nG40 G1 X0 Y0\nM2\n"), [0.0; 4]);
+    assert_near(xy(&got[1].1), [9.0, -1.0]);
+    assert_near(xy(&got[2].1), [9.0, -10.0]);
+    // Turning left is convex for it: to the corner's side, round it, on.
+    let got = motions(&format!("{start}G1 Y10\nG40 G1 X0 Y0\nM2\n"), [0.0; 4]);
+    assert_near(xy(&got[1].1), [10.0, -1.0]);
+    assert!(matches!(got[2].1, MotionKind::Arc { clockwise: false, .. }), "{got:?}");
+    assert_near(xy(&got[2].1), [11.0, 0.0]);
+    assert_near(xy(&got[3].1), [11.0, 10.0]);
+}
+
+#[test]
+fn cutter_compensation_errors_name_the_block() {
+    let err = error("G21 F100\nG41.1 D4\nG1 X10\nG1 X12 Y-0.5\nG1 X13 Y5\nM2\n");
+    assert_eq!(
+        err.to_string(),
+        "5:1: Straight feed in concave corner cannot be reached by the tool without gouging"
+    );
+    let err = error("G21 F100\nG41.1 D4\nG1 X10\nG92 X0\nM2\n");
+    assert_eq!(err.to_string(), "4:1: Cannot change axis offsets with cutter radius comp");
+    let err = error("G21 F100\nG41 D1.5\nM2\n");
+    assert_eq!(err.to_string(), "2:5: G41 requires D word to be a whole number");
+    let err = error("G21 F100\n  G42.1\nM2\n");
+    assert_eq!(err.to_string(), "2:3: G42.1 with no D word");
+    let err = error("G21 F100\nG41.1 D2\nG1 X10\nG40\nG3 X0 R5\nM2\n");
+    assert!(err.to_string().starts_with("5:1: The move just after exiting"), "{err}");
+}
+
+/// The end point of motion `index` of `got`, checked to 1e-9.
+#[track_caller]
+fn assert_end(got: &[(usize, MotionKind)], index: usize, want: [f64; 3]) {
+    let end = got[index].1.end().unwrap_or_else(|| panic!("{got:?}"));
+    for axis in 0..3 {
+        assert!((end[axis] - want[axis]).abs() < 1e-9, "motion {index}: {end:?}, want {want:?}");
+    }
+}
+
+#[test]
+fn polar_words_place_the_end_from_the_origin_or_the_current_point() {
+    let program = "G0 X0 Y0 Z0\nG1 @10 ^90 F100\nG1 ^180\nG91 G1 @5\nG91 G1 ^-90\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    assert_end(&got, 1, [0.0, 10.0, 0.0]);
+    // The radius kept, the angle given.
+    assert_end(&got, 2, [-10.0, 0.0, 0.0]);
+    // G91: radius 10 + 5 at the same angle, then a quarter turn back.
+    assert_end(&got, 3, [-15.0, 0.0, 0.0]);
+    assert_end(&got, 4, [0.0, 15.0, 0.0]);
+    let err = error("G0 X0 Y0\nG1 @10 X1 F100\nM2\n");
+    assert!(err.to_string().contains("Cannot specify both polar coordinate and X word"), "{err}");
+}
+
+#[test]
+fn a_rotated_coordinate_system_turns_moves_and_arcs_about_its_origin() {
+    let program =
+        "G10 L2 P1 X10 Y5 R90\nG0 X0 Y0 Z0\nG1 X1 F100\nG2 X3 Y0 I1 J0\nG53 G0 X0 Y0\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    assert_end(&got, 0, [10.0, 5.0, 0.0]);
+    // X in the system is Y on the machine.
+    assert_end(&got, 1, [10.0, 6.0, 0.0]);
+    let MotionKind::Arc { end, center, clockwise, .. } = got[2].1 else { panic!("{got:?}") };
+    assert!((end[0] - 10.0).abs() < 1e-9 && (end[1] - 8.0).abs() < 1e-9, "{end:?}");
+    assert!((center[0] - 10.0).abs() < 1e-9 && (center[1] - 7.0).abs() < 1e-9, "{center:?}");
+    assert!(clockwise);
+    assert_end(&got, 3, [0.0, 0.0, 0.0]);
+    let err = error("G10 L2 P1 R30\nG18 G2 X1 Z0 I0.5 K0 F10\nM2\n");
+    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+}
+
+#[test]
+fn outputs_are_events_and_overrides_do_nothing() {
+    let got = motions("M62 P1\nM48\nM68 E0 Q2\nM19 R90\nM3 $0\nM5 $-1\nM2\n", [0.0; 4]);
+    let codes: Vec<String> = got
+        .iter()
+        .filter_map(|(_, kind)| match kind {
+            MotionKind::Code { code } => Some(code.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(codes, ["M62", "M68", "M19"]);
+    let err = error("M3 $1\nM2\n");
+    assert!(err.to_string().contains("Spindle ($) number out of range in M3 Command"), "{err}");
+}
+
+#[test]
+fn m73_in_a_subroutine_restores_the_modes_when_it_returns() {
+    let program = "o1 sub\nM73\nG20 G91\no1 endsub\nG0 X0 Y0 Z0\no1 call\nG0 X2\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    // Millimetres and absolute again after the call.
+    assert_end(&got, 1, [2.0, 0.0, 0.0]);
 }

@@ -5,5 +5,6 @@ mod features;
 mod memory;
 mod no_panic;
 mod owords;
+mod splines;
 mod strategies;
 mod streaming;

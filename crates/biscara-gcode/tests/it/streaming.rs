@@ -24,6 +24,8 @@ struct Generated {
     offset: usize,
     /// Bytes handed out so far (shared with the test).
     consumed: Rc<Cell<usize>>,
+    /// A square profile under cutter compensation instead of mixed moves.
+    compensated: bool,
 }
 
 impl Generated {
@@ -35,7 +37,15 @@ impl Generated {
             line: Vec::with_capacity(64),
             offset: 0,
             consumed: Rc::clone(&consumed),
+            compensated: false,
         };
+        (generated, consumed)
+    }
+
+    /// `lines` blocks going round a 20 mm square under G41.1 (a concave corner at each).
+    fn compensated(lines: usize) -> (Generated, Rc<Cell<usize>>) {
+        let (mut generated, consumed) = Generated::new(lines);
+        generated.compensated = true;
         (generated, consumed)
     }
 
@@ -46,9 +56,16 @@ impl Generated {
         let n = self.next;
         self.next += 1;
         let _ = match n {
+            0 if self.compensated => writeln!(self.line, "G21 G90 F1000 G41.1 D2"),
             0 => writeln!(self.line, "G21 G90 F1000"),
             n if n == self.lines + 1 => writeln!(self.line, "M2"),
             n if n > self.lines + 1 => return false,
+            n if self.compensated => match n % 4 {
+                1 => writeln!(self.line, "G1 X20 Y0"),
+                2 => writeln!(self.line, "G1 X20 Y20"),
+                3 => writeln!(self.line, "G1 X0 Y20"),
+                _ => writeln!(self.line, "G1 X0 Y0"),
+            },
             n => match n % 4 {
                 0 => writeln!(self.line, "G1 X{}.5 Y{}.25", n % 100, (n * 7) % 100),
                 1 => writeln!(self.line, "G2 I5 J0"),
@@ -131,4 +148,39 @@ fn each_motion_comes_before_more_than_its_line_is_read() {
         );
     }
     assert_eq!(count, 20_001);
+}
+
+#[test]
+fn cutter_compensation_holds_back_one_motion_in_flat_memory() {
+    // Each compensated move waits for the next block (its corner), no longer: when the motion
+    // of line k is yielded, at most lines 1..=k+1 and one buffer have been read.
+    const LINES: usize = 1_000_000;
+    const BUFFER: usize = 64;
+    let (generated, consumed) = Generated::compensated(LINES);
+    let config = Config::default();
+    let start = resident_kib();
+    let mut peak = start.unwrap_or(0);
+    let mut count = 0usize;
+    for motion in interpret(BufReader::with_capacity(BUFFER, generated), &config) {
+        let motion = motion.expect("the compensated square is valid");
+        count += 1;
+        assert!(
+            consumed.get() <= (motion.line + 1) * LINE_BYTES + BUFFER,
+            "line {}: {} bytes read already",
+            motion.line,
+            consumed.get()
+        );
+        if count.is_multiple_of(100_000) {
+            peak = peak.max(resident_kib().unwrap_or(0));
+        }
+        if let MotionKind::Linear { end, .. } = motion.kind {
+            // Inside the square, one radius from its sides.
+            assert!(end[0] >= 0.999 && end[0] <= 19.001 && end[1] >= -0.001, "{end:?}");
+        }
+    }
+    assert_eq!(count, LINES + 1, "one motion per move line, and the end");
+    if let Some(start) = start {
+        let growth = peak.saturating_sub(start);
+        assert!(growth < 16 * 1024, "resident memory grew by {growth} KiB over {LINES} lines");
+    }
 }

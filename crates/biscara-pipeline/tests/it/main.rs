@@ -98,7 +98,7 @@ fn fit_places_the_program_and_says_so() {
         .unwrap();
     assert!(rows.len() > 100);
     let notes = notes.borrow();
-    let [Note::Placed { file, fit }] = notes.as_slice() else { panic!("{notes:?}") };
+    let [Note::Placed { file, fit, .. }] = notes.as_slice() else { panic!("{notes:?}") };
     assert_eq!(file, "part.ngc");
     assert!(fit.offset[1] > 100.0, "{fit:?}");
 }
@@ -147,4 +147,97 @@ fn a_path_csv_is_read_as_it_is() {
     assert_eq!(samples.len(), 2);
     assert_eq!(samples[1].pose, [10.0, 400.0, 50.0, 0.0]);
     assert_eq!(samples[1].line, 3);
+}
+
+mod placement;
+
+/// The kinds of the motions of `program` read with `tool` and the robot file `robot`, and the
+/// notes.
+fn tool_kinds(
+    robot: &str,
+    tool: Option<biscara_gcode::Tool>,
+    program: &str,
+) -> (Vec<&'static str>, Vec<Note>) {
+    let model = RobotModel::from_json(robot).unwrap();
+    let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    let heard = std::rc::Rc::clone(&notes);
+    let config = SamplingConfig { tool, ..SamplingConfig::default() };
+    let source = TextSource::new("job.nc", program);
+    let kinds = pipeline(&model, config)
+        .motions(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
+        .unwrap()
+        .map(|m| m.unwrap().kind.name())
+        .filter(|name| !matches!(*name, "rapid" | "linear"))
+        .collect();
+    let notes = notes.borrow().clone();
+    (kinds, notes)
+}
+
+#[test]
+fn the_tool_comes_from_the_flag_then_the_robot_file_then_the_program() {
+    use biscara_gcode::Tool;
+    let laser = "M3 S0\nG1 X10 Y400 F600\nS300\nG1 X20\nM5\nM2\n";
+    // Inferred, with a note that says why.
+    let (kinds, notes) = tool_kinds("{}", None, laser);
+    assert_eq!(kinds, ["laser_on", "laser_on", "laser_off", "end"]);
+    let said: Vec<String> = notes.iter().map(ToString::to_string).collect();
+    assert!(
+        said.iter()
+            .any(|n| n.starts_with("job.nc:1: tool: laser (M3/M4 with S power and no Z move")),
+        "{said:?}"
+    );
+    // The robot file says: no inference, no note.
+    let (kinds, notes) = tool_kinds(r#"{"tool":{"kind":"spindle"}}"#, None, laser);
+    assert_eq!(kinds, ["spindle_on", "spindle_on", "spindle_off", "end"]);
+    assert!(!notes.iter().any(|n| matches!(n, Note::Tool { .. })), "{notes:?}");
+    // The flag wins over the robot file.
+    let (kinds, _) = tool_kinds(r#"{"tool":{"kind":"spindle"}}"#, Some(Tool::Gripper), laser);
+    assert_eq!(kinds, ["pick", "gripper_off", "end"]);
+    // The paper's pick and place stays the gripper's, with no note.
+    let (kinds, notes) = tool_kinds("{}", None, "G0 X0 Y400 Z5\nM3\nG0 Z20\nM4\nM2\n");
+    assert_eq!(kinds, ["pick", "place", "end"]);
+    assert!(!notes.iter().any(|n| matches!(n, Note::Tool { .. })), "{notes:?}");
+}
+
+#[test]
+fn a_robot_file_with_a_bad_tool_is_refused_naming_the_key() {
+    let err = RobotModel::from_json(r#"{"tool":{"kind":"torch"}}"#).unwrap_err().to_string();
+    assert!(err.contains("tool.kind") && err.contains("torch"), "{err}");
+    let err = RobotModel::from_json(r#"{"tool":{"max_power":0}}"#).unwrap_err().to_string();
+    assert!(err.contains("tool.max_power"), "{err}");
+}
+
+#[test]
+fn tool_offsets_come_from_the_table_or_a_note_says_there_is_none() {
+    let model = RobotModel::default();
+    let program = "G21 G90\nT1 M6\nG43 H1\nG0 X0 Y400 Z10\nM2\n";
+    let source = TextSource::new("tools.ngc", program);
+    let run = |config: SamplingConfig| {
+        let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+        let heard = std::rc::Rc::clone(&notes);
+        let motions: Vec<_> = pipeline(&model, config)
+            .motions(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        let end = motions.iter().find_map(|motion| motion.kind.end()).unwrap();
+        let notes = notes.borrow().clone();
+        (end, notes)
+    };
+    let (end, notes) = run(SamplingConfig::default());
+    assert_eq!(end[2], 10.0);
+    assert!(
+        notes
+            .iter()
+            .any(|note| matches!(note, Note::ToolsWithoutTable { file } if file == "tools.ngc")),
+        "{notes:?}"
+    );
+    let table = biscara_gcode::ToolTable::parse("T1 P1 Z25 D6\n".as_bytes(), "t.tbl").unwrap();
+    let config = SamplingConfig {
+        tool_table: Some(std::sync::Arc::new(table)),
+        ..SamplingConfig::default()
+    };
+    let (end, notes) = run(config);
+    assert_eq!(end[2], 35.0, "the machine holds the tool's tip at Z10");
+    assert!(!notes.iter().any(|note| matches!(note, Note::ToolsWithoutTable { .. })), "{notes:?}");
 }

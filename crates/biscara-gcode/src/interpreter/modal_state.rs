@@ -1,0 +1,153 @@
+//! M70–M73: saving and restoring the modal state, as LinuxCNC's `rs274` does it.
+//!
+//! M70 saves, M71 forgets, M72 restores, M73 saves for restoring when a subroutine returns
+//! (at the program's level it only saves). Each call level has its own saved state: a
+//! subroutine starts with none, and what it saved is forgotten (M70) or restored (M73) when it
+//! returns. Saved and restored: the length units, the plane,
+//! the distance and arc distance modes, the feed mode and rate, the spindle speed and
+//! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
+//! coordinate system, the canned cycles' retract mode and the tool length offset. Not the
+//! motion mode.
+
+use std::io::BufRead;
+
+use biscara_motion::Plane;
+
+use super::Interpreter;
+use crate::lexer::Fault;
+use crate::parser::Code;
+
+/// The modal state M70 saves.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SavedModes {
+    metric: bool,
+    incremental: bool,
+    ijk_absolute: bool,
+    plane: Plane,
+    inverse_time: bool,
+    feed_rate: f64,
+    speed: f64,
+    spindle: u16,
+    mist: bool,
+    flood: bool,
+    system: usize,
+    retract_to_old: bool,
+    tool_offset: [f64; 4],
+    tool_offset_mm: [f64; 4],
+}
+
+/// The saved state, if any, and whether M73 asked for it to be restored on return.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct ModalStack {
+    pub saved: Option<SavedModes>,
+    /// M73: restore when the subroutine returns.
+    pub auto_restore: bool,
+}
+
+impl<R: BufRead> Interpreter<R> {
+    /// M70, M71, M72 or M73.
+    pub(super) fn modal_state(&mut self, code: Code) -> Result<(), Fault> {
+        match code.code {
+            70 | 73 => {
+                let state = &self.state;
+                self.state.modal_stack = ModalStack {
+                    saved: Some(SavedModes {
+                        metric: state.metric,
+                        incremental: state.incremental,
+                        ijk_absolute: state.ijk_absolute,
+                        plane: state.plane,
+                        inverse_time: state.inverse_time,
+                        feed_rate: state.feed_rate,
+                        speed: state.speed,
+                        spindle: state.spindle,
+                        mist: state.mist,
+                        flood: state.flood,
+                        system: state.system,
+                        retract_to_old: state.cycle.retract_to_old,
+                        tool_offset: state.tool_offset,
+                        tool_offset_mm: state.tool_offset_mm,
+                    }),
+                    auto_restore: code.code == 73,
+                };
+            }
+            71 => self.state.modal_stack = ModalStack::default(),
+            _ => {
+                let axis_words =
+                    super::AXES.iter().any(|&letter| self.block.word(letter).is_some());
+                if axis_words || self.block.g[1].is_some() {
+                    let (first, last) = self.span(code.at, code.end);
+                    return Err(Fault::not_supported(
+                        first,
+                        last,
+                        "M72 with a motion on its line".to_owned(),
+                        "rs274 drops that motion",
+                    ));
+                }
+                let Some(saved) = self.state.modal_stack.saved else {
+                    return Err(self.code_fault(
+                        code,
+                        "Cannot restore context from invalid stack frame - missing M70/M73?",
+                    ));
+                };
+                self.restore_modes(saved);
+            }
+        }
+        Ok(())
+    }
+
+    /// The return from a subroutine: the state M73 saved at its level, if M71 did not forget
+    /// it. Each call level has its own saved state (M70 in a subroutine is forgotten when it
+    /// returns; M72 finds only what its own level saved).
+    pub(super) fn restore_on_return(&mut self) {
+        let stack = std::mem::take(&mut self.state.modal_stack);
+        if stack.auto_restore
+            && let Some(saved) = stack.saved
+        {
+            self.restore_modes(saved);
+        }
+    }
+
+    /// M72: the saved state back, in rs274's order.
+    fn restore_modes(&mut self, saved: SavedModes) {
+        self.set_units(saved.metric);
+        // rs274 sets F again only when it differs from the F in force before the feed mode
+        // is restored (and G94 zeroes the feed rate).
+        let feed_differs = saved.feed_rate != self.state.feed_rate;
+        if saved.inverse_time != self.state.inverse_time {
+            self.state.inverse_time = saved.inverse_time;
+            if !saved.inverse_time {
+                self.state.feed_rate = 0.0;
+                self.state.feed_mm = 0.0;
+            }
+        }
+        if feed_differs {
+            self.state.feed_rate = saved.feed_rate;
+            self.state.feed_mm = saved.feed_rate * self.state.factor();
+        }
+        self.state.speed = saved.speed;
+        if saved.spindle != self.state.spindle {
+            self.state.spindle = saved.spindle;
+            self.tool_event(saved.spindle);
+        }
+        self.state.plane = saved.plane;
+        if saved.system != self.state.system {
+            self.select_system(saved.system);
+        }
+        self.state.incremental = saved.incremental;
+        self.state.ijk_absolute = saved.ijk_absolute;
+        self.state.mist = saved.mist;
+        self.state.flood = saved.flood;
+        self.state.cycle.retract_to_old = saved.retract_to_old;
+        let old = self.state.tool_offset;
+        let shift = self
+            .state
+            .program_shift(std::array::from_fn(|axis| old[axis] - saved.tool_offset[axis]));
+        for (axis, shift) in shift.into_iter().enumerate() {
+            self.state.current[axis] += shift;
+            self.state.tool_shift[axis] += shift;
+        }
+        self.state.tool_offset = saved.tool_offset;
+        self.state.tool_offset_mm = saved.tool_offset_mm;
+        self.state.tools.offset_active = saved.tool_offset.iter().any(|&value| value != 0.0);
+    }
+}

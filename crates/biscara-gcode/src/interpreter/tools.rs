@@ -1,0 +1,336 @@
+//! Tools: T, M6, M61, the tool length offset (G43, G43.1, G43.2, G49), G10 L1/L10/L11 and the
+//! tool parameters (5400–5413, `#<_current_tool>`, …), as LinuxCNC's standalone `rs274` does
+//! them (SPEC §4.2 tier 3).
+//!
+//! The table is LinuxCNC's `.tbl` ([`ToolTable`], millimetres). Without one, every tool exists
+//! with zero offsets and diameter, and [`Interpreter::tools_without_table`] says whether the
+//! program used them. The tool in the spindle is a copy of its table entry (LinuxCNC's pocket
+//! 0), taken by M6; as in `rs274`, M61 changes the current pocket but not that copy, and a
+//! G10 L1 of the tool in the current pocket updates it.
+
+use std::io::BufRead;
+
+use super::{AXES, Interpreter};
+use crate::lexer::Fault;
+use crate::params::{axis_slot, coordinate_system_base};
+use crate::parser::Code;
+use crate::tool_table::{ToolEntry, ToolTable};
+
+/// First of the current tool's parameters: 5400 tool, 5401–5409 offsets (x y z a b c u v w),
+/// 5410 diameter, 5411 front angle, 5412 back angle, 5413 orientation.
+const TOOL_PARAMETERS: usize = 5400;
+
+/// The tools' state.
+#[derive(Debug, Clone)]
+pub(super) struct Tools {
+    /// The table, changed by G10 L1/L10/L11.
+    pub table: ToolTable,
+    /// Whether a table was given (without one, every tool exists with zero offsets).
+    pub has_table: bool,
+    /// The tool in the spindle (LinuxCNC's pocket 0).
+    pub spindle: ToolEntry,
+    /// The pocket of the tool in the spindle (`#<_current_pocket>`).
+    pub current_pocket: f64,
+    /// The pocket of the selected tool (`#<_selected_pocket>`; −1 before any T).
+    pub selected_pocket: f64,
+    /// The tool selected by T (`#<_selected_tool>`).
+    pub selected_tool: f64,
+    /// Whether a tool length offset other than zero is in force (`#<_tool_offset>`).
+    pub offset_active: bool,
+    /// Whether the program used a tool's offsets or diameter while there was no table.
+    pub used_without_table: bool,
+}
+
+impl Tools {
+    pub(super) fn new(table: Option<&ToolTable>) -> Tools {
+        Tools {
+            table: table.cloned().unwrap_or_default(),
+            has_table: table.is_some(),
+            spindle: ToolEntry::default(),
+            current_pocket: 1.0,
+            selected_pocket: -1.0,
+            selected_tool: 0.0,
+            offset_active: false,
+            used_without_table: false,
+        }
+    }
+
+    /// Tool `tool`'s entry: the table's, or (without a table) zero offsets; `None` when a
+    /// table is given and lacks it.
+    fn entry(&self, tool: u32) -> Option<ToolEntry> {
+        match self.table.get(tool) {
+            Some(entry) => Some(*entry),
+            None if !self.has_table => {
+                Some(ToolEntry { tool, pocket: tool, ..ToolEntry::default() })
+            }
+            None => None,
+        }
+    }
+
+    /// Parameters 5400–5413 from the tool in the spindle (values in mm and degrees).
+    pub(super) fn publish(&self, params: &mut crate::params::Params) {
+        let spindle = &self.spindle;
+        params.set(TOOL_PARAMETERS, f64::from(spindle.tool));
+        for axis in 0..4 {
+            params.set(TOOL_PARAMETERS + 1 + axis_slot(axis), spindle.offset[axis]);
+        }
+        params.set(TOOL_PARAMETERS + 10, spindle.diameter);
+        params.set(TOOL_PARAMETERS + 11, spindle.front_angle);
+        params.set(TOOL_PARAMETERS + 12, spindle.back_angle);
+        params.set(TOOL_PARAMETERS + 13, f64::from(spindle.orientation));
+    }
+}
+
+/// LinuxCNC's message for a tool the table lacks.
+fn not_found(tool: impl std::fmt::Display) -> String {
+    format!("Requested tool {tool} not found in the tool table")
+}
+
+impl<R: BufRead> Interpreter<R> {
+    /// Whether the program used G43, G43.2, G10 L1/L10/L11 or M61 while no tool table was
+    /// given (every tool then has zero length and diameter).
+    pub fn tools_without_table(&self) -> bool {
+        self.state.tools.used_without_table
+    }
+
+    /// The tool table as the program has changed it so far (G10 L1, L10, L11): what cutter
+    /// compensation looks diameters up in.
+    pub fn tool_table(&self) -> &ToolTable {
+        &self.state.tools.table
+    }
+
+    /// The tool in the spindle (after M6; zero offsets before any).
+    pub fn current_tool(&self) -> ToolEntry {
+        self.state.tools.spindle
+    }
+
+    fn note_no_table(&mut self) {
+        if !self.state.tools.has_table {
+            self.state.tools.used_without_table = true;
+        }
+    }
+
+    /// T: selects a tool (LinuxCNC's `convert_tool_select`).
+    pub(super) fn select_tool(&mut self) -> Result<(), Fault> {
+        let Some(t) = self.block.word(b't') else { return Ok(()) };
+        // Not negative: the reader refuses that; an integer: the reader rounds it.
+        let tool = t.value as u32;
+        let spindle = self.state.tools.spindle;
+        let pocket = if tool == 0 {
+            // rs274: the pocket of the tool in the spindle.
+            if spindle.tool != 0 {
+                f64::from(spindle.pocket)
+            } else {
+                self.state.tools.current_pocket
+            }
+        } else {
+            match self.state.tools.entry(tool) {
+                Some(entry) => f64::from(entry.pocket),
+                None => return Err(self.word_fault(t, not_found(tool))),
+            }
+        };
+        self.state.tools.selected_tool = t.value;
+        self.state.tools.selected_pocket = pocket;
+        Ok(())
+    }
+
+    /// M6: the selected tool goes into the spindle (the offset in force is not changed). As
+    /// in rs274, the current point is then taken back from the last move: a tool length offset
+    /// set since that move no longer shifts it.
+    pub(super) fn change_tool(&mut self) {
+        self.resync_position();
+        let tools = &mut self.state.tools;
+        let tool = tools.selected_tool as u32;
+        if tool != 0
+            && let Some(entry) = tools.entry(tool)
+        {
+            tools.spindle = entry;
+        }
+        if tools.selected_pocket >= 0.0 {
+            tools.current_pocket = tools.selected_pocket;
+        }
+        self.state.tools.publish(&mut self.state.params);
+    }
+
+    /// rs274 after M6 and M61: the current point taken back from the last move.
+    fn resync_position(&mut self) {
+        for axis in 0..4 {
+            self.state.current[axis] -= self.state.tool_shift[axis];
+        }
+        self.state.tool_shift = [0.0; 4];
+    }
+
+    /// M61 Q: says which tool is in the spindle. As in `rs274`, only the current pocket changes
+    /// (and the current point is taken back from the last move, as after M6).
+    pub(super) fn set_current_tool(&mut self, code: Code) -> Result<(), Fault> {
+        let q = self.block.word(b'q').filter(|q| q.value >= 0.0);
+        let Some(q) = q else {
+            return Err(
+                self.code_fault(code, "Need non-negative Q-word to specify tool number with M61")
+            );
+        };
+        let tool = q.value.round() as u32;
+        let Some(entry) = self.state.tools.entry(tool) else {
+            return Err(self.word_fault(q, not_found(tool)));
+        };
+        self.note_no_table();
+        self.resync_position();
+        self.state.tools.current_pocket = f64::from(entry.pocket);
+        Ok(())
+    }
+
+    /// G43, G43.1, G43.2 and G49 (`convert_tool_length_offset`).
+    pub(super) fn tool_length_offset(&mut self, code: Code) -> Result<(), Fault> {
+        let factor = self.state.factor();
+        let to_program = |entry: &ToolEntry| -> [f64; 4] {
+            std::array::from_fn(|axis| {
+                if axis == 3 { entry.offset[axis] } else { entry.offset[axis] / factor }
+            })
+        };
+        let h = self.block.word(b'h');
+        let axes: [Option<f64>; 4] =
+            std::array::from_fn(|axis| self.block.word(AXES[axis]).map(|word| word.value));
+        let any_axis = axes.iter().any(Option::is_some);
+        let old = self.state.tool_offset;
+        let new = match code.code {
+            490 => [0.0; 4],
+            430 => {
+                let entry = match h {
+                    None => self.state.tools.spindle,
+                    Some(h) if h.value == 0.0 => ToolEntry::default(),
+                    Some(h) => {
+                        let tool = h.value;
+                        let found =
+                            (tool > 0.0).then(|| self.state.tools.entry(tool as u32)).flatten();
+                        match found {
+                            Some(entry) => entry,
+                            None => return Err(self.word_fault(h, not_found(tool))),
+                        }
+                    }
+                };
+                self.note_no_table();
+                to_program(&entry)
+            }
+            431 => {
+                let mut offset = old;
+                for (axis, value) in axes.iter().enumerate() {
+                    if let Some(value) = value {
+                        offset[axis] = *value;
+                    }
+                }
+                offset
+            }
+            _ => {
+                if h.is_some() && any_axis {
+                    return Err(self.code_fault(code, "G43.2: Can not have both H and axis words"));
+                }
+                let mut offset = old;
+                if let Some(h) = h {
+                    let tool = h.value;
+                    let found =
+                        (tool >= 0.0).then(|| self.state.tools.entry(tool as u32)).flatten();
+                    let Some(entry) = found else {
+                        return Err(self.word_fault(h, not_found(tool)));
+                    };
+                    self.note_no_table();
+                    let add = to_program(&entry);
+                    for axis in 0..4 {
+                        offset[axis] += add[axis];
+                    }
+                } else if any_axis {
+                    // LinuxCNC 2.9's rs274 takes the missing H for H-1.
+                    return Err(self.code_fault(
+                        code,
+                        "Requested tool -1 not found in the tool table (G43.2 with axis words \
+                         needs an H word in LinuxCNC 2.9)",
+                    ));
+                } else {
+                    return Err(
+                        self.code_fault(code, "G43.2: No axes specified and H word missing")
+                    );
+                }
+                offset
+            }
+        };
+        let shift = self.state.program_shift(std::array::from_fn(|axis| old[axis] - new[axis]));
+        for (axis, shift) in shift.into_iter().enumerate() {
+            self.state.current[axis] += shift;
+            self.state.tool_shift[axis] += shift;
+        }
+        self.state.tool_offset = new;
+        self.state.tool_offset_mm = std::array::from_fn(|axis| self.state.to_mm(axis, new[axis]));
+        // `#<_tool_offset>` in rs274: whether any offset is not zero.
+        self.state.tools.offset_active = new.iter().any(|&value| value != 0.0);
+        Ok(())
+    }
+
+    /// G10 L1, L10 and L11: writes tool P's entry (`convert_setup_tool`).
+    pub(super) fn set_tool_data(&mut self, code: Code, l: i64) -> Result<(), Fault> {
+        let p = self.block.word(b'p').filter(|p| p.value > 0.0);
+        let Some(p) = p else {
+            return Err(self.code_fault(code, format!("P value out of range with G10 L{l}")));
+        };
+        let tool = p.value.round() as u32;
+        let Some(mut entry) = self.state.tools.entry(tool) else {
+            return Err(self.word_fault(p, not_found(tool)));
+        };
+        let words = [b'x', b'y', b'z', b'c', b'r', b'i', b'j', b'q'];
+        if words.iter().all(|&letter| self.block.word(letter).is_none()) {
+            return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
+        }
+        if l != 1 && self.state.rotation != 0.0 {
+            let xy = self.block.word(b'x').or(self.block.word(b'y'));
+            if let Some(word) = xy {
+                let (first, last) = self.span(code.at, word.end);
+                return Err(Fault::not_supported(
+                    first,
+                    last,
+                    format!("G10 L{l} X/Y in a rotated coordinate system"),
+                    "rs274's tool offsets from a rotated system's X and Y",
+                ));
+            }
+        }
+        self.note_no_table();
+        // The origin the given coordinates are in: the current one (L10), G59.3's (L11).
+        let g593: [f64; 4] = std::array::from_fn(|axis| {
+            let base = coordinate_system_base(9);
+            self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
+        });
+        for (axis, &letter) in AXES.iter().enumerate() {
+            let Some(word) = self.block.word(letter) else { continue };
+            let state = &self.state;
+            let offset = match l {
+                1 => word.value,
+                10 => state.current[axis] + state.tool_offset[axis] - word.value,
+                _ => {
+                    state.current[axis]
+                        + state.origin[axis]
+                        + state.axis_offset[axis]
+                        + state.tool_offset[axis]
+                        - word.value
+                        - g593[axis]
+                }
+            };
+            entry.offset[axis] = self.state.to_mm(axis, offset);
+        }
+        if let Some(r) = self.block.word(b'r') {
+            entry.diameter = 2.0 * self.state.to_mm(0, r.value);
+        }
+        if let Some(i) = self.block.word(b'i') {
+            entry.front_angle = i.value;
+        }
+        if let Some(j) = self.block.word(b'j') {
+            entry.back_angle = j.value;
+        }
+        if let Some(q) = self.block.word(b'q') {
+            entry.orientation = q.value as i32;
+        }
+        let tools = &mut self.state.tools;
+        tools.table.insert(entry);
+        if f64::from(entry.pocket) == tools.current_pocket {
+            tools.spindle = entry;
+        }
+        self.state.tools.publish(&mut self.state.params);
+        Ok(())
+    }
+}
