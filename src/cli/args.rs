@@ -176,6 +176,8 @@ pub(crate) struct SamplingArgs {
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
     grip_time: f64,
     #[command(flatten)]
+    pub(crate) blend: BlendArgs,
+    #[command(flatten)]
     pub(crate) placement: PlacementArgs,
     #[command(flatten)]
     pub(crate) dialect: DialectArgs,
@@ -199,7 +201,34 @@ impl SamplingArgs {
             tool: self.dialect.tool,
             subroutine_path: self.files.subroutine_path.clone(),
             tool_table: self.files.tool_table()?,
+            blend: self.blend.blend,
         })
+    }
+}
+
+/// The default corner tolerance of a G-code program.
+#[derive(Debug, Args)]
+pub(crate) struct BlendArgs {
+    /// Blend the corners of a program that never says G61 or G64 as if it began with `G64 P`
+    /// TOL (mm): consecutive straight moves are joined by arcs within TOL of the corner and
+    /// timed through without stopping (SPEC §6). Off by default (an exact stop at every
+    /// corner); a program's own G61 or G64 always wins.
+    #[arg(
+        long,
+        value_name = "TOL",
+        value_parser = parse_blend,
+        help = "Default G64 P (mm) for programs that never say G61/G64 (default: exact stop)"
+    )]
+    pub(crate) blend: Option<f64>,
+}
+
+/// A tolerance in mm in [0, 100] (0: G64 with no P, see `biscara-blend`).
+fn parse_blend(text: &str) -> Result<f64, String> {
+    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
+    if value.is_finite() && (0.0..=100.0).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("the blend tolerance must lie in [0, 100] mm, got {text}"))
     }
 }
 

@@ -12,7 +12,7 @@ use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
 use super::args::{
-    DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
+    BlendArgs, DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
 };
 use super::diag::located;
 use super::diag::{Level, report};
@@ -65,6 +65,8 @@ pub(crate) struct ViewArgs {
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
     profile: ProfileArg,
+    #[command(flatten)]
+    blend: BlendArgs,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
     #[arg(
         long,
@@ -107,6 +109,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         dialect: args.dialect.dialect,
         tool: args.dialect.tool,
         subroutine_path: args.files.subroutine_path.clone(),
+        blend: args.blend.blend,
         tool_table: args.files.tool_table()?,
     };
     let mut end = 0.0;

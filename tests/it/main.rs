@@ -1,6 +1,7 @@
 //! Integration tests of the `biscara` binary: one test binary, one module per feature.
 
 mod bad_input;
+mod blending;
 mod browser;
 mod cli_kinematics;
 mod conformance;

@@ -53,6 +53,11 @@ impl Pending {
         [d[0] / n, d[1] / n, d[2] / n]
     }
 
+    /// C's change per mm of XYZ path, degrees.
+    fn rotation_rate(&self) -> f64 {
+        (self.to[3] - self.from[3]) / self.length()
+    }
+
     /// The programmed pose `distance` mm from the start (C in proportion).
     fn at(&self, distance: f64) -> [f64; 4] {
         let u = distance / self.length();
@@ -71,7 +76,7 @@ impl Pending {
 
 /// Joins the straight moves programmed under G64 by fillets; see the crate documentation.
 ///
-/// Holds one motion of look-ahead and at most three items to yield: memory does not grow with
+/// Holds one motion of look-ahead and at most four items to yield: memory does not grow with
 /// the program.
 #[derive(Debug)]
 pub struct Blender<I> {
@@ -80,6 +85,7 @@ pub struct Blender<I> {
     pending: Option<Pending>,
     out: VecDeque<Blended>,
     done: bool,
+    enabled: bool,
 }
 
 impl<I, E> Blender<I>
@@ -88,7 +94,39 @@ where
 {
     /// Blends `motions`, the first of which starts at `start` (`[x, y, z, c]`, mm and degrees).
     pub fn new(motions: I, start: [f64; 4]) -> Blender<I> {
-        Blender { motions, position: start, pending: None, out: VecDeque::new(), done: false }
+        Blender {
+            motions,
+            position: start,
+            pending: None,
+            out: VecDeque::new(),
+            done: false,
+            enabled: true,
+        }
+    }
+
+    /// Whether nothing waits in the blender: its next item would be the source's next motion.
+    /// A caller may then take motions from [`source`](Self::source) itself and hand the
+    /// blender only those under G64 ([`take_from`](Self::take_from)).
+    pub fn is_idle(&self) -> bool {
+        self.out.is_empty() && self.pending.is_none() && !self.done
+    }
+
+    /// The motions being blended.
+    pub fn source(&mut self) -> &mut I {
+        &mut self.motions
+    }
+
+    /// Takes `motion`, which starts at `from`, as if it had come from the source (for a
+    /// caller that reads the source itself while the blender is idle).
+    pub fn take_from(&mut self, motion: Motion, from: [f64; 4]) {
+        self.position = from;
+        self.take(motion);
+    }
+
+    /// Whether to blend at all: with `false`, every motion passes unchanged (an exact stop at
+    /// every corner, for timing laws that cannot run through one).
+    pub fn blending(self, enabled: bool) -> Blender<I> {
+        Blender { enabled, ..self }
     }
 
     fn flush(&mut self) {
@@ -136,7 +174,13 @@ where
                     if norm(sub(xyz(cut), xyz(previous.start))) > 1e-9 {
                         self.out.push_back(Blended::Piece(previous.piece(cut, false)));
                     }
-                    self.out.push_back(Blended::Piece(fillet));
+                    if previous.speed == next.speed {
+                        self.out.push_back(Blended::Piece(fillet));
+                    } else {
+                        let [first, second] = halves(fillet, next.line, next.speed);
+                        self.out.push_back(Blended::Piece(first));
+                        self.out.push_back(Blended::Piece(second));
+                    }
                     next.start = next.at(trim);
                 }
             }
@@ -159,8 +203,15 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
     let ub = b.direction();
     let cos = dot(ua, ub).clamp(-1.0, 1.0);
     let turn = cos.acos();
+    // C's rate along the path, degrees per mm: it must not jump where the robot does not stop
+    // (a jump in a joint's dq/ds at speed is an unbounded acceleration).
+    let (rate_a, rate_b) = (a.rotation_rate(), b.rotation_rate());
     if turn < COLLINEAR_RAD {
-        return Corner::Straight;
+        let same = (rate_a - rate_b).abs() <= 1e-9 * (1.0 + rate_a.abs().max(rate_b.abs()));
+        return if same { Corner::Straight } else { Corner::Stop };
+    }
+    if rate_a != 0.0 || rate_b != 0.0 {
+        return Corner::Stop;
     }
     if turn > MAX_TURN_DEG.to_radians() {
         return Corner::Stop;
@@ -186,10 +237,26 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
     let fillet = Piece {
         line: a.line,
         geometry: Geometry::Fillet { start, end, center, radius, tangent: ua, sweep: turn },
-        speed: a.speed.slower(b.speed),
+        speed: a.speed,
         ends_chain: false,
     };
     Corner::Fillet { trim, fillet }
+}
+
+/// A fillet between moves of different speeds, cut at its middle: the first half keeps the
+/// speed (and line) of the move before the corner, the second takes `line` and `speed`, those
+/// of the move after it — each half replaces a part of its own move.
+fn halves(fillet: Piece, line: usize, speed: Speed) -> [Piece; 2] {
+    let Geometry::Fillet { start, end, center, radius, tangent, sweep } = fillet.geometry else {
+        return [fillet, fillet];
+    };
+    let middle = fillet.point(0.5);
+    let half = sweep / 2.0;
+    let first = Geometry::Fillet { start, end: middle, center, radius, tangent, sweep: half };
+    let turned = fillet.tangent(0.5);
+    let second =
+        Geometry::Fillet { start: middle, end, center, radius, tangent: turned, sweep: half };
+    [Piece { geometry: first, ..fillet }, Piece { line, geometry: second, speed, ..fillet }]
 }
 
 impl<I, E> Iterator for Blender<I>
@@ -207,6 +274,16 @@ where
                 return None;
             }
             match self.motions.next() {
+                // Nothing waits and the motion is not blended: it passes at once.
+                Some(Ok(motion))
+                    if self.pending.is_none() && !(self.enabled && motion.blend.is_some()) =>
+                {
+                    if let Some(end) = motion.kind.end() {
+                        self.position = end;
+                    }
+                    return Some(Ok(Blended::Motion(motion)));
+                }
+                // (Nothing is pending unless blending is enabled.)
                 Some(Ok(motion)) => self.take(motion),
                 Some(Err(err)) => {
                     self.done = true;

@@ -23,8 +23,13 @@
 //!   exact stop.
 //!
 //! A corner is blended when both moves carry a tolerance ([`Motion::blend`](biscara_motion::Motion::blend)); the smaller one
-//! holds. Rapid and feed moves blend alike; a fillet between them is limited to the slower.
-//! The C axis moves in proportion to the length along each piece. Any event, arc, move with no
+//! holds. Rapid and feed moves blend alike; a fillet between moves of different speeds is cut
+//! at its middle, each half at the speed of the move whose corner part it replaces (so that a
+//! rapid followed by a slow plunge is never slower blended than stopped).
+//! The C axis moves in proportion to the length along each piece. A corner where C turns (on
+//! either move) is an exact stop, and so is a straight-on junction where C's rate per mm
+//! changes: C's rate along the path would jump there, and a jump in a joint's rate along the
+//! path at speed is an acceleration no limit allows. Any event, arc, move with no
 //! XYZ length or move under exact stop ends the chain: the robot stops there.
 //!
 //! ```

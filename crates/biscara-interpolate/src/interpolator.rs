@@ -1,8 +1,10 @@
 //! The interpolator: an iterator of motions in, an iterator of Cartesian samples out.
 
+use biscara_blend::{Blended, Blender, Piece};
 use biscara_motion::{Motion, MotionKind, Position};
 use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal, TimingError};
 
+use crate::chain::{Chain, ChainBounds};
 use crate::{Profile, Segment, Timing};
 
 /// Cartesian motion limits (SPEC §1.3 `motion`), in mm, degrees and seconds.
@@ -153,16 +155,16 @@ const NO_MOVEMENT: f64 = 1e-12;
 /// (tight arcs of 2–20 mm radius among them) the joints' accelerations peaked at 0.9932 of their
 /// limits with 10° (against 0.9909 with 6° and 0.9959 with 15°; the margin is 0.99), at a third
 /// of the planning cost of 2° on the arcs of 1 mm radius of `scripts/gen-program.sh mixed`.
-const GRID_MM: f64 = 0.5;
-const GRID_TURN_DEGREES: f64 = 10.0;
+pub(crate) const GRID_MM: f64 = 0.5;
+pub(crate) const GRID_TURN_DEGREES: f64 = 10.0;
 const MIN_INTERVALS: f64 = 2.0;
 /// The refined grid's ratio and most points (see [`optimal_grid`]).
-const REFINE_RATIO: f64 = 0.7;
-const MAX_REFINE: f64 = 100.0;
+pub(crate) const REFINE_RATIO: f64 = 0.7;
+pub(crate) const MAX_REFINE: f64 = 100.0;
 /// Intervals planned at a time (and as many of look-ahead): 512 mm at 0.5 mm, far more than the
 /// braking distance from any speed a robot file allows (500 mm/s at 5000 mm/s² brakes in
 /// 25 mm). Holds 2049 grid points of at most 9 constraints: about 200 KB.
-const WINDOW: usize = 1024;
+pub(crate) const WINDOW: usize = 1024;
 
 /// How a move advances in time.
 #[derive(Debug, Clone)]
@@ -252,7 +254,10 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
 /// sample. Memory does not depend on the program length. `on_slow` hears of every motion that
 /// runs slower than programmed.
 pub struct Interpolator<I, L, F> {
-    motions: I,
+    /// The motions, their corners blended where they ask for it (optimal profile only).
+    motions: Blender<I>,
+    /// Whether corners under G64 are blended (the optimal profile).
+    blending: bool,
     limit: L,
     /// The optimal profile's planner, reused from move to move (no allocation per move).
     planner: TimeOptimal,
@@ -270,8 +275,24 @@ pub struct Interpolator<I, L, F> {
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Active {
-    Move { segment: Segment, schedule: Schedule, done: u64, line: usize },
-    Hold { remaining: u64, line: usize },
+    Move {
+        segment: Segment,
+        schedule: Schedule,
+        done: u64,
+        line: usize,
+    },
+    Hold {
+        remaining: u64,
+        line: usize,
+    },
+    /// A chain of blended moves (G64), timed as one path; `steps` is `u64::MAX` until its
+    /// duration is known.
+    Chain {
+        chain: Chain,
+        steps: u64,
+        scale: f64,
+        done: u64,
+    },
 }
 
 impl<I, E, L, F> Interpolator<I, L, F>
@@ -282,8 +303,10 @@ where
 {
     /// An interpolator over `motions`, bounded by `limit`, reporting slowed motions to `on_slow`.
     pub fn new(motions: I, config: InterpolationConfig, limit: L, on_slow: F) -> Self {
+        let blending = config.profile == Profile::Optimal;
         Interpolator {
-            motions,
+            motions: Blender::new(motions, config.start).blending(blending),
+            blending,
             limit,
             planner: TimeOptimal::default(),
             on_slow,
@@ -541,6 +564,115 @@ where
     }
 }
 
+impl<I, E, L, F> Interpolator<I, L, F>
+where
+    I: Iterator<Item = Result<Motion, E>>,
+    L: SpeedLimit,
+    F: FnMut(&SlowDown),
+{
+    /// Starts a chain of blended moves with its first piece: plans its first window.
+    fn begin_chain(&mut self, piece: Piece) -> Result<(), InterpolateError<E>> {
+        let line = piece.line;
+        let mut chain = Chain::new(piece, self.config.limits)?;
+        let mut error = None;
+        let mut bounds = ChainBounds {
+            chain: &mut chain,
+            source: &mut self.motions,
+            limit: &mut self.limit,
+            limits: self.config.limits,
+            error: &mut error,
+        };
+        let planned = self.planner.plan_streamed(&mut bounds, WINDOW);
+        if let Some(err) = error {
+            return Err(err);
+        }
+        planned.map_err(|err| InterpolateError::Motion {
+            line,
+            message: format!("cannot time the blended moves: {err}"),
+        })?;
+        let (mut steps, mut scale) = (u64::MAX, 1.0);
+        if let Some(duration) = self.planner.duration() {
+            steps = self.chain_steps(line, duration)?;
+            scale = duration / (steps as f64 * self.config.dt);
+        }
+        self.active = Some(Active::Chain { chain, steps, scale, done: 0 });
+        Ok(())
+    }
+
+    /// A chain's duration in whole steps.
+    fn chain_steps(&self, line: usize, duration: f64) -> Result<u64, InterpolateError<E>> {
+        if !duration.is_finite() || duration / self.config.dt > 1e15 {
+            return Err(InterpolateError::Motion {
+                line,
+                message: "the move is too slow to count in time steps".to_owned(),
+            });
+        }
+        Ok(crate::profile::steps_for(duration, self.config.dt))
+    }
+
+    /// The next sample of the active chain. Known before the first sample, the chain's
+    /// duration is rounded up to whole steps by slowing it down; learned on the way (a chain
+    /// longer than a window), the chain rests at its end for what is left of a step.
+    fn chain_sample(&mut self) -> Result<CartesianSample, InterpolateError<E>> {
+        let dt = self.config.dt;
+        let Some(Active::Chain { chain, steps, scale, done }) = &mut self.active else {
+            unreachable!("a chain is active");
+        };
+        *done += 1;
+        let t = *done as f64 * dt;
+        let mut error = None;
+        let mut bounds = ChainBounds {
+            chain,
+            source: &mut self.motions,
+            limit: &mut self.limit,
+            limits: self.config.limits,
+            error: &mut error,
+        };
+        let s = self.planner.s_at(&mut bounds, t * *scale);
+        if let Some(err) = error {
+            return Err(err);
+        }
+        let (mut pose, line) = chain.pose(*s.as_ref().unwrap_or(&0.0));
+        let s = s.map_err(|err| InterpolateError::Motion {
+            line,
+            message: format!("cannot time the blended moves: {err}"),
+        });
+        s?;
+        if *steps == u64::MAX
+            && let Some(duration) = self.planner.duration()
+        {
+            let dt = self.config.dt;
+            if !duration.is_finite() || duration / dt > 1e15 {
+                return Err(InterpolateError::Motion {
+                    line,
+                    message: "the move is too slow to count in time steps".to_owned(),
+                });
+            }
+            *steps = crate::profile::steps_for(duration, dt).max(*done);
+        }
+        if *done == *steps {
+            pose = chain.end.unwrap_or(pose);
+            chain.finish();
+        }
+        for report in chain.reports.drain(..) {
+            (self.on_slow)(&report);
+        }
+        self.step += 1;
+        Ok(self.sample(pose, line))
+    }
+}
+
+#[cfg(test)]
+impl<I, L, F> Interpolator<I, L, F> {
+    /// Number of blended pieces held (0 outside a chain).
+    pub(crate) fn held_pieces(&self) -> usize {
+        match &self.active {
+            Some(Active::Chain { chain, .. }) => chain.held(),
+            _ => 0,
+        }
+    }
+}
+
 impl<I, E, L, F> Iterator for Interpolator<I, L, F>
 where
     I: Iterator<Item = Result<Motion, E>>,
@@ -630,10 +762,51 @@ where
                     self.step += 1;
                     return Some(Ok(self.sample(self.pose, line)));
                 }
+                Some(Active::Chain { done, steps, .. }) if *done < *steps => {
+                    let sample = self.chain_sample();
+                    if sample.is_err() {
+                        self.finished = true;
+                    }
+                    return Some(sample);
+                }
+                Some(Active::Chain { chain, .. }) => {
+                    self.pose = chain.end.unwrap_or(self.pose);
+                    let deferred = chain.deferred.take();
+                    self.active = None;
+                    if let Some(motion) = deferred
+                        && let Err(err) = self.begin(motion)
+                    {
+                        self.finished = true;
+                        return Some(Err(err));
+                    }
+                    continue;
+                }
                 _ => self.active = None,
             }
             if self.finished {
                 return None;
+            }
+            // Motions that are not blended go straight from the source: the blender sees only
+            // those under G64 (and what follows them until their chain ends).
+            if self.motions.is_idle() {
+                match self.motions.source().next() {
+                    None => {
+                        self.finished = true;
+                        return None;
+                    }
+                    Some(Err(err)) => {
+                        self.finished = true;
+                        return Some(Err(InterpolateError::Input(err)));
+                    }
+                    Some(Ok(motion)) if motion.blend.is_none() || !self.blending => {
+                        if let Err(err) = self.begin(motion) {
+                            self.finished = true;
+                            return Some(Err(err));
+                        }
+                    }
+                    Some(Ok(motion)) => self.motions.take_from(motion, self.pose),
+                }
+                continue;
             }
             match self.motions.next() {
                 None => {
@@ -644,8 +817,14 @@ where
                     self.finished = true;
                     return Some(Err(InterpolateError::Input(err)));
                 }
-                Some(Ok(motion)) => {
+                Some(Ok(Blended::Motion(motion))) => {
                     if let Err(err) = self.begin(motion) {
+                        self.finished = true;
+                        return Some(Err(err));
+                    }
+                }
+                Some(Ok(Blended::Piece(piece))) => {
+                    if let Err(err) = self.begin_chain(piece) {
                         self.finished = true;
                         return Some(Err(err));
                     }

@@ -26,6 +26,16 @@ enum Shape {
         start_angle: f64,
         sweep: f64,
     },
+    /// A circular arc in any plane (a corner's fillet under G64): `center + cos φ · radial +
+    /// sin φ · across` for φ = s · `sweep`, where `radial` (from the centre to the start) and
+    /// `across` (the radius times the start's unit tangent) are orthogonal and as long as the
+    /// radius.
+    Fillet {
+        center: [f64; 3],
+        radial: [f64; 3],
+        across: [f64; 3],
+        sweep: f64,
+    },
 }
 
 /// Gap below which an arc's start and end angles count as equal (a full circle).
@@ -77,6 +87,22 @@ impl Segment {
         }
     }
 
+    /// A circular fillet from `start`, leaving along the unit vector `tangent`, turning by
+    /// `sweep` radians (in (0, π)) about `center`, to `end`; C goes linearly (a corner's blend,
+    /// see `biscara-blend`).
+    pub fn fillet(
+        start: [f64; 4],
+        end: [f64; 4],
+        center: [f64; 3],
+        tangent: [f64; 3],
+        sweep: f64,
+    ) -> Segment {
+        let radial: [f64; 3] = std::array::from_fn(|k| start[k] - center[k]);
+        let radius = radial.iter().map(|value| value * value).sum::<f64>().sqrt();
+        let across = std::array::from_fn(|k| radius * tangent[k]);
+        Segment { start, end, shape: Shape::Fillet { center, radial, across, sweep } }
+    }
+
     /// The path parameters s ∈ [0, 1] at which an arc passes the angle `angle` (radians, in its
     /// plane's axes, from the first axis toward the second), in no particular order; none for a
     /// line. With the angles 0, π/2, π and 3π/2 these are the only places besides the ends where
@@ -84,7 +110,7 @@ impl Segment {
     pub fn parameters_at_angle(&self, angle: f64) -> impl Iterator<Item = f64> {
         let (start_angle, sweep) = match self.shape {
             Shape::Arc { start_angle, sweep, .. } => (start_angle, sweep),
-            Shape::Line => (0.0, 0.0),
+            Shape::Line | Shape::Fillet { .. } => (0.0, 0.0),
         };
         let delta = if sweep < 0.0 { start_angle - angle } else { angle - start_angle };
         let length = sweep.abs();
@@ -116,6 +142,9 @@ impl Segment {
                 let around = 0.5 * (start_radius + end_radius) * sweep.abs();
                 around.hypot(self.delta()[axes[2]])
             }
+            Shape::Fillet { radial, sweep, .. } => {
+                radial.iter().map(|value| value * value).sum::<f64>().sqrt() * sweep
+            }
         }
     }
 
@@ -129,11 +158,12 @@ impl Segment {
     pub fn turning(&self) -> f64 {
         match self.shape {
             Shape::Line => 0.0,
-            Shape::Arc { sweep, .. } => sweep.abs().to_degrees(),
+            Shape::Arc { sweep, .. } | Shape::Fillet { sweep, .. } => sweep.abs().to_degrees(),
         }
     }
 
     /// The pose at path parameter `s` (exactly `end` at `s = 1`).
+    #[inline]
     pub fn point(&self, s: f64) -> [f64; 4] {
         if s >= 1.0 {
             return self.end;
@@ -150,6 +180,11 @@ impl Segment {
             let (sin, cos) = (start_angle + s * sweep).sin_cos();
             point[axes[0]] = center[0] + radius * cos;
             point[axes[1]] = center[1] + radius * sin;
+        } else if let Shape::Fillet { center, radial, across, sweep } = self.shape {
+            let (sin, cos) = (s * sweep).sin_cos();
+            for k in 0..3 {
+                point[k] = center[k] + cos * radial[k] + sin * across[k];
+            }
         }
         point
     }
@@ -163,6 +198,11 @@ impl Segment {
             let (sin, cos) = (start_angle + s * sweep).sin_cos();
             derivative[axes[0]] = radius_rate * cos - radius * sweep * sin;
             derivative[axes[1]] = radius_rate * sin + radius * sweep * cos;
+        } else if let Shape::Fillet { radial, across, sweep, .. } = self.shape {
+            let (sin, cos) = (s * sweep).sin_cos();
+            for k in 0..3 {
+                derivative[k] = sweep * (cos * across[k] - sin * radial[k]);
+            }
         }
         derivative
     }
@@ -190,6 +230,14 @@ impl Segment {
             let (twice, square) = (2.0 * radius_rate * sweep, radius * sweep * sweep);
             second[axes[0]] = -twice * sin - square * cos;
             second[axes[1]] = twice * cos - square * sin;
+        } else if let Shape::Fillet { center, radial, across, sweep } = self.shape {
+            let (sin, cos) = (s * sweep).sin_cos();
+            for k in 0..3 {
+                let out = cos * radial[k] + sin * across[k];
+                point[k] = center[k] + out;
+                derivative[k] = sweep * (cos * across[k] - sin * radial[k]);
+                second[k] = -sweep * sweep * out;
+            }
         }
         if s >= 1.0 {
             point = self.end;
@@ -216,7 +264,7 @@ impl Segment {
                     .sum::<f64>()
                     .sqrt()
             }
-            Shape::Arc { .. } => {
+            Shape::Arc { .. } | Shape::Fillet { .. } => {
                 // The nearest point of a helix has no closed form; search s finely, then refine.
                 let distance = |s: f64| {
                     let p = self.point(s);

@@ -49,7 +49,7 @@ impl NoteSink {
 
 /// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
 /// dialect, its tool (`None`: inferred from the program, the gripper when nothing tells), where
-/// its file subroutines are and the tool table.
+/// its file subroutines are, the tool table and the default G64 P.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Reading<'a> {
     pub(crate) origin: Position,
@@ -58,6 +58,8 @@ pub(crate) struct Reading<'a> {
     pub(crate) tool: Option<Tool>,
     pub(crate) subroutine_path: &'a [PathBuf],
     pub(crate) tool_table: Option<&'a Arc<ToolTable>>,
+    /// The G64 P of a program that never says G61 or G64.
+    pub(crate) blend: Option<f64>,
 }
 
 impl<'a> Reading<'a> {
@@ -75,6 +77,7 @@ impl<'a> Reading<'a> {
             tool,
             subroutine_path: &config.subroutine_path,
             tool_table: config.tool_table.as_ref(),
+            blend: config.blend,
         }
     }
 }
@@ -115,6 +118,7 @@ pub(crate) fn read_motions(
                 tool: tool.unwrap_or_default(),
                 infer_tool: tool.is_none(),
                 tool_table: reading.tool_table.cloned(),
+                blend: reading.blend,
                 ..GcodeConfig::default()
             };
             // A file is read with jumps (O-word loops and calls); standard input only forwards.

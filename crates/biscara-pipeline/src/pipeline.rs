@@ -43,6 +43,10 @@ pub struct SamplingConfig {
     /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
     /// program's own folder (`--subroutine-path`).
     pub subroutine_path: Vec<PathBuf>,
+    /// The corner tolerance of a G-code program that never says G61 or G64 (`--blend`, mm):
+    /// `None` (the default) runs it with an exact stop at every corner, `Some(p)` as if it began
+    /// with `G64 P{p}` (SPEC §6).
+    pub blend: Option<f64>,
     /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
     /// length and diameter.
     pub tool_table: Option<Arc<ToolTable>>,
@@ -61,6 +65,7 @@ impl Default for SamplingConfig {
             dialect: Dialect::Auto,
             tool: None,
             subroutine_path: Vec::new(),
+            blend: None,
             tool_table: None,
         }
     }

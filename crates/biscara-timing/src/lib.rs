@@ -99,6 +99,25 @@ pub trait PathConstraints {
     /// Called for the grid points in increasing order, each once per pass (see the crate's
     /// documentation on streaming), so it may keep state between calls.
     fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64;
+
+    /// For a path planned by [`TimeOptimal::plan_streamed`]: grid point `index`'s path
+    /// parameter, increasing with `index`, or `None` past the last point (a path has at least
+    /// two). Called for 0, 1, 2, … in order, once each, each call followed by the
+    /// [`evaluate`](Self::evaluate) of that point, so that the path may keep only the points
+    /// ahead of its sampling. Never called for a path planned over a [`Grid`]; `None` by
+    /// default.
+    fn point(&mut self, index: usize) -> Option<f64> {
+        let _ = index;
+        None
+    }
+
+    /// Whether each point's rows come in two halves: the first holds on the interval before
+    /// the point, the second on the interval after it (where the path's curvature jumps, such
+    /// as where a line meets an arc, the two differ). `false` by default: every row holds on
+    /// both sides. `count()` must then be even.
+    fn sided(&self) -> bool {
+        false
+    }
 }
 
 /// A path that cannot be timed.

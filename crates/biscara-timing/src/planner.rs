@@ -162,6 +162,12 @@ pub struct TimeOptimal {
     /// The interval `s_at` is in, and the time it starts.
     current: Option<Interval>,
     elapsed: f64,
+    /// Whether the path gives its own grid points ([`plan_streamed`](Self::plan_streamed)).
+    streamed: bool,
+    /// The rows of a point a stage skips at its start and takes at its end: 0 and `count`, or
+    /// for a sided path ([`PathConstraints::sided`]) `count / 2` and `count / 2`.
+    skip: usize,
+    take: usize,
 }
 
 impl TimeOptimal {
@@ -187,13 +193,41 @@ impl TimeOptimal {
         window: usize,
     ) -> Result<(), TimingError> {
         self.grid = None;
+        self.streamed = false;
         if !grid.is_valid() {
             return Err(TimingError::NoIntervals);
         }
         self.grid = Some(grid);
         self.intervals = grid.len();
+        self.start(path, window)
+    }
+
+    /// Plans `path` over the grid points it gives itself ([`PathConstraints::point`]), whose
+    /// number is not known in advance: a path of any length (a chain of blended moves, whose
+    /// end is found as the windows reach it), planned in windows of `window` intervals plus as
+    /// many of look-ahead, from rest to rest. The path parameter is the path's own (for
+    /// example mm along it); [`s_at`](Self::s_at) returns the last point's after the end.
+    pub fn plan_streamed<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        window: usize,
+    ) -> Result<(), TimingError> {
+        self.grid = None;
+        self.streamed = true;
+        self.intervals = usize::MAX;
+        self.start(path, window)
+    }
+
+    fn start<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        window: usize,
+    ) -> Result<(), TimingError> {
         self.window = window.max(1);
         self.count = path.count();
+        let sided = path.sided() && self.count.is_multiple_of(2);
+        (self.skip, self.take) =
+            if sided { (self.count / 2, self.count / 2) } else { (0, self.count) };
         self.duration = None;
         self.first = 0;
         self.s.clear();
@@ -207,6 +241,7 @@ impl TimeOptimal {
         let planned = self.fill(path, 0);
         if planned.is_err() {
             self.grid = None;
+            self.streamed = false;
         }
         planned
     }
@@ -240,7 +275,7 @@ impl TimeOptimal {
             }
             self.current = self.next_interval(path)?;
             if self.current.is_none() {
-                return Ok(1.0);
+                return Ok(if self.streamed { self.s.last().copied().unwrap_or(0.0) } else { 1.0 });
             }
         }
     }
@@ -250,7 +285,7 @@ impl TimeOptimal {
         &mut self,
         path: &mut P,
     ) -> Result<Option<Interval>, TimingError> {
-        if self.index >= self.intervals || self.grid.is_none() {
+        if self.index >= self.intervals || (self.grid.is_none() && !self.streamed) {
             return Ok(None);
         }
         if self.forward_from == usize::MAX && self.index - self.first >= self.window {
@@ -303,7 +338,6 @@ impl TimeOptimal {
     #[inline]
     fn u_range_at<const LOWER: bool>(&self, local: usize, x: f64) -> (f64, f64, bool) {
         let step = self.s[local + 1] - self.s[local];
-        let count = self.count;
         let (mut u_lo, mut u_hi, mut x_ok) = (f64::NEG_INFINITY, f64::INFINITY, true);
         let mut bound = |alpha: f64, beta: f64, lo: f64, hi: f64| {
             let scale = alpha.abs().max(beta.abs());
@@ -324,10 +358,11 @@ impl TimeOptimal {
                 u_lo = u_lo.max((lower - beta * x) * inverse);
             }
         };
-        for row in &self.rows[local * count..(local + 1) * count] {
+        let (start, end) = self.stage_ranges(local);
+        for row in &self.rows[start] {
             bound(row.a, row.b, row.lo - row.c, row.hi - row.c);
         }
-        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+        for row in &self.rows[end] {
             bound(row.a + 2.0 * step * row.b, row.b, row.lo - row.c, row.hi - row.c);
         }
         bound(2.0 * step, 1.0, 0.0, self.k_max[local + 1]);
@@ -342,7 +377,7 @@ impl TimeOptimal {
         from: usize,
     ) -> Result<(), TimingError> {
         let grid = self.grid.unwrap_or(Grid::uniform(1));
-        let last = (from + 2 * self.window).min(self.intervals);
+        let mut last = (from + 2 * self.window).min(self.intervals);
         let mut next = from;
         if !self.x_max.is_empty() && from >= self.first {
             let held_last = self.first + self.x_max.len() - 1;
@@ -359,7 +394,21 @@ impl TimeOptimal {
         self.first = from;
         self.forward_from = usize::MAX;
         for index in next..=last {
-            self.evaluate(path, grid.s(index))?;
+            let s = if self.streamed {
+                match path.point(index) {
+                    Some(s) if index == 0 || s > self.s[self.s.len() - 1] => s,
+                    Some(s) => return Err(TimingError::NotFinite { s }),
+                    None if index < 2 => return Err(TimingError::NoIntervals),
+                    None => {
+                        self.intervals = index - 1;
+                        last = index - 1;
+                        break;
+                    }
+                }
+            } else {
+                grid.s(index)
+            };
+            self.evaluate(path, s)?;
         }
         self.backward()?;
         if last == self.intervals {
@@ -449,18 +498,28 @@ impl TimeOptimal {
         Ok(())
     }
 
+    /// Where in `rows` the constraints of the stage from held point `local` to the next are: at
+    /// its start and at its end. A sided path's points carry the rows that hold before them
+    /// (first half) and after them (second half): a stage takes the second half of its start's
+    /// and the first half of its end's.
+    #[inline]
+    fn stage_ranges(&self, local: usize) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+        let (start, end) = (local * self.count, (local + 1) * self.count);
+        (start + self.skip..end, end..end + self.take)
+    }
+
     /// The half-planes in (u, x) of the stage from held point `local` to the next: every
     /// constraint at both ends of the interval, and the next point in its controllable set (only
     /// the upper bounds on u with `uppers_only`).
     fn build_stage(&mut self, local: usize, uppers_only: bool) {
         let step = self.s[local + 1] - self.s[local];
-        let count = self.count;
         self.polygon.reset(uppers_only);
-        for row in &self.rows[local * count..(local + 1) * count] {
+        let (start, end) = self.stage_ranges(local);
+        for row in &self.rows[start] {
             self.polygon.push_range(row.a, row.b, row.lo - row.c, row.hi - row.c);
         }
         // At the interval's end, x_{i+1} = x + 2Δu: a'·u + b'·(x + 2Δu).
-        for row in &self.rows[(local + 1) * count..(local + 2) * count] {
+        for row in &self.rows[end] {
             self.polygon.push_range(
                 row.a + 2.0 * step * row.b,
                 row.b,
@@ -647,6 +706,93 @@ mod tests {
         }
         assert!(total > whole);
         assert_eq!(short.duration(), Some(total));
+    }
+
+    /// The trapezoid over the points 0, 1/n, …, 1 that it gives itself.
+    struct Streamed {
+        inner: Trapezoid,
+        points: usize,
+        asked: usize,
+    }
+
+    impl PathConstraints for Streamed {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            self.inner.evaluate(s, out)
+        }
+        fn point(&mut self, index: usize) -> Option<f64> {
+            assert_eq!(index, self.asked, "points are asked in order, once each");
+            self.asked += 1;
+            (index <= self.points).then(|| index as f64 / self.points as f64)
+        }
+    }
+
+    #[test]
+    fn a_streamed_path_plans_as_its_grid() {
+        for window in [4096, 60, 7] {
+            let mut grid_path = trapezoid(1.0, 4.0);
+            let mut whole = TimeOptimal::new(&mut grid_path, Grid::uniform(1000), window).unwrap();
+            let expected = run(&mut whole, &mut grid_path);
+            let mut path = Streamed { inner: trapezoid(1.0, 4.0), points: 1000, asked: 0 };
+            let mut plan = TimeOptimal::default();
+            plan.plan_streamed(&mut path, window).unwrap();
+            assert_eq!(plan.duration().is_some(), window >= 1000);
+            let mut last = 0.0;
+            let mut t = 0.0;
+            while last < 1.0 {
+                t += 1e-3;
+                last = plan.s_at(&mut path, t).unwrap();
+            }
+            assert_eq!(path.inner.calls, 1001);
+            assert_relative_eq!(plan.duration().unwrap(), expected, max_relative = 1e-12);
+            assert_relative_eq!(t, expected, epsilon = 1.1e-3);
+        }
+        let mut one = Streamed { inner: trapezoid(1.0, 4.0), points: 0, asked: 0 };
+        assert_eq!(
+            TimeOptimal::default().plan_streamed(&mut one, 10),
+            Err(TimingError::NoIntervals)
+        );
+    }
+
+    /// |s̈| ≤ 4 everywhere but on the side before s = 0.05 (in the ramp up), on which
+    /// |s̈| ≤ `before`; with `sided`, each side holds only on its own interval.
+    struct Switching {
+        before: f64,
+        sided: bool,
+    }
+
+    impl PathConstraints for Switching {
+        fn count(&self) -> usize {
+            2
+        }
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            let row = |limit: f64| Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -limit, hi: limit };
+            let before = if s == 0.05 { self.before } else { 4.0 };
+            out[0] = row(before);
+            out[1] = row(4.0);
+            1.0
+        }
+        fn sided(&self) -> bool {
+            self.sided
+        }
+    }
+
+    #[test]
+    fn sided_rows_hold_on_their_own_side() {
+        let duration = |before: f64, sided: bool| {
+            let mut path = Switching { before, sided };
+            TimeOptimal::new(&mut path, Grid::uniform(100), 4096).unwrap().duration().unwrap()
+        };
+        // The same rows on both sides: sided or not, the same plan.
+        assert_eq!(duration(4.0, true), duration(4.0, false));
+        // A tight bound only on the interval before s = 0.05: sided, the interval after it is
+        // free to accelerate, so the plan is faster than with the bound on both sides; both
+        // slower than without it.
+        let (sided, both) = (duration(0.01, true), duration(0.01, false));
+        assert!(sided < both, "{sided} {both}");
+        assert!(sided > duration(4.0, true));
     }
 
     struct Blocked;

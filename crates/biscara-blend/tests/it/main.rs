@@ -3,7 +3,7 @@
 
 mod strategies;
 
-use biscara_blend::{Blended, Blender, Piece};
+use biscara_blend::{Blended, Blender, Piece, Speed};
 use biscara_motion::{Feed, Motion, MotionKind};
 use proptest::prelude::*;
 
@@ -71,7 +71,7 @@ fn worst_deviation(pieces: &[Piece], vertices: &[[f64; 4]]) -> f64 {
 fn a_square_corner_gets_a_fillet_within_the_tolerance() {
     let motions = [
         linear(1, [10.0, 0.0, 0.0, 0.0], Some(0.05)),
-        linear(2, [10.0, 10.0, 0.0, 90.0], Some(0.05)),
+        linear(2, [10.0, 10.0, 0.0, 0.0], Some(0.05)),
     ];
     let got = pieces(&blend(&motions, [0.0; 4]));
     assert_eq!(got.len(), 3, "{got:?}");
@@ -82,9 +82,34 @@ fn a_square_corner_gets_a_fillet_within_the_tolerance() {
     let off = ((midpoint[0] - 10.0).powi(2) + midpoint[1].powi(2)).sqrt();
     assert!((off - 0.05).abs() < 1e-9, "{off}");
     assert_eq!(got[0].start(), [0.0; 4]);
-    assert_eq!(got[2].end(), [10.0, 10.0, 0.0, 90.0]);
+    assert_eq!(got[2].end(), [10.0, 10.0, 0.0, 0.0]);
     assert!(got[2].ends_chain && !got[0].ends_chain && !got[1].ends_chain);
     assert_eq!((got[0].line, got[1].line, got[2].line), (1, 1, 2));
+}
+
+#[test]
+fn c_rates_that_would_jump_stop_the_robot() {
+    // C turns on the second move: its rate along the path would jump at the fillet.
+    let turning = [
+        linear(1, [10.0, 0.0, 0.0, 0.0], Some(0.05)),
+        linear(2, [10.0, 10.0, 0.0, 90.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&turning, [0.0; 4]));
+    assert_eq!(got.len(), 2, "{got:?}");
+    assert!(got[0].ends_chain && got[0].radius().is_none());
+    // Straight on with C turning at the same rate: no stop; at another rate: a stop.
+    let same = [
+        linear(1, [10.0, 0.0, 0.0, 10.0], Some(0.05)),
+        linear(2, [30.0, 0.0, 0.0, 30.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&same, [0.0; 4]));
+    assert!(!got[0].ends_chain && got[1].ends_chain, "{got:?}");
+    let other = [
+        linear(1, [10.0, 0.0, 0.0, 10.0], Some(0.05)),
+        linear(2, [30.0, 0.0, 0.0, 10.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&other, [0.0; 4]));
+    assert!(got[0].ends_chain && got[1].ends_chain, "{got:?}");
 }
 
 #[test]
@@ -286,4 +311,30 @@ fn a_cam_polyline_runs_as_one_chain() {
     let smallest = fillets.iter().copied().fold(f64::INFINITY, f64::min);
     assert!((smallest - 0.05 / (2f64.sqrt() - 1.0)).abs() < 1e-9, "{smallest}");
     assert!(fillets[..719].iter().all(|r| (r - radius).abs() < 0.01), "{:?}", &fillets[..3]);
+}
+
+#[test]
+fn a_fillet_between_speeds_is_cut_at_its_middle() {
+    // A rapid, then a plunge at the feed: each half of the fillet at its own move's speed.
+    let motions = [
+        Motion {
+            blend: Some(0.1),
+            ..Motion::new(1, MotionKind::Rapid { end: [10.0, 0.0, 0.0, 0.0] })
+        },
+        linear(2, [10.0, 0.0, -10.0, 0.0], Some(0.1)),
+    ];
+    let got = pieces(&blend(&motions, [0.0; 4]));
+    assert_eq!(got.len(), 4, "{got:?}");
+    let (first, second) = (got[1], got[2]);
+    assert_eq!((first.speed, first.line), (Speed::Rapid, 1));
+    assert_eq!((second.speed, second.line), (Speed::Feed(FEED), 2));
+    assert_eq!(first.end(), second.start());
+    assert_eq!((first.start(), second.end()), (got[0].end(), got[3].start()));
+    assert_eq!(first.radius(), second.radius());
+    // The halves continue each other: the tangent at the first's end is the second's start.
+    let (end, start) = (first.tangent(1.0), second.tangent(0.0));
+    assert!((0..3).all(|k| (end[k] - start[k]).abs() < 1e-12), "{end:?} {start:?}");
+    let midpoint = first.end();
+    let off = (midpoint[0] - 10.0).hypot(midpoint[2]);
+    assert!((off - 0.1).abs() < 1e-9, "{off}");
 }

@@ -1,4 +1,5 @@
 //! Integration tests of the joint-trajectory builder.
 
+mod blend;
 mod optimal;
 mod trajectory;

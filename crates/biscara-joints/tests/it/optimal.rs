@@ -14,7 +14,7 @@ use proptest::prelude::*;
 /// Relative tolerance on the limits: the optimal profile's margins (0.2 % on velocity, 1 % on
 /// acceleration, none on d4) must absorb the grid and the finite differences; this only covers
 /// rounding, as `check`'s own slack does.
-const TOLERANCE: f64 = 1e-6;
+pub(crate) const TOLERANCE: f64 = 1e-6;
 
 /// θ3 free to turn ±2 turns, so that C rotations do not hit its position limit.
 fn turning(robot: Robot) -> Robot {
@@ -22,7 +22,7 @@ fn turning(robot: Robot) -> Robot {
 }
 
 /// The default robot, or the weak-motor one of `data/robots/weak-motors.json`.
-fn robot(weak: bool) -> Robot {
+pub(crate) fn robot(weak: bool) -> Robot {
     let robot = Robot::default();
     if !weak {
         return turning(robot);
@@ -44,13 +44,13 @@ fn robot(weak: bool) -> Robot {
     })
 }
 
-fn feed(mm_per_min: f64) -> Feed {
+pub(crate) fn feed(mm_per_min: f64) -> Feed {
     Feed { mm_per_min, inverse_time: false }
 }
 
 /// One move, relative to where the previous one ended.
 #[derive(Debug, Clone, Copy)]
-enum Step {
+pub(crate) enum Step {
     /// A G0 or G1 to a point of the workspace's middle.
     Line { end: [f64; 4], rapid: bool, feed: f64 },
     /// A full or partial circle of small radius (2–20 mm) about a point beside the start.
@@ -62,7 +62,7 @@ enum Step {
     Edge { angle: f64, inside: f64, z: f64, feed: f64 },
 }
 
-fn step() -> impl Strategy<Value = Step> {
+pub(crate) fn step() -> impl Strategy<Value = Step> {
     let feed = 300.0..12000.0f64;
     prop_oneof![
         (
@@ -95,7 +95,7 @@ fn step() -> impl Strategy<Value = Step> {
 }
 
 /// The motions of `steps` from the home pose, and their count.
-fn motions(steps: &[Step], home: [f64; 4], model: &Kinematics) -> Vec<Motion> {
+pub(crate) fn motions(steps: &[Step], home: [f64; 4], model: &Kinematics) -> Vec<Motion> {
     let mut pose = home;
     let mut motions = Vec::new();
     for (index, step) in steps.iter().enumerate() {
@@ -150,7 +150,11 @@ fn motions(steps: &[Step], home: [f64; 4], model: &Kinematics) -> Vec<Motion> {
 
 /// The joint trajectory of `motions` under `profile`, or `None` where the robot cannot follow
 /// the path (unreachable, near a singularity, a joint limit): such programs are `check`'s.
-fn trajectory(motions: &[Motion], robot: &Robot, profile: Profile) -> Option<Vec<JointSample>> {
+pub(crate) fn trajectory(
+    motions: &[Motion],
+    robot: &Robot,
+    profile: Profile,
+) -> Option<Vec<JointSample>> {
     let model = Kinematics::new(robot).expect("robot");
     let config = InterpolationConfig {
         dt: 0.001,
@@ -178,7 +182,7 @@ fn limits(robot: &Robot) -> ([f64; 4], [f64; 4]) {
 
 /// The largest ratio of a central-difference velocity and acceleration to its limit, over the
 /// interior samples, per joint: `check`'s differences.
-fn peak_ratios(rows: &[JointSample], robot: &Robot) -> ([f64; 4], [f64; 4]) {
+pub(crate) fn peak_ratios(rows: &[JointSample], robot: &Robot) -> ([f64; 4], [f64; 4]) {
     let (max_velocity, max_acceleration) = limits(robot);
     let (mut velocity, mut acceleration) = ([0.0f64; 4], [0.0f64; 4]);
     for window in rows.windows(3) {
@@ -198,7 +202,7 @@ fn peak_ratios(rows: &[JointSample], robot: &Robot) -> ([f64; 4], [f64; 4]) {
 }
 
 /// Every motion's segment, for the on-path check.
-fn segments(motions: &[Motion], home: [f64; 4]) -> Vec<(usize, Segment)> {
+pub(crate) fn segments(motions: &[Motion], home: [f64; 4]) -> Vec<(usize, Segment)> {
     let mut pose = home;
     let mut segments = Vec::new();
     for motion in motions {

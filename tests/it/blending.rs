@@ -1,0 +1,143 @@
+//! Corner blending under G64 P (issue 17) end to end: the "done when" of the issue — a CAM-style
+//! polyline (a circle of 720 one-degree chords at F6000, then a square) under `G64 P0.05` takes
+//! at most half the time of the same program under G61, no sample leaves the 0.05 mm tolerance,
+//! no joint exceeds a limit in the CSV's own differences, and `check` finds nothing; `--blend`
+//! gives a program that never says G61/G64 the same run as `G64 P`.
+
+use std::fmt::Write as _;
+
+use crate::util::{biscara, temp_dir};
+
+/// The circle's centre and radius (a 1 mm chord per degree), the square's side, mm.
+const CENTER: [f64; 2] = [0.0, 400.0];
+const SIDE: f64 = 40.0;
+
+fn radius() -> f64 {
+    0.5 / 0.5f64.to_radians().sin()
+}
+
+/// The programmed polyline: the circle's start, 720 chords, the square.
+fn vertices() -> Vec<[f64; 2]> {
+    let r = radius();
+    let mut points: Vec<[f64; 2]> = (0..=720)
+        .map(|k| {
+            let angle = f64::from(k).to_radians();
+            [CENTER[0] + r * angle.cos(), CENTER[1] + r * angle.sin()]
+        })
+        .collect();
+    let [x, y] = [CENTER[0] + r, CENTER[1]];
+    points.extend([[x, y + SIDE], [x - SIDE, y + SIDE], [x - SIDE, y], [x, y]]);
+    points
+}
+
+/// The program, with `mode` (G61, G64 P0.05 or nothing) on its second line. Coordinates are
+/// written with 6 decimals, so that the programmed path is the polyline of `vertices` up to
+/// 5e-7 mm.
+fn program(mode: &str) -> String {
+    let mut text = format!("G21 G90 G17\n{mode}\nG0 Z50\n");
+    let points = vertices();
+    let _ = writeln!(text, "G0 X{:.6} Y{:.6}", points[0][0], points[0][1]);
+    text.push_str("F6000\n");
+    for [x, y] in &points[1..] {
+        let _ = writeln!(text, "G1 X{x:.6} Y{y:.6}");
+    }
+    text.push_str("M2\n");
+    text
+}
+
+fn distance_to_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let length2: f64 = ab.iter().map(|d| d * d).sum();
+    let along: f64 = (0..3).map(|k| (p[k] - a[k]) * ab[k]).sum();
+    let t = if length2 > 0.0 { (along / length2).clamp(0.0, 1.0) } else { 0.0 };
+    (0..3).map(|k| (p[k] - a[k] - t * ab[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+fn rows(csv: &str) -> Vec<Vec<f64>> {
+    csv.lines()
+        .skip(1)
+        .map(|line| line.split(',').map(|value| value.parse().expect("number")).collect())
+        .collect()
+}
+
+/// The largest ratio of a joint's central-difference acceleration to its limit (the default
+/// robot), over the rows of a joint CSV in radians and mm.
+fn peak_acceleration_ratio(joints: &[Vec<f64>]) -> f64 {
+    let robot = biscara::kinematics::Robot::default();
+    let limits = robot.joint_max_acceleration.to_array();
+    let limits =
+        [limits[0].to_radians(), limits[1].to_radians(), limits[2].to_radians(), limits[3]];
+    let mut peak = 0.0f64;
+    for window in joints.windows(3) {
+        let dt = window[2][0] - window[1][0];
+        for j in 0..4 {
+            let a = (window[2][j + 1] - 2.0 * window[1][j + 1] + window[0][j + 1]) / (dt * dt);
+            peak = peak.max(a.abs() / limits[j]);
+        }
+    }
+    peak
+}
+
+#[test]
+fn a_cam_circle_under_g64_p0_05_takes_half_the_time_of_exact_stop() {
+    let dir = temp_dir("blending");
+    std::fs::write(dir.join("g61.ngc"), program("G61")).expect("write");
+    std::fs::write(dir.join("g64.ngc"), program("G64 P0.05")).expect("write");
+    std::fs::write(dir.join("plain.ngc"), program("")).expect("write");
+    let path = |name: &str, extra: &[&str]| {
+        let mut args = vec!["interpolate", name, "--precision", "9"];
+        args.extend(extra);
+        let run = biscara(&dir, &args);
+        run.success();
+        run.stdout.clone()
+    };
+    let exact = rows(&path("g61.ngc", &[]));
+    let blended_csv = path("g64.ngc", &[]);
+    let blended = rows(&blended_csv);
+    // --blend on a program that never says G61/G64 is G64 P; on one that says G61, nothing.
+    assert_eq!(path("plain.ngc", &["--blend", "0.05"]), blended_csv);
+    assert_eq!(rows(&path("g61.ngc", &["--blend", "0.05"])), exact);
+    assert_eq!(rows(&path("plain.ngc", &[])), exact);
+
+    let (t_exact, t_blended) = (exact[exact.len() - 1][0], blended[blended.len() - 1][0]);
+    assert!(t_blended <= 0.5 * t_exact, "G64 P0.05 takes {t_blended} s, G61 {t_exact} s");
+    // Every sample within 0.05 mm of the programmed path: from the home pose (the first row)
+    // up to Z50, across to the circle's start, the chords and the square.
+    let home = [blended[0][1], blended[0][2], blended[0][3]];
+    let points = vertices();
+    let mut path = vec![home, [home[0], home[1], 50.0]];
+    path.extend(points.iter().map(|&[x, y]| [x, y, 50.0]));
+    let mut worst = 0.0f64;
+    for row in &blended {
+        let distance = path
+            .windows(2)
+            .map(|pair| distance_to_segment([row[1], row[2], row[3]], pair[0], pair[1]))
+            .fold(f64::INFINITY, f64::min);
+        worst = worst.max(distance);
+    }
+    assert!(worst <= 0.05 + 1e-6, "a sample is {worst} mm off the path");
+    assert!(worst > 0.01, "the corners are cut: {worst}");
+    // The chain stops on the last programmed point.
+    let last = &blended[blended.len() - 1];
+    assert!((last[1] - points[0][0]).abs() < 1e-6 && (last[2] - points[0][1]).abs() < 1e-6);
+
+    let joints = biscara(&dir, &["joints", "g64.ngc", "--precision", "9"]);
+    joints.success();
+    let ratio = peak_acceleration_ratio(&rows(&joints.stdout));
+    assert!(ratio <= 1.0 + 1e-3, "a joint accelerates at {ratio} of its limit");
+    let check = biscara(&dir, &["check", "g64.ngc"]);
+    check.success();
+    assert!(check.stdout.contains("no problem found"), "{}", check.stdout);
+}
+
+#[test]
+fn a_bad_blend_tolerance_is_refused() {
+    let dir = temp_dir("blending-bad");
+    std::fs::write(dir.join("plain.ngc"), program("")).expect("write");
+    for bad in ["abc", "-1", "1000", "NaN"] {
+        let run = biscara(&dir, &["interpolate", "plain.ngc", &format!("--blend={bad}")]);
+        run.expect_code(2);
+        assert!(run.stdout.is_empty(), "{run}");
+        assert!(run.stderr.contains("--blend"), "{run}");
+    }
+}
