@@ -364,7 +364,7 @@ fn linuxcnc_examples_match_or_are_refused() {
     {
         eprintln!(
             "LinuxCNC examples: {} distinct programs ({files} files): {} match, {} refused as \
-             not supported yet (O-words, canned cycles, …), {} refused for A/B/U/V/W axis words, \
+             not supported yet, {} refused for A/B/U/V/W axis words, \
              {} refused by rs274 itself and by us, {} with user M codes (events here, refused by \
              rs274 without their programs), {} refused as this robot cannot do them (lathe, \
              spindle-synchronised motion, probing), {} differ",
