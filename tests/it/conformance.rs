@@ -717,36 +717,77 @@ fn random_program(rng: &mut Rng) -> String {
     text
 }
 
+/// What a batch of random programs gave: the count of each [`Verdict`], how many programs, and
+/// the programs that differ (or got a verdict the batch does not allow), with why.
+struct RandomRun {
+    counts: [usize; 7],
+    total: usize,
+    failures: Vec<String>,
+}
+
+impl RandomRun {
+    /// How many programs got `verdict`.
+    fn count(&self, verdict: Verdict) -> usize {
+        self.counts[verdict as usize]
+    }
+
+    /// Fails the test on any program that differs.
+    #[track_caller]
+    fn assert_none_differ(&self) {
+        let failures = &self.failures;
+        assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+    }
+}
+
+/// Writes `RANDOM_PROGRAMS` (300 by default) programs of `generate`, seeded with `seed`, to
+/// `dir` as `STEM{index}.ngc` (each with `table` beside it as `STEM{index}.tbl` when given), and
+/// checks each against rs274; a verdict outside `allowed` counts as a failure.
+fn run_random(
+    dir: &Path,
+    stem: &str,
+    seed: u64,
+    table: Option<&str>,
+    allowed: &[Verdict],
+    mut generate: impl FnMut(&mut Rng) -> String,
+) -> RandomRun {
+    let mut rng = Rng(seed);
+    let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
+    let mut run = RandomRun { counts: [0; 7], total, failures: Vec::new() };
+    for index in 0..total {
+        let program = generate(&mut rng);
+        let path = dir.join(format!("{stem}{index}.ngc"));
+        std::fs::write(&path, &program).expect("write");
+        if let Some(table) = table {
+            std::fs::write(path.with_extension("tbl"), table).expect("write the tool table");
+        }
+        match check(&path, dir) {
+            Ok(verdict) if allowed.contains(&verdict) => run.counts[verdict as usize] += 1,
+            Ok(other) => run.failures.push(format!("{other:?}\n{program}")),
+            Err(problem) => run.failures.push(format!("{problem}\n--- program ---\n{program}")),
+        }
+    }
+    run
+}
+
 #[test]
 fn random_programs_conform() {
     if !rs274::available("random_programs_conform") {
         return;
     }
     let dir = temp_dir("conformance-random");
-    let mut rng = Rng(0x0005_eed0_fb15_ca7a);
-    let mut failures = Vec::new();
-    let (mut accepted, mut refused, mut stricter) = (0, 0, 0);
-    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
-    for index in 0..count {
-        let program = random_program(&mut rng);
-        let path = dir.join(format!("random{index}.ngc"));
-        std::fs::write(&path, &program).expect("write");
-        match check(&path, &dir) {
-            Ok(Verdict::Match) => accepted += 1,
-            Ok(Verdict::BothRefuse) => refused += 1,
-            Ok(Verdict::Stricter) => stricter += 1,
-            Ok(other) => failures.push(format!("{other:?}\n{program}")),
-            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
-        }
-    }
+    let allowed = [Verdict::Match, Verdict::BothRefuse, Verdict::Stricter];
+    let run = run_random(&dir, "random", 0x0005_eed0_fb15_ca7a, None, &allowed, random_program);
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
-            "random programs: {accepted} match, {refused} refused by both alike, {stricter} \
-             refused by us only for a value that is not finite or beyond ±1e6 mm"
+            "random programs: {} match, {} refused by both alike, {} refused by us only for a \
+             value that is not finite or beyond ±1e6 mm",
+            run.count(Verdict::Match),
+            run.count(Verdict::BothRefuse),
+            run.count(Verdict::Stricter)
         );
     }
-    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+    run.assert_none_differ();
 }
 
 /// A random profile under cutter compensation (G41.1/G42.1 with a diameter or G41/G42 with a
@@ -840,28 +881,19 @@ fn random_cutter_comp_programs_conform() {
         return;
     }
     let dir = temp_dir("conformance-random-comp");
-    let mut rng = Rng(0x00c0_77e2_c0b9_0001);
-    let mut failures = Vec::new();
-    let (mut accepted, mut refused) = (0, 0);
-    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
-    for index in 0..count {
-        let program = random_comp_program(&mut rng);
-        let path = dir.join(format!("comp{index}.ngc"));
-        std::fs::write(&path, &program).expect("write");
-        std::fs::write(path.with_extension("tbl"), COMP_TOOLS).expect("write the tool table");
-        match check(&path, &dir) {
-            Ok(Verdict::Match) => accepted += 1,
-            Ok(Verdict::BothRefuse) => refused += 1,
-            Ok(other) => failures.push(format!("{other:?}\n{program}")),
-            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
-        }
-    }
+    let allowed = [Verdict::Match, Verdict::BothRefuse];
+    let seed = 0x00c0_77e2_c0b9_0001;
+    let run = run_random(&dir, "comp", seed, Some(COMP_TOOLS), &allowed, random_comp_program);
+    let (accepted, count) = (run.count(Verdict::Match), run.total);
     #[allow(clippy::print_stderr)]
     {
-        eprintln!("random compensated programs: {accepted} match, {refused} refused by both alike");
+        eprintln!(
+            "random compensated programs: {accepted} match, {} refused by both alike",
+            run.count(Verdict::BothRefuse)
+        );
     }
     assert!(accepted >= count / 10, "only {accepted} of {count} random profiles were accepted");
-    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+    run.assert_none_differ();
 }
 
 /// A random program in the XY plane of rotated coordinate systems (G10 L2 R), with polar
@@ -952,29 +984,19 @@ fn random_rotated_programs_conform() {
         return;
     }
     let dir = temp_dir("conformance-random-rotated");
-    let mut rng = Rng(0x0070_7a7e_d0a1_0001);
-    let mut failures = Vec::new();
-    let (mut accepted, mut refused) = (0, 0);
-    let count = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
-    for index in 0..count {
-        let program = random_rotated_program(&mut rng);
-        let path = dir.join(format!("rotated{index}.ngc"));
-        std::fs::write(&path, &program).expect("write");
-        match check(&path, &dir) {
-            Ok(Verdict::Match) => accepted += 1,
-            Ok(Verdict::BothRefuse) => refused += 1,
-            Ok(other) => failures.push(format!("{other:?}\n{program}")),
-            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
-        }
-    }
+    let allowed = [Verdict::Match, Verdict::BothRefuse];
+    let seed = 0x0070_7a7e_d0a1_0001;
+    let run = run_random(&dir, "rotated", seed, None, &allowed, random_rotated_program);
+    let (accepted, count) = (run.count(Verdict::Match), run.total);
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
-            "random rotated and polar programs: {accepted} match, {refused} refused by both alike"
+            "random rotated and polar programs: {accepted} match, {} refused by both alike",
+            run.count(Verdict::BothRefuse)
         );
     }
     assert!(accepted >= count / 10, "only {accepted} of {count} random programs were accepted");
-    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+    run.assert_none_differ();
 }
 
 /// A soup of tokens: words, numbers, expressions, comments and stray characters in any order,
@@ -1082,31 +1104,28 @@ fn token_soups_are_refused_alike() {
         return;
     }
     let dir = temp_dir("conformance-soup");
-    let mut rng = Rng(0x0000_50c0_ffee_d00d);
-    let mut failures = Vec::new();
-    let mut counts = [0usize; 7];
-    let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
-    for index in 0..total {
-        let program = token_soup(&mut rng);
-        let path = dir.join(format!("soup{index}.ngc"));
-        std::fs::write(&path, &program).expect("write");
-        match check(&path, &dir) {
-            Ok(verdict) => counts[verdict as usize] += 1,
-            Err(problem) => failures.push(format!("{problem}\n--- program ---\n{program}")),
-        }
-    }
+    let every = [
+        Verdict::Match,
+        Verdict::NotSupported,
+        Verdict::ForeignAxis,
+        Verdict::BothRefuse,
+        Verdict::Stricter,
+        Verdict::UserMCode,
+        Verdict::CannotRun,
+    ];
+    let run = run_random(&dir, "soup", 0x0000_50c0_ffee_d00d, None, &every, token_soup);
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
             "token soups: {} match, {} refused alike, {} refused here as not supported",
-            counts[Verdict::Match as usize],
-            counts[Verdict::BothRefuse as usize],
-            counts[Verdict::NotSupported as usize]
-                + counts[Verdict::ForeignAxis as usize]
-                + counts[Verdict::CannotRun as usize],
+            run.count(Verdict::Match),
+            run.count(Verdict::BothRefuse),
+            run.count(Verdict::NotSupported)
+                + run.count(Verdict::ForeignAxis)
+                + run.count(Verdict::CannotRun),
         );
     }
-    assert!(failures.is_empty(), "{} differ:\n{}", failures.len(), failures.join("\n\n"));
+    run.assert_none_differ();
 }
 
 /// SIN, COS, TAN, ASIN, ACOS and ATAN to the last bit. rs274 computes them in long double (the
