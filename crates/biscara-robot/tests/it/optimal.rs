@@ -6,7 +6,7 @@
 
 use std::convert::Infallible;
 
-use biscara_interpolate::{InterpolationConfig, Interpolator, Profile, SlowDown};
+use biscara_interpolate::{InterpolationConfig, Interpolator, Profile, Segment, SlowDown};
 use biscara_joints::{JointSpeedLimit, cartesian_limits};
 use biscara_kinematics::{JointLimits, JointValues, Pose, Robot, RobotModel};
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
@@ -113,7 +113,7 @@ fn motions(steps: &[Step], model: &RobotModel) -> Vec<Motion> {
 }
 
 /// Whether the robot can take every pose along `motions` (from its home pose), sampled every
-/// 0.05 mm (and 0.1°): inside the joint limits, the assembly mode and the singularity margin.
+/// 0.05 mm (or 0.05° of C): inside the joint limits, the assembly mode and the singularity margin.
 fn followable(motions: &[Motion], model: &RobotModel) -> bool {
     let kinematics = model.kinematics();
     let takes = |p: [f64; 4]| {
@@ -122,27 +122,15 @@ fn followable(motions: &[Motion], model: &RobotModel) -> bool {
     let mut from = kinematics.home().to_degrees();
     for motion in motions {
         let Some(to) = motion.kind.end() else { continue };
-        let point = |t: f64| -> [f64; 4] {
-            if let MotionKind::Arc { center, clockwise, .. } = motion.kind {
-                let radius = (from[0] - center[0]).hypot(from[1] - center[1]);
-                let start = (from[1] - center[1]).atan2(from[0] - center[0]);
-                let end = (to[1] - center[1]).atan2(to[0] - center[0]);
-                let tau = std::f64::consts::TAU;
-                let sweep = if clockwise {
-                    -(start - end).rem_euclid(tau)
-                } else {
-                    (end - start).rem_euclid(tau)
-                };
-                let angle = start + t * sweep;
-                let z = from[2] + t * (to[2] - from[2]);
-                [center[0] + radius * angle.cos(), center[1] + radius * angle.sin(), z, to[3]]
-            } else {
-                std::array::from_fn(|axis| from[axis] + t * (to[axis] - from[axis]))
+        let segment = match motion.kind {
+            MotionKind::Arc { center, plane, clockwise, turns, .. } => {
+                Segment::arc(from, to, center, plane, clockwise, turns)
             }
+            _ => Segment::line(from, to),
         };
-        let length = (0..4).map(|axis| (to[axis] - from[axis]).abs()).fold(1.0, f64::max);
+        let length = segment.length().max(segment.rotation().abs()).max(1.0);
         let steps = (length / 0.05).ceil().max(100.0) as usize;
-        if !(0..=steps).all(|step| takes(point(step as f64 / steps as f64))) {
+        if !(0..=steps).all(|step| takes(segment.point(step as f64 / steps as f64))) {
             return false;
         }
         from = to;
