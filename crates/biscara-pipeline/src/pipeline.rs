@@ -85,6 +85,12 @@ pub struct Pipeline<'m> {
     config: SamplingConfig,
 }
 
+/// The tool `config`'s flag or else `model`'s robot file names (`None`: inferred from the
+/// program).
+pub(crate) fn configured_tool(model: &RobotModel, config: &SamplingConfig) -> Option<Tool> {
+    config.tool.or_else(|| Tool::from_name(model.robot().tool.kind?.name()))
+}
+
 impl<'m> Pipeline<'m> {
     /// The pipeline of `model` sampling with `config`.
     pub fn new(model: &'m RobotModel, config: SamplingConfig) -> Pipeline<'m> {
@@ -103,10 +109,7 @@ impl<'m> Pipeline<'m> {
 
     /// The tool when the flag or the robot file says which (`None`: inferred from the program).
     pub fn tool(&self) -> Option<Tool> {
-        self.config.tool.or_else(|| {
-            let kind = self.model.robot().tool.kind?;
-            Tool::from_name(kind.name())
-        })
+        configured_tool(self.model, &self.config)
     }
 
     /// The program's motions, placed by the configuration's origin and `fit` (which reports a

@@ -43,7 +43,7 @@ pub fn place(
     config: &SamplingConfig,
     notes: &mut dyn FnMut(Note),
 ) -> Result<Placement, PipelineError> {
-    let tool = crate::Pipeline::new(model, config.clone()).tool();
+    let tool = crate::pipeline::configured_tool(model, config);
     let mut origin = config.origin.unwrap_or([0.0; 4]);
     if !config.fit {
         return Ok(Placement { origin, start: None, transform: None });
