@@ -195,15 +195,28 @@ impl SamplingArgs {
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,
-            origin: self.placement.origin,
-            fit: self.placement.fit,
-            dialect: self.dialect.dialect,
-            tool: self.dialect.tool,
-            subroutine_path: self.files.subroutine_path.clone(),
-            tool_table: self.files.tool_table()?,
             blend: self.blend.blend,
+            ..placed_reading(&self.placement, &self.dialect, &self.files)?
         })
     }
+}
+
+/// The default configuration but where and how a program is read: its placement, dialect and
+/// tool, its file subroutines and tool table.
+pub(crate) fn placed_reading(
+    placement: &PlacementArgs,
+    dialect: &DialectArgs,
+    files: &GcodeFilesArgs,
+) -> anyhow::Result<SamplingConfig> {
+    Ok(SamplingConfig {
+        origin: placement.origin,
+        fit: placement.fit,
+        dialect: dialect.dialect,
+        tool: dialect.tool,
+        subroutine_path: files.subroutine_path.clone(),
+        tool_table: files.tool_table()?,
+        ..SamplingConfig::default()
+    })
 }
 
 /// The default corner tolerance of a G-code program.

@@ -4,10 +4,10 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use biscara::motion::write_jsonl;
-use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig};
+use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
 use clap::Args;
 
-use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs};
+use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
 use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
@@ -65,16 +65,7 @@ pub(crate) struct InterpretArgs {
 
 pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Result<()> {
     let source = FileSource::new(&args.program);
-    let placement = &args.placement;
-    let config = SamplingConfig {
-        origin: placement.origin,
-        fit: placement.fit,
-        dialect: args.dialect.dialect,
-        tool: args.dialect.tool,
-        subroutine_path: args.files.subroutine_path.clone(),
-        tool_table: args.files.tool_table()?,
-        ..SamplingConfig::default()
-    };
+    let config = placed_reading(&args.placement, &args.dialect, &args.files)?;
     let notes = NoteReporter::default();
     let motions =
         Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, notes.sink())?;

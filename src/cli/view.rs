@@ -13,6 +13,7 @@ use clap::Args;
 
 use super::args::{
     BlendArgs, DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
+    placed_reading,
 };
 use super::diag::located;
 use super::diag::{Level, report};
@@ -104,13 +105,8 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: args.profile.into(),
         grip_time: args.grip_time,
-        origin: args.placement.origin,
-        fit: args.placement.fit,
-        dialect: args.dialect.dialect,
-        tool: args.dialect.tool,
-        subroutine_path: args.files.subroutine_path.clone(),
         blend: args.blend.blend,
-        tool_table: args.files.tool_table()?,
+        ..placed_reading(&args.placement, &args.dialect, &args.files)?
     };
     let mut end = 0.0;
     let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
