@@ -464,6 +464,9 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 self.percent = Percent::Absent;
             } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                if let Some(err) = self.control_percent() {
+                    return Err(err);
+                }
                 // rs274 never sends the motions cutter compensation holds at a closing `%`.
                 self.state.comp.discard();
                 self.finished = true;
