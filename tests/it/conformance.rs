@@ -712,9 +712,15 @@ fn random_program(rng: &mut Rng) -> String {
         text.push_str(&line);
         text.push('\n');
     }
-    text.push_str("M2\n");
-    text.push_str(RANDOM_SUBPROGRAM);
-    text
+    if rng.below(4) == 0 {
+        // Enclosed in `%` lines with no program end: the Fanuc subprogram lies past the closing
+        // `%`, where rs274 never looks (a call to it, or a jump still skipping, fails there).
+        format!("%\n{text}%\n{RANDOM_SUBPROGRAM}")
+    } else {
+        text.push_str("M2\n");
+        text.push_str(RANDOM_SUBPROGRAM);
+        text
+    }
 }
 
 /// What a batch of random programs gave: the count of each [`Verdict`], how many programs, and

@@ -310,10 +310,11 @@ impl<R: BufRead> Interpreter<R> {
         Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
     }
 
-    /// The closing `%` while a subroutine was being looked for: rs274 stops there with its
-    /// own message (the rest of the file is not searched).
+    /// The closing `%` while lines are being skipped (to a subroutine being called, to the
+    /// end of a subroutine being defined, or to the O line a control-flow word jumps to): rs274
+    /// stops there with its own message, the rest of the file unsearched.
     pub(super) fn control_percent(&self) -> Option<GcodeError> {
-        let name = self.control.skipping_to_sub.as_ref()?;
+        let name = self.control.skipping_to_sub.as_ref().or(self.control.skipping_o.as_ref())?;
         let message = format!("Failed to find sub 'O{name}' before EOF");
         Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
     }
