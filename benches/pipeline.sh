@@ -5,7 +5,8 @@
 # For `interpret`, `interpolate` and `joints` (G-code in, CSV out to /dev/null, one core): wall
 # time, MB/s and lines/s of G-code, samples/s, and peak resident memory (GNU time); then SPEC §10's
 # minimal loop (benches/minimal_loop.rs: the same work with no checks) and `joints` as a fraction
-# of its speed (target ≥ 0.55).
+# of its speed (target ≥ 0.55); and, where LinuxCNC's rs274 is installed, `interpret` against it
+# on the same file (target ≥ 6×).
 # Usage: benches/pipeline.sh [SCALE]   (SCALE divides the line counts, for a quick run: 10 → 10 %)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -45,6 +46,11 @@ for spec in "mixed 1000000" "engraving 200000"; do
       read -r seconds kib <<< "$(measure "$bin" "$command" "$program")"
     fi
     if [ "$command" = joints ]; then joints=$seconds; fi
+    if [ "$command" = interpret ] && [ -x /usr/bin/rs274 ]; then
+      # SPEC §10: interpret against LinuxCNC's standalone interpreter on the same file.
+      read -r theirs _ <<< "$(measure /usr/bin/rs274 -g "$program" "$work/rs274.out")"
+      echo "  interpret at $(awk -v o="$seconds" -v r="$theirs" 'BEGIN { if (o > 0) printf "%.1f", r / o; else printf "?" }')x rs274's speed (rs274: $theirs s)"
+    fi
     awk -v p="$kind" -v c="$command" -v s="$seconds" -v b="$bytes" -v l="$lines" -v n="$samples" -v k="$kib" 'BEGIN {
       rate = (c == "interpret") ? "-" : sprintf("%.2f M", n / s / 1e6)
       printf "%-10s %-12s %9.2f %10.1f %12.0f %14s %10.1f\n", p, c, s, b / s / 1e6, l / s, rate, k / 1024
