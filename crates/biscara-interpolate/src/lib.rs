@@ -44,7 +44,7 @@ mod chain;
 mod csv;
 mod interpolator;
 mod profile;
-mod segment;
+
 
 pub use biscara_motion::Motion;
 
@@ -54,4 +54,4 @@ pub use interpolator::{
     JointBound, MAX_JOINTS, NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,
 };
 pub use profile::{Profile, Timing};
-pub use segment::Segment;
+pub use biscara_motion::Segment;

@@ -3,7 +3,9 @@
 //!
 //! The G-code interpreter produces [`Motion`]s, the interpolator consumes them; this crate is the
 //! contract between the two and knows neither G-code nor kinematics. Positions are absolute, in
-//! the robot's base frame, millimetres and degrees, as `[x, y, z, c]`.
+//! the robot's base frame, millimetres and degrees, as `[x, y, z, c]`. [`Segment`] is the
+//! geometry of a move (line, arc, helix, a corner's fillet) as a function of a path parameter,
+//! shared by the corner blender and the interpolator.
 //!
 //! ```
 //! use biscara_motion::{Motion, MotionKind, read_jsonl, write_jsonl};
@@ -19,9 +21,11 @@
 
 mod jsonl;
 mod motion;
+mod segment;
 
 pub use jsonl::{InterFileError, JsonlReader, read_jsonl, write_jsonl};
 pub use motion::{CodeName, Feed, Motion, MotionKind, Plane};
+pub use segment::Segment;
 
 /// A position at a stage boundary: `[x, y, z, c]` in the robot's base frame, millimetres for
 /// x, y, z and **degrees** for c (the G-code C word), as in every file the stages exchange.
