@@ -340,6 +340,7 @@ impl Kinematics {
 
     /// Fails with [`KinematicsError::NearSingular`] when the configuration lies within the
     /// singularity margin of a type-1 or type-2 singularity (the nearest one is reported).
+    #[inline]
     pub fn check_singularity(
         &self,
         configuration: &PlanarConfiguration,
@@ -357,6 +358,13 @@ impl Kinematics {
         {
             return Ok(());
         }
+        self.near_singularity(configuration)
+    }
+
+    /// [`Kinematics::check_singularity`] once the quick test has failed: the angles, out of line.
+    #[cold]
+    #[inline(never)]
+    fn near_singularity(&self, configuration: &PlanarConfiguration) -> Result<(), KinematicsError> {
         let (kind, angle) = configuration.singularity().nearest();
         if angle < self.singularity_margin {
             Err(KinematicsError::NearSingular {

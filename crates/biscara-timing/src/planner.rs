@@ -22,6 +22,7 @@ pub struct Interval {
 
 impl Interval {
     /// The path parameter `tau` seconds after the interval starts (clamped to the interval).
+    #[inline]
     pub fn s_after(&self, tau: f64) -> f64 {
         let tau = tau.clamp(0.0, self.duration);
         let s = self.s_start + self.x_start.sqrt() * tau + 0.5 * self.u * tau * tau;
@@ -261,7 +262,24 @@ impl TimeOptimal {
 
     /// The path parameter at time `t` (s) from the start; `t` must not decrease from one call to
     /// the next. 1 from the end of the plan on.
+    #[inline]
     pub fn s_at<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        t: f64,
+    ) -> Result<f64, TimingError> {
+        // Most samples fall in the interval of the one before: inline, without a call.
+        if let Some(interval) = self.current
+            && t <= self.elapsed + interval.duration
+        {
+            return Ok(interval.s_after(t - self.elapsed));
+        }
+        self.s_at_next(path, t)
+    }
+
+    /// [`s_at`](Self::s_at) past the current interval: the plan's next intervals.
+    #[inline(never)]
+    fn s_at_next<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
         t: f64,
