@@ -262,7 +262,9 @@ fn format_fixed(value: f64, decimals: usize) -> String {
 #[inline(always)]
 fn write_fixed<const DECIMALS: usize>(out: &mut [u8; FAST_WIDTH], value: f64) -> Option<usize> {
     let scaled = value * POWERS_OF_TEN[DECIMALS];
-    if scaled.is_nan() || scaled.abs() >= FAST_LIMIT {
+    // One comparison, false for NaN too.
+    let in_range = scaled.abs() < FAST_LIMIT;
+    if !in_range {
         return None;
     }
     // Round half away from zero, as `f64::round`, by truncating `|x| + 0.5`; through i64, whose

@@ -262,7 +262,7 @@ impl TimeOptimal {
 
     /// The path parameter at time `t` (s) from the start; `t` must not decrease from one call to
     /// the next. 1 from the end of the plan on.
-    #[inline]
+    #[inline(always)]
     pub fn s_at<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
