@@ -712,9 +712,15 @@ fn random_program(rng: &mut Rng) -> String {
         text.push_str(&line);
         text.push('\n');
     }
-    text.push_str("M2\n");
-    text.push_str(RANDOM_SUBPROGRAM);
-    text
+    if rng.below(4) == 0 {
+        // Enclosed in `%` lines with no program end: the Fanuc subprogram lies past the closing
+        // `%`, where rs274 never looks (a call to it, or a jump still skipping, fails there).
+        format!("%\n{text}%\n{RANDOM_SUBPROGRAM}")
+    } else {
+        text.push_str("M2\n");
+        text.push_str(RANDOM_SUBPROGRAM);
+        text
+    }
 }
 
 /// What a batch of random programs gave: the count of each [`Verdict`], how many programs, and
@@ -739,7 +745,8 @@ impl RandomRun {
     }
 }
 
-/// Writes `RANDOM_PROGRAMS` (300 by default) programs of `generate`, seeded with `seed`, to
+/// Writes `RANDOM_PROGRAMS` (300 by default) programs of `generate`, seeded with `seed` (and
+/// `RANDOM_SEED` when set), to
 /// `dir` as `STEM{index}.ngc` (each with `table` beside it as `STEM{index}.tbl` when given), and
 /// checks each against rs274; a verdict outside `allowed` counts as a failure.
 fn run_random(
@@ -750,7 +757,9 @@ fn run_random(
     allowed: &[Verdict],
     mut generate: impl FnMut(&mut Rng) -> String,
 ) -> RandomRun {
-    let mut rng = Rng(seed);
+    // `RANDOM_SEED=N` draws other programs (for a longer search by hand).
+    let extra = std::env::var("RANDOM_SEED").ok().and_then(|n| n.parse::<u64>().ok());
+    let mut rng = Rng(seed ^ extra.map_or(0, |n| n.wrapping_mul(0x9e37_79b9_7f4a_7c15)));
     let total = std::env::var("RANDOM_PROGRAMS").ok().and_then(|n| n.parse().ok()).unwrap_or(300);
     let mut run = RandomRun { counts: [0; 7], total, failures: Vec::new() };
     for index in 0..total {

@@ -93,7 +93,7 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
     let mut attempt = 0;
     let run = loop {
         let _ = std::fs::remove_file(&output);
-        let run = Command::new(RS274)
+        let child = Command::new(RS274)
             .arg("-t")
             .arg(&tools)
             .arg("-g")
@@ -105,8 +105,18 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
-            .output()
+            .spawn()
             .expect("run rs274");
+        let Some(run) = bounded(child, &output) else {
+            let _ = std::fs::remove_file(&output);
+            return Outcome::Error {
+                message: format!(
+                    "rs274 ran away (more than {RUNAWAY_SECONDS} s or {} MiB of output)",
+                    RUNAWAY_BYTES >> 20
+                ),
+                before: Vec::new(),
+            };
+        };
         attempt += 1;
         if run.status.code().is_some() {
             break run;
@@ -126,6 +136,42 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
         .map(str::to_owned)
         .unwrap_or_else(|| format!("(no message; {}; stderr {stderr:?})", run.status));
     Outcome::Error { message, before: motions }
+}
+
+/// How long rs274 may run, and how much it may write, before it is stopped as running away (an
+/// endless loop, such as LinuxCNC's own test `g71-endless-loop` makes this rs274 do).
+const RUNAWAY_SECONDS: u64 = 30;
+const RUNAWAY_BYTES: u64 = 256 << 20;
+
+/// Waits for `child`, reading its standard error; `None` (the child killed) when it runs past
+/// [`RUNAWAY_SECONDS`] or its `output` grows past [`RUNAWAY_BYTES`].
+fn bounded(mut child: std::process::Child, output: &Path) -> Option<std::process::Output> {
+    use std::io::Read;
+    let mut stderr = child.stderr.take().expect("piped stderr");
+    // Read on another thread, so that a chatty rs274 never blocks on a full pipe.
+    let reader = std::thread::spawn(move || {
+        let mut text = Vec::new();
+        let _ = stderr.read_to_end(&mut text);
+        text
+    });
+    let start = std::time::Instant::now();
+    let mut pause = std::time::Duration::from_micros(200);
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait for rs274") {
+            break status;
+        }
+        let size = std::fs::metadata(output).map_or(0, |meta| meta.len());
+        if start.elapsed().as_secs() >= RUNAWAY_SECONDS || size > RUNAWAY_BYTES {
+            let _ = child.kill();
+            let _ = child.wait();
+            let _ = reader.join();
+            return None;
+        }
+        std::thread::sleep(pause);
+        pause = (pause * 2).min(std::time::Duration::from_millis(20));
+    };
+    let stderr = reader.join().unwrap_or_default();
+    Some(std::process::Output { status, stdout: Vec::new(), stderr })
 }
 
 /// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`), read as `interpret` reads it.

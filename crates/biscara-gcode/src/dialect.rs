@@ -454,13 +454,14 @@ fn marlin_knows_m(code: u32) -> bool {
     )
 }
 
-/// The line as Grbl, Marlin or Mach3 reads it before the block reader (LinuxCNC: always a block).
+/// The line as Grbl or Marlin reads it before the block reader (LinuxCNC and Mach3: always a
+/// block; Mach3's `O0001` program numbers and `O1000` subprogram labels are LinuxCNC's
+/// Fanuc-style O lines).
 pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
     match dialect {
         Dialect::Grbl => grbl_prelude(raw),
         Dialect::Marlin => marlin_prelude(raw),
-        Dialect::Mach3 => mach3_prelude(raw),
-        Dialect::Auto | Dialect::Linuxcnc => Prelude::Block,
+        Dialect::Auto | Dialect::Linuxcnc | Dialect::Mach3 => Prelude::Block,
     }
 }
 
@@ -484,21 +485,6 @@ fn grbl_prelude(raw: &[u8]) -> Prelude {
     }
     truncate_chars(&mut name, 15);
     Prelude::Event { name, known: true }
-}
-
-/// Mach3's `O0001` program number on a line of its own (Mach3 manual, "O-word: program number").
-fn mach3_prelude(raw: &[u8]) -> Prelude {
-    let Some((letter, number, _, end)) = first_command(raw) else { return Prelude::Block };
-    let rest = raw[end..].trim_ascii();
-    if letter == b'O'
-        && !number.contains(&b'.')
-        && (rest.is_empty() || rest[0] == b'(' || rest[0] == b';')
-    {
-        let mut name = format!("O{}", String::from_utf8_lossy(number));
-        truncate_chars(&mut name, 15);
-        return Prelude::Event { name, known: true };
-    }
-    Prelude::Block
 }
 
 /// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line
@@ -685,8 +671,7 @@ mod tests {
         assert_eq!(prelude(Dialect::Grbl, b"  $32=1"), event("$32", true));
         assert!(matches!(prelude(Dialect::Grbl, b"$J=G91 X1 F100"), Prelude::Refuse { .. }));
         assert_eq!(prelude(Dialect::Grbl, b"G0 X1"), Prelude::Block);
-        assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), event("O0001", true));
-        assert_eq!(prelude(Dialect::Mach3, b"O100 sub"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), Prelude::Block);
         assert_eq!(prelude(Dialect::Linuxcnc, b"M104"), Prelude::Block);
     }
 

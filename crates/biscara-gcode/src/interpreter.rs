@@ -464,6 +464,9 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 self.percent = Percent::Absent;
             } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                if let Some(err) = self.control_percent() {
+                    return Err(err);
+                }
                 // rs274 never sends the motions cutter compensation holds at a closing `%`.
                 self.state.comp.discard();
                 self.finished = true;
@@ -1097,28 +1100,17 @@ impl<R: BufRead> Interpreter<R> {
     /// length unit, kept in millimetres; no P, or a negative one, is LinuxCNC's tolerance 0: no
     /// tolerance given).
     ///
-    /// Q is LinuxCNC's naive-CAM merging of nearly collinear moves, within Q (Q = P when absent).
-    /// It is not done here: every programmed move is kept, which stays within any Q. A Q up to P
-    /// (what CAM post-processors write) is accepted, since the blended path is held within P
-    /// anyway; a Q above P asks for more deviation than the blends give, and is refused.
+    /// Q is LinuxCNC's naive-CAM tolerance: its motion layer (not its interpreter) may merge
+    /// nearly collinear feed moves into one when every point left out lies within Q of it. Q is
+    /// accepted at any value and no move is merged: every programmed move is kept, which is
+    /// within any Q, and the blends keep the path within P. (rs274 reads Q the same way: its
+    /// canonical calls carry only P.)
     fn set_path_control(&mut self, code: Code) -> Result<(), Fault> {
         if code.code != 640 {
             self.state.blend = None;
             return Ok(());
         }
         let p = self.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
-        if let Some(q) = self.block.word(b'q')
-            && q.value > p
-            && p > 0.0
-        {
-            let (first, last) = self.span(code.at.min(q.at), q.end.max(code.end));
-            return Err(Fault::not_supported(
-                first,
-                last,
-                "G64 Q above P",
-                "naive-CAM merging of collinear moves; a Q up to P is accepted",
-            ));
-        }
         self.state.blend = Some(if self.state.metric { p } else { p * MM_PER_INCH });
         Ok(())
     }

@@ -310,6 +310,15 @@ impl<R: BufRead> Interpreter<R> {
         Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
     }
 
+    /// The closing `%` while lines are being skipped (to a subroutine being called, to the
+    /// end of a subroutine being defined, or to the O line a control-flow word jumps to): rs274
+    /// stops there with its own message, the rest of the file unsearched.
+    pub(super) fn control_percent(&self) -> Option<GcodeError> {
+        let name = self.control.skipping_to_sub.as_ref().or(self.control.skipping_o.as_ref())?;
+        let message = format!("Failed to find sub 'O{name}' before EOF");
+        Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
+    }
+
     /// Runs the line if it is an O-word line (or M98/M99), or skips it while skipping;
     /// `Ok(true)` when the line is done with, `Ok(false)` when it is an ordinary block.
     pub(super) fn control_line(&mut self) -> Result<bool, GcodeError> {

@@ -196,8 +196,9 @@ impl<R: BufRead> Interpreter<R> {
             490 => [0.0; 4],
             430 => {
                 let entry = match h {
+                    // H0 is pocket 0, the spindle, as no H is (`find_tool_pocket`).
                     None => self.state.tools.spindle,
-                    Some(h) if h.value == 0.0 => ToolEntry::default(),
+                    Some(h) if h.value == 0.0 => self.state.tools.spindle,
                     Some(h) => {
                         let tool = h.value;
                         let found =
@@ -227,8 +228,11 @@ impl<R: BufRead> Interpreter<R> {
                 let mut offset = old;
                 if let Some(h) = h {
                     let tool = h.value;
-                    let found =
-                        (tool >= 0.0).then(|| self.state.tools.entry(tool as u32)).flatten();
+                    let found = if tool == 0.0 {
+                        Some(self.state.tools.spindle)
+                    } else {
+                        (tool > 0.0).then(|| self.state.tools.entry(tool as u32)).flatten()
+                    };
                     let Some(entry) = found else {
                         return Err(self.word_fault(h, not_found(tool)));
                     };

@@ -171,10 +171,26 @@ fn grbl_reads_dollar_lines_and_ignores_k_in_xy_arcs() {
 #[test]
 fn mach3_reads_nested_comments_and_program_numbers() {
     let motions = read("O0001 (PART)\n(tool (R) 1mm)\nG0 X1\nM30\n", Dialect::Mach3);
-    assert_eq!(codes(&motions), ["O0001"]);
+    assert!(codes(&motions).is_empty());
     assert_eq!(ends(&motions), [[1.0, 400.0, 100.0, 0.0]]);
     let err = refused("(a (b)\n", Dialect::Mach3);
     assert!(err.to_string().contains("Unclosed comment found"), "{err}");
+}
+
+#[test]
+fn mach3_calls_subprograms_with_m98_and_returns_with_m99() {
+    // Mach3's manual ("M98 – Call subroutine", "M99 – Return from subroutine"): the main
+    // program ends with M30, the subprograms follow it, each from its `O` label to M99.
+    let program = "%\nO0001 (MAIN)\nG21 G90\nG0 X1 Y1\nM98 P1000 L2\nG0 X0 Y0\nM30\n\
+                   O1000 (STEP)\nG91 G1 X1 F100\nG90\nM99\n%\n";
+    let motions = read(program, Dialect::Mach3);
+    let lines: Vec<usize> = motions.iter().map(|motion| motion.line).collect();
+    assert_eq!(lines, [4, 9, 9, 6, 7]);
+    let xs: Vec<f64> = ends(&motions).iter().map(|end| end[0]).collect();
+    assert_eq!(xs, [1.0, 2.0, 3.0, 0.0]);
+    // A call to a label the file does not have is an error, not an early end.
+    let err = refused("O0001\nG0 X1\nM98 P2000\nG0 X2\nM30\n", Dialect::Mach3);
+    assert!(err.to_string().contains("seeking o-word: o<2000> from line: 3"), "{err}");
 }
 
 #[test]

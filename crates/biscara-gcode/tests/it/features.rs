@@ -198,17 +198,16 @@ fn the_configured_path_control_mode_holds_until_the_program_says_one() {
 }
 
 #[test]
-fn naive_cam_merging_is_refused_where_it_is_asked_for() {
-    let err = error("G1 X1 F100\nG64 P0.05 Q0.06\nG1 X2\n");
-    assert_eq!(
-        err.to_string(),
-        "2:1: G64 Q above P is not supported yet (naive-CAM merging of collinear moves; a Q up \
-         to P is accepted)"
-    );
-    // What CAM post-processors write (Q = P), or less, is held by the blends within P.
+fn naive_cam_tolerance_is_accepted_and_no_move_is_merged() {
+    // Q, above or below P, keeps every programmed move (within any Q); the blend is P's.
     let config = Config::default();
-    assert_eq!(blends("G64 P0.05 Q0.05\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
-    assert_eq!(blends("G64 P0.05 Q0.01\nG1 X1 F100\nM2\n", &config)[0], (2, Some(0.05)));
+    for program in ["G64 P0.05 Q0.06\n", "G64 P0.05 Q0.05\n", "G64 P0.05 Q0.01\n", "G64 Q0.2\n"] {
+        let text = format!("{program}G1 X1 F100\nG1 X2 Y0.001\nG1 X3\nM2\n");
+        let blends = blends(&text, &config);
+        let p = if program.contains("P0.05") { 0.05 } else { 0.0 };
+        // (M2 ends the program: an event, under no blend.)
+        assert_eq!(blends, vec![(2, Some(p)), (3, Some(p)), (4, Some(p)), (5, None)], "{program}");
+    }
 }
 
 /// The XY end of a move (of any kind with one).
