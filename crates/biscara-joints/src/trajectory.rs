@@ -91,7 +91,7 @@ where
 
     /// The same trajectory with `velocity` and `acceleration` left at zero: for a reader that does
     /// not use them (a joint CSV without derivative columns), the finite differences are not
-    /// computed (`joints` on the 20,000-line engraving program: 10 M fewer instructions).
+    /// computed (`joints` on the 20,000-line engraving program: 642.3 → 630.2 M instructions).
     pub fn without_derivatives(mut self) -> Self {
         self.derivatives = false;
         self
