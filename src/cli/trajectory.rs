@@ -169,6 +169,9 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         return Ok(());
     }
     let mut samples = pipeline.joints(&source, kind, notes.sink())?;
+    if !args.derivatives {
+        samples = samples.without_derivatives();
+    }
     write_output(args.output.as_deref(), |out| {
         let mut writer = JointCsvWriter::new(out, format)?;
         while let Some(row) = samples.next_sample() {

@@ -57,6 +57,8 @@ pub struct JointTrajectory<I> {
     held: usize,
     emitted_any: bool,
     finished: bool,
+    /// Whether velocities and accelerations are computed ([`JointTrajectory::without_derivatives`]).
+    derivatives: bool,
 }
 
 const EMPTY_SAMPLE: JointSample = JointSample {
@@ -83,7 +85,16 @@ where
             held: 0,
             emitted_any: false,
             finished: false,
+            derivatives: true,
         }
+    }
+
+    /// The same trajectory with `velocity` and `acceleration` left at zero: for a reader that does
+    /// not use them (a joint CSV without derivative columns), the finite differences are not
+    /// computed (`joints` on the 20,000-line engraving program: 642.3 → 630.2 M instructions).
+    pub fn without_derivatives(mut self) -> Self {
+        self.derivatives = false;
+        self
     }
 
     /// Solves `sample` into `slot`.
@@ -104,15 +115,23 @@ where
         Ok(())
     }
 
-    /// Ring index `offset` places after the head.
+    /// Ring index `offset` (at most 2) places after the head: a comparison, not a `% 3` (a
+    /// multiplication and a shift, four times a sample).
+    #[inline(always)]
     fn at(&self, offset: usize) -> usize {
-        (self.head + offset) % 3
+        let index = self.head + offset;
+        if index >= 3 { index - 3 } else { index }
     }
 
     /// With three samples held, completes the middle one's differences (and the first sample's,
     /// at the start) and emits the oldest: returns its ring index.
     fn emit_oldest_of_three(&mut self) -> usize {
         let (previous, current, next) = (self.at(0), self.at(1), self.at(2));
+        if !self.derivatives {
+            self.head = current;
+            self.held -= 1;
+            return previous;
+        }
         let q = [previous, current, next].map(|index| self.ring[index].joints.to_array());
         let t = [previous, current, next].map(|index| self.ring[index].t);
         let (velocity, acceleration) =
@@ -139,6 +158,12 @@ where
             1 => {
                 self.held = 0;
                 Some(self.head)
+            }
+            _ if !self.derivatives => {
+                let (previous, last) = (self.at(0), self.at(1));
+                self.head = last;
+                self.held = 1;
+                Some(previous)
             }
             _ => {
                 let (previous, last) = (self.at(0), self.at(1));

@@ -254,10 +254,16 @@ impl Kinematics {
     // `joints` on the engraving program 0.456 → 0.425 s.
     #[inline(always)]
     pub fn inverse(&self, pose: &Pose) -> Result<IkSolution, KinematicsError> {
-        for (what, value) in [("x", pose.x), ("y", pose.y), ("z", pose.z), ("c", pose.phi)] {
-            if !value.is_finite() {
-                return Err(KinematicsError::NotFinite { what });
-            }
+        // v − v is 0 for a finite v and NaN otherwise: one test for the four coordinates, and
+        // the one to name found only when it fails.
+        let spread = finite_zero(pose.x) + finite_zero(pose.y) + finite_zero(pose.z);
+        if spread + finite_zero(pose.phi) != 0.0 {
+            return Err(not_finite(&[
+                ("x", pose.x),
+                ("y", pose.y),
+                ("z", pose.z),
+                ("c", pose.phi),
+            ]));
         }
         let (direction1, elbow1) = self.chain_inverse(Chain::One, pose.x, pose.y)?;
         let (direction2, elbow2) = self.chain_inverse(Chain::Two, pose.x, pose.y)?;
@@ -340,6 +346,7 @@ impl Kinematics {
 
     /// Fails with [`KinematicsError::NearSingular`] when the configuration lies within the
     /// singularity margin of a type-1 or type-2 singularity (the nearest one is reported).
+    #[inline]
     pub fn check_singularity(
         &self,
         configuration: &PlanarConfiguration,
@@ -357,6 +364,13 @@ impl Kinematics {
         {
             return Ok(());
         }
+        self.near_singularity(configuration)
+    }
+
+    /// [`Kinematics::check_singularity`] once the quick test has failed: the angles, out of line.
+    #[cold]
+    #[inline(never)]
+    fn near_singularity(&self, configuration: &PlanarConfiguration) -> Result<(), KinematicsError> {
         let (kind, angle) = configuration.singularity().nearest();
         if angle < self.singularity_margin {
             Err(KinematicsError::NearSingular {
@@ -499,6 +513,21 @@ pub fn wrap_angle(angle: f64) -> f64 {
     if wrapped > PI { wrapped - TAU } else { wrapped }
 }
 
+/// 0 for a finite `value`, NaN for an infinite or NaN one.
+#[inline(always)]
+#[allow(clippy::eq_op)] // v − v: the point
+fn finite_zero(value: f64) -> f64 {
+    value - value
+}
+
+/// The error naming the first of `values` that is not a finite number (one of them is not).
+#[cold]
+#[inline(never)]
+fn not_finite(values: &[(&'static str, f64)]) -> KinematicsError {
+    let what = values.iter().find(|(_, value)| !value.is_finite()).map_or("x", |&(what, _)| what);
+    KinematicsError::NotFinite { what }
+}
+
 /// `a − b` wrapped into (−π, π], for `a`, `b` already in [−π, π] (no division).
 fn wrap_difference(a: f64, b: f64) -> f64 {
     let difference = a - b;
@@ -538,6 +567,31 @@ mod tests {
 
     fn default_model() -> Kinematics {
         Kinematics::default()
+    }
+
+    #[test]
+    fn inverse_names_the_first_coordinate_that_is_not_finite() {
+        let model = default_model();
+        let pose = Pose::from_degrees(10.0, 400.0, 50.0, 5.0);
+        assert!(model.inverse(&pose).is_ok());
+        let bad = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+        for (index, what) in ["x", "y", "z", "c"].into_iter().enumerate() {
+            for value in bad {
+                let mut broken = pose;
+                match index {
+                    0 => broken.x = value,
+                    1 => broken.y = value,
+                    2 => broken.z = value,
+                    _ => broken.phi = value,
+                }
+                // A later coordinate broken too: the first is named.
+                broken.phi = if index == 3 { value } else { f64::NAN };
+                match model.inverse(&broken) {
+                    Err(KinematicsError::NotFinite { what: named }) => assert_eq!(named, what),
+                    other => panic!("{what} = {value}: {other:?}"),
+                }
+            }
+        }
     }
 
     #[test]

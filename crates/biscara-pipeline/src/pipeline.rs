@@ -303,6 +303,13 @@ pub struct JointSamples {
 }
 
 impl JointSamples {
+    /// The same samples with `velocity` and `acceleration` left at zero, not computed
+    /// ([`JointTrajectory::without_derivatives`]): for a joint CSV without derivative columns.
+    pub fn without_derivatives(mut self) -> Self {
+        self.trajectory = self.trajectory.without_derivatives();
+        self
+    }
+
     /// The next sample, borrowed: [`Iterator::next`] without copying the sample out (returning
     /// the 152-byte sample inside an `Option<Result<…>>`, then moving it out, cost 5 % of
     /// `joints` on the engraving program).

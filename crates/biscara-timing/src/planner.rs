@@ -22,6 +22,7 @@ pub struct Interval {
 
 impl Interval {
     /// The path parameter `tau` seconds after the interval starts (clamped to the interval).
+    #[inline]
     pub fn s_after(&self, tau: f64) -> f64 {
         let tau = tau.clamp(0.0, self.duration);
         let s = self.s_start + self.x_start.sqrt() * tau + 0.5 * self.u * tau * tau;
@@ -261,7 +262,24 @@ impl TimeOptimal {
 
     /// The path parameter at time `t` (s) from the start; `t` must not decrease from one call to
     /// the next. 1 from the end of the plan on.
+    #[inline(always)]
     pub fn s_at<P: PathConstraints + ?Sized>(
+        &mut self,
+        path: &mut P,
+        t: f64,
+    ) -> Result<f64, TimingError> {
+        // Most samples fall in the interval of the one before: inline, without a call.
+        if let Some(interval) = self.current
+            && t <= self.elapsed + interval.duration
+        {
+            return Ok(interval.s_after(t - self.elapsed));
+        }
+        self.s_at_next(path, t)
+    }
+
+    /// [`s_at`](Self::s_at) past the current interval: the plan's next intervals.
+    #[inline(never)]
+    fn s_at_next<P: PathConstraints + ?Sized>(
         &mut self,
         path: &mut P,
         t: f64,
@@ -339,8 +357,12 @@ impl TimeOptimal {
     fn u_range_at<const LOWER: bool>(&self, local: usize, x: f64) -> (f64, f64, bool) {
         let step = self.s[local + 1] - self.s[local];
         let (mut u_lo, mut u_hi, mut x_ok) = (f64::NEG_INFINITY, f64::INFINITY, true);
+        // Comparisons rather than `f64::max`/`min`, whose NaN handling costs five instructions
+        // each, with the same results: the coefficients are never NaN (`evaluate` checks them
+        // finite), u_lo and u_hi never become NaN, and a NaN bound leaves them as they are.
         let mut bound = |alpha: f64, beta: f64, lo: f64, hi: f64| {
-            let scale = alpha.abs().max(beta.abs());
+            let (alpha_size, beta_size) = (alpha.abs(), beta.abs());
+            let scale = if beta_size > alpha_size { beta_size } else { alpha_size };
             if scale == 0.0 {
                 return;
             }
@@ -352,10 +374,16 @@ impl TimeOptimal {
             let (upper, lower) = if alpha > 0.0 { (hi, lo) } else { (lo, hi) };
             let inverse = 1.0 / alpha;
             if upper.is_finite() {
-                u_hi = u_hi.min((upper - beta * x) * inverse);
+                let u = (upper - beta * x) * inverse;
+                if u < u_hi {
+                    u_hi = u;
+                }
             }
             if LOWER && lower.is_finite() {
-                u_lo = u_lo.max((lower - beta * x) * inverse);
+                let u = (lower - beta * x) * inverse;
+                if u > u_lo {
+                    u_lo = u;
+                }
             }
         };
         let (start, end) = self.stage_ranges(local);

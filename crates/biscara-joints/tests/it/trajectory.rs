@@ -125,6 +125,33 @@ fn theta3_is_continuous_through_more_than_a_turn() {
 }
 
 #[test]
+fn without_derivatives_the_positions_are_the_same_and_the_derivatives_zero() {
+    let robot = turning_robot();
+    let model = Kinematics::new(&robot).expect("robot");
+    let motions = program();
+    let with = joints_of(&motions, &robot, Profile::Optimal, 0.001);
+    let samples = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config(&robot, Profile::Optimal, 0.001),
+        JointSpeedLimit::new(model, &robot),
+        |_: &SlowDown| {},
+    );
+    let without: Vec<JointSample> = JointTrajectory::new(samples, model)
+        .without_derivatives()
+        .collect::<Result<_, _>>()
+        .expect("trajectory");
+    assert_eq!(with.len(), without.len());
+    assert!(with.iter().any(|row| row.velocity != [0.0; 4]));
+    for (a, b) in with.iter().zip(&without) {
+        assert_eq!(
+            (a.t, a.line, a.pose, a.joints, a.gripper),
+            (b.t, b.line, b.pose, b.joints, b.gripper)
+        );
+        assert_eq!((b.velocity, b.acceleration), ([0.0; 4], [0.0; 4]));
+    }
+}
+
+#[test]
 fn derivatives_are_the_finite_differences_of_the_positions() {
     let rows = joints_of(&program(), &turning_robot(), Profile::Trapezoid, 0.002);
     for triple in rows.windows(3) {
