@@ -141,3 +141,61 @@ fn a_bad_blend_tolerance_is_refused() {
         assert!(run.stderr.contains("--blend"), "{run}");
     }
 }
+
+/// A stadium (two half circles of radius 2 mm joined by 4 mm lines, each tangent to the next),
+/// 20 times round at F3000, with `mode` on its second line.
+fn stadium(mode: &str) -> String {
+    let mut text = format!("G21 G90 G17\n{mode}\nG0 Z50\nG0 X-2 Y398\nF3000\n");
+    for _ in 0..20 {
+        text.push_str("G1 X2 Y398\nG3 X2 Y402 I0 J2\nG1 X-2 Y402\nG3 X-2 Y398 I0 J-2\n");
+    }
+    text.push_str("M2\n");
+    text
+}
+
+#[test]
+fn lines_and_tangent_arcs_run_through_without_stopping() {
+    let dir = temp_dir("blending-arcs");
+    std::fs::write(dir.join("g61.ngc"), stadium("G61")).expect("write");
+    std::fs::write(dir.join("g64.ngc"), stadium("G64 P0.05")).expect("write");
+    let path = |name: &str| {
+        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
+        run.success();
+        rows(&run.stdout)
+    };
+    let (exact, blended) = (path("g61.ngc"), path("g64.ngc"));
+    // From the first arrival at the stadium's start, every sample lies on it: the arcs are run
+    // as programmed (no fillet: every junction is tangent) ...
+    let start = blended
+        .iter()
+        .position(|row| (row[1] + 2.0).abs() < 1e-9 && (row[2] - 398.0).abs() < 1e-9)
+        .expect("the stadium's start");
+    let on_stadium = &blended[start..];
+    for row in on_stadium {
+        let d =
+            distance_to_segment([row[1], row[2], row[3]], [-2.0, 400.0, 50.0], [2.0, 400.0, 50.0]);
+        assert!((d - 2.0).abs() < 1e-6, "t = {}: {} mm off the stadium", row[0], (d - 2.0).abs());
+    }
+    // ... and the robot never stops on the way round: the slowest step, away from the two
+    // ends, is well above half the feed (50 mm/s).
+    let speeds: Vec<f64> = on_stadium
+        .windows(2)
+        .map(|pair| {
+            (pair[1][1] - pair[0][1]).hypot(pair[1][2] - pair[0][2]) / (pair[1][0] - pair[0][0])
+        })
+        .collect();
+    let middle = &speeds[speeds.len() / 10..speeds.len() * 9 / 10];
+    let slowest = middle.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(slowest > 25.0, "the robot slows to {slowest} mm/s between the ends");
+    let (t_exact, t_blended) = (exact[exact.len() - 1][0], blended[blended.len() - 1][0]);
+    // (80 stops saved, a hundredth of a second each at this feed.)
+    assert!(t_blended < 0.95 * t_exact, "G64 P0.05 takes {t_blended} s, G61 {t_exact} s");
+
+    let joints = biscara(&dir, &["joints", "g64.ngc", "--precision", "9"]);
+    joints.success();
+    let ratio = peak_acceleration_ratio(&rows(&joints.stdout));
+    assert!(ratio <= 1.0 + 1e-3, "a joint accelerates at {ratio} of its limit");
+    let check = biscara(&dir, &["check", "g64.ngc"]);
+    check.success();
+    assert!(check.stdout.contains("no problem found"), "{}", check.stdout);
+}

@@ -2,7 +2,7 @@
 
 use std::collections::VecDeque;
 
-use biscara_motion::{Motion, MotionKind};
+use biscara_motion::{Motion, MotionKind, Segment};
 
 use crate::piece::{Geometry, Piece, Speed, dot, norm, sub, xyz};
 
@@ -17,7 +17,8 @@ pub const MAX_TURN_DEG: f64 = 179.0;
 /// The shortest blend made, mm along each move: a corner that can only get less is an exact stop.
 pub const MIN_TRIM_MM: f64 = 1e-4;
 
-/// Turns below this, radians, are straight on: no fillet needed.
+/// Turns below this, radians, are straight on: no fillet needed (between two lines), or a
+/// tangent junction (where an arc meets a line or an arc).
 const COLLINEAR_RAD: f64 = 1e-9;
 
 /// What the [`Blender`] yields.
@@ -25,30 +26,45 @@ const COLLINEAR_RAD: f64 = 1e-9;
 pub enum Blended {
     /// A piece of a blended chain.
     Piece(Piece),
-    /// A motion left as it is: an event, an arc, a move under exact stop or with no XYZ length.
+    /// A motion left as it is: an event, a move under exact stop or with no XYZ length, an arc
+    /// tangent to neither neighbour.
     Motion(Motion),
 }
 
-/// A straight move under G64 waiting for the next motion to know how its end is blended.
+/// A move under G64 (straight, or an arc) waiting for the next motion to know how its end is
+/// blended.
 #[derive(Debug, Clone, Copy)]
 struct Pending {
     line: usize,
     /// Programmed start and end.
     from: [f64; 4],
     to: [f64; 4],
-    /// Where the piece starts: `from`, or past the fillet that cut its start.
+    /// Where the piece starts: `from`, or past the fillet that cut its start (lines only).
     start: [f64; 4],
     speed: Speed,
     tolerance: f64,
+    /// An arc's geometry (`None` for a straight move); an arc is never cut.
+    arc: Option<Segment>,
+    /// Whether the move goes on from the one before it without a stop.
+    joined: bool,
+    /// The motion as programmed: an arc that joins nothing passes as it is.
+    motion: Motion,
 }
 
 impl Pending {
     fn length(&self) -> f64 {
-        norm(sub(xyz(self.to), xyz(self.from)))
+        match self.arc {
+            Some(arc) => arc.length(),
+            None => norm(sub(xyz(self.to), xyz(self.from))),
+        }
     }
 
-    fn direction(&self) -> [f64; 3] {
-        let d = sub(xyz(self.to), xyz(self.from));
+    /// The unit XYZ direction of travel a fraction `u` (0 or 1) along.
+    fn direction(&self, u: f64) -> [f64; 3] {
+        let d = match self.arc {
+            Some(arc) => xyz(arc.derivative(u)),
+            None => sub(xyz(self.to), xyz(self.from)),
+        };
         let n = norm(d);
         [d[0] / n, d[1] / n, d[2] / n]
     }
@@ -58,19 +74,28 @@ impl Pending {
         (self.to[3] - self.from[3]) / self.length()
     }
 
-    /// The programmed pose `distance` mm from the start (C in proportion).
+    /// The programmed pose `distance` mm from the start (C in proportion; lines only).
     fn at(&self, distance: f64) -> [f64; 4] {
         let u = distance / self.length();
         std::array::from_fn(|k| self.from[k] + u * (self.to[k] - self.from[k]))
     }
 
-    fn piece(&self, end: [f64; 4], ends_chain: bool) -> Piece {
-        Piece {
-            line: self.line,
-            geometry: Geometry::Line { start: self.start, end },
-            speed: self.speed,
-            ends_chain,
+    /// What the move is when the robot stops at its end: its last piece, or the motion itself
+    /// for an arc that joins nothing (timed alone, as a move under exact stop is).
+    fn last(&self) -> Blended {
+        if self.arc.is_some() && !self.joined {
+            Blended::Motion(self.motion)
+        } else {
+            Blended::Piece(self.piece(self.to, true))
         }
+    }
+
+    fn piece(&self, end: [f64; 4], ends_chain: bool) -> Piece {
+        let geometry = match self.arc {
+            Some(arc) => Geometry::Arc(arc),
+            None => Geometry::Line { start: self.start, end },
+        };
+        Piece { line: self.line, geometry, speed: self.speed, ends_chain }
     }
 }
 
@@ -131,7 +156,7 @@ where
 
     fn flush(&mut self) {
         if let Some(pending) = self.pending.take() {
-            self.out.push_back(Blended::Piece(pending.piece(pending.to, true)));
+            self.out.push_back(pending.last());
         }
     }
 
@@ -140,9 +165,13 @@ where
         if let Some(end) = motion.kind.end() {
             self.position = end;
         }
-        let (to, speed) = match motion.kind {
-            MotionKind::Rapid { end } => (end, Speed::Rapid),
-            MotionKind::Linear { end, feed } => (end, Speed::Feed(feed)),
+        let (to, speed, arc) = match motion.kind {
+            MotionKind::Rapid { end } => (end, Speed::Rapid, None),
+            MotionKind::Linear { end, feed } => (end, Speed::Feed(feed), None),
+            MotionKind::Arc { end, center, plane, clockwise, turns, feed } => {
+                let arc = Segment::arc(from, end, center, plane, clockwise, turns);
+                (end, Speed::Feed(feed), Some(arc))
+            }
             _ => {
                 self.flush();
                 self.out.push_back(Blended::Motion(motion));
@@ -154,21 +183,31 @@ where
             self.out.push_back(Blended::Motion(motion));
             return;
         };
-        if norm(sub(xyz(to), xyz(from))) <= 1e-9 {
+        let length = arc.map_or_else(|| norm(sub(xyz(to), xyz(from))), |arc| arc.length());
+        if length <= 1e-9 {
             self.flush();
             self.out.push_back(Blended::Motion(motion));
             return;
         }
         let tolerance = if blend > 0.0 { blend } else { NO_TOLERANCE_CAP_MM };
-        let mut next = Pending { line: motion.line, from, to, start: from, speed, tolerance };
+        let mut next = Pending {
+            line: motion.line,
+            from,
+            to,
+            start: from,
+            speed,
+            tolerance,
+            arc,
+            joined: false,
+            motion,
+        };
         if let Some(previous) = self.pending.take() {
             match corner(&previous, &next) {
                 Corner::Straight => {
                     self.out.push_back(Blended::Piece(previous.piece(previous.to, false)));
+                    next.joined = true;
                 }
-                Corner::Stop => {
-                    self.out.push_back(Blended::Piece(previous.piece(previous.to, true)));
-                }
+                Corner::Stop => self.out.push_back(previous.last()),
                 Corner::Fillet { trim, fillet } => {
                     let cut = previous.at(previous.length() - trim);
                     if norm(sub(xyz(cut), xyz(previous.start))) > 1e-9 {
@@ -182,6 +221,7 @@ where
                         self.out.push_back(Blended::Piece(second));
                     }
                     next.start = next.at(trim);
+                    next.joined = true;
                 }
             }
         }
@@ -199,8 +239,8 @@ enum Corner {
 }
 
 fn corner(a: &Pending, b: &Pending) -> Corner {
-    let ua = a.direction();
-    let ub = b.direction();
+    let ua = a.direction(1.0);
+    let ub = b.direction(0.0);
     let cos = dot(ua, ub).clamp(-1.0, 1.0);
     let turn = cos.acos();
     // C's rate along the path, degrees per mm: it must not jump where the robot does not stop
@@ -210,7 +250,8 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
         let same = (rate_a - rate_b).abs() <= 1e-9 * (1.0 + rate_a.abs().max(rate_b.abs()));
         return if same { Corner::Straight } else { Corner::Stop };
     }
-    if rate_a != 0.0 || rate_b != 0.0 {
+    // An arc is never cut: where it is not tangent to its neighbour, the robot stops.
+    if rate_a != 0.0 || rate_b != 0.0 || a.arc.is_some() || b.arc.is_some() {
         return Corner::Stop;
     }
     if turn > MAX_TURN_DEG.to_radians() {

@@ -1,11 +1,12 @@
 //! Corner blending under G64 P (SPEC §6): consecutive straight moves programmed under G64 are
-//! joined by circular fillets that stay within the tolerance P of the programmed corner, so that
-//! a timing law can run through the corner without stopping.
+//! joined by circular fillets that stay within the tolerance P of the programmed corner, and
+//! arcs tangent to the moves before and after them join the same chain, so that a timing law can
+//! run through the corner without stopping.
 //!
 //! The [`Blender`] reads motions (with one motion of look-ahead) and yields [`Blended`] items:
-//! the [`Piece`]s of a blended chain (trimmed straight moves and the fillets between them), or
-//! the motions it leaves alone (events, arcs, moves under exact stop), which it passes on
-//! unchanged. It knows nothing of kinematics, limits or time.
+//! the [`Piece`]s of a blended chain (trimmed straight moves, the fillets between them, and
+//! programmed arcs), or the motions it leaves alone (events, moves under exact stop, arcs that
+//! join no chain), which it passes on unchanged. It knows nothing of kinematics, limits or time.
 //!
 //! # The blend
 //!
@@ -29,8 +30,18 @@
 //! The C axis moves in proportion to the length along each piece. A corner where C turns (on
 //! either move) is an exact stop, and so is a straight-on junction where C's rate per mm
 //! changes: C's rate along the path would jump there, and a jump in a joint's rate along the
-//! path at speed is an acceleration no limit allows. Any event, arc, move with no
-//! XYZ length or move under exact stop ends the chain: the robot stops there.
+//! path at speed is an acceleration no limit allows. Any event, move with no XYZ length or move
+//! under exact stop ends the chain: the robot stops there.
+//!
+//! # Arcs
+//!
+//! A programmed arc (G2/G3, helical too) under G64 is run as programmed, never cut: it joins
+//! the chain where its direction of travel at the junction is the neighbour's (within 1e-9 rad,
+//! as for moves that go straight on) and C's rate per mm does not jump; anywhere else the robot
+//! stops at its ends (an arc tangent to neither neighbour passes unchanged, to be timed alone as
+//! under exact stop). So a profile of lines and tangent arcs (a rounded rectangle, cutter
+//! compensation's arcs round convex corners) runs through without stopping; an arc meeting a
+//! line at a corner is an exact stop, where LinuxCNC would blend it (not done here).
 //!
 //! ```
 //! use biscara_blend::{Blended, Blender};

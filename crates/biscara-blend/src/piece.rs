@@ -1,6 +1,6 @@
 //! The pieces of a blended path.
 
-use biscara_motion::Feed;
+use biscara_motion::{Feed, Segment};
 
 /// How fast a piece may go: the programmed feed, or the rapid limits.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +50,9 @@ pub enum Geometry {
         /// Angle swept, radians, in (0, π).
         sweep: f64,
     },
+    /// A programmed arc (G2/G3, helical or not) run as it is: it joins a chain where its ends
+    /// are tangent to its neighbours, and is never cut.
+    Arc(Segment),
 }
 
 /// One piece of a blended chain.
@@ -86,6 +89,7 @@ impl Piece {
     pub fn start(&self) -> [f64; 4] {
         match self.geometry {
             Geometry::Line { start, .. } | Geometry::Fillet { start, .. } => start,
+            Geometry::Arc(segment) => segment.start(),
         }
     }
 
@@ -93,14 +97,17 @@ impl Piece {
     pub fn end(&self) -> [f64; 4] {
         match self.geometry {
             Geometry::Line { end, .. } | Geometry::Fillet { end, .. } => end,
+            Geometry::Arc(segment) => segment.end(),
         }
     }
 
-    /// The fillet's radius, mm; `None` for a straight piece.
+    /// The radius of a fillet, or the smallest radius of an arc in its plane, mm; `None` for a
+    /// straight piece.
     pub fn radius(&self) -> Option<f64> {
         match self.geometry {
             Geometry::Line { .. } => None,
             Geometry::Fillet { radius, .. } => Some(radius),
+            Geometry::Arc(segment) => segment.radius(),
         }
     }
 
@@ -109,6 +116,7 @@ impl Piece {
         match self.geometry {
             Geometry::Line { start, end } => norm(sub(xyz(end), xyz(start))),
             Geometry::Fillet { radius, sweep, .. } => radius * sweep,
+            Geometry::Arc(segment) => segment.length(),
         }
     }
 
@@ -129,6 +137,7 @@ impl Piece {
                 pose[3] = start[3] + u * (end[3] - start[3]);
                 pose
             }
+            Geometry::Arc(segment) => segment.point(u),
         }
     }
 
@@ -145,6 +154,11 @@ impl Piece {
                 let radial = sub(xyz(start), center);
                 std::array::from_fn(|k| -sin * radial[k] / radius + cos * tangent[k])
             }
+            Geometry::Arc(segment) => {
+                let d = xyz(segment.derivative(u));
+                let n = norm(d);
+                [d[0] / n, d[1] / n, d[2] / n]
+            }
         }
     }
 
@@ -154,6 +168,9 @@ impl Piece {
     /// is zero; on a fillet it points to the centre with length 1/radius. The second derivative
     /// jumps where a line meets a fillet: a timing law holds its bounds on both sides there.
     pub fn derivatives(&self, u: f64) -> ([f64; 4], [f64; 4]) {
+        if let Geometry::Arc(segment) = self.geometry {
+            return arc_length_derivatives(&segment, u);
+        }
         let length = self.length();
         let c_rate = (self.end()[3] - self.start()[3]) / length;
         let tangent = self.tangent(u);
@@ -172,7 +189,28 @@ impl Piece {
                 }
                 second
             }
+            Geometry::Arc(_) => unreachable!("arcs are differentiated above"),
         };
         (first, second)
     }
+}
+
+/// The first and second derivatives of an arc's pose with respect to its XYZ arc length, from
+/// those with respect to its parameter (`p′`, `p″`): `p′/|p′|` and `(p″ − (p″·t) t)/|p′|²` with
+/// `t` the unit tangent (C's rate in proportion; its second derivative, zero along the parameter,
+/// is taken as zero along the length).
+fn arc_length_derivatives(segment: &Segment, u: f64) -> ([f64; 4], [f64; 4]) {
+    let [_, d1, d2] = segment.derivatives(u);
+    let speed = norm(xyz(d1));
+    let tangent: [f64; 3] = std::array::from_fn(|k| d1[k] / speed);
+    let along = dot(xyz(d2), tangent);
+    let mut first = [tangent[0], tangent[1], tangent[2], d1[3] / speed];
+    if !first[3].is_finite() {
+        first[3] = 0.0;
+    }
+    let mut second = [0.0; 4];
+    for k in 0..3 {
+        second[k] = (d2[k] - along * tangent[k]) / (speed * speed);
+    }
+    (first, second)
 }

@@ -1,20 +1,20 @@
 //! A chain of blended moves (G64 P) timed as one path by the optimal profile.
 //!
-//! The pieces of the chain (trimmed lines and the fillets between them, from `biscara-blend`)
-//! are laid end to end: the path parameter is the length along the chain, mm. The planner
-//! ([`TimeOptimal::plan_streamed`]) asks for grid points one by one; the chain pulls pieces from
-//! the blender as it needs them and drops those the sampling has passed, so it holds only the
-//! pieces of the planner's window.
+//! The pieces of the chain (trimmed lines, the fillets between them and programmed arcs tangent
+//! to their neighbours, from `biscara-blend`) are laid end to end: the path parameter is the
+//! length along the chain, mm. The planner ([`TimeOptimal::plan_streamed`]) asks for grid points
+//! one by one; the chain pulls pieces from the blender as it needs them and drops those the
+//! sampling has passed, so it holds only the pieces of the planner's window.
 //!
 //! Each piece gets its own grid ([`GRID_MM`] or [`GRID_SECONDS`] at the feed, whichever is
-//! shorter, [`GRID_TURN_DEGREES`], at least one interval; a
-//! line's ends refined as a single move's are), so that every junction (the ends of every
-//! fillet) is a grid point. TOPP-RA loses a little time in the interval where the speed stops
-//! changing, and nothing when that happens on a grid point: a line also gets the points where
-//! its Cartesian ramps would end, from the speed its neighbours allow at its ends (rest at the
-//! chain's ends, the centripetal limit on a fillet) to its own. The second derivative of the
-//! path jumps at a junction; a junction point carries two sets of constraints, the piece before
-//! it at its end and the piece after it at its start, each held on its own side of the point
+//! shorter, [`GRID_TURN_DEGREES`], at least one interval; a line's or an arc's ends refined as a
+//! single move's are), so that every junction (the ends of every fillet) is a grid point.
+//! TOPP-RA loses a little time in the interval where the speed stops changing, and nothing when
+//! that happens on a grid point: a line or an arc also gets the points where its Cartesian ramps
+//! would end, from the speed its neighbours allow at its ends (rest at the chain's ends, the
+//! centripetal limit on a fillet) to its own. The second derivative of the path jumps at a
+//! junction; a junction point carries two sets of constraints, the piece before it at its end and
+//! the piece after it at its start, each held on its own side of the point
 //! ([`PathConstraints::sided`]).
 
 use std::collections::VecDeque;
@@ -45,8 +45,10 @@ struct ChainPiece {
     speed: f64,
     /// |dC/ds|, degrees per mm.
     rotation_rate: f64,
-    /// Radius of a fillet, mm (infinite for a line).
+    /// Radius of a fillet or an arc, mm (infinite for a line).
     radius: f64,
+    /// A corner's fillet (short, and run at the speed its ends allow): no extra grid points.
+    fillet: bool,
     /// The path acceleration (with C's), mm/s², and the largest ṡ² the Cartesian limits allow.
     acceleration: f64,
     cap: f64,
@@ -127,6 +129,7 @@ impl Chain {
             Geometry::Fillet { start, end, center, tangent, sweep, .. } => {
                 Segment::fillet(start, end, center, tangent, sweep)
             }
+            Geometry::Arc(segment) => segment,
         };
         let length = piece.length();
         let speed = match piece.speed {
@@ -157,12 +160,13 @@ impl Chain {
             self.end = Some(piece.end());
         }
         // TOPP-RA loses time in the interval where the speed stops changing, and the ramps
-        // from rest, to rest and to and from a slow fillet end near a line's ends: its first
-        // and last intervals are cut geometrically down to an eighth of the Cartesian ramp
-        // (as a single move's refined grid is).
+        // from rest, to rest and to and from a slow fillet end near a line's or an arc's ends:
+        // its first and last intervals are cut geometrically down to an eighth of the Cartesian
+        // ramp (as a single move's refined grid is).
         let intervals = per_unit.max(1.0);
         let mut grid = Grid::uniform(intervals as usize);
-        if piece.radius().is_none() {
+        let fillet = matches!(piece.geometry, Geometry::Fillet { .. });
+        if !fillet {
             let ramp = along * along / (2.0 * limits.acceleration) / length;
             let refine =
                 ((ramp * intervals / 8.0).ln() / REFINE_RATIO.ln()).ceil().clamp(0.0, MAX_REFINE);
@@ -184,6 +188,7 @@ impl Chain {
             speed,
             rotation_rate,
             radius,
+            fillet,
             acceleration,
             cap,
             programmed: along,
@@ -292,7 +297,7 @@ where
         chain.extra_next = 0;
         chain.last_u = 0.0;
         chain.extra = [f64::INFINITY; 2];
-        if current.radius.is_finite() {
+        if current.fillet {
             return;
         }
         let x_out = if has_next { current.cap.min(chain.get(chain.piece + 1).cap) } else { 0.0 };

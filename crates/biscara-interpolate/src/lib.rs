@@ -45,13 +45,12 @@ mod csv;
 mod interpolator;
 mod profile;
 
-
 pub use biscara_motion::Motion;
 
+pub use biscara_motion::Segment;
 pub use csv::{PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, read_path_csv};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
     JointBound, MAX_JOINTS, NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,
 };
 pub use profile::{Profile, Timing};
-pub use biscara_motion::Segment;

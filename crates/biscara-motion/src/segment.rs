@@ -153,6 +153,19 @@ impl Segment {
         self.end[3] - self.start[3]
     }
 
+    /// The radius of an arc (the smaller of its start and end radii, when they differ) or of a
+    /// fillet, in its plane, mm; `None` for a line. A helix bends less than its radius says: the
+    /// centripetal acceleration at speed v is at most v² over this.
+    pub fn radius(&self) -> Option<f64> {
+        match self.shape {
+            Shape::Line => None,
+            Shape::Arc { start_radius, end_radius, .. } => Some(start_radius.min(end_radius)),
+            Shape::Fillet { radial, .. } => {
+                Some(radial.iter().map(|value| value * value).sum::<f64>().sqrt())
+            }
+        }
+    }
+
     /// How far the direction of travel turns over the move, degrees: an arc's sweep, 0 for a
     /// line.
     pub fn turning(&self) -> f64 {

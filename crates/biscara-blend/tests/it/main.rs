@@ -3,7 +3,7 @@
 
 mod strategies;
 
-use biscara_blend::{Blended, Blender, Piece, Speed};
+use biscara_blend::{Blended, Blender, Geometry, Piece, Speed};
 use biscara_motion::{Feed, Motion, MotionKind};
 use proptest::prelude::*;
 
@@ -170,10 +170,65 @@ fn what_cannot_be_blended_passes_unchanged() {
             Blended::Motion(motion) => format!("motion {}", motion.line),
         })
         .collect();
+    // The arc under G64 joins nothing (a turn of C before it, an event after it): it passes.
     assert_eq!(
         kinds,
         ["motion 1", "motion 2", "motion 3", "motion 4", "piece 5 true", "piece 6 true"]
     );
+}
+
+/// An arc in XY ending at `end`, about `center`, under G64 P0.05.
+fn arc(line: usize, end: [f64; 4], center: [f64; 2], clockwise: bool) -> Motion {
+    let kind = MotionKind::Arc {
+        end,
+        center,
+        plane: biscara_motion::Plane::Xy,
+        clockwise,
+        turns: 1,
+        feed: FEED,
+    };
+    Motion { blend: Some(0.05), ..Motion::new(line, kind) }
+}
+
+#[test]
+fn tangent_arcs_join_the_chain_and_others_stop() {
+    // A rectangle with rounded corners (radius 2): lines and quarter arcs, each tangent to the
+    // next, under G64 P0.05: one chain, no fillet, no stop until its end.
+    let motions = [
+        linear(1, [10.0, 0.0, 0.0, 0.0], Some(0.05)),
+        arc(2, [12.0, 2.0, 0.0, 0.0], [10.0, 2.0], false),
+        linear(3, [12.0, 8.0, 0.0, 0.0], Some(0.05)),
+        arc(4, [10.0, 10.0, 0.0, 0.0], [10.0, 8.0], false),
+        linear(5, [0.0, 10.0, 0.0, 0.0], Some(0.05)),
+        // A corner: the arc leaves at right angles to the line before it (upwards).
+        arc(6, [-2.0, 12.0, 0.0, 0.0], [-2.0, 10.0], false),
+        // And a line that goes on from the arc's end the way it was going (tangent).
+        linear(7, [-10.0, 12.0, 0.0, 0.0], Some(0.05)),
+    ];
+    let got = pieces(&blend(&motions, [0.0; 4]));
+    let summary: Vec<(usize, bool, bool)> = got
+        .iter()
+        .map(|piece| (piece.line, matches!(piece.geometry, Geometry::Arc(_)), piece.ends_chain))
+        .collect();
+    assert_eq!(
+        summary,
+        [
+            (1, false, false),
+            (2, true, false),
+            (3, false, false),
+            (4, true, false),
+            (5, false, true),
+            (6, true, false),
+            (7, false, true),
+        ]
+    );
+    // The arcs are the programmed ones, end to end with their neighbours.
+    for pair in got.windows(2) {
+        assert!(close(pair[0].end(), pair[1].start(), 1e-12), "{pair:?}");
+    }
+    assert!(close(got[1].point(0.5), [10.0 + 2f64.sqrt(), 2.0 - 2f64.sqrt(), 0.0, 0.0], 1e-12));
+    assert_eq!(got[1].radius(), Some(2.0));
+    assert!((got[1].length() - std::f64::consts::PI).abs() < 1e-12);
 }
 
 /// Checks a blended chain against its programmed `vertices` and `tolerance`.

@@ -65,6 +65,70 @@ fn polyline(vertices: &[Vertex], blend: Option<f64>) -> Vec<Motion> {
     motions
 }
 
+/// The polyline of `vertices` (rapids and Z, C changes dropped: one feed move after another in
+/// a plane) with its corners rounded by arcs of radius `radius` (at most what fits in half of
+/// either side), each tangent to the lines on both sides: the profile of a part with rounded
+/// corners, every junction tangent, under `blend`.
+fn rounded(vertices: &[Vertex], radius: f64, blend: Option<f64>) -> Vec<Motion> {
+    let corners: Vec<[f64; 4]> = polyline(vertices, None)
+        .iter()
+        .filter_map(|motion| motion.kind.end())
+        .map(|end| [end[0], end[1], 50.0, 0.0])
+        .collect();
+    let f = feed(vertices.first().map_or(3000.0, |vertex| vertex.4));
+    let mut motions =
+        vec![Motion { blend, ..Motion::new(1, MotionKind::Rapid { end: corners[0] }) }];
+    let mut line = 2;
+    let mut push = |kind: MotionKind, motions: &mut Vec<Motion>| {
+        motions.push(Motion { blend, ..Motion::new(line, kind) });
+        line += 1;
+    };
+    for k in 1..corners.len() {
+        let (a, b) = (corners[k - 1], corners[k]);
+        let Some(&c) = corners.get(k + 1) else {
+            push(MotionKind::Linear { end: b, feed: f }, &mut motions);
+            break;
+        };
+        let (ab, bc) = ([b[0] - a[0], b[1] - a[1]], [c[0] - b[0], c[1] - b[1]]);
+        let (lab, lbc) = (ab[0].hypot(ab[1]), bc[0].hypot(bc[1]));
+        let cross = ab[0] * bc[1] - ab[1] * bc[0];
+        let turn = cross.atan2(ab[0] * bc[0] + ab[1] * bc[1]);
+        // Straight on, or back on itself: no arc fits.
+        if lab < 1e-6 || lbc < 1e-6 || turn.abs() < 1e-3 || turn.abs() > 3.0 {
+            push(MotionKind::Linear { end: b, feed: f }, &mut motions);
+            continue;
+        }
+        let trim = (radius * (turn.abs() / 2.0).tan()).min(lab / 2.0).min(lbc / 2.0);
+        let r = trim / (turn.abs() / 2.0).tan();
+        let (ua, ub) = ([ab[0] / lab, ab[1] / lab], [bc[0] / lbc, bc[1] / lbc]);
+        let start = [b[0] - trim * ua[0], b[1] - trim * ua[1], 50.0, 0.0];
+        let end = [b[0] + trim * ub[0], b[1] + trim * ub[1], 50.0, 0.0];
+        // The centre is r to the left of the first line for a left turn, to the right else.
+        let side = turn.signum();
+        let center = [start[0] - side * r * ua[1], start[1] + side * r * ua[0]];
+        push(MotionKind::Linear { end: start, feed: f }, &mut motions);
+        let arc = MotionKind::Arc {
+            end,
+            center,
+            plane: biscara_motion::Plane::Xy,
+            clockwise: turn < 0.0,
+            turns: 1,
+            feed: f,
+        };
+        push(arc, &mut motions);
+    }
+    // Drop the lines of no length (between two arcs that each took half of it).
+    let mut from = corners[0];
+    motions.retain(|motion| {
+        let Some(end) = motion.kind.end() else { return true };
+        let keep = !matches!(motion.kind, MotionKind::Linear { .. })
+            || (end[0] - from[0]).hypot(end[1] - from[1]) > 1e-9;
+        from = end;
+        keep
+    });
+    motions
+}
+
 /// The same motions under exact stop.
 fn exact(motions: &[Motion]) -> Vec<Motion> {
     motions.iter().map(|motion| Motion { blend: None, ..*motion }).collect()
@@ -138,8 +202,22 @@ proptest! {
         check_blended(&polyline(&vertices, Some(tolerance)), &robot, tolerance)?;
     }
 
-    /// Random chains of lines, tight arcs, C rotations and moves near the workspace's edge: arcs
-    /// and moves without XYZ length stop, the lines between them blend.
+    /// Random profiles of lines joined by arcs tangent to them (rounded corners of 0.2–10 mm):
+    /// one chain, the arcs run as programmed.
+    #[test]
+    fn rounded_profiles_keep_the_tolerance_and_the_limits(
+        vertices in proptest::collection::vec(vertex(), 2..8),
+        radius in prop_oneof![0.2..1.0f64, 1.0..10.0f64],
+        tolerance in tolerance(),
+        weak: bool,
+    ) {
+        let robot = robot(weak);
+        check_blended(&rounded(&vertices, radius, Some(tolerance)), &robot, tolerance)?;
+    }
+
+    /// Random chains of lines, tight arcs, C rotations and moves near the workspace's edge: an
+    /// arc joins a chain where it is tangent to its neighbour and stops elsewhere, moves without
+    /// XYZ length stop, the lines between them blend.
     #[test]
     fn blended_arc_chains_keep_the_tolerance_and_the_limits(
         steps in proptest::collection::vec(step(), 1..8),
