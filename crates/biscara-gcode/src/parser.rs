@@ -125,6 +125,9 @@ pub(crate) struct Block {
     /// `@`, `^` (polar radius and angle) and `$` (spindle number): rare, kept out of
     /// [`Block::letters`]; the last `@` or `^` of a line counts, as in LinuxCNC.
     pub extra: Option<Box<ExtraWords>>,
+    /// Whether a G or M code that is not implemented here (not [`Support::Yes`]) was read: the
+    /// interpreter looks for the one to refuse only then, not on every line.
+    pub unsupported: bool,
 }
 
 /// The words LinuxCNC reads besides the letters: polar coordinates and the spindle number.
@@ -147,6 +150,7 @@ impl Block {
         self.numbered.clear();
         self.named.clear();
         self.empty = true;
+        self.unsupported = false;
         if let Some(extra) = &mut self.extra {
             **extra = ExtraWords::default();
         }
@@ -495,9 +499,10 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, "Negative g code used"));
         }
         let code = code as u16;
-        let Some((group, _)) = g_group(code) else {
+        let Some((group, support)) = g_group(code) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
+        block.unsupported |= support != Support::Yes;
         if let Some(before) = block.g[group] {
             // rs274's `read_g` lets G80 share a block with another motion code, which wins.
             if group == 1 && (before.code == 800 || code == 800) {
@@ -522,9 +527,10 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
         }
         let code = value as u16;
-        let Some((group, _)) = m_group(code) else {
+        let Some((group, support)) = m_group(code) else {
             return Err(self.syntax(start, end, format!("Unknown m code used: M{value}")));
         };
+        block.unsupported |= support != Support::Yes;
         if block.m[group].is_some() {
             return Err(self.syntax(start, end, "Two m codes used from same modal group"));
         }
