@@ -530,6 +530,17 @@ impl Compact {
         &mut self.bytes[..self.len]
     }
 
+    /// Stores `byte`, from raw offset `column`, in slot `*len` and moves `len` on; drops it when
+    /// the slots are full (the line is then refused).
+    #[inline(always)]
+    fn keep(&mut self, len: &mut usize, byte: u8, column: usize) {
+        if *len < COMPACT_SLOTS {
+            self.bytes[*len] = byte;
+            self.columns[*len] = column.min(usize::from(u16::MAX)) as u16;
+            *len += 1;
+        }
+    }
+
     /// The raw offset of compact index `index` (the line's end for `index >= len`).
     pub(crate) fn column(&self, index: usize, raw_len: usize) -> usize {
         if index < self.len { usize::from(self.columns[index]) } else { raw_len }
@@ -552,26 +563,24 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(),
     let mut len = 0;
     let mut chars = raw.iter().enumerate();
     while let Some((index, &byte)) = chars.next() {
-        let mut kept = LOWERED[usize::from(byte)];
-        if kept > u16::from(u8::MAX) {
+        let lowered = LOWERED[usize::from(byte)];
+        let kept = if lowered <= u16::from(u8::MAX) {
+            lowered as u8
+        } else {
             match byte {
                 b'(' => {
                     skip_comment(&mut chars, raw.len(), index, nested)?;
-                    kept = u16::from(b'(');
+                    b'('
                 }
                 // LinuxCNC keeps the `;` (a value cannot be read from it); the rest is comment.
-                b';' => kept = u16::from(b';'),
+                b';' => {
+                    out.keep(&mut len, b';', index);
+                    break;
+                }
                 _ => continue,
             }
-        }
-        if len < COMPACT_SLOTS {
-            out.bytes[len] = kept as u8;
-            out.columns[len] = index.min(usize::from(u16::MAX)) as u16;
-            len += 1;
-        }
-        if byte == b';' {
-            break;
-        }
+        };
+        out.keep(&mut len, kept, index);
     }
     out.len = len;
     if out.len > MAX_LINE {
