@@ -138,7 +138,65 @@ fn write_end(out: &mut impl Write, end: &[f64; 4]) -> io::Result<()> {
 
 /// A number as serde_json writes it: `null` when it is not finite.
 fn write_f64(out: &mut impl Write, value: f64) -> io::Result<()> {
-    if value.is_finite() { CompactFormatter.write_f64(out, value) } else { out.write_all(b"null") }
+    let mut buffer = [0; SHORT_DECIMAL_BYTES];
+    if let Some(text) = short_decimal(value, &mut buffer) {
+        out.write_all(text)
+    } else if value.is_finite() {
+        CompactFormatter.write_f64(out, value)
+    } else {
+        out.write_all(b"null")
+    }
+}
+
+/// Room for a sign, nine digits, a point and three decimals.
+const SHORT_DECIMAL_BYTES: usize = 16;
+
+/// `value` written as serde_json writes it, when that is at most nine digits, a point and at
+/// most three decimals (`-89.85`, `300.0`): most positions and feeds of a program. `None` for
+/// any other number.
+///
+/// serde_json writes the shortest decimal that reads back as `value`. Below 10⁹ the decimals
+/// with `k ≤ 3` places are 10⁻ᵏ apart, far more than the spacing of doubles, so at most one
+/// of them reads back as `value`: `d / 10ᵏ` with `d = round(|value| · 10ᵏ)`, and it does when
+/// the division (correctly rounded, of an integer and a power of ten both exact) gives `value`
+/// back. The first `k` that works gives the shortest.
+fn short_decimal(value: f64, buffer: &mut [u8; SHORT_DECIMAL_BYTES]) -> Option<&[u8]> {
+    const SCALES: [f64; 4] = [1.0, 10.0, 100.0, 1000.0];
+    let magnitude = value.abs();
+    if magnitude.is_nan() || magnitude >= 1e9 {
+        return None;
+    }
+    let (places, digits) = SCALES.iter().enumerate().find_map(|(places, &scale)| {
+        // Below 10¹², exact as a double and as a u64.
+        let digits = (magnitude * scale + 0.5) as u64;
+        (digits as f64 / scale == magnitude).then_some((places, digits))
+    })?;
+    // Written from the end: the decimals (or `0` after the point), the point, the integer part.
+    let mut at = buffer.len();
+    let mut rest = digits;
+    let mut put = |byte: u8| {
+        at -= 1;
+        buffer[at] = byte;
+    };
+    if places == 0 {
+        put(b'0');
+    }
+    for _ in 0..places {
+        put(b'0' + (rest % 10) as u8);
+        rest /= 10;
+    }
+    put(b'.');
+    loop {
+        put(b'0' + (rest % 10) as u8);
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    if value.is_sign_negative() {
+        put(b'-');
+    }
+    Some(&buffer[at..])
 }
 
 fn write_bool(out: &mut impl Write, key: &[u8], value: bool) -> io::Result<()> {
@@ -502,7 +560,29 @@ mod tests {
             ]
         }
 
+        /// Numbers of at most three decimals, and their neighbours (which are not).
+        fn decimal() -> impl Strategy<Value = f64> {
+            (-999_999_999_999i64..=999_999_999_999, 0..4i32, -2i64..=2).prop_map(
+                |(digits, places, ulps)| {
+                    let value = digits as f64 / 10f64.powi(places);
+                    f64::from_bits(value.to_bits().wrapping_add_signed(ulps))
+                },
+            )
+        }
+
         proptest! {
+            /// Numbers are written as serde_json writes them: short decimals by the fast path,
+            /// the others by serde_json's formatter.
+            #[test]
+            fn numbers_are_written_as_serde_json_writes_them(
+                value in prop_oneof![decimal(), number(), -1e10..1e10f64],
+            ) {
+                let mut written = Vec::new();
+                write_f64(&mut written, value).unwrap();
+                let expected = serde_json::to_vec(&value).unwrap();
+                prop_assert_eq!(String::from_utf8(written), String::from_utf8(expected));
+            }
+
             /// The hand-written writer gives serde_json's bytes for every motion.
             #[test]
             fn writes_what_serde_json_writes(
