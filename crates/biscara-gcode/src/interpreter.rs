@@ -954,6 +954,9 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Refuses codes and words this interpreter does not implement.
     fn check_support(&self) -> Result<(), Fault> {
+        if !self.block.unsupported {
+            return Ok(());
+        }
         for code in self.block.g.iter().flatten() {
             let name = || {
                 if code.code % 10 == 0 {

@@ -500,19 +500,22 @@ impl<R: BufRead> BufRead for Prefixed<R> {
     }
 }
 
+/// Slots of [`Compact`]'s arrays: more than [`MAX_LINE`], to tell a line that has more.
+const COMPACT_SLOTS: usize = MAX_LINE + 4;
+
 /// The significant characters of one line (at most [`MAX_LINE`] of them: fixed arrays, no
 /// allocation, no capacity checks).
 #[derive(Debug)]
 pub(crate) struct Compact {
-    bytes: [u8; MAX_LINE + 4],
+    bytes: [u8; COMPACT_SLOTS],
     /// For each byte of `bytes`, its 0-based byte offset in the raw line (< 65 536).
-    columns: [u16; MAX_LINE + 4],
+    columns: [u16; COMPACT_SLOTS],
     len: usize,
 }
 
 impl Default for Compact {
     fn default() -> Compact {
-        Compact { bytes: [0; MAX_LINE + 4], columns: [0; MAX_LINE + 4], len: 0 }
+        Compact { bytes: [0; COMPACT_SLOTS], columns: [0; COMPACT_SLOTS], len: 0 }
     }
 }
 
@@ -527,18 +530,20 @@ impl Compact {
         &mut self.bytes[..self.len]
     }
 
+    /// Stores `byte`, from raw offset `column`, in slot `*len` and moves `len` on; drops it when
+    /// the slots are full (the line is then refused).
+    #[inline(always)]
+    fn keep(&mut self, len: &mut usize, byte: u8, column: usize) {
+        if *len < COMPACT_SLOTS {
+            self.bytes[*len] = byte;
+            self.columns[*len] = column.min(usize::from(u16::MAX)) as u16;
+            *len += 1;
+        }
+    }
+
     /// The raw offset of compact index `index` (the line's end for `index >= len`).
     pub(crate) fn column(&self, index: usize, raw_len: usize) -> usize {
         if index < self.len { usize::from(self.columns[index]) } else { raw_len }
-    }
-
-    fn push(&mut self, byte: u8, column: usize) {
-        // `compact` is only given lines of at most MAX_LINE bytes.
-        if self.len < self.bytes.len() {
-            self.bytes[self.len] = byte;
-            self.columns[self.len] = column.min(usize::from(u16::MAX)) as u16;
-            self.len += 1;
-        }
     }
 }
 
@@ -546,39 +551,38 @@ impl Compact {
 /// With `nested` (Mach3), a `(` inside a comment opens a comment within it; otherwise it is
 /// LinuxCNC's "Nested comment found". A line longer than [`MAX_LINE`] (a dialect's long comment)
 /// is refused if more than [`MAX_LINE`] significant characters remain.
+// Not inlined into the interpreter's loop, whose registers are all taken: its own function
+// keeps the loop's pointers and counters in registers.
+#[inline(never)]
 pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(), Fault> {
+    // Every line passes here: one table look-up tells an ordinary character (kept, lower
+    // case) from the four that are not, the length is kept in a local, and a comment is
+    // skipped by its own loop. Characters beyond the slots (a long line's: it is refused below)
+    // are dropped.
     out.len = 0;
-    let mut comment_start: Option<usize> = None;
-    let mut depth = 0usize;
-    for (index, &byte) in raw.iter().enumerate() {
-        if let Some(start) = comment_start {
+    let mut len = 0;
+    let mut chars = raw.iter().enumerate();
+    while let Some((index, &byte)) = chars.next() {
+        let lowered = LOWERED[usize::from(byte)];
+        let kept = if lowered <= u16::from(u8::MAX) {
+            lowered as u8
+        } else {
             match byte {
-                b')' if depth > 1 => depth -= 1,
-                b')' => comment_start = None,
-                b'(' if nested => depth += 1,
-                b'(' => return Err(Fault::syntax(start, index + 1, "Nested comment found")),
-                _ => {}
-            }
-            continue;
-        }
-        match byte {
-            b' ' | b'\t' => {}
-            b'(' => {
-                comment_start = Some(index);
-                depth = 1;
-                out.push(b'(', index);
-            }
-            b';' => {
+                b'(' => {
+                    skip_comment(&mut chars, raw.len(), index, nested)?;
+                    b'('
+                }
                 // LinuxCNC keeps the `;` (a value cannot be read from it); the rest is comment.
-                out.push(b';', index);
-                break;
+                b';' => {
+                    out.keep(&mut len, b';', index);
+                    break;
+                }
+                _ => continue,
             }
-            _ => out.push(byte.to_ascii_lowercase(), index),
-        }
+        };
+        out.keep(&mut len, kept, index);
     }
-    if let Some(start) = comment_start {
-        return Err(Fault::syntax(start, raw.len(), "Unclosed comment found"));
-    }
+    out.len = len;
     if out.len > MAX_LINE {
         let start = out.column(MAX_LINE, raw.len());
         return Err(Fault::syntax(
@@ -591,6 +595,41 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(),
         ));
     }
     Ok(())
+}
+
+/// Each byte lower-cased, or above `u8::MAX` for the four that are not kept as they are:
+/// space, tab, `(` and `;`.
+const LOWERED: [u16; 256] = {
+    let mut table = [0; 256];
+    let mut byte = 0;
+    while byte < 256 {
+        table[byte] = match byte as u8 {
+            b' ' | b'\t' | b'(' | b';' => 0x100,
+            other => other.to_ascii_lowercase() as u16,
+        };
+        byte += 1;
+    }
+    table
+};
+
+/// Moves `chars` past the `)` that closes the comment opened at `open`.
+fn skip_comment(
+    chars: &mut std::iter::Enumerate<std::slice::Iter<'_, u8>>,
+    raw_len: usize,
+    open: usize,
+    nested: bool,
+) -> Result<(), Fault> {
+    let mut depth = 1usize;
+    for (index, &byte) in chars {
+        match byte {
+            b')' if depth > 1 => depth -= 1,
+            b')' => return Ok(()),
+            b'(' if nested => depth += 1,
+            b'(' => return Err(Fault::syntax(open, index + 1, "Nested comment found")),
+            _ => {}
+        }
+    }
+    Err(Fault::syntax(open, raw_len, "Unclosed comment found"))
 }
 
 #[cfg(test)]

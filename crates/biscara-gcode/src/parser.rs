@@ -125,6 +125,9 @@ pub(crate) struct Block {
     /// `@`, `^` (polar radius and angle) and `$` (spindle number): rare, kept out of
     /// [`Block::letters`]; the last `@` or `^` of a line counts, as in LinuxCNC.
     pub extra: Option<Box<ExtraWords>>,
+    /// Whether a G or M code that is not implemented here (not [`Support::Yes`]) was read: the
+    /// interpreter looks for the one to refuse only then, not on every line.
+    pub unsupported: bool,
 }
 
 /// The words LinuxCNC reads besides the letters: polar coordinates and the spindle number.
@@ -147,6 +150,7 @@ impl Block {
         self.numbered.clear();
         self.named.clear();
         self.empty = true;
+        self.unsupported = false;
         if let Some(extra) = &mut self.extra {
             **extra = ExtraWords::default();
         }
@@ -230,21 +234,24 @@ impl Op {
     }
 }
 
-/// `[+-]digits[.digits]` with at most 15 digits, converted exactly: the digits as an integer
-/// (exact below 2^53) divided by a power of ten (exact up to 10^22) is correctly rounded, as
-/// `str::parse` would give. `None` for anything else (which takes the general path).
-fn fast_decimal(text: &[u8]) -> Option<f64> {
+/// The number at `start` of `bytes` (`[+-]`, then the digits and points that follow) when it is
+/// `[+-]digits[.digits]` with at most 15 digits, with the offset just past it; `None` for
+/// anything else (which takes the general path). Read in one pass, converted exactly: the digits
+/// as an integer (exact below 2^53) divided by a power of ten (exact up to 10^22) is correctly
+/// rounded, as `str::parse` would give.
+fn scan_decimal(bytes: &[u8], start: usize) -> Option<(f64, usize)> {
     const POWERS: [f64; 16] =
         [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15];
-    let (negative, body) = match text.first()? {
-        b'-' => (true, &text[1..]),
-        b'+' => (false, &text[1..]),
-        _ => (false, text),
+    let (negative, mut at) = match bytes.get(start) {
+        Some(b'-') => (true, start + 1),
+        Some(b'+') => (false, start + 1),
+        _ => (false, start),
     };
     let mut mantissa: u64 = 0;
     let mut digits = 0usize;
-    let mut decimals: Option<usize> = None;
-    for &byte in body {
+    // Digits after the point; `usize::MAX` before it.
+    let mut decimals = usize::MAX;
+    while let Some(&byte) = bytes.get(at) {
         match byte {
             b'0'..=b'9' => {
                 if digits == 15 {
@@ -252,19 +259,25 @@ fn fast_decimal(text: &[u8]) -> Option<f64> {
                 }
                 mantissa = mantissa * 10 + u64::from(byte - b'0');
                 digits += 1;
-                if let Some(count) = decimals.as_mut() {
-                    *count += 1;
-                }
+                decimals = decimals.wrapping_add(usize::from(decimals != usize::MAX));
             }
-            b'.' if decimals.is_none() => decimals = Some(0),
-            _ => return None,
+            b'.' if decimals == usize::MAX => decimals = 0,
+            b'.' => return None,
+            _ => break,
         }
+        at += 1;
     }
     if digits == 0 {
         return None;
     }
-    let value = mantissa as f64 / POWERS[decimals.unwrap_or(0)];
-    Some(if negative { -value } else { value })
+    let value = mantissa as f64 / POWERS[if decimals == usize::MAX { 0 } else { decimals }];
+    Some((if negative { -value } else { value }, at))
+}
+
+/// [`scan_decimal`] of the whole of `text`; `None` when anything follows the number.
+#[cfg(test)]
+fn fast_decimal(text: &[u8]) -> Option<f64> {
+    scan_decimal(text, 0).filter(|&(_, end)| end == text.len()).map(|(value, _)| value)
 }
 
 /// LinuxCNC's `TOLERANCE_EQUAL` for EQ and NE.
@@ -495,9 +508,10 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, "Negative g code used"));
         }
         let code = code as u16;
-        let Some((group, _)) = g_group(code) else {
+        let Some((group, support)) = g_group(code) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
+        block.unsupported |= support != Support::Yes;
         if let Some(before) = block.g[group] {
             // rs274's `read_g` lets G80 share a block with another motion code, which wins.
             if group == 1 && (before.code == 800 || code == 800) {
@@ -522,9 +536,10 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
         }
         let code = value as u16;
-        let Some((group, _)) = m_group(code) else {
+        let Some((group, support)) = m_group(code) else {
             return Err(self.syntax(start, end, format!("Unknown m code used: M{value}")));
         };
+        block.unsupported |= support != Support::Yes;
         if block.m[group].is_some() {
             return Err(self.syntax(start, end, "Two m codes used from same modal group"));
         }
@@ -649,6 +664,10 @@ impl<'a> Reader<'a> {
     /// word letter).
     fn read_number(&mut self) -> Result<f64, Fault> {
         let start = self.pos;
+        if let Some((value, end)) = scan_decimal(self.bytes, start) {
+            self.pos = end;
+            return Ok(value);
+        }
         if matches!(self.peek(), b'+' | b'-') {
             self.pos += 1;
         }
@@ -656,9 +675,6 @@ impl<'a> Reader<'a> {
             self.pos += 1;
         }
         let text = &self.bytes[start..self.pos];
-        if let Some(value) = fast_decimal(text) {
-            return Ok(value);
-        }
         let text = std::str::from_utf8(text).unwrap_or("");
         let dots = text.bytes().filter(|&b| b == b'.').count();
         // As C's strtod, which LinuxCNC calls: nothing converts unless a digit comes first, or a

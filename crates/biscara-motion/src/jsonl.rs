@@ -4,7 +4,9 @@ use std::io::{self, BufRead, Write};
 
 use biscara_text::{read_bounded_line, strip_position};
 
-use crate::{Motion, MotionKind};
+use serde_json::ser::{CompactFormatter, Formatter};
+
+use crate::{Motion, MotionKind, Plane};
 
 /// An inter-file that cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -41,9 +43,165 @@ pub enum InterFileError {
 }
 
 /// Writes one motion as one line of JSON.
+///
+/// The bytes are those of `serde_json::to_writer(out, motion)` and a newline (the keys of the
+/// flat record in their order, numbers formatted by serde_json's formatter), written directly:
+/// `interpret` writes one per line of its program, and serde's generic path (a record built
+/// field by field, every key escaped as a string) cost more than the interpreter's own work on
+/// a line.
 pub fn write_jsonl(out: &mut impl Write, motion: &Motion) -> io::Result<()> {
-    serde_json::to_writer(&mut *out, motion).map_err(io::Error::from)?;
-    out.write_all(b"\n")
+    out.write_all(b"{\"line\":")?;
+    CompactFormatter.write_u64(out, motion.line as u64)?;
+    out.write_all(b",\"kind\":\"")?;
+    out.write_all(motion.kind.name().as_bytes())?;
+    out.write_all(b"\"")?;
+    let feed = match motion.kind {
+        MotionKind::Rapid { end } => {
+            write_end(out, &end)?;
+            None
+        }
+        MotionKind::Linear { end, feed } => {
+            write_end(out, &end)?;
+            Some(feed)
+        }
+        MotionKind::Arc { end, center, plane, clockwise, turns, feed } => {
+            write_end(out, &end)?;
+            out.write_all(b",\"center\":[")?;
+            write_f64(out, center[0])?;
+            out.write_all(b",")?;
+            write_f64(out, center[1])?;
+            out.write_all(match plane {
+                Plane::Xy => b"],\"plane\":\"xy\"",
+                Plane::Xz => b"],\"plane\":\"xz\"",
+                Plane::Yz => b"],\"plane\":\"yz\"",
+            })?;
+            write_bool(out, b",\"clockwise\":", clockwise)?;
+            out.write_all(b",\"turns\":")?;
+            CompactFormatter.write_u32(out, turns)?;
+            Some(feed)
+        }
+        MotionKind::Dwell { seconds } => {
+            out.write_all(b",\"seconds\":")?;
+            write_f64(out, seconds)?;
+            None
+        }
+        MotionKind::SpindleOn { clockwise, .. } => {
+            write_bool(out, b",\"clockwise\":", clockwise)?;
+            None
+        }
+        _ => None,
+    };
+    if let Some(feed) = feed {
+        out.write_all(b",\"feed\":")?;
+        write_f64(out, feed.mm_per_min)?;
+        if feed.inverse_time {
+            out.write_all(b",\"inverse_time\":true")?;
+        }
+    }
+    if let Some(extrude) = motion.extrude {
+        out.write_all(b",\"extrude\":")?;
+        write_f64(out, extrude)?;
+    }
+    if let Some(blend) = motion.blend {
+        out.write_all(b",\"blend\":")?;
+        write_f64(out, blend)?;
+    }
+    match motion.kind {
+        MotionKind::LaserOn { power, dynamic } => {
+            out.write_all(b",\"power\":")?;
+            write_f64(out, power)?;
+            write_bool(out, b",\"dynamic\":", dynamic)?;
+        }
+        MotionKind::SpindleOn { rpm, .. } => {
+            out.write_all(b",\"rpm\":")?;
+            write_f64(out, rpm)?;
+        }
+        MotionKind::Code { code } => {
+            out.write_all(b",\"code\":")?;
+            // Printable ASCII, but `"` and `\` are printable: serde_json escapes.
+            serde_json::to_writer(&mut *out, code.as_str()).map_err(io::Error::from)?;
+        }
+        _ => {}
+    }
+    out.write_all(b"}\n")
+}
+
+fn write_end(out: &mut impl Write, end: &[f64; 4]) -> io::Result<()> {
+    out.write_all(b",\"end\":[")?;
+    write_f64(out, end[0])?;
+    for &value in &end[1..] {
+        out.write_all(b",")?;
+        write_f64(out, value)?;
+    }
+    out.write_all(b"]")
+}
+
+/// A number as serde_json writes it: `null` when it is not finite.
+fn write_f64(out: &mut impl Write, value: f64) -> io::Result<()> {
+    let mut buffer = [0; SHORT_DECIMAL_BYTES];
+    if let Some(text) = short_decimal(value, &mut buffer) {
+        out.write_all(text)
+    } else if value.is_finite() {
+        CompactFormatter.write_f64(out, value)
+    } else {
+        out.write_all(b"null")
+    }
+}
+
+/// Room for a sign, nine digits, a point and three decimals.
+const SHORT_DECIMAL_BYTES: usize = 16;
+
+/// `value` written as serde_json writes it, when that is at most nine digits, a point and at
+/// most three decimals (`-89.85`, `300.0`): most positions and feeds of a program. `None` for
+/// any other number.
+///
+/// serde_json writes the shortest decimal that reads back as `value`. Below 10⁹ the decimals
+/// with `k ≤ 3` places are 10⁻ᵏ apart, far more than the spacing of doubles, so at most one
+/// of them reads back as `value`: `d / 10ᵏ` with `d = round(|value| · 10ᵏ)`, and it does when
+/// the division (correctly rounded, of an integer and a power of ten both exact) gives `value`
+/// back. The first `k` that works gives the shortest.
+fn short_decimal(value: f64, buffer: &mut [u8; SHORT_DECIMAL_BYTES]) -> Option<&[u8]> {
+    const SCALES: [f64; 4] = [1.0, 10.0, 100.0, 1000.0];
+    let magnitude = value.abs();
+    if magnitude.is_nan() || magnitude >= 1e9 {
+        return None;
+    }
+    let (places, digits) = SCALES.iter().enumerate().find_map(|(places, &scale)| {
+        // Below 10¹², exact as a double and as a u64.
+        let digits = (magnitude * scale + 0.5) as u64;
+        (digits as f64 / scale == magnitude).then_some((places, digits))
+    })?;
+    // Written from the end: the decimals (or `0` after the point), the point, the integer part.
+    let mut at = buffer.len();
+    let mut rest = digits;
+    let mut put = |byte: u8| {
+        at -= 1;
+        buffer[at] = byte;
+    };
+    if places == 0 {
+        put(b'0');
+    }
+    for _ in 0..places {
+        put(b'0' + (rest % 10) as u8);
+        rest /= 10;
+    }
+    put(b'.');
+    loop {
+        put(b'0' + (rest % 10) as u8);
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    if value.is_sign_negative() {
+        put(b'-');
+    }
+    Some(&buffer[at..])
+}
+
+fn write_bool(out: &mut impl Write, key: &[u8], value: bool) -> io::Result<()> {
+    out.write_all(key)?;
+    out.write_all(if value { b"true" } else { b"false" })
 }
 
 /// Reads motions from an inter-file, one per non-blank line, streaming.
@@ -343,5 +501,103 @@ mod tests {
         let results: Vec<_> = read_jsonl(text.as_bytes()).collect();
         assert_eq!(results.len(), 2);
         assert!(results[1].is_err());
+    }
+
+    mod writer {
+        use proptest::prelude::*;
+
+        use super::*;
+
+        /// Any number, with the ones serde_json writes as `null` and the ones with long forms.
+        fn number() -> impl Strategy<Value = f64> {
+            prop_oneof![
+                any::<f64>(),
+                (-1000i32..1000).prop_map(|value| f64::from(value) / 8.0),
+                Just(f64::NAN),
+                Just(f64::INFINITY),
+                Just(-0.0),
+                Just(1e300),
+                Just(5e-324),
+            ]
+        }
+
+        fn pose() -> impl Strategy<Value = [f64; 4]> {
+            [number(), number(), number(), number()]
+        }
+
+        fn feed() -> impl Strategy<Value = Feed> {
+            (number(), any::<bool>())
+                .prop_map(|(mm_per_min, inverse_time)| Feed { mm_per_min, inverse_time })
+        }
+
+        fn kind() -> impl Strategy<Value = MotionKind> {
+            let plane = prop_oneof![Just(Plane::Xy), Just(Plane::Xz), Just(Plane::Yz)];
+            prop_oneof![
+                pose().prop_map(|end| MotionKind::Rapid { end }),
+                (pose(), feed()).prop_map(|(end, feed)| MotionKind::Linear { end, feed }),
+                (pose(), [number(), number()], plane, any::<bool>(), any::<u32>(), feed())
+                    .prop_map(|(end, center, plane, clockwise, turns, feed)| {
+                        MotionKind::Arc { end, center, plane, clockwise, turns, feed }
+                    }),
+                number().prop_map(|seconds| MotionKind::Dwell { seconds }),
+                Just(MotionKind::Pick),
+                Just(MotionKind::Place),
+                Just(MotionKind::GripperOff),
+                Just(MotionKind::Pause),
+                Just(MotionKind::End),
+                (number(), any::<bool>())
+                    .prop_map(|(power, dynamic)| MotionKind::LaserOn { power, dynamic }),
+                Just(MotionKind::LaserOff),
+                (number(), any::<bool>())
+                    .prop_map(|(rpm, clockwise)| MotionKind::SpindleOn { rpm, clockwise }),
+                Just(MotionKind::SpindleOff),
+                Just(MotionKind::PenDown),
+                Just(MotionKind::PenUp),
+                // Printable ASCII, quotes and backslashes included.
+                "[!-~]{1,15}".prop_map(|name| MotionKind::Code {
+                    code: CodeName::new(&name).expect("a code name"),
+                }),
+            ]
+        }
+
+        /// Numbers of at most three decimals, and their neighbours (which are not).
+        fn decimal() -> impl Strategy<Value = f64> {
+            (-999_999_999_999i64..=999_999_999_999, 0..4i32, -2i64..=2).prop_map(
+                |(digits, places, ulps)| {
+                    let value = digits as f64 / 10f64.powi(places);
+                    f64::from_bits(value.to_bits().wrapping_add_signed(ulps))
+                },
+            )
+        }
+
+        proptest! {
+            /// Numbers are written as serde_json writes them: short decimals by the fast path,
+            /// the others by serde_json's formatter.
+            #[test]
+            fn numbers_are_written_as_serde_json_writes_them(
+                value in prop_oneof![decimal(), number(), -1e10..1e10f64],
+            ) {
+                let mut written = Vec::new();
+                write_f64(&mut written, value).unwrap();
+                let expected = serde_json::to_vec(&value).unwrap();
+                prop_assert_eq!(String::from_utf8(written), String::from_utf8(expected));
+            }
+
+            /// The hand-written writer gives serde_json's bytes for every motion.
+            #[test]
+            fn writes_what_serde_json_writes(
+                line in any::<usize>(),
+                kind in kind(),
+                extrude in proptest::option::of(number()),
+                blend in proptest::option::of(number()),
+            ) {
+                let motion = Motion { line, kind, extrude, blend };
+                let mut written = Vec::new();
+                write_jsonl(&mut written, &motion).unwrap();
+                let mut expected = serde_json::to_vec(&motion).unwrap();
+                expected.push(b'\n');
+                prop_assert_eq!(String::from_utf8(written), String::from_utf8(expected));
+            }
+        }
     }
 }
