@@ -210,6 +210,9 @@ struct State {
     /// How far tool length offsets set since the last move have shifted the current point:
     /// rs274 takes its position back from the last move after M6 (its canon does not follow).
     tool_shift: [f64; 4],
+    /// A tool change (M6, M61) was made: the current point is taken back from the last move as
+    /// the next line is read.
+    resync: bool,
     tools: tools::Tools,
     /// The canned cycles' retract mode and sticky values.
     cycle: canned::CycleState,
@@ -258,6 +261,7 @@ impl State {
             tool_offset: [0.0; 4],
             tool_offset_mm: [0.0; 4],
             tool_shift: [0.0; 4],
+            resync: false,
             tools: tools::Tools::new(config.tool_table.as_deref()),
             cycle: canned::CycleState::default(),
             modal_stack: modal_state::ModalStack::default(),
@@ -473,6 +477,9 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(());
             }
             self.state.line = self.lines.number;
+            if self.state.resync {
+                self.resync_position();
+            }
             if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
                 if !self.queue.is_empty() {
                     return Ok(());

@@ -10,6 +10,7 @@
 
 use std::io::BufRead;
 
+use super::rotation::rotate;
 use super::{AXES, Interpreter};
 use crate::lexer::Fault;
 use crate::params::{axis_slot, coordinate_system_base};
@@ -138,7 +139,7 @@ impl<R: BufRead> Interpreter<R> {
     /// in rs274, the current point is then taken back from the last move: a tool length offset
     /// set since that move no longer shifts it.
     pub(super) fn change_tool(&mut self) {
-        self.resync_position();
+        self.state.resync = true;
         let tools = &mut self.state.tools;
         let tool = tools.selected_tool as u32;
         if tool != 0
@@ -152,8 +153,10 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tools.publish(&mut self.state.params);
     }
 
-    /// rs274 after M6 and M61: the current point taken back from the last move.
-    fn resync_position(&mut self) {
+    /// rs274 after M6 and M61, as it reads the next line: the current point taken back from
+    /// the last move (so a G43 in the tool change's own block moves no current point).
+    pub(super) fn resync_position(&mut self) {
+        self.state.resync = false;
         for axis in 0..4 {
             self.state.current[axis] -= self.state.tool_shift[axis];
         }
@@ -174,7 +177,7 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.word_fault(q, not_found(tool)));
         };
         self.note_no_table();
-        self.resync_position();
+        self.state.resync = true;
         self.state.tools.current_pocket = f64::from(entry.pocket);
         Ok(())
     }
@@ -268,6 +271,27 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// G10 L10's X and Y in a rotated coordinate system, as rs274 sets them: in the system's
+    /// frame, a given axis is the offset that makes the current position read the value, an
+    /// axis not given keeps the entry's offset seen in that frame; the pair is turned back
+    /// into the machine's frame, where tool offsets apply.
+    fn rotated_l10_xy(&self, entry: &mut ToolEntry, old_mm: [f64; 2]) {
+        let state = &self.state;
+        let seen = |offset: [f64; 2]| rotate(offset, -state.rotation);
+        let old = [0, 1].map(|axis| state.mm_to_program(axis, old_mm[axis]));
+        let mut local = seen(old);
+        let tool = seen([state.tool_offset[0], state.tool_offset[1]]);
+        for (axis, letter) in [b'x', b'y'].into_iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                local[axis] = state.current[axis] + tool[axis] - word.value;
+            }
+        }
+        let machine = rotate(local, state.rotation);
+        for (axis, value) in machine.into_iter().enumerate() {
+            entry.offset[axis] = state.to_mm(axis, value);
+        }
+    }
+
     /// G10 L1, L10 and L11: writes tool P's entry (`convert_setup_tool`).
     pub(super) fn set_tool_data(&mut self, code: Code, l: i64) -> Result<(), Fault> {
         let p = self.block.word(b'p').filter(|p| p.value > 0.0);
@@ -282,7 +306,7 @@ impl<R: BufRead> Interpreter<R> {
         if words.iter().all(|&letter| self.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
         }
-        if l != 1 && self.state.rotation != 0.0 {
+        if l == 11 && self.state.rotation != 0.0 {
             let xy = self.block.word(b'x').or(self.block.word(b'y'));
             if let Some(word) = xy {
                 let (first, last) = self.span(code.at, word.end);
@@ -300,6 +324,7 @@ impl<R: BufRead> Interpreter<R> {
             let base = coordinate_system_base(9);
             self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
         });
+        let old_xy = [entry.offset[0], entry.offset[1]];
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
             let state = &self.state;
@@ -316,6 +341,9 @@ impl<R: BufRead> Interpreter<R> {
                 }
             };
             entry.offset[axis] = self.state.to_mm(axis, offset);
+        }
+        if l == 10 && self.state.rotation != 0.0 {
+            self.rotated_l10_xy(&mut entry, [old_xy[0], old_xy[1]]);
         }
         if let Some(r) = self.block.word(b'r') {
             entry.diameter = 2.0 * self.state.to_mm(0, r.value);
