@@ -40,6 +40,10 @@ pub(super) struct Tools {
     pub offset_active: bool,
     /// Whether the program used a tool's offsets or diameter while there was no table.
     pub used_without_table: bool,
+    /// The tool in the spindle before an M61 of this block: rs274 puts M61's tool in pocket 0
+    /// for the rest of the block (a G43 there takes its offsets) and takes pocket 0 back from
+    /// its canon, which M61 does not change, as it reads the next line.
+    pub before_m61: Option<ToolEntry>,
 }
 
 impl Tools {
@@ -53,6 +57,7 @@ impl Tools {
             selected_tool: 0.0,
             offset_active: false,
             used_without_table: false,
+            before_m61: None,
         }
     }
 
@@ -157,14 +162,19 @@ impl<R: BufRead> Interpreter<R> {
     /// the last move (so a G43 in the tool change's own block moves no current point).
     pub(super) fn resync_position(&mut self) {
         self.state.resync = false;
+        if let Some(spindle) = self.state.tools.before_m61.take() {
+            self.state.tools.spindle = spindle;
+        }
         for axis in 0..4 {
             self.state.current[axis] -= self.state.tool_shift[axis];
         }
         self.state.tool_shift = [0.0; 4];
     }
 
-    /// M61 Q: says which tool is in the spindle. As in `rs274`, only the current pocket changes
-    /// (and the current point is taken back from the last move, as after M6).
+    /// M61 Q: says which tool is in the spindle. As in `rs274`, the current pocket changes,
+    /// the tool's entry stands in the spindle for the rest of the block only
+    /// ([`Tools::before_m61`]), and the current point is taken back from the last move as the
+    /// next line is read, as after M6.
     pub(super) fn set_current_tool(&mut self, code: Code) -> Result<(), Fault> {
         let q = self.block.word(b'q').filter(|q| q.value >= 0.0);
         let Some(q) = q else {
@@ -178,6 +188,9 @@ impl<R: BufRead> Interpreter<R> {
         };
         self.note_no_table();
         self.state.resync = true;
+        let tools = &mut self.state.tools;
+        tools.before_m61.get_or_insert(tools.spindle);
+        tools.spindle = entry;
         self.state.tools.current_pocket = f64::from(entry.pocket);
         Ok(())
     }
