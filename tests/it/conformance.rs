@@ -383,6 +383,110 @@ fn linuxcnc_examples_match_or_are_refused() {
     assert!(differ.is_empty(), "{} examples differ:\n{}", differ.len(), differ.join("\n"));
 }
 
+/// The programs of LinuxCNC's interpreter test corpus (`tests/interp/` of its source tree) at
+/// `root`: every `.ngc` but the subroutine files (those in a `subs/` folder, and those another
+/// program of their folder calls by name, `o<NAME> call`), which run as part of their callers.
+fn corpus_programs(root: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    files_under(root, &["ngc"], &mut files);
+    let called = |path: &Path| {
+        let (Some(folder), Some(stem)) = (path.parent(), path.file_stem()) else { return false };
+        let call = format!("o<{}>", stem.to_string_lossy().to_ascii_lowercase());
+        files.iter().filter(|other| other.parent() == Some(folder) && *other != path).any(|other| {
+            std::fs::read(other).is_ok_and(|bytes| {
+                let text = String::from_utf8_lossy(&bytes).to_ascii_lowercase().replace(' ', "");
+                text.contains(&format!("{call}call"))
+            })
+        })
+    };
+    let mut programs: Vec<PathBuf> = files
+        .iter()
+        .filter(|path| !path.components().any(|c| c.as_os_str() == "subs") && !called(path))
+        .cloned()
+        .collect();
+    programs.sort();
+    programs
+}
+
+#[test]
+fn linuxcnc_interp_corpus_matches_or_is_refused() {
+    // LinuxCNC's own interpreter tests are in its source package only: `.ci/run` fetches the
+    // Debian source of the installed version and says where in LINUXCNC_INTERP_TESTS.
+    const TEST: &str = "linuxcnc_interp_corpus_matches_or_is_refused";
+    if !rs274::available(TEST) {
+        return;
+    }
+    let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+    let root = std::env::var_os("LINUXCNC_INTERP_TESTS").map(PathBuf::from);
+    let Some(root) = root.filter(|root| root.is_dir()) else {
+        assert!(!ci, "{TEST}: LINUXCNC_INTERP_TESTS names no folder under CI=true");
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!(
+                "{TEST}: skipped: LINUXCNC_INTERP_TESTS does not name LinuxCNC's tests/interp \
+                 (.ci/run fetches it with apt-get source linuxcnc)"
+            );
+        }
+        return;
+    };
+    let dir = temp_dir("conformance-interp-corpus");
+    let programs = corpus_programs(&root);
+    let mut counts = [0usize; 7];
+    let mut differ = Vec::new();
+    let mut matched = Vec::new();
+    let mut refused = Vec::new();
+    let mut python = Vec::new();
+    for program in &programs {
+        let name = program.strip_prefix(&root).unwrap_or(program).display().to_string();
+        // A test whose INI loads Python plug-ins (subroutines and remaps written in Python)
+        // runs with them in rs274; interpret has none (SPEC §4.2), so it must refuse.
+        let ini = program.parent().map(|folder| folder.join("test.ini"));
+        let ini = ini.and_then(|ini| std::fs::read_to_string(ini).ok()).unwrap_or_default();
+        if ini.lines().any(|line| line.trim().eq_ignore_ascii_case("[PYTHON]")) {
+            match ours(program) {
+                Err(_) => python.push(name),
+                Ok(_) => differ.push(format!("{name}: needs Python plug-ins, and we accept it")),
+            }
+            continue;
+        }
+        match check(program, &dir) {
+            Ok(verdict) => {
+                counts[verdict as usize] += 1;
+                if verdict == Verdict::Match {
+                    matched.push(name);
+                } else {
+                    refused.push(format!("{name} ({verdict:?})"));
+                }
+            }
+            Err(problem) => differ.push(format!("{name}: {problem}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "LinuxCNC interpreter tests: {} programs: {} match, {} refused as not supported \
+             yet, {} refused for A/B/U/V/W axis words, {} refused by rs274 itself and by us, \
+             {} with user M codes, {} refused as this robot cannot do them (lathe, \
+             spindle-synchronised motion, probing), {} need LinuxCNC's Python plug-ins and are \
+             refused, {} differ",
+            programs.len(),
+            counts[Verdict::Match as usize],
+            counts[Verdict::NotSupported as usize],
+            counts[Verdict::ForeignAxis as usize],
+            counts[Verdict::BothRefuse as usize],
+            counts[Verdict::UserMCode as usize],
+            counts[Verdict::CannotRun as usize],
+            python.len(),
+            differ.len()
+        );
+        eprintln!("matching: {}", matched.join(", "));
+        eprintln!("refused: {}", refused.join(", "));
+        eprintln!("Python plug-ins: {}", python.join(", "));
+    }
+    assert!(programs.len() >= 50, "only {} programs in {}", programs.len(), root.display());
+    assert!(differ.is_empty(), "{} programs differ:\n{}", differ.len(), differ.join("\n"));
+}
+
 /// `text` with every G41/G42 (and its `D1`) made a G41.1/G42.1 with a diameter of `diameter`.
 fn with_tool_diameter(text: &str, diameter: &str) -> String {
     let mut out = String::with_capacity(text.len());

@@ -90,10 +90,16 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
         let table: String = (1..1000).map(|tool| format!("T{tool} P{tool} Z0 D0\n")).collect();
         std::fs::write(&tools, table).expect("write the tool table");
     }
+    // LinuxCNC's interpreter tests give rs274 their folder's `test.ini` (`-i`).
+    let ini = program.parent().map(|folder| folder.join("test.ini")).filter(|ini| ini.exists());
     let mut attempt = 0;
     let run = loop {
         let _ = std::fs::remove_file(&output);
-        let child = Command::new(RS274)
+        let mut command = Command::new(RS274);
+        if let Some(ini) = &ini {
+            command.arg("-i").arg(ini);
+        }
+        let child = command
             .arg("-t")
             .arg(&tools)
             .arg("-g")
@@ -174,10 +180,13 @@ fn bounded(mut child: std::process::Child, output: &Path) -> Option<std::process
     Some(std::process::Output { status, stdout: Vec::new(), stderr })
 }
 
-/// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`), read as `interpret` reads it.
+/// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`, else the `test.tbl` of its
+/// folder, as LinuxCNC's interpreter tests have it), read as `interpret` reads it.
 pub fn own_table(program: &Path) -> Option<ToolTable> {
-    let path = program.with_extension("tbl");
-    path.exists().then(|| ToolTable::read(&path).expect("read the program's tool table"))
+    let own = program.with_extension("tbl");
+    let folder = program.parent().map(|folder| folder.join("test.tbl"));
+    let path = std::iter::once(own).chain(folder).find(|path| path.exists())?;
+    Some(ToolTable::read(&path).expect("read the program's tool table"))
 }
 
 /// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).

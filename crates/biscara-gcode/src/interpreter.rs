@@ -16,7 +16,7 @@ use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
 };
-use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::parser::{Block, Code, INI_NOTE, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::ToolTable;
 
@@ -210,6 +210,9 @@ struct State {
     /// How far tool length offsets set since the last move have shifted the current point:
     /// rs274 takes its position back from the last move after M6 (its canon does not follow).
     tool_shift: [f64; 4],
+    /// A tool change (M6, M61) was made: the current point is taken back from the last move as
+    /// the next line is read.
+    resync: bool,
     tools: tools::Tools,
     /// The canned cycles' retract mode and sticky values.
     cycle: canned::CycleState,
@@ -258,6 +261,7 @@ impl State {
             tool_offset: [0.0; 4],
             tool_offset_mm: [0.0; 4],
             tool_shift: [0.0; 4],
+            resync: false,
             tools: tools::Tools::new(config.tool_table.as_deref()),
             cycle: canned::CycleState::default(),
             modal_stack: modal_state::ModalStack::default(),
@@ -473,6 +477,9 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(());
             }
             self.state.line = self.lines.number;
+            if self.state.resync {
+                self.resync_position();
+            }
             if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
                 if !self.queue.is_empty() {
                     return Ok(());
@@ -516,6 +523,85 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
+    /// LinuxCNC's `(ABORT, text)`: the line's last comment, when it reads `abort,` (spaces
+    /// before it allowed, any case), stops the program with its text as the message, `#n` and
+    /// `#<name>` in it replaced by their values (`######` when undefined).
+    fn abort_comment(&self) -> Result<(), Fault> {
+        if self.dialect != Dialect::Linuxcnc {
+            return Ok(());
+        }
+        let line = &self.lines.line;
+        let mut last = None;
+        let mut at = 0;
+        while let Some(open) = line[at..].iter().position(|&b| b == b'(').map(|i| at + i) {
+            if line[at..open].contains(&b';') {
+                break;
+            }
+            let Some(close) = line[open..].iter().position(|&b| b == b')').map(|i| open + i) else {
+                break;
+            };
+            last = Some((open, close));
+            at = close + 1;
+        }
+        let Some((open, close)) = last else { return Ok(()) };
+        let text = &line[open + 1..close];
+        let text = &text[text.iter().take_while(|b| b.is_ascii_whitespace()).count()..];
+        if !text.get(..6).is_some_and(|head| head.eq_ignore_ascii_case(b"abort,")) {
+            return Ok(());
+        }
+        let text = &text[6..];
+        let mut message = String::new();
+        let mut index = 0;
+        while index < text.len() {
+            if text[index] != b'#' {
+                let run =
+                    text[index..].iter().position(|&b| b == b'#').unwrap_or(text.len() - index);
+                message.push_str(&String::from_utf8_lossy(&text[index..index + run]));
+                index += run;
+                continue;
+            }
+            let rest = &text[index + 1..];
+            if rest.first() == Some(&b'<')
+                && let Some(end) = rest.iter().position(|&b| b == b'>')
+            {
+                let name: Vec<u8> = rest[1..end]
+                    .iter()
+                    .filter(|b| !b.is_ascii_whitespace())
+                    .map(u8::to_ascii_lowercase)
+                    .collect();
+                if name.starts_with(b"_ini[") {
+                    let name = String::from_utf8_lossy(&name);
+                    let (first, last) = (open + 1 + index, open + 1 + index + end + 2);
+                    return Err(Fault::not_supported(first, last, format!("#<{name}>"), INI_NOTE));
+                }
+                let value = if name.first() == Some(&b'_') {
+                    self.state.predefined(&name).or_else(|| self.state.params.named(&name))
+                } else {
+                    self.state.params.named(&name)
+                };
+                match value {
+                    Some(value) => message.push_str(&format!("{value:.6}")),
+                    None => message.push_str("######"),
+                }
+                index += end + 2;
+                continue;
+            }
+            let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
+            let number = std::str::from_utf8(&rest[..digits]).ok().and_then(|d| d.parse().ok());
+            match number.filter(|&n: &usize| (1..crate::params::MAX_PARAMETERS).contains(&n)) {
+                Some(number) => message.push_str(&format!("{:.6}", self.state.params.get(number))),
+                None if digits == 0 => message.push('#'),
+                None => message.push_str("######"),
+            }
+            index += 1 + digits;
+        }
+        if message.is_empty() {
+            message.push_str("Unknown error, bad error code");
+        }
+        let (first, last) = (open, close + 1);
+        Err(Fault::invalid(first, last, message))
+    }
+
     /// Raw column range of the block's compact range `start..end`.
     fn span(&self, start: usize, end: usize) -> (usize, usize) {
         let raw_len = self.lines.line.len();
@@ -553,7 +639,7 @@ impl<R: BufRead> Interpreter<R> {
     fn execute(&mut self) -> Result<(), Fault> {
         let block = &self.block;
         if block.empty {
-            return Ok(());
+            return self.abort_comment();
         }
         self.check_support()?;
         if self.block.extra.is_some() {
@@ -641,6 +727,7 @@ impl<R: BufRead> Interpreter<R> {
             let (start, end, value) = self.block.named[index];
             self.state.params.set_named(&self.compact.bytes()[start..end], value);
         }
+        self.abort_comment()?;
 
         // 3. feed mode
         if let Some(code) = self.block.g[5] {
@@ -1529,17 +1616,21 @@ impl<R: BufRead> Interpreter<R> {
             } else {
                 CENTER_ARC_RADIUS_TOLERANCE_MM
             };
-            if abs_err > spiral && rel_err > SPIRAL_RELATIVE_TOLERANCE {
+            // LinuxCNC's test: beyond the tolerance and 0.1 %, or beyond 100 tolerances.
+            if (abs_err > spiral && rel_err > SPIRAL_RELATIVE_TOLERANCE) || abs_err > 100.0 * spiral
+            {
                 return Err(fail(
                     self,
                     format!(
                         "Radius to end of arc differs from radius to start: {} abs_err={} \
-                         rel_err={:.4}% (LinuxCNC allows {:.4} {} or 0.1%)",
+                         rel_err={:.4}% (LinuxCNC allows {:.4} {unit}, or 0.1% up to {:.4} \
+                         {unit})",
                         describe(),
                         format_g4(abs_err),
                         rel_err * 100.0,
                         spiral,
-                        if inch { "in" } else { "mm" },
+                        100.0 * spiral,
+                        unit = if inch { "in" } else { "mm" },
                     ),
                 ));
             }

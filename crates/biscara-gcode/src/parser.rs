@@ -283,6 +283,10 @@ fn fast_decimal(text: &[u8]) -> Option<f64> {
 /// LinuxCNC's `TOLERANCE_EQUAL` for EQ and NE.
 const TOLERANCE_EQUAL: f64 = 0.0001;
 
+/// Why `#<_ini[section]name>` is refused.
+pub(crate) const INI_NOTE: &str =
+    "a variable of LinuxCNC's INI file (INI_VARS); interpret has no INI file to read it from";
+
 /// Reads one line's compact bytes into a block.
 pub(crate) struct Reader<'a> {
     bytes: &'a [u8],
@@ -593,7 +597,8 @@ impl<'a> Reader<'a> {
         Ok(index as usize)
     }
 
-    /// `<name>` after a `#`: returns the compact range of the name.
+    /// `<name>` after a `#`: returns the compact range of the name. LinuxCNC's INI file
+    /// variables (`#<_ini[section]name>`) are refused: there is no INI file here.
     fn read_name(&mut self) -> Result<(usize, usize), Fault> {
         let open = self.pos;
         self.pos += 1;
@@ -611,6 +616,11 @@ impl<'a> Reader<'a> {
         self.pos += 1;
         if end == start {
             return Err(self.syntax(open, self.pos, "Named parameter has no name"));
+        }
+        if self.bytes[start..end].starts_with(b"_ini[") {
+            let (first, last) = self.span(open - 1, self.pos);
+            let name = String::from_utf8_lossy(&self.bytes[start..end]);
+            return Err(Fault::not_supported(first, last, format!("#<{name}>"), INI_NOTE));
         }
         Ok((start, end))
     }
@@ -771,15 +781,27 @@ impl<'a> Reader<'a> {
             ));
         }
         if name == b"exists" {
+            // LinuxCNC's `read_bracketed_parameter` with `check_exists`: `[#<name>]` is whether
+            // the name is defined, `[#n]` (n any integer value, `##1` included) whether n is a
+            // parameter number.
             self.pos += 1;
-            if self.peek() != b'#' || self.peek_at(1) != b'<' {
-                return Err(self.syntax(start, self.pos + 1, "EXISTS takes a named parameter"));
+            if self.peek() != b'#' {
+                return Err(self.syntax(start, self.pos + 1, "Expected # reading parameter"));
             }
             self.pos += 1;
-            let (name_start, end) = self.read_name()?;
-            let exists = self.named_value(&self.bytes[name_start..end]).is_some();
+            let exists = if self.peek() == b'<' {
+                let (name_start, end) = self.read_name()?;
+                self.named_value(&self.bytes[name_start..end]).is_some()
+            } else {
+                let index = self.read_integer_value()?;
+                (1..MAX_PARAMETERS as i64).contains(&index)
+            };
             if self.peek() != b']' {
-                return Err(self.syntax(start, self.pos + 1, "Unclosed expression"));
+                return Err(self.syntax(
+                    start,
+                    self.pos + 1,
+                    "Expected ] reading bracketed parameter",
+                ));
             }
             self.pos += 1;
             return Ok(if exists { 1.0 } else { 0.0 });

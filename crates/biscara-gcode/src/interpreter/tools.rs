@@ -10,6 +10,7 @@
 
 use std::io::BufRead;
 
+use super::rotation::rotate;
 use super::{AXES, Interpreter};
 use crate::lexer::Fault;
 use crate::params::{axis_slot, coordinate_system_base};
@@ -39,6 +40,10 @@ pub(super) struct Tools {
     pub offset_active: bool,
     /// Whether the program used a tool's offsets or diameter while there was no table.
     pub used_without_table: bool,
+    /// The tool in the spindle before an M61 of this block: rs274 puts M61's tool in pocket 0
+    /// for the rest of the block (a G43 there takes its offsets) and takes pocket 0 back from
+    /// its canon, which M61 does not change, as it reads the next line.
+    pub before_m61: Option<ToolEntry>,
 }
 
 impl Tools {
@@ -52,6 +57,7 @@ impl Tools {
             selected_tool: 0.0,
             offset_active: false,
             used_without_table: false,
+            before_m61: None,
         }
     }
 
@@ -138,7 +144,7 @@ impl<R: BufRead> Interpreter<R> {
     /// in rs274, the current point is then taken back from the last move: a tool length offset
     /// set since that move no longer shifts it.
     pub(super) fn change_tool(&mut self) {
-        self.resync_position();
+        self.state.resync = true;
         let tools = &mut self.state.tools;
         let tool = tools.selected_tool as u32;
         if tool != 0
@@ -152,16 +158,23 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tools.publish(&mut self.state.params);
     }
 
-    /// rs274 after M6 and M61: the current point taken back from the last move.
-    fn resync_position(&mut self) {
+    /// rs274 after M6 and M61, as it reads the next line: the current point taken back from
+    /// the last move (so a G43 in the tool change's own block moves no current point).
+    pub(super) fn resync_position(&mut self) {
+        self.state.resync = false;
+        if let Some(spindle) = self.state.tools.before_m61.take() {
+            self.state.tools.spindle = spindle;
+        }
         for axis in 0..4 {
             self.state.current[axis] -= self.state.tool_shift[axis];
         }
         self.state.tool_shift = [0.0; 4];
     }
 
-    /// M61 Q: says which tool is in the spindle. As in `rs274`, only the current pocket changes
-    /// (and the current point is taken back from the last move, as after M6).
+    /// M61 Q: says which tool is in the spindle. As in `rs274`, the current pocket changes,
+    /// the tool's entry stands in the spindle for the rest of the block only
+    /// ([`Tools::before_m61`]), and the current point is taken back from the last move as the
+    /// next line is read, as after M6.
     pub(super) fn set_current_tool(&mut self, code: Code) -> Result<(), Fault> {
         let q = self.block.word(b'q').filter(|q| q.value >= 0.0);
         let Some(q) = q else {
@@ -174,7 +187,10 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.word_fault(q, not_found(tool)));
         };
         self.note_no_table();
-        self.resync_position();
+        self.state.resync = true;
+        let tools = &mut self.state.tools;
+        tools.before_m61.get_or_insert(tools.spindle);
+        tools.spindle = entry;
         self.state.tools.current_pocket = f64::from(entry.pocket);
         Ok(())
     }
@@ -268,6 +284,27 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// G10 L10's X and Y in a rotated coordinate system, as rs274 sets them: in the system's
+    /// frame, a given axis is the offset that makes the current position read the value, an
+    /// axis not given keeps the entry's offset seen in that frame; the pair is turned back
+    /// into the machine's frame, where tool offsets apply.
+    fn rotated_l10_xy(&self, entry: &mut ToolEntry, old_mm: [f64; 2]) {
+        let state = &self.state;
+        let seen = |offset: [f64; 2]| rotate(offset, -state.rotation);
+        let old = [0, 1].map(|axis| state.mm_to_program(axis, old_mm[axis]));
+        let mut local = seen(old);
+        let tool = seen([state.tool_offset[0], state.tool_offset[1]]);
+        for (axis, letter) in [b'x', b'y'].into_iter().enumerate() {
+            if let Some(word) = self.block.word(letter) {
+                local[axis] = state.current[axis] + tool[axis] - word.value;
+            }
+        }
+        let machine = rotate(local, state.rotation);
+        for (axis, value) in machine.into_iter().enumerate() {
+            entry.offset[axis] = state.to_mm(axis, value);
+        }
+    }
+
     /// G10 L1, L10 and L11: writes tool P's entry (`convert_setup_tool`).
     pub(super) fn set_tool_data(&mut self, code: Code, l: i64) -> Result<(), Fault> {
         let p = self.block.word(b'p').filter(|p| p.value > 0.0);
@@ -282,7 +319,7 @@ impl<R: BufRead> Interpreter<R> {
         if words.iter().all(|&letter| self.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
         }
-        if l != 1 && self.state.rotation != 0.0 {
+        if l == 11 && self.state.rotation != 0.0 {
             let xy = self.block.word(b'x').or(self.block.word(b'y'));
             if let Some(word) = xy {
                 let (first, last) = self.span(code.at, word.end);
@@ -300,6 +337,7 @@ impl<R: BufRead> Interpreter<R> {
             let base = coordinate_system_base(9);
             self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
         });
+        let old_xy = [entry.offset[0], entry.offset[1]];
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
             let state = &self.state;
@@ -316,6 +354,9 @@ impl<R: BufRead> Interpreter<R> {
                 }
             };
             entry.offset[axis] = self.state.to_mm(axis, offset);
+        }
+        if l == 10 && self.state.rotation != 0.0 {
+            self.rotated_l10_xy(&mut entry, [old_xy[0], old_xy[1]]);
         }
         if let Some(r) = self.block.word(b'r') {
             entry.diameter = 2.0 * self.state.to_mm(0, r.value);
