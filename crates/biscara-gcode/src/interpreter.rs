@@ -151,6 +151,9 @@ pub struct Interpreter<R> {
     tool_inference: Option<ToolInference>,
     /// Whether the tool is on (M3/M4 until M5 or M6).
     tool_on: bool,
+    /// Grbl's laser mode: the laser, on, is off during the rapids since the last feed move
+    /// (a `laser_off` was emitted before the first of them; the next feed move turns it on).
+    laser_rapid_off: bool,
     /// MakerBot's flavour: the A word is the extruder.
     makerbot: bool,
     /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
@@ -395,6 +398,7 @@ impl<R: BufRead> Interpreter<R> {
             infer_tool: config.infer_tool,
             tool_inference: None,
             tool_on: false,
+            laser_rapid_off: false,
             makerbot: false,
             e_position: 0.0,
             e_relative: false,
@@ -538,6 +542,9 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn emit(&mut self, kind: MotionKind) {
+        if self.dialect == Dialect::Grbl && self.tool == Tool::Laser {
+            self.grbl_laser_gate(&kind);
+        }
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
         let blend = kind.end().and(self.state.blend);

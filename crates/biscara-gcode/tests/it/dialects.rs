@@ -310,3 +310,50 @@ fn mach3_takes_the_compensation_radius_from_a_p_word() {
     let end = ends(&auto)[1];
     assert!((end[1] - 1.0).abs() < 1e-9 || (end[1] + 1.0).abs() < 1e-9, "{end:?}");
 }
+
+#[test]
+fn grbl_laser_mode_turns_the_laser_off_for_rapids_only() {
+    // LightBurn's Grbl output: M4 once, then G0 between the shapes with the laser still on.
+    let program = "M4 S0\nG0 X1 Y1\nG1 X2 S10 F600\nG0 X5\nG0 Y5\nG2 X6 Y6 I1 J0\nM5\nG0 X0\nM2\n";
+    let kinds = |dialect: Dialect| -> Vec<(usize, MotionKind)> {
+        let config = Config { home: HOME, dialect, tool: Tool::Laser, ..Config::default() };
+        interpret(program.as_bytes(), &config)
+            .map(|result| result.unwrap_or_else(|err| panic!("{err}")))
+            .map(|motion| (motion.line, motion.kind))
+            .filter(|(_, kind)| *kind != MotionKind::End)
+            .collect()
+    };
+    let events = |motions: &[(usize, MotionKind)]| -> Vec<(usize, MotionKind)> {
+        motions.iter().copied().filter(|(_, kind)| kind.end().is_none()).collect()
+    };
+    let on = |power: f64| MotionKind::LaserOn { power, dynamic: true };
+    let grbl = kinds(Dialect::Grbl);
+    // Off before the first rapid of a run (line 2 and 4, not again on 5), on again with the
+    // power in force before the next feed move (line 3 and the arc on 6); M5 as programmed.
+    assert_eq!(
+        events(&grbl),
+        [
+            (1, on(0.0)),
+            (2, MotionKind::LaserOff),
+            (3, on(10.0)),
+            (4, MotionKind::LaserOff),
+            (6, on(10.0)),
+            (7, MotionKind::LaserOff),
+        ]
+    );
+    // Every move is still there, in order.
+    let moves = |motions: &[(usize, MotionKind)]| -> Vec<(usize, [f64; 4])> {
+        motions.iter().filter_map(|(line, kind)| kind.end().map(|end| (*line, end))).collect()
+    };
+    let linuxcnc = kinds(Dialect::Linuxcnc);
+    assert_eq!(moves(&grbl), moves(&linuxcnc));
+    // LinuxCNC keeps the laser on through the rapids (its M3/M4 are a spindle's).
+    assert!(!events(&linuxcnc)[..2].contains(&(2, MotionKind::LaserOff)), "{linuxcnc:?}");
+    // A spindle on Grbl keeps turning during rapids.
+    let config =
+        Config { home: HOME, dialect: Dialect::Grbl, tool: Tool::Spindle, ..Config::default() };
+    let offs = interpret(program.as_bytes(), &config)
+        .filter(|motion| motion.as_ref().is_ok_and(|m| m.kind == MotionKind::SpindleOff))
+        .count();
+    assert_eq!(offs, 1);
+}
