@@ -357,3 +357,33 @@ fn grbl_laser_mode_turns_the_laser_off_for_rapids_only() {
         .count();
     assert_eq!(offs, 1);
 }
+
+#[test]
+fn auto_does_not_take_a_cnc_post_with_a_printer_m_code_for_marlin() {
+    // Fusion 360's Makera Carvera post: M400 (wait for moves) amid motions that go on with no
+    // G word. Marlin would skip `Z15.` and `X20`; the program is a CNC controller's.
+    let program = "G90 G94\nG21\nM400\nS1000 M3\nG0 X10 Y10\nZ15.\nG1 X20 F100\nY20\nM30\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
+    let err = interpreter.find_map(Result::err).expect("LinuxCNC refuses M400");
+    assert!(err.to_string().contains("M-code greater than 199: M400"), "{err}");
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Linuxcnc, Some(3)));
+    assert!(
+        detection.reason.contains("printer firmware M-code")
+            && detection.reason.contains("line 6 goes on moving with no G word")
+            && detection.reason.contains("`Z15.`"),
+        "{}",
+        detection.reason
+    );
+    // Other evidence, when there is some, decides: a K word in an XY arc is Grbl's.
+    let grbl = "M400\nG0 X1\nY2\nG2 X3 Y2 I1 J0 K0 F100\nM2\n";
+    let mut interpreter = interpret(grbl.as_bytes(), &config(Dialect::Auto));
+    interpreter.next();
+    assert_eq!(interpreter.dialect(), Dialect::Grbl);
+    // A printer's program, every line a command, is still Marlin's (N numbers too).
+    let print = "M104 S200\nN10 G1 X1 Y1 F600\nG1 X2 E1\nM84\n";
+    let mut interpreter = interpret(print.as_bytes(), &config(Dialect::Auto));
+    assert!(interpreter.by_ref().all(|result| result.is_ok()));
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Marlin, Some(1)));
+}
