@@ -447,7 +447,8 @@ fn first_command(raw: &[u8]) -> Option<(u8, &[u8], usize, usize)> {
         skip_spaces(&mut at);
     }
     let start = at;
-    let letter = raw.get(at)?.to_ascii_uppercase();
+    // A letter: `;0.2` (PrusaSlicer's `;[layer_z]`) is a comment, not a command `;`.
+    let letter = raw.get(at).filter(|b| b.is_ascii_alphabetic())?.to_ascii_uppercase();
     at += 1;
     skip_spaces(&mut at);
     let digits = at;

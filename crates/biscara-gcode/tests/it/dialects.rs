@@ -387,3 +387,19 @@ fn auto_does_not_take_a_cnc_post_with_a_printer_m_code_for_marlin() {
     let detection = interpreter.detection().expect("decided");
     assert_eq!((detection.dialect, detection.line), (Dialect::Marlin, Some(1)));
 }
+
+#[test]
+fn marlin_reads_comments_that_start_with_a_number_as_comments() {
+    // PrusaSlicer's default before-layer G-code writes `;[layer_z]`: `;0.2` on every layer.
+    let program = "M83\n;LAYER_CHANGE\n;0.2\n; 0.4\n;-1\n(0.5)\nG1 X1 E1 F600\n;.5\nM84\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    let motions: Vec<Motion> = (&mut interpreter).collect::<Result<_, _>>().expect("read");
+    assert_eq!(codes(&motions), ["M83", "M84"]);
+    assert_eq!(ends(&motions).len(), 1);
+    assert!(interpreter.summary().unknown.is_empty(), "{:?}", interpreter.summary());
+    // A text line is still Marlin's unknown command.
+    let mut interpreter = interpret("M83\nHELLO 1\n".as_bytes(), &config(Dialect::Marlin));
+    assert!(interpreter.by_ref().all(|result| result.is_ok()));
+    let unknown: Vec<&str> = interpreter.summary().unknown.keys().map(String::as_str).collect();
+    assert_eq!(unknown, ["HELLO"]);
+}
