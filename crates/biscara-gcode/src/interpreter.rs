@@ -11,7 +11,9 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
-use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, compact};
+use crate::lexer::{
+    Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
+};
 use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
@@ -484,8 +486,13 @@ impl<R: BufRead> Interpreter<R> {
                 continue;
             }
             let nested = matches!(self.dialect, Dialect::Mach3 | Dialect::Marlin);
-            compact(&self.lines.line, &mut self.compact, nested)
-                .map_err(|fault| self.error(fault))?;
+            if let Err(fault) = compact(&self.lines.line, &mut self.compact, nested) {
+                // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
+                // characters until ')' or EOL"): closed there, the line is read.
+                if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
+                    return Err(self.error(fault));
+                }
+            }
             if self.makerbot {
                 self.rename_makerbot_a();
             }

@@ -542,6 +542,9 @@ impl Compact {
     }
 }
 
+/// LinuxCNC's error for a `(` comment with no `)` on its line.
+pub(crate) const UNCLOSED_COMMENT: &str = "Unclosed comment found";
+
 /// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`).
 /// With `nested` (Mach3), a `(` inside a comment opens a comment within it; otherwise it is
 /// LinuxCNC's "Nested comment found". A line longer than [`MAX_LINE`] (a dialect's long comment)
@@ -577,7 +580,7 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(),
         }
     }
     if let Some(start) = comment_start {
-        return Err(Fault::syntax(start, raw.len(), "Unclosed comment found"));
+        return Err(Fault::syntax(start, raw.len(), UNCLOSED_COMMENT));
     }
     if out.len > MAX_LINE {
         let start = out.column(MAX_LINE, raw.len());

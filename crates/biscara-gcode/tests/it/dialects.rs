@@ -403,3 +403,15 @@ fn marlin_reads_comments_that_start_with_a_number_as_comments() {
     let unknown: Vec<&str> = interpreter.summary().unknown.keys().map(String::as_str).collect();
     assert_eq!(unknown, ["HELLO"]);
 }
+
+#[test]
+fn grbl_closes_a_comment_at_the_end_of_its_line() {
+    // A hand-edited Fusion 360 program for a Grbl 3018: `(Move across X-axis` never closed.
+    let program = "G21 G90\nG1 X2 F100 (Move across X-axis\nG1 Y3 (MSG, open\nM2\n";
+    let motions = read(program, Dialect::Grbl);
+    assert_eq!(ends(&motions), [[2.0, HOME[1], HOME[2], 0.0], [2.0, 3.0, HOME[2], 0.0]]);
+    // LinuxCNC refuses it where it opens.
+    let err = refused(program, Dialect::Linuxcnc);
+    assert_eq!(err.location().map(|at| (at.line, at.column)), Some((2, 12)), "{err}");
+    assert!(err.to_string().contains("Unclosed comment found"), "{err}");
+}
