@@ -604,6 +604,9 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
             }
             _ => Prelude::Block,
         },
+        // Tool (extruder) selection, no motion; its parameters are the firmware's (Prusa's
+        // `T0 S1 L0 D0` on the XL toolchanger), not LinuxCNC words.
+        b'T' if !fraction => Prelude::Event { name: code_name(letter, number), known: true },
         b'T' => Prelude::Block,
         // No command letter (Marlin has no modal motion by default): "Unknown command".
         _ => Prelude::Event { name: code_name(letter, number), known: false },
@@ -704,7 +707,9 @@ mod tests {
         assert_eq!(prelude(Dialect::Marlin, b"G29"), event("G29", true));
         assert_eq!(prelude(Dialect::Marlin, b"G280"), event("G280", false));
         assert_eq!(prelude(Dialect::Marlin, b" Total estimated: 0.99"), event("Total", false));
-        assert_eq!(prelude(Dialect::Marlin, b"T1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"T1"), event("T1", true));
+        assert_eq!(prelude(Dialect::Marlin, b"T0 S1 L0 D0"), event("T0", true));
+        assert_eq!(prelude(Dialect::Marlin, b";0.2"), Prelude::Block);
         assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
         let home = |axes: [bool; 4]| Prelude::Home { axes };
         assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));

@@ -415,3 +415,19 @@ fn grbl_closes_a_comment_at_the_end_of_its_line() {
     assert_eq!(err.location().map(|at| (at.line, at.column)), Some((2, 12)), "{err}");
     assert!(err.to_string().contains("Unclosed comment found"), "{err}");
 }
+
+#[test]
+fn marlin_selects_a_tool_with_the_firmware_s_own_parameters() {
+    // PrusaSlicer's start G-code for the Prusa XL toolchanger: `T0 S1 L0 D0` picks tool 0
+    // (S, L and D are Prusa's parameters, not LinuxCNC's words: D is no cutter compensation).
+    let program = "M83\nT0 S1 L0 D0\nG1 X1 E1 F600\nT1\nG1 X2 E1\nM84\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    let motions: Vec<Motion> = (&mut interpreter).collect::<Result<_, _>>().expect("read");
+    assert_eq!(codes(&motions), ["M83", "T0", "T1", "M84"]);
+    assert_eq!(ends(&motions).len(), 2);
+    let known: Vec<&str> = interpreter.summary().codes.keys().map(String::as_str).collect();
+    assert!(known.contains(&"T0") && known.contains(&"T1"), "{known:?}");
+    // LinuxCNC refuses the D word there.
+    let err = refused("T0 S1 L0 D0\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("D word with no G41"), "{err}");
+}
