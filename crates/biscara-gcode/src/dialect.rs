@@ -128,6 +128,10 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     };
     let makerbot = contains_any(&text[..end], MAKERBOT_NAMES);
     let mut content: Option<Detection> = None;
+    // The first evidence that is not a printer M-code, and the first line that continues a
+    // motion with no G word (which a CNC post writes and Marlin does not read).
+    let mut other: Option<Detection> = None;
+    let mut modal: Option<(usize, String)> = None;
     let mut plane_xy = true;
     for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
         let line = index + 1;
@@ -146,9 +150,14 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         // Content evidence comes from text lines only (binary garbage proves nothing).
         let text = std::str::from_utf8(raw)
             .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t'));
-        if content.is_none() && text {
-            let found = evidence(raw, &code, &mut plane_xy);
-            content = found.map(|(dialect, why)| Detection {
+        if !text {
+            continue;
+        }
+        if modal.is_none() && continues_motion(&code) {
+            modal = Some((line, shorten(&String::from_utf8_lossy(raw.trim_ascii()))));
+        }
+        if content.is_none() || other.is_none() {
+            let found = evidence(raw, &code, &mut plane_xy).map(|(dialect, why)| Detection {
                 dialect,
                 reason: format!(
                     "line {line}: {why}: `{}`",
@@ -157,9 +166,53 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
                 line: Some(line),
                 makerbot: makerbot && dialect == Dialect::Marlin,
             });
+            if let Some(found) = found {
+                let printer = found.reason.contains(PRINTER_M_CODE);
+                if other.is_none() && !printer {
+                    other = Some(found.clone());
+                }
+                if content.is_none() {
+                    content = Some(found);
+                }
+            }
         }
     }
-    content
+    // A printer M-code (M400, M851 …) in a program whose motions go on without G words is a
+    // CNC post's controller code, not Marlin's (Marlin would skip those lines): the other
+    // evidence decides, else LinuxCNC's language, which says what it does not know.
+    match (content, modal) {
+        (Some(found), Some((line, shown))) if found.reason.contains(PRINTER_M_CODE) => {
+            Some(other.unwrap_or_else(|| Detection {
+                dialect: Dialect::Linuxcnc,
+                reason: format!(
+                    "{}, but line {line} goes on moving with no G word, which Marlin does not \
+                     read: `{shown}`",
+                    found.reason
+                ),
+                line: found.line,
+                makerbot: false,
+            }))
+        }
+        (content, _) => content,
+    }
+}
+
+/// The evidence a printer firmware M-code gives (for Marlin).
+const PRINTER_M_CODE: &str = "a printer firmware M-code";
+
+/// A line (lower case, outside comments) that begins with an X, Y or Z word after an optional
+/// N number: a motion in the modal G0/G1/G2/G3 of an earlier line.
+fn continues_motion(code: &[u8]) -> bool {
+    let mut rest = code.trim_ascii();
+    if rest.first() == Some(&b'n') {
+        let digits = rest[1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        rest = rest[1 + digits..].trim_ascii_start();
+    }
+    matches!(rest.first(), Some(b'x' | b'y' | b'z'))
+        && rest[1..]
+            .iter()
+            .find(|b| **b != b' ')
+            .is_some_and(|b| b.is_ascii_digit() || matches!(*b, b'-' | b'+' | b'.'))
 }
 
 const MAKERBOT_NAMES: &[&str] = &["makerbot", "replicatorg", "miracle-grue", "sailfish"];
@@ -322,7 +375,7 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
                 if let Some(number) = number_after(&squeezed, at)
                     && printer_m_code(number)
                 {
-                    return Some((Dialect::Marlin, "a printer firmware M-code"));
+                    return Some((Dialect::Marlin, PRINTER_M_CODE));
                 }
             }
             b'g' => match number_after(&squeezed, at) {
@@ -394,7 +447,8 @@ fn first_command(raw: &[u8]) -> Option<(u8, &[u8], usize, usize)> {
         skip_spaces(&mut at);
     }
     let start = at;
-    let letter = raw.get(at)?.to_ascii_uppercase();
+    // A letter: `;0.2` (PrusaSlicer's `;[layer_z]`) is a comment, not a command `;`.
+    let letter = raw.get(at).filter(|b| b.is_ascii_alphabetic())?.to_ascii_uppercase();
     at += 1;
     skip_spaces(&mut at);
     let digits = at;
@@ -550,6 +604,9 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
             }
             _ => Prelude::Block,
         },
+        // Tool (extruder) selection, no motion; its parameters are the firmware's (Prusa's
+        // `T0 S1 L0 D0` on the XL toolchanger), not LinuxCNC words.
+        b'T' if !fraction => Prelude::Event { name: code_name(letter, number), known: true },
         b'T' => Prelude::Block,
         // No command letter (Marlin has no modal motion by default): "Unknown command".
         _ => Prelude::Event { name: code_name(letter, number), known: false },
@@ -650,7 +707,9 @@ mod tests {
         assert_eq!(prelude(Dialect::Marlin, b"G29"), event("G29", true));
         assert_eq!(prelude(Dialect::Marlin, b"G280"), event("G280", false));
         assert_eq!(prelude(Dialect::Marlin, b" Total estimated: 0.99"), event("Total", false));
-        assert_eq!(prelude(Dialect::Marlin, b"T1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"T1"), event("T1", true));
+        assert_eq!(prelude(Dialect::Marlin, b"T0 S1 L0 D0"), event("T0", true));
+        assert_eq!(prelude(Dialect::Marlin, b";0.2"), Prelude::Block);
         assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
         let home = |axes: [bool; 4]| Prelude::Home { axes };
         assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));

@@ -11,7 +11,9 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
-use crate::lexer::{Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, compact};
+use crate::lexer::{
+    Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
+};
 use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
@@ -151,6 +153,9 @@ pub struct Interpreter<R> {
     tool_inference: Option<ToolInference>,
     /// Whether the tool is on (M3/M4 until M5 or M6).
     tool_on: bool,
+    /// Grbl's laser mode: the laser, on, is off during the rapids since the last feed move
+    /// (a `laser_off` was emitted before the first of them; the next feed move turns it on).
+    laser_rapid_off: bool,
     /// MakerBot's flavour: the A word is the extruder.
     makerbot: bool,
     /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
@@ -399,6 +404,7 @@ impl<R: BufRead> Interpreter<R> {
             infer_tool: config.infer_tool,
             tool_inference: None,
             tool_on: false,
+            laser_rapid_off: false,
             makerbot: false,
             e_position: 0.0,
             e_relative: false,
@@ -487,8 +493,13 @@ impl<R: BufRead> Interpreter<R> {
                 continue;
             }
             let nested = matches!(self.dialect, Dialect::Mach3 | Dialect::Marlin);
-            compact(&self.lines.line, &mut self.compact, nested)
-                .map_err(|fault| self.error(fault))?;
+            if let Err(fault) = compact(&self.lines.line, &mut self.compact, nested) {
+                // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
+                // characters until ')' or EOL"): closed there, the line is read.
+                if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
+                    return Err(self.error(fault));
+                }
+            }
             if self.makerbot {
                 self.rename_makerbot_a();
             }
@@ -624,6 +635,9 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn emit(&mut self, kind: MotionKind) {
+        if self.dialect == Dialect::Grbl && self.tool == Tool::Laser {
+            self.grbl_laser_gate(&kind);
+        }
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
         let blend = kind.end().and(self.state.blend);

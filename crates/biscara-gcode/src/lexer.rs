@@ -547,6 +547,9 @@ impl Compact {
     }
 }
 
+/// LinuxCNC's error for a `(` comment with no `)` on its line.
+pub(crate) const UNCLOSED_COMMENT: &str = "Unclosed comment found";
+
 /// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`).
 /// With `nested` (Mach3), a `(` inside a comment opens a comment within it; otherwise it is
 /// LinuxCNC's "Nested comment found". A line longer than [`MAX_LINE`] (a dialect's long comment)
@@ -569,7 +572,13 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(),
         } else {
             match byte {
                 b'(' => {
-                    skip_comment(&mut chars, raw.len(), index, nested)?;
+                    if let Err(fault) = skip_comment(&mut chars, raw.len(), index, nested) {
+                        // The line as far as it was read, for a dialect that ends an unclosed
+                        // comment at the end of its line (Grbl).
+                        out.keep(&mut len, b'(', index);
+                        out.len = len;
+                        return Err(fault);
+                    }
                     b'('
                 }
                 // LinuxCNC keeps the `;` (a value cannot be read from it); the rest is comment.
@@ -629,7 +638,7 @@ fn skip_comment(
             _ => {}
         }
     }
-    Err(Fault::syntax(open, raw_len, "Unclosed comment found"))
+    Err(Fault::syntax(open, raw_len, UNCLOSED_COMMENT))
 }
 
 #[cfg(test)]

@@ -289,6 +289,26 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
+    /// Grbl's laser mode (wiki "Grbl v1.1 Laser Mode"): the laser burns only in G1, G2 and G3
+    /// motion; a G0 never turns it on and always turns it off. Before the first rapid with the
+    /// laser on, a `laser_off` is emitted; before the next feed move, a `laser_on` with the
+    /// power and mode in force.
+    pub(super) fn grbl_laser_gate(&mut self, kind: &MotionKind) {
+        match kind {
+            MotionKind::LaserOn { .. } | MotionKind::LaserOff => self.laser_rapid_off = false,
+            MotionKind::Rapid { .. } if self.tool_on && !self.laser_rapid_off => {
+                self.laser_rapid_off = true;
+                self.emit(MotionKind::LaserOff);
+                self.laser_rapid_off = true;
+            }
+            MotionKind::Linear { .. } | MotionKind::Arc { .. } if self.laser_rapid_off => {
+                let power = self.state.speed;
+                self.emit(MotionKind::LaserOn { power, dynamic: self.state.spindle == 4 });
+            }
+            _ => {}
+        }
+    }
+
     /// The tool's event for M3, M4 or M5 (`code`), or for a new S while on.
     pub(super) fn tool_event(&mut self, code: u16) {
         self.tool_on = code != 5;

@@ -310,3 +310,124 @@ fn mach3_takes_the_compensation_radius_from_a_p_word() {
     let end = ends(&auto)[1];
     assert!((end[1] - 1.0).abs() < 1e-9 || (end[1] + 1.0).abs() < 1e-9, "{end:?}");
 }
+
+#[test]
+fn grbl_laser_mode_turns_the_laser_off_for_rapids_only() {
+    // LightBurn's Grbl output: M4 once, then G0 between the shapes with the laser still on.
+    let program = "M4 S0\nG0 X1 Y1\nG1 X2 S10 F600\nG0 X5\nG0 Y5\nG2 X6 Y6 I1 J0\nM5\nG0 X0\nM2\n";
+    let kinds = |dialect: Dialect| -> Vec<(usize, MotionKind)> {
+        let config = Config { home: HOME, dialect, tool: Tool::Laser, ..Config::default() };
+        interpret(program.as_bytes(), &config)
+            .map(|result| result.unwrap_or_else(|err| panic!("{err}")))
+            .map(|motion| (motion.line, motion.kind))
+            .filter(|(_, kind)| *kind != MotionKind::End)
+            .collect()
+    };
+    let events = |motions: &[(usize, MotionKind)]| -> Vec<(usize, MotionKind)> {
+        motions.iter().copied().filter(|(_, kind)| kind.end().is_none()).collect()
+    };
+    let on = |power: f64| MotionKind::LaserOn { power, dynamic: true };
+    let grbl = kinds(Dialect::Grbl);
+    // Off before the first rapid of a run (line 2 and 4, not again on 5), on again with the
+    // power in force before the next feed move (line 3 and the arc on 6); M5 as programmed.
+    assert_eq!(
+        events(&grbl),
+        [
+            (1, on(0.0)),
+            (2, MotionKind::LaserOff),
+            (3, on(10.0)),
+            (4, MotionKind::LaserOff),
+            (6, on(10.0)),
+            (7, MotionKind::LaserOff),
+        ]
+    );
+    // Every move is still there, in order.
+    let moves = |motions: &[(usize, MotionKind)]| -> Vec<(usize, [f64; 4])> {
+        motions.iter().filter_map(|(line, kind)| kind.end().map(|end| (*line, end))).collect()
+    };
+    let linuxcnc = kinds(Dialect::Linuxcnc);
+    assert_eq!(moves(&grbl), moves(&linuxcnc));
+    // LinuxCNC keeps the laser on through the rapids (its M3/M4 are a spindle's).
+    assert!(!events(&linuxcnc)[..2].contains(&(2, MotionKind::LaserOff)), "{linuxcnc:?}");
+    // A spindle on Grbl keeps turning during rapids.
+    let config =
+        Config { home: HOME, dialect: Dialect::Grbl, tool: Tool::Spindle, ..Config::default() };
+    let offs = interpret(program.as_bytes(), &config)
+        .filter(|motion| motion.as_ref().is_ok_and(|m| m.kind == MotionKind::SpindleOff))
+        .count();
+    assert_eq!(offs, 1);
+}
+
+#[test]
+fn auto_does_not_take_a_cnc_post_with_a_printer_m_code_for_marlin() {
+    // Fusion 360's Makera Carvera post: M400 (wait for moves) amid motions that go on with no
+    // G word. Marlin would skip `Z15.` and `X20`; the program is a CNC controller's.
+    let program = "G90 G94\nG21\nM400\nS1000 M3\nG0 X10 Y10\nZ15.\nG1 X20 F100\nY20\nM30\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Auto));
+    let err = interpreter.find_map(Result::err).expect("LinuxCNC refuses M400");
+    assert!(err.to_string().contains("M-code greater than 199: M400"), "{err}");
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Linuxcnc, Some(3)));
+    assert!(
+        detection.reason.contains("printer firmware M-code")
+            && detection.reason.contains("line 6 goes on moving with no G word")
+            && detection.reason.contains("`Z15.`"),
+        "{}",
+        detection.reason
+    );
+    // Other evidence, when there is some, decides: a K word in an XY arc is Grbl's.
+    let grbl = "M400\nG0 X1\nY2\nG2 X3 Y2 I1 J0 K0 F100\nM2\n";
+    let mut interpreter = interpret(grbl.as_bytes(), &config(Dialect::Auto));
+    interpreter.next();
+    assert_eq!(interpreter.dialect(), Dialect::Grbl);
+    // A printer's program, every line a command, is still Marlin's (N numbers too).
+    let print = "M104 S200\nN10 G1 X1 Y1 F600\nG1 X2 E1\nM84\n";
+    let mut interpreter = interpret(print.as_bytes(), &config(Dialect::Auto));
+    assert!(interpreter.by_ref().all(|result| result.is_ok()));
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!((detection.dialect, detection.line), (Dialect::Marlin, Some(1)));
+}
+
+#[test]
+fn marlin_reads_comments_that_start_with_a_number_as_comments() {
+    // PrusaSlicer's default before-layer G-code writes `;[layer_z]`: `;0.2` on every layer.
+    let program = "M83\n;LAYER_CHANGE\n;0.2\n; 0.4\n;-1\n(0.5)\nG1 X1 E1 F600\n;.5\nM84\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    let motions: Vec<Motion> = (&mut interpreter).collect::<Result<_, _>>().expect("read");
+    assert_eq!(codes(&motions), ["M83", "M84"]);
+    assert_eq!(ends(&motions).len(), 1);
+    assert!(interpreter.summary().unknown.is_empty(), "{:?}", interpreter.summary());
+    // A text line is still Marlin's unknown command.
+    let mut interpreter = interpret("M83\nHELLO 1\n".as_bytes(), &config(Dialect::Marlin));
+    assert!(interpreter.by_ref().all(|result| result.is_ok()));
+    let unknown: Vec<&str> = interpreter.summary().unknown.keys().map(String::as_str).collect();
+    assert_eq!(unknown, ["HELLO"]);
+}
+
+#[test]
+fn grbl_closes_a_comment_at_the_end_of_its_line() {
+    // A hand-edited Fusion 360 program for a Grbl 3018: `(Move across X-axis` never closed.
+    let program = "G21 G90\nG1 X2 F100 (Move across X-axis\nG1 Y3 (MSG, open\nM2\n";
+    let motions = read(program, Dialect::Grbl);
+    assert_eq!(ends(&motions), [[2.0, HOME[1], HOME[2], 0.0], [2.0, 3.0, HOME[2], 0.0]]);
+    // LinuxCNC refuses it where it opens.
+    let err = refused(program, Dialect::Linuxcnc);
+    assert_eq!(err.location().map(|at| (at.line, at.column)), Some((2, 12)), "{err}");
+    assert!(err.to_string().contains("Unclosed comment found"), "{err}");
+}
+
+#[test]
+fn marlin_selects_a_tool_with_the_firmware_s_own_parameters() {
+    // PrusaSlicer's start G-code for the Prusa XL toolchanger: `T0 S1 L0 D0` picks tool 0
+    // (S, L and D are Prusa's parameters, not LinuxCNC's words: D is no cutter compensation).
+    let program = "M83\nT0 S1 L0 D0\nG1 X1 E1 F600\nT1\nG1 X2 E1\nM84\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Marlin));
+    let motions: Vec<Motion> = (&mut interpreter).collect::<Result<_, _>>().expect("read");
+    assert_eq!(codes(&motions), ["M83", "T0", "T1", "M84"]);
+    assert_eq!(ends(&motions).len(), 2);
+    let known: Vec<&str> = interpreter.summary().codes.keys().map(String::as_str).collect();
+    assert!(known.contains(&"T0") && known.contains(&"T1"), "{known:?}");
+    // LinuxCNC refuses the D word there.
+    let err = refused("T0 S1 L0 D0\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("D word with no G41"), "{err}");
+}
