@@ -1,7 +1,7 @@
 //! Diagnostics on stderr: notes and warnings go through here, one line each, prefixed once.
 
 use std::fmt::Display;
-
+use std::io::Write as _;
 use std::path::Path;
 
 use biscara::pipeline::Note;
@@ -18,16 +18,14 @@ pub(crate) enum Level {
     Warning,
 }
 
-/// Prints `biscara: note: …` or `biscara: warning: …` on stderr.
+/// Prints `biscara: note: …` or `biscara: warning: …` on stderr (a closed stderr is not an
+/// error: the note is lost, the command goes on).
 pub(crate) fn report(level: Level, message: impl Display) {
     let label = match level {
         Level::Note => "note",
         Level::Warning => "warning",
     };
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!("biscara: {label}: {message}");
-    }
+    let _ = writeln!(std::io::stderr(), "biscara: {label}: {message}");
 }
 
 /// An error of a reader whose `Display` starts with `LINE[:COL]:`, located in `path`: the one

@@ -17,7 +17,7 @@ mod trajectory;
 mod view;
 mod workspace;
 
-use std::io;
+use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -74,10 +74,8 @@ pub(crate) fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
         Err(err) => {
-            #[allow(clippy::print_stderr)]
-            {
-                eprintln!("biscara: error: {err:#}");
-            }
+            // (Written even to a closed stderr without a panic: the exit code says it.)
+            let _ = writeln!(io::stderr(), "biscara: error: {err:#}");
             ExitCode::from(1)
         }
     }

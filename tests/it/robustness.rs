@@ -81,6 +81,28 @@ fn a_closed_pipe_ends_the_run_quietly_with_success() {
     assert!(!stderr.contains("error"), "a broken pipe is not reported: {stderr}");
 }
 
+/// A closed standard error (`biscara check … 2>&1 | head -1` once `head` has its line) loses
+/// the notes and the error message, not the exit code: no panic (101).
+#[test]
+fn a_closed_stderr_keeps_the_exit_code() {
+    let dir = temp_dir("closed-stderr");
+    // Near a singularity: `check` reports problems (exit 1) after notes on stderr.
+    std::fs::write(dir.join("edge.ngc"), "G0 X0 Y300 Z50\nG1 X0 Y480 F3000\nM2\n").expect("write");
+    for (args, expected) in [(["check", "edge.ngc"], 1), (["joints", "edge.ngc"], 1)] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_biscara"))
+            .args(args)
+            .current_dir(&dir)
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("spawn biscara");
+        drop(child.stderr.take());
+        let status = child.wait().expect("wait");
+        assert_eq!(status.code(), Some(expected), "biscara {args:?}");
+    }
+}
+
 /// `-o` naming a FIFO (or `/dev/null`, a device) writes into it: renaming a temporary file over
 /// it would replace the device or pipe with a regular file (as root, even `/dev/null`).
 #[test]
