@@ -78,6 +78,18 @@ fn peak_acceleration_ratio(joints: &[Vec<f64>]) -> f64 {
     peak
 }
 
+/// `joints` on `program` in `dir` keeps every joint's acceleration (its CSV's own central
+/// differences) within the limit, and `check` finds nothing.
+fn assert_within_the_joint_limits_and_clean(dir: &std::path::Path, program: &str) {
+    let joints = biscara(dir, &["joints", program, "--precision", "9"]);
+    joints.success();
+    let ratio = peak_acceleration_ratio(&rows(&joints.stdout));
+    assert!(ratio <= 1.0 + 1e-3, "a joint accelerates at {ratio} of its limit");
+    let check = biscara(dir, &["check", program]);
+    check.success();
+    assert!(check.stdout.contains("no problem found"), "{}", check.stdout);
+}
+
 #[test]
 fn a_cam_circle_under_g64_p0_05_takes_half_the_time_of_exact_stop() {
     let dir = temp_dir("blending");
@@ -121,13 +133,7 @@ fn a_cam_circle_under_g64_p0_05_takes_half_the_time_of_exact_stop() {
     let last = &blended[blended.len() - 1];
     assert!((last[1] - points[0][0]).abs() < 1e-6 && (last[2] - points[0][1]).abs() < 1e-6);
 
-    let joints = biscara(&dir, &["joints", "g64.ngc", "--precision", "9"]);
-    joints.success();
-    let ratio = peak_acceleration_ratio(&rows(&joints.stdout));
-    assert!(ratio <= 1.0 + 1e-3, "a joint accelerates at {ratio} of its limit");
-    let check = biscara(&dir, &["check", "g64.ngc"]);
-    check.success();
-    assert!(check.stdout.contains("no problem found"), "{}", check.stdout);
+    assert_within_the_joint_limits_and_clean(&dir, "g64.ngc");
 }
 
 #[test]
@@ -191,11 +197,5 @@ fn lines_and_tangent_arcs_run_through_without_stopping() {
     // (80 stops saved, a hundredth of a second each at this feed.)
     assert!(t_blended < 0.95 * t_exact, "G64 P0.05 takes {t_blended} s, G61 {t_exact} s");
 
-    let joints = biscara(&dir, &["joints", "g64.ngc", "--precision", "9"]);
-    joints.success();
-    let ratio = peak_acceleration_ratio(&rows(&joints.stdout));
-    assert!(ratio <= 1.0 + 1e-3, "a joint accelerates at {ratio} of its limit");
-    let check = biscara(&dir, &["check", "g64.ngc"]);
-    check.success();
-    assert!(check.stdout.contains("no problem found"), "{}", check.stdout);
+    assert_within_the_joint_limits_and_clean(&dir, "g64.ngc");
 }
