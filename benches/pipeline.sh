@@ -46,15 +46,15 @@ for spec in "mixed 1000000" "engraving 200000"; do
       read -r seconds kib <<< "$(measure "$bin" "$command" "$program")"
     fi
     if [ "$command" = joints ]; then joints=$seconds; fi
+    awk -v p="$kind" -v c="$command" -v s="$seconds" -v b="$bytes" -v l="$lines" -v n="$samples" -v k="$kib" 'BEGIN {
+      rate = (c == "interpret") ? "-" : sprintf("%.2f M", n / s / 1e6)
+      printf "%-10s %-12s %9.2f %10.1f %12.0f %14s %10.1f\n", p, c, s, b / s / 1e6, l / s, rate, k / 1024
+    }'
     if [ "$command" = interpret ] && [ -x /usr/bin/rs274 ]; then
       # SPEC §10: interpret against LinuxCNC's standalone interpreter on the same file.
       read -r theirs _ <<< "$(measure /usr/bin/rs274 -g "$program" "$work/rs274.out")"
       echo "  interpret at $(awk -v o="$seconds" -v r="$theirs" 'BEGIN { if (o > 0) printf "%.1f", r / o; else printf "?" }')x rs274's speed (rs274: $theirs s)"
     fi
-    awk -v p="$kind" -v c="$command" -v s="$seconds" -v b="$bytes" -v l="$lines" -v n="$samples" -v k="$kib" 'BEGIN {
-      rate = (c == "interpret") ? "-" : sprintf("%.2f M", n / s / 1e6)
-      printf "%-10s %-12s %9.2f %10.1f %12.0f %14s %10.1f\n", p, c, s, b / s / 1e6, l / s, rate, k / 1024
-    }'
   done
 done
 echo "($(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); samples at dt 1 ms, the default optimal profile)"
