@@ -307,7 +307,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.file_name(),
             self.control.skipping_start
         );
-        Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
+        Some(self.error(self.line_fault(message)))
     }
 
     /// The closing `%` while lines are being skipped (to a subroutine being called, to the
@@ -316,7 +316,7 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn control_percent(&self) -> Option<GcodeError> {
         let name = self.control.skipping_to_sub.as_ref().or(self.control.skipping_o.as_ref())?;
         let message = format!("Failed to find sub 'O{name}' before EOF");
-        Some(self.error(Fault::invalid(0, self.lines.line.len().max(1), message)))
+        Some(self.error(self.line_fault(message)))
     }
 
     /// Runs the line if it is an O-word line (or M98/M99), or skips it while skipping;

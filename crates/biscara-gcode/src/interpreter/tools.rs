@@ -195,6 +195,16 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// The tool an H word names (`find_tool_pocket`): H0 is pocket 0, the spindle's tool; a
+    /// positive H a tool of the table; `None` when there is none.
+    fn h_tool(&self, h: f64) -> Option<ToolEntry> {
+        if h == 0.0 {
+            Some(self.state.tools.spindle)
+        } else {
+            (h > 0.0).then(|| self.state.tools.entry(h as u32)).flatten()
+        }
+    }
+
     /// G43, G43.1, G43.2 and G49 (`convert_tool_length_offset`).
     pub(super) fn tool_length_offset(&mut self, code: Code) -> Result<(), Fault> {
         let factor = self.state.factor();
@@ -212,18 +222,11 @@ impl<R: BufRead> Interpreter<R> {
             490 => [0.0; 4],
             430 => {
                 let entry = match h {
-                    // H0 is pocket 0, the spindle, as no H is (`find_tool_pocket`).
                     None => self.state.tools.spindle,
-                    Some(h) if h.value == 0.0 => self.state.tools.spindle,
-                    Some(h) => {
-                        let tool = h.value;
-                        let found =
-                            (tool > 0.0).then(|| self.state.tools.entry(tool as u32)).flatten();
-                        match found {
-                            Some(entry) => entry,
-                            None => return Err(self.word_fault(h, not_found(tool))),
-                        }
-                    }
+                    Some(h) => match self.h_tool(h.value) {
+                        Some(entry) => entry,
+                        None => return Err(self.word_fault(h, not_found(h.value))),
+                    },
                 };
                 self.note_no_table();
                 to_program(&entry)
@@ -243,14 +246,8 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 let mut offset = old;
                 if let Some(h) = h {
-                    let tool = h.value;
-                    let found = if tool == 0.0 {
-                        Some(self.state.tools.spindle)
-                    } else {
-                        (tool > 0.0).then(|| self.state.tools.entry(tool as u32)).flatten()
-                    };
-                    let Some(entry) = found else {
-                        return Err(self.word_fault(h, not_found(tool)));
+                    let Some(entry) = self.h_tool(h.value) else {
+                        return Err(self.word_fault(h, not_found(h.value)));
                     };
                     self.note_no_table();
                     let add = to_program(&entry);
