@@ -4,7 +4,7 @@ use std::collections::VecDeque;
 
 use biscara_motion::{Motion, MotionKind, Segment};
 
-use crate::piece::{Geometry, Piece, Speed, dot, norm, sub, xyz};
+use crate::piece::{Geometry, Piece, Speed, dot, norm, sub, unit, xyz};
 
 /// The tolerance of G64 with no P (or `P0`, LinuxCNC's "no tolerance given"), mm: the blend is
 /// otherwise bounded only by the half-move rule, which on long moves would cut corners by
@@ -43,30 +43,27 @@ struct Pending {
     start: [f64; 4],
     speed: Speed,
     tolerance: f64,
-    /// An arc's geometry (`None` for a straight move); an arc is never cut.
-    arc: Option<Segment>,
+    /// An arc's geometry and the motion as programmed (`None` for a straight move): an arc is
+    /// never cut, and one that joins nothing passes as it is.
+    arc: Option<(Segment, Motion)>,
     /// Whether the move goes on from the one before it without a stop.
     joined: bool,
-    /// The motion as programmed: an arc that joins nothing passes as it is.
-    motion: Motion,
 }
 
 impl Pending {
     fn length(&self) -> f64 {
         match self.arc {
-            Some(arc) => arc.length(),
+            Some((arc, _)) => arc.length(),
             None => norm(sub(xyz(self.to), xyz(self.from))),
         }
     }
 
     /// The unit XYZ direction of travel a fraction `u` (0 or 1) along.
     fn direction(&self, u: f64) -> [f64; 3] {
-        let d = match self.arc {
-            Some(arc) => xyz(arc.derivative(u)),
+        unit(match self.arc {
+            Some((arc, _)) => xyz(arc.derivative(u)),
             None => sub(xyz(self.to), xyz(self.from)),
-        };
-        let n = norm(d);
-        [d[0] / n, d[1] / n, d[2] / n]
+        })
     }
 
     /// C's change per mm of XYZ path, degrees.
@@ -83,16 +80,15 @@ impl Pending {
     /// What the move is when the robot stops at its end: its last piece, or the motion itself
     /// for an arc that joins nothing (timed alone, as a move under exact stop is).
     fn last(&self) -> Blended {
-        if self.arc.is_some() && !self.joined {
-            Blended::Motion(self.motion)
-        } else {
-            Blended::Piece(self.piece(self.to, true))
+        match self.arc {
+            Some((_, motion)) if !self.joined => Blended::Motion(motion),
+            _ => Blended::Piece(self.piece(self.to, true)),
         }
     }
 
     fn piece(&self, end: [f64; 4], ends_chain: bool) -> Piece {
         let geometry = match self.arc {
-            Some(arc) => Geometry::Arc(arc),
+            Some((arc, _)) => Geometry::Arc(arc),
             None => Geometry::Line { start: self.start, end },
         };
         Piece { line: self.line, geometry, speed: self.speed, ends_chain }
@@ -197,9 +193,8 @@ where
             start: from,
             speed,
             tolerance,
-            arc,
+            arc: arc.map(|arc| (arc, motion)),
             joined: false,
-            motion,
         };
         if let Some(previous) = self.pending.take() {
             match corner(&previous, &next) {

@@ -80,6 +80,12 @@ pub(crate) fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// `a` scaled to unit length.
+pub(crate) fn unit(a: [f64; 3]) -> [f64; 3] {
+    let n = norm(a);
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+
 pub(crate) fn xyz(pose: [f64; 4]) -> [f64; 3] {
     [pose[0], pose[1], pose[2]]
 }
@@ -144,21 +150,13 @@ impl Piece {
     /// Unit XYZ tangent a fraction `u` ∈ [0, 1] of the length along.
     pub fn tangent(&self, u: f64) -> [f64; 3] {
         match self.geometry {
-            Geometry::Line { start, end } => {
-                let d = sub(xyz(end), xyz(start));
-                let n = norm(d);
-                [d[0] / n, d[1] / n, d[2] / n]
-            }
+            Geometry::Line { start, end } => unit(sub(xyz(end), xyz(start))),
             Geometry::Fillet { start, center, radius, tangent, sweep, .. } => {
                 let (sin, cos) = (u * sweep).sin_cos();
                 let radial = sub(xyz(start), center);
                 std::array::from_fn(|k| -sin * radial[k] / radius + cos * tangent[k])
             }
-            Geometry::Arc(segment) => {
-                let d = xyz(segment.derivative(u));
-                let n = norm(d);
-                [d[0] / n, d[1] / n, d[2] / n]
-            }
+            Geometry::Arc(segment) => unit(xyz(segment.derivative(u))),
         }
     }
 
