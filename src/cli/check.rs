@@ -3,8 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::gcode::Tool;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Checker;
 use clap::Args;
 
@@ -51,27 +50,6 @@ pub(crate) struct CheckArgs {
     sampling: SamplingArgs,
 }
 
-/// What only the tool can get wrong at a sample (SPEC §1.6): a laser burning or an extruder
-/// feeding during a rapid move.
-fn tool_problem(tool: Tool, state: &ToolState) -> Option<(&'static str, String, f64)> {
-    if !state.rapid {
-        return None;
-    }
-    match tool {
-        Tool::Laser if state.laser_power > 0.0 => Some((
-            "laser on during a rapid move",
-            format!("the laser burns at power S{} during a G0 move", state.laser_power),
-            state.laser_power,
-        )),
-        Tool::Extruder if state.move_extrude_mm > 0.0 => Some((
-            "extrusion during a rapid move",
-            format!("the extruder feeds {:.3} mm during a G0 move", state.move_extrude_mm),
-            state.move_extrude_mm,
-        )),
-        _ => None,
-    }
-}
-
 pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let (source, kind) = args.program.open()?;
@@ -83,7 +61,7 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     for sample in samples {
         let (sample, state) = sample?;
         checker.push(&sample);
-        if let Some((subject, detail, severity)) = tool_problem(tool, &state) {
+        if let Some((subject, detail, severity)) = state.problem(tool) {
             checker.push_tool_problem(&sample, subject, detail, severity);
         }
     }

@@ -127,13 +127,11 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
         notes.finish();
         return Ok(());
     }
-    let samples = pipeline.samples(&source, kind, notes.sink())?;
+    let mut samples = pipeline.samples(&source, kind, notes.sink())?;
     write_output(args.output.as_deref(), |out| {
         let mut writer =
             PathCsvWriter::new(out, usize::from(args.sampling.precision), args.events)?;
-        for sample in samples {
-            writer.write(&sample?)?;
-        }
+        samples.try_for_each_sample(|sample| writer.write(sample).map_err(anyhow::Error::from))?;
         writer.finish()?;
         Ok(())
     })?;

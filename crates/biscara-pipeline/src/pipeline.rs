@@ -296,6 +296,35 @@ impl Iterator for Samples {
     }
 }
 
+impl Samples {
+    /// Calls `each` with every sample in turn, by reference, and stops at the first error of
+    /// either. Equivalent to iterating, but a sample is never moved through an
+    /// `Option<Result<…>>` (for `interpolate`, that copy through the stack was a store-forwarding
+    /// stall per sample).
+    pub fn try_for_each_sample<E: From<PipelineError>>(
+        &mut self,
+        mut each: impl FnMut(&CartesianSample) -> Result<(), E>,
+    ) -> Result<(), E> {
+        match self {
+            Samples::Path { reader, file } => {
+                for sample in reader {
+                    each(&sample.map_err(|err| PipelineError::program(file, err))?)?;
+                }
+            }
+            Samples::Program { interpolator, file } => {
+                for sample in interpolator.as_mut() {
+                    match sample {
+                        Ok(sample) => each(&sample)?,
+                        Err(InterpolateError::Input(err)) => return Err(err.into()),
+                        Err(other) => return Err(PipelineError::program(file, other).into()),
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A program's joint samples, errors located (see [`Pipeline::joints`]).
 pub struct JointSamples {
     trajectory: JointTrajectory<Samples>,

@@ -37,6 +37,52 @@ fn gcode_and_its_inter_file_give_the_same_samples() {
 }
 
 #[test]
+fn each_sample_by_reference_is_the_iterator_and_stops_at_its_error() {
+    let model = RobotModel::default();
+    let pipeline = pipeline(&model, SamplingConfig::default());
+    let source = TextSource::new("job.ngc", PROGRAM);
+    let iterated: Vec<_> = pipeline
+        .samples(&source, ProgramKind::Gcode, |_| {})
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    let mut each = Vec::new();
+    let mut samples = pipeline.samples(&source, ProgramKind::Gcode, |_| {}).unwrap();
+    samples
+        .try_for_each_sample(|sample| {
+            each.push(*sample);
+            Ok::<_, PipelineError>(())
+        })
+        .unwrap();
+    assert_eq!(each, iterated);
+    // The program's error ends it, located; samples before it were passed on.
+    let bad = TextSource::new("bad.ngc", "G0 X0 Y400 Z50\nG2 X10 Y400 F100\n");
+    let mut seen = 0;
+    let mut samples = pipeline.samples(&bad, ProgramKind::Gcode, |_| {}).unwrap();
+    let err = samples
+        .try_for_each_sample(|_| {
+            seen += 1;
+            Ok::<_, PipelineError>(())
+        })
+        .unwrap_err();
+    assert!(seen > 1, "{seen}");
+    assert!(err.to_string().starts_with("bad.ngc:2:1: "), "{err}");
+    // And so does the caller's.
+    let mut samples = pipeline.samples(&source, ProgramKind::Gcode, |_| {}).unwrap();
+    let mut kept = 0;
+    let stop = samples.try_for_each_sample(|sample| {
+        kept += 1;
+        if sample.t >= 0.01 {
+            Err(PipelineError::Unsupported { file: "x".into(), message: "enough".into() })
+        } else {
+            Ok(())
+        }
+    });
+    assert_eq!(kept, 11);
+    assert!(stop.unwrap_err().to_string().ends_with("enough"));
+}
+
+#[test]
 fn every_joint_row_lies_on_the_path_and_starts_at_home() {
     let model = RobotModel::default();
     let config = SamplingConfig { dt: 0.002, profile: Profile::Constant, ..Default::default() };
