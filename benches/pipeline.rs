@@ -24,7 +24,7 @@ use biscara::joints::{
 };
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::Motion;
-use biscara::pipeline::{Note, Pipeline, ProgramKind, RobotModel, SamplingConfig, TextSource};
+use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, SamplingConfig, TextSource};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 /// Lines of the generated program (the same shape as `scripts/gen-program.sh`).
@@ -131,13 +131,16 @@ fn pipeline(c: &mut Criterion) {
     let source = TextSource::new("bench.ngc", text.clone());
     group.bench_function("end_to_end_gcode_to_csv", |b| {
         b.iter(|| {
-            let mut joints =
-                pipeline.joints(&source, ProgramKind::Gcode, |_: Note| {}).expect("pipeline");
-            let mut writer = JointCsvWriter::new(io::sink(), format).expect("sink");
-            while let Some(row) = joints.next_sample() {
-                writer.write(row.expect("reachable")).expect("sink");
-            }
-            writer.finish().expect("sink");
+            pipeline
+                .write_joint_csv(
+                    &source,
+                    ProgramKind::Gcode,
+                    &mut io::sink(),
+                    format,
+                    false,
+                    |_| {},
+                )
+                .expect("reachable");
         })
     });
     group.finish();

@@ -2,11 +2,8 @@
 
 use std::path::PathBuf;
 
-use anyhow::anyhow;
-use biscara::gcode::Tool;
-use biscara::interpolate::PathCsvWriter;
-use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
-use biscara::pipeline::{Pipeline, ProgramKind, RobotModel, ToolState};
+use biscara::joints::{AngleUnit, JointCsvFormat};
+use biscara::pipeline::{Pipeline, RobotModel};
 use clap::{Args, ValueEnum};
 
 use super::args::{ProgramArgs, SamplingArgs};
@@ -98,42 +95,11 @@ pub(crate) struct JointsArgs {
 
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
-    if kind == ProgramKind::Path {
-        return Err(anyhow!("interpolate reads G-code or an inter-file, not a path CSV"));
-    }
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config()?);
-    if args.events {
-        let mut samples = pipeline.tool_samples(&source, kind, notes.sink())?;
-        let tool = samples.tool();
-        write_output(args.output.as_deref(), |out| {
-            let precision = usize::from(args.sampling.precision);
-            let mut writer = if tool == Tool::Gripper {
-                PathCsvWriter::new(out, precision, true)?
-            } else {
-                PathCsvWriter::with_columns(out, precision, ToolState::columns(tool))?
-            };
-            for sample in samples {
-                let (sample, state) = sample?;
-                if tool == Tool::Gripper {
-                    writer.write(&sample)?;
-                } else {
-                    writer.write_with(&sample, &[state.value(tool)])?;
-                }
-            }
-            writer.finish()?;
-            Ok(())
-        })?;
-        notes.finish();
-        return Ok(());
-    }
-    let mut samples = pipeline.samples(&source, kind, notes.sink())?;
+    let decimals = usize::from(args.sampling.precision);
     write_output(args.output.as_deref(), |out| {
-        let mut writer =
-            PathCsvWriter::new(out, usize::from(args.sampling.precision), args.events)?;
-        samples.try_for_each_sample(|sample| writer.write(sample).map_err(anyhow::Error::from))?;
-        writer.finish()?;
-        Ok(())
+        Ok(pipeline.write_path_csv(&source, kind, out, decimals, args.events, notes.sink())?)
     })?;
     notes.finish();
     Ok(())
@@ -151,32 +117,8 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
-    if args.events {
-        let mut samples = pipeline.tool_joints(&source, kind, notes.sink())?;
-        let tool = samples.tool();
-        write_output(args.output.as_deref(), |out| {
-            let mut writer = JointCsvWriter::with_columns(out, format, ToolState::columns(tool))?;
-            while let Some(row) = samples.next_sample() {
-                let (row, state) = row?;
-                writer.write_with(row, &[state.value(tool)])?;
-            }
-            writer.finish()?;
-            Ok(())
-        })?;
-        notes.finish();
-        return Ok(());
-    }
-    let mut samples = pipeline.joints(&source, kind, notes.sink())?;
-    if !args.derivatives {
-        samples = samples.without_derivatives();
-    }
     write_output(args.output.as_deref(), |out| {
-        let mut writer = JointCsvWriter::new(out, format)?;
-        while let Some(row) = samples.next_sample() {
-            writer.write(row?)?;
-        }
-        writer.finish()?;
-        Ok(())
+        Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
     })?;
     notes.finish();
     Ok(())

@@ -59,6 +59,9 @@ pub enum PipelineError {
         /// What cannot be done and what would work.
         message: String,
     },
+    /// Occurs when the output cannot be written (a full disk, a closed pipe).
+    #[error("cannot write the output")]
+    Write(#[from] io::Error),
 }
 
 /// Shows a snippet on the lines below a message, indented.

@@ -7,7 +7,8 @@
 //!   input, a string); the crate itself never opens a path.
 //! - [`Pipeline`]: one robot ([`RobotModel`]) and one [`SamplingConfig`] (time step, profile,
 //!   grip time, origin, `--fit`); [`Pipeline::motions`], [`Pipeline::samples`] and
-//!   [`Pipeline::joints`] are the stages, wired once, here.
+//!   [`Pipeline::joints`] are the stages, wired once, here; [`Pipeline::write_path_csv`] and
+//!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files.
 //! - [`Note`]: what the pipeline has to say besides its output (the chosen placement, slowed
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
 //!   `FILE:LINE[:COL]: message`.
@@ -34,6 +35,7 @@
 //! # Ok::<(), biscara_pipeline::PipelineError>(())
 //! ```
 
+mod csv;
 mod error;
 mod generate;
 mod kind;

@@ -287,3 +287,85 @@ fn tool_offsets_come_from_the_table_or_a_note_says_there_is_none() {
     assert_eq!(end[2], 35.0, "the machine holds the tool's tip at Z10");
     assert!(!notes.iter().any(|note| matches!(note, Note::ToolsWithoutTable { .. })), "{notes:?}");
 }
+
+/// A writer that refuses every byte, as a full disk does.
+struct FullDisk;
+
+impl std::io::Write for FullDisk {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::new(std::io::ErrorKind::StorageFull, "no space left"))
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn the_csv_outputs_have_a_row_per_sample_and_the_tool_column_asked_for() {
+    let model = RobotModel::default();
+    let pipeline = pipeline(&model, SamplingConfig::default());
+    let source = TextSource::new("job.ngc", PROGRAM);
+    let samples = pipeline.samples(&source, ProgramKind::Gcode, |_| {}).unwrap().count();
+    let mut path = Vec::new();
+    pipeline.write_path_csv(&source, ProgramKind::Gcode, &mut path, 3, false, |_| {}).unwrap();
+    let path = String::from_utf8(path).unwrap();
+    assert_eq!(path.lines().next(), Some("t_s,x_mm,y_mm,z_mm,c_deg"));
+    assert_eq!(path.lines().count(), samples + 1);
+    let [x, y, z, c] = model.home_position();
+    let home = format!("0.000,{x:.3},{y:.3},{z:.3},{c:.3}").replace("-0.000", "0.000");
+    assert_eq!(path.lines().nth(1), Some(home.as_str()), "the home pose");
+    let laser =
+        TextSource::new("laser.nc", "G21 G90\nM4 S500\nG1 X-20 Y380 Z60 F3000\nM5\nG0 X-30\nM2\n");
+    let config = SamplingConfig { tool: Some(biscara_gcode::Tool::Laser), ..Default::default() };
+    let mut joints = Vec::new();
+    let format = biscara_joints::JointCsvFormat {
+        angle_unit: biscara_joints::AngleUnit::Degrees,
+        derivatives: false,
+        precision: 2,
+    };
+    Pipeline::new(&model, config)
+        .write_joint_csv(&laser, ProgramKind::Gcode, &mut joints, format, true, |_| {})
+        .unwrap();
+    let joints = String::from_utf8(joints).unwrap();
+    let header = joints.lines().next().unwrap();
+    assert!(header.starts_with("t_s,theta1_deg,") && header.ends_with(",laser_power"), "{header}");
+    let powers: Vec<&str> =
+        joints.lines().skip(1).map(|row| row.rsplit(',').next().unwrap()).collect();
+    let burning = powers.iter().filter(|power| **power == "500.00").count();
+    assert!(burning > 100 && burning < powers.len(), "{burning} of {}", powers.len());
+    assert_eq!(powers.last(), Some(&"0.00"), "off during the last G0");
+}
+
+#[test]
+fn the_csv_outputs_say_why_they_stop() {
+    let model = RobotModel::default();
+    let pipeline = pipeline(&model, SamplingConfig::default());
+    let source = TextSource::new("job.ngc", PROGRAM);
+    let err = pipeline
+        .write_path_csv(&source, ProgramKind::Gcode, &mut FullDisk, 6, false, |_| {})
+        .unwrap_err();
+    assert!(matches!(err, PipelineError::Write(_)), "{err:?}");
+    // A path CSV is already a path: nothing to interpolate, nothing written.
+    let csv = TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n");
+    let mut out = Vec::new();
+    let err =
+        pipeline.write_path_csv(&csv, ProgramKind::Path, &mut out, 6, false, |_| {}).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "path.csv: interpolate reads G-code or an inter-file, not a path CSV"
+    );
+    assert!(out.is_empty());
+    // A program that cannot be placed writes nothing, not even the header.
+    let far = TextSource::new("far.ngc", "G0 X0 Y0 Z50\nG1 X5000 F3000\nM2\n");
+    let fit = Pipeline::new(&model, SamplingConfig { fit: true, ..Default::default() });
+    let format = biscara_joints::JointCsvFormat {
+        angle_unit: biscara_joints::AngleUnit::Radians,
+        derivatives: true,
+        precision: 6,
+    };
+    let err =
+        fit.write_joint_csv(&far, ProgramKind::Gcode, &mut out, format, false, |_| {}).unwrap_err();
+    assert!(err.to_string().starts_with("far.ngc: --fit: "), "{err}");
+    assert!(out.is_empty());
+}

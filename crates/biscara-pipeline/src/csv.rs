@@ -1,0 +1,98 @@
+//! The pipeline's two CSV outputs written whole: the path CSV of `interpolate` (SPEC §6) and
+//! the joint CSV of `joints` (SPEC §7), with the tool's column after `--events` (SPEC §1.6).
+//! The commands and the benchmarks write them through here, so that what is measured is what
+//! runs.
+
+use std::io::Write;
+
+use biscara_gcode::Tool;
+use biscara_interpolate::PathCsvWriter;
+use biscara_joints::{JointCsvFormat, JointCsvWriter};
+
+use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, ToolState};
+
+impl Pipeline<'_> {
+    /// Writes the program's Cartesian samples ([`Pipeline::samples`]) to `out` as a path CSV
+    /// with `decimals` decimals; with `events`, the tool's column after the pose
+    /// ([`ToolState::columns`]: `gripper`, `laser_power`, …). Nothing is written when the
+    /// program cannot be opened or placed; at the first error in the program the rows so far
+    /// have been written.
+    pub fn write_path_csv(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        out: &mut dyn Write,
+        decimals: usize,
+        events: bool,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<(), PipelineError> {
+        if kind == ProgramKind::Path {
+            return Err(PipelineError::Unsupported {
+                file: source.name().to_owned(),
+                message: "interpolate reads G-code or an inter-file, not a path CSV".to_owned(),
+            });
+        }
+        if !events {
+            let mut samples = self.samples(source, kind, notes)?;
+            let mut writer = PathCsvWriter::new(out, decimals, false)?;
+            samples
+                .try_for_each_sample(|sample| writer.write(sample).map_err(PipelineError::from))?;
+            writer.finish()?;
+            return Ok(());
+        }
+        let mut samples = self.tool_samples(source, kind, notes)?;
+        let tool = samples.tool();
+        let mut writer = if tool == Tool::Gripper {
+            PathCsvWriter::new(out, decimals, true)?
+        } else {
+            PathCsvWriter::with_columns(out, decimals, ToolState::columns(tool))?
+        };
+        for sample in samples {
+            let (sample, state) = sample?;
+            if tool == Tool::Gripper {
+                writer.write(&sample)?;
+            } else {
+                writer.write_with(&sample, &[state.value(tool)])?;
+            }
+        }
+        writer.finish()?;
+        Ok(())
+    }
+
+    /// Writes the program's joint samples ([`Pipeline::joints`]) to `out` as a joint CSV in
+    /// `format` (its velocity and acceleration are computed only when it has their columns);
+    /// with `events`, the tool's column after the joints. Nothing is written when the program
+    /// cannot be opened or placed; at the first sample the robot cannot take, the rows so far
+    /// have been written.
+    pub fn write_joint_csv(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        out: &mut dyn Write,
+        format: JointCsvFormat,
+        events: bool,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<(), PipelineError> {
+        if events {
+            let mut samples = self.tool_joints(source, kind, notes)?;
+            let tool = samples.tool();
+            let mut writer = JointCsvWriter::with_columns(out, format, ToolState::columns(tool))?;
+            while let Some(row) = samples.next_sample() {
+                let (row, state) = row?;
+                writer.write_with(row, &[state.value(tool)])?;
+            }
+            writer.finish()?;
+            return Ok(());
+        }
+        let mut samples = self.joints(source, kind, notes)?;
+        if !format.derivatives {
+            samples = samples.without_derivatives();
+        }
+        let mut writer = JointCsvWriter::new(out, format)?;
+        while let Some(row) = samples.next_sample() {
+            writer.write(row?)?;
+        }
+        writer.finish()?;
+        Ok(())
+    }
+}
