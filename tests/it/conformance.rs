@@ -1011,11 +1011,12 @@ fn random_cutter_comp_programs_conform() {
 
 /// A random program in the XY plane of rotated coordinate systems (G10 L2 R), with polar
 /// coordinates (`@`, `^`, absolute and incremental, in moves, arcs and canned cycles), G92,
-/// G53, G28/G30 and the no-motion codes M19, M48–M53, M62–M68 and the `$` word.
+/// G53, G28/G30, tool offsets set with G10 L10/L11 (read in G59.3, rotated too) and the
+/// no-motion codes M19, M48–M53, M62–M68 and the `$` word.
 fn random_rotated_program(rng: &mut Rng) -> String {
     let mut text = String::from("G21 G17 G90\nG0 X1 Y1 Z0\nF300\n");
     for _ in 0..(5 + rng.below(20)) {
-        let line = match rng.below(16) {
+        let line = match rng.below(18) {
             0 => format!(
                 "G10 L2 P{} X{} Y{} R{}",
                 rng.below(3),
@@ -1082,6 +1083,19 @@ fn random_rotated_program(rng: &mut Rng) -> String {
                 .to_owned(),
             13 => rng.pick(&["M48", "M49", "M50 P0", "M51", "M52 P1", "M53", "M19 R90"]).to_owned(),
             14 => rng.pick(&["M3 S100 $0", "M4 $-1", "M5 $-1", "S20 $0", "M3 $1"]).to_owned(),
+            15 => format!(
+                "G10 L{} P1 {}{}\nG43 H1",
+                rng.pick(&["10", "11"]),
+                rng.pick(&["X", "Y", "Z", "X1 Y", "Y-2 X", "Z1 X"]),
+                rng.coordinate()
+            ),
+            // G59.3, in which G10 L11 reads the position.
+            16 => format!(
+                "G10 L2 P9 X{} Y{} R{}",
+                rng.coordinate(),
+                rng.coordinate(),
+                rng.coordinate()
+            ),
             _ => "M70\nG10 L2 P0 R15\nM72".to_owned(),
         };
         text.push_str(&line);

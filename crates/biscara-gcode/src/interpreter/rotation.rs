@@ -45,7 +45,7 @@ impl State {
     }
 
     /// `position + g92`, turned by the system's rotation (program units).
-    fn local(&self, position: [f64; 4]) -> [f64; 4] {
+    pub(super) fn local(&self, position: [f64; 4]) -> [f64; 4] {
         let mut local: [f64; 4] =
             std::array::from_fn(|axis| position[axis] + self.axis_offset[axis]);
         [local[0], local[1]] = rotate([local[0], local[1]], self.rotation);

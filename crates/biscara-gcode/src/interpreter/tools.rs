@@ -10,7 +10,7 @@
 
 use std::io::BufRead;
 
-use super::rotation::rotate;
+use super::rotation::{rotate, rotation_parameter};
 use super::{AXES, Interpreter};
 use crate::lexer::Fault;
 use crate::params::{axis_slot, coordinate_system_base};
@@ -20,6 +20,9 @@ use crate::tool_table::{ToolEntry, ToolTable};
 /// First of the current tool's parameters: 5400 tool, 5401–5409 offsets (x y z a b c u v w),
 /// 5410 diameter, 5411 front angle, 5412 back angle, 5413 orientation.
 const TOOL_PARAMETERS: usize = 5400;
+
+/// 1 while a G92 offset is in force; 5211–5219 hold it (x y z a b c u v w).
+const G92_ENABLED: usize = 5210;
 
 /// The tools' state.
 #[derive(Debug, Clone)]
@@ -281,24 +284,74 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// G10 L10's X and Y in a rotated coordinate system, as rs274 sets them: in the system's
-    /// frame, a given axis is the offset that makes the current position read the value, an
-    /// axis not given keeps the entry's offset seen in that frame; the pair is turned back
-    /// into the machine's frame, where tool offsets apply.
-    fn rotated_l10_xy(&self, entry: &mut ToolEntry, old_mm: [f64; 2]) {
+    /// The current position as coordinate system `system` (1–9) reads it, the tool length
+    /// offset not taken off, in program units (rs274's `find_current_in_system_without_tlo`):
+    /// the point turned into the machine's frame by the system in force, then read in
+    /// `system`'s origin and rotation, less the G92 offset when one is in force.
+    fn current_in_system_without_tlo(&self, system: usize) -> [f64; 4] {
         let state = &self.state;
-        let seen = |offset: [f64; 2]| rotate(offset, -state.rotation);
-        let old = [0, 1].map(|axis| state.mm_to_program(axis, old_mm[axis]));
-        let mut local = seen(old);
-        let tool = seen([state.tool_offset[0], state.tool_offset[1]]);
-        for (axis, letter) in [b'x', b'y'].into_iter().enumerate() {
-            if let Some(word) = self.block.word(letter) {
-                local[axis] = state.current[axis] + tool[axis] - word.value;
+        let param = |index: usize, axis: usize| state.mm_to_program(axis, state.params.get(index));
+        let mut at = state.local(state.current);
+        let base = coordinate_system_base(system);
+        for (axis, at) in at.iter_mut().enumerate() {
+            *at +=
+                state.origin[axis] + state.tool_offset[axis] - param(base + axis_slot(axis), axis);
+        }
+        [at[0], at[1]] = rotate([at[0], at[1]], -state.params.get(rotation_parameter(system)));
+        if state.params.get(G92_ENABLED) != 0.0 {
+            for (axis, at) in at.iter_mut().enumerate() {
+                *at -= param(G92_ENABLED + 1 + axis_slot(axis), axis);
             }
         }
-        let machine = rotate(local, state.rotation);
-        for (axis, value) in machine.into_iter().enumerate() {
-            entry.offset[axis] = state.to_mm(axis, value);
+        at
+    }
+
+    /// G10 L10's and L11's offsets of tool `entry`, as rs274's `convert_setup_tool` computes
+    /// them: the offsets that make the current position read the given coordinates in the
+    /// system in force (L10) or in G59.3 (L11, G92 left out). X and Y are turned by that
+    /// system's rotation into the machine's frame, where tool offsets apply; an axis of the
+    /// two not given keeps the entry's component along it.
+    fn offsets_from_position(&self, entry: &mut ToolEntry, l: i64) {
+        let state = &self.state;
+        let system = if l == 11 { 9 } else { state.system };
+        let mut at = self.current_in_system_without_tlo(system);
+        if l == 11 && state.params.get(G92_ENABLED) != 0.0 {
+            for (axis, at) in at.iter_mut().enumerate() {
+                *at +=
+                    state.mm_to_program(axis, state.params.get(G92_ENABLED + 1 + axis_slot(axis)));
+            }
+        }
+        let turn = state.params.get(rotation_parameter(system));
+        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let old = [0, 1].map(|axis| state.mm_to_program(axis, entry.offset[axis]));
+        let xy = match given {
+            [None, None] => None,
+            [Some(x), Some(y)] => Some(rotate([at[0] - x, at[1] - y], turn)),
+            [x, y] => {
+                // Only one: keep the old offset's component along the other (turned) axis.
+                let mut kept = rotate(old, -turn);
+                let mut new = [0.0; 2];
+                if let Some(x) = x {
+                    kept[0] = 0.0;
+                    new[0] = at[0] - x;
+                }
+                if let Some(y) = y {
+                    kept[1] = 0.0;
+                    new[1] = at[1] - y;
+                }
+                let [kept, new] = [rotate(kept, turn), rotate(new, turn)];
+                Some([new[0] + kept[0], new[1] + kept[1]])
+            }
+        };
+        if let Some(xy) = xy {
+            for (axis, value) in xy.into_iter().enumerate() {
+                entry.offset[axis] = state.to_mm(axis, value);
+            }
+        }
+        for axis in [2, 3] {
+            if let Some(word) = self.block.word(AXES[axis]) {
+                entry.offset[axis] = state.to_mm(axis, at[axis] - word.value);
+            }
         }
     }
 
@@ -316,44 +369,15 @@ impl<R: BufRead> Interpreter<R> {
         if words.iter().all(|&letter| self.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
         }
-        if l == 11 && self.state.rotation != 0.0 {
-            let xy = self.block.word(b'x').or(self.block.word(b'y'));
-            if let Some(word) = xy {
-                let (first, last) = self.span(code.at, word.end);
-                return Err(Fault::not_supported(
-                    first,
-                    last,
-                    format!("G10 L{l} X/Y in a rotated coordinate system"),
-                    "rs274's tool offsets from a rotated system's X and Y",
-                ));
-            }
-        }
         self.note_no_table();
-        // The origin the given coordinates are in: the current one (L10), G59.3's (L11).
-        let g593: [f64; 4] = std::array::from_fn(|axis| {
-            let base = coordinate_system_base(9);
-            self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
-        });
-        let old_xy = [entry.offset[0], entry.offset[1]];
-        for (axis, &letter) in AXES.iter().enumerate() {
-            let Some(word) = self.block.word(letter) else { continue };
-            let state = &self.state;
-            let offset = match l {
-                1 => word.value,
-                10 => state.current[axis] + state.tool_offset[axis] - word.value,
-                _ => {
-                    state.current[axis]
-                        + state.origin[axis]
-                        + state.axis_offset[axis]
-                        + state.tool_offset[axis]
-                        - word.value
-                        - g593[axis]
+        if l == 1 {
+            for (axis, &letter) in AXES.iter().enumerate() {
+                if let Some(word) = self.block.word(letter) {
+                    entry.offset[axis] = self.state.to_mm(axis, word.value);
                 }
-            };
-            entry.offset[axis] = self.state.to_mm(axis, offset);
-        }
-        if l == 10 && self.state.rotation != 0.0 {
-            self.rotated_l10_xy(&mut entry, [old_xy[0], old_xy[1]]);
+            }
+        } else {
+            self.offsets_from_position(&mut entry, l);
         }
         if let Some(r) = self.block.word(b'r') {
             entry.diameter = 2.0 * self.state.to_mm(0, r.value);
