@@ -66,8 +66,10 @@ fn without_codes(ours: &[Motion]) -> Vec<Motion> {
 fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
     let ours = &without_codes(ours)[..];
     let unit = if inches { 25.4 } else { 1.0 };
-    // Each printed number is rounded to 1e-4 of the unit; an absolute position sums up to three.
-    let length_tolerance = 1.5e-4 * unit + 1e-9;
+    // Each printed number is rounded to 1e-4 of the unit (±5e-5), and an absolute position
+    // sums up to four: the position and the G92 offset, both turned by a rotation (±7.1e-5
+    // each), the origin and the tool offset (±5e-5 each): at most 2.42e-4.
+    let length_tolerance = 2.45e-4 * unit + 1e-9;
     let close = |a: f64, b: f64, tolerance: f64| (a - b).abs() <= tolerance + 1e-12 * b.abs();
     let close_all = |a: &[f64], b: &[f64], tolerance: f64| {
         a.iter().zip(b).all(|(x, y)| close(*x, *y, tolerance))
@@ -1024,8 +1026,12 @@ fn random_rotated_program(rng: &mut Rng) -> String {
                 rng.coordinate(),
                 rng.coordinate()
             ),
-            // The system in force (rs274's L20 of another rotated system is refused here).
-            1 => format!("G10 L20 P0 {}{}", rng.pick(&["X", "Y"]), rng.coordinate()),
+            1 => format!(
+                "G10 L20 P{} {}{}",
+                rng.below(4),
+                rng.pick(&["X", "Y", "X1 Y", "Z"]),
+                rng.coordinate()
+            ),
             2 => rng.pick(&["G54", "G55", "G56", "G90", "G91", "G20", "G21"]).to_owned(),
             3 | 4 => {
                 let radius = if rng.below(3) == 0 {

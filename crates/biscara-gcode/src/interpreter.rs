@@ -1288,7 +1288,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         let system = if system == 0 { self.state.system } else { system };
         let base = coordinate_system_base(system);
-        let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(code, system)? } else { None };
+        let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(system) } else { None };
         for (axis, &letter) in AXES.iter().enumerate() {
             let Some(word) = self.block.word(letter) else { continue };
             let origin = match rotated_l20 {

@@ -18,10 +18,12 @@ use biscara_motion::Plane;
 use super::{Interpreter, State};
 use crate::lexer::Fault;
 use crate::params::{COORDINATE_SYSTEM, axis_slot, coordinate_system_base};
-use crate::parser::Code;
 
 /// The parameter of a system's rotation, after its nine axes.
 const ROTATION_SLOT: usize = 9;
+
+/// 1 while a G92 offset is in force; 5211–5219 hold it (x y z a b c u v w).
+pub(super) const G92_ENABLED: usize = 5210;
 
 /// `[x, y]` turned by `degrees` about the origin (LinuxCNC's `rotate`).
 pub(super) fn rotate([x, y]: [f64; 2], degrees: f64) -> [f64; 2] {
@@ -45,11 +47,33 @@ impl State {
     }
 
     /// `position + g92`, turned by the system's rotation (program units).
-    pub(super) fn local(&self, position: [f64; 4]) -> [f64; 4] {
+    fn local(&self, position: [f64; 4]) -> [f64; 4] {
         let mut local: [f64; 4] =
             std::array::from_fn(|axis| position[axis] + self.axis_offset[axis]);
         [local[0], local[1]] = rotate([local[0], local[1]], self.rotation);
         local
+    }
+
+    /// The current position as coordinate system `system` (1–9) reads it, in program units
+    /// (rs274's `find_current_in_system`, and with `with_tool` its
+    /// `find_current_in_system_without_tlo`, which adds the tool length offset in force): the
+    /// point turned into the machine's frame by the system in force, then read in `system`'s
+    /// origin and rotation, less the G92 offset when one is in force.
+    pub(super) fn position_in_system(&self, system: usize, with_tool: bool) -> [f64; 4] {
+        let param = |index: usize, axis: usize| self.mm_to_program(axis, self.params.get(index));
+        let mut at = self.local(self.current);
+        let base = coordinate_system_base(system);
+        for (axis, at) in at.iter_mut().enumerate() {
+            let tool = if with_tool { self.tool_offset[axis] } else { 0.0 };
+            *at += self.origin[axis] + tool - param(base + axis_slot(axis), axis);
+        }
+        [at[0], at[1]] = rotate([at[0], at[1]], -self.params.get(rotation_parameter(system)));
+        if self.params.get(G92_ENABLED) != 0.0 {
+            for (axis, at) in at.iter_mut().enumerate() {
+                *at -= param(G92_ENABLED + 1 + axis_slot(axis), axis);
+            }
+        }
+        at
     }
 
     /// A shift of the machine (a change of tool length offset) as seen in the program's
@@ -129,46 +153,25 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// G10 L20's XY origin for `system` when a rotation is involved (`None`: the plain sums
-    /// do, or no X or Y word). The point is placed on the machine as rs274 does for G10 L20,
-    /// `rot(current) + origin` (without G92). The system in force, rotated: its origin
-    /// becomes `origin + rot(current − given)` (a missing X or Y keeps its value, both
-    /// change). Another system, not rotated: the given axes' origins become that point's
-    /// coordinates less the given values. Another system, rotated: refused (rs274's result
-    /// there has not been worked out).
-    pub(super) fn rotated_l20_origin(
-        &self,
-        code: Code,
-        system: usize,
-    ) -> Result<Option<[f64; 2]>, Fault> {
+    /// do, or no X or Y word), as rs274's `convert_setup` computes it: the current point read
+    /// in `system` ([`State::position_in_system`]) and the wanted one (a missing X or Y keeps
+    /// its value) are both turned by `system`'s rotation, and the origin moves by their
+    /// difference. In a rotated system both X and Y change, whichever was given.
+    pub(super) fn rotated_l20_origin(&self, system: usize) -> Option<[f64; 2]> {
         let state = &self.state;
-        let target_rotation = state.params.get(rotation_parameter(system));
+        let turn = state.params.get(rotation_parameter(system));
         let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
-        if (state.rotation == 0.0 && target_rotation == 0.0) || given.iter().all(Option::is_none) {
-            return Ok(None);
+        if (state.rotation == 0.0 && turn == 0.0) || given.iter().all(Option::is_none) {
+            return None;
         }
-        let target = [given[0].unwrap_or(state.current[0]), given[1].unwrap_or(state.current[1])];
-        if system == state.system {
-            let [dx, dy] = rotate(
-                [state.current[0] - target[0], state.current[1] - target[1]],
-                state.rotation,
-            );
-            return Ok(Some([state.origin[0] + dx, state.origin[1] + dy]));
-        }
-        if target_rotation != 0.0 {
-            let (first, last) = self.span(code.at, code.end);
-            return Err(Fault::not_supported(
-                first,
-                last,
-                "G10 L20 of a rotated coordinate system other than the one in force",
-                "rs274's result there has not been worked out",
-            ));
-        }
-        let turned = rotate([state.current[0], state.current[1]], state.rotation);
+        let at = state.position_in_system(system, false);
+        let old = rotate([at[0], at[1]], turn);
+        let new = rotate([given[0].unwrap_or(at[0]), given[1].unwrap_or(at[1])], turn);
         let base = coordinate_system_base(system);
-        Ok(Some(std::array::from_fn(|axis| match given[axis] {
-            Some(value) => turned[axis] + state.origin[axis] - value,
-            None => state.mm_to_program(axis, state.params.get(base + axis_slot(axis))),
-        })))
+        Some(std::array::from_fn(|axis| {
+            old[axis] + state.mm_to_program(axis, state.params.get(base + axis_slot(axis)))
+                - new[axis]
+        }))
     }
 
     /// G53's X and Y in a rotated system (`None` without an X or Y word): the machine

@@ -10,19 +10,16 @@
 
 use std::io::BufRead;
 
-use super::rotation::{rotate, rotation_parameter};
+use super::rotation::{G92_ENABLED, rotate, rotation_parameter};
 use super::{AXES, Interpreter};
 use crate::lexer::Fault;
-use crate::params::{axis_slot, coordinate_system_base};
+use crate::params::axis_slot;
 use crate::parser::Code;
 use crate::tool_table::{ToolEntry, ToolTable};
 
 /// First of the current tool's parameters: 5400 tool, 5401–5409 offsets (x y z a b c u v w),
 /// 5410 diameter, 5411 front angle, 5412 back angle, 5413 orientation.
 const TOOL_PARAMETERS: usize = 5400;
-
-/// 1 while a G92 offset is in force; 5211–5219 hold it (x y z a b c u v w).
-const G92_ENABLED: usize = 5210;
 
 /// The tools' state.
 #[derive(Debug, Clone)]
@@ -284,28 +281,6 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// The current position as coordinate system `system` (1–9) reads it, the tool length
-    /// offset not taken off, in program units (rs274's `find_current_in_system_without_tlo`):
-    /// the point turned into the machine's frame by the system in force, then read in
-    /// `system`'s origin and rotation, less the G92 offset when one is in force.
-    fn current_in_system_without_tlo(&self, system: usize) -> [f64; 4] {
-        let state = &self.state;
-        let param = |index: usize, axis: usize| state.mm_to_program(axis, state.params.get(index));
-        let mut at = state.local(state.current);
-        let base = coordinate_system_base(system);
-        for (axis, at) in at.iter_mut().enumerate() {
-            *at +=
-                state.origin[axis] + state.tool_offset[axis] - param(base + axis_slot(axis), axis);
-        }
-        [at[0], at[1]] = rotate([at[0], at[1]], -state.params.get(rotation_parameter(system)));
-        if state.params.get(G92_ENABLED) != 0.0 {
-            for (axis, at) in at.iter_mut().enumerate() {
-                *at -= param(G92_ENABLED + 1 + axis_slot(axis), axis);
-            }
-        }
-        at
-    }
-
     /// G10 L10's and L11's offsets of tool `entry`, as rs274's `convert_setup_tool` computes
     /// them: the offsets that make the current position read the given coordinates in the
     /// system in force (L10) or in G59.3 (L11, G92 left out). X and Y are turned by that
@@ -314,7 +289,7 @@ impl<R: BufRead> Interpreter<R> {
     fn offsets_from_position(&self, entry: &mut ToolEntry, l: i64) {
         let state = &self.state;
         let system = if l == 11 { 9 } else { state.system };
-        let mut at = self.current_in_system_without_tlo(system);
+        let mut at = state.position_in_system(system, true);
         if l == 11 && state.params.get(G92_ENABLED) != 0.0 {
             for (axis, at) in at.iter_mut().enumerate() {
                 *at +=
