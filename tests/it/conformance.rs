@@ -1013,12 +1013,12 @@ fn random_cutter_comp_programs_conform() {
 
 /// A random program in the XY plane of rotated coordinate systems (G10 L2 R), with polar
 /// coordinates (`@`, `^`, absolute and incremental, in moves, arcs and canned cycles), G92,
-/// G53, G28/G30, tool offsets set with G10 L10/L11 (read in G59.3, rotated too) and the
-/// no-motion codes M19, M48–M53, M62–M68 and the `$` word.
+/// G53, G28/G30, tool offsets set with G10 L10/L11 (read in G59.3, rotated too), XZ and YZ
+/// arcs (in tilted planes) and the no-motion codes M19, M48–M53, M62–M68 and the `$` word.
 fn random_rotated_program(rng: &mut Rng) -> String {
     let mut text = String::from("G21 G17 G90\nG0 X1 Y1 Z0\nF300\n");
     for _ in 0..(5 + rng.below(20)) {
-        let line = match rng.below(18) {
+        let line = match rng.below(19) {
             0 => format!(
                 "G10 L2 P{} X{} Y{} R{}",
                 rng.below(3),
@@ -1094,6 +1094,16 @@ fn random_rotated_program(rng: &mut Rng) -> String {
                 rng.pick(&["10", "11"]),
                 rng.pick(&["X", "Y", "Z", "X1 Y", "Y-2 X", "Z1 X"]),
                 rng.coordinate()
+            ),
+            // Arcs in the XZ and YZ planes: tilted by the rotation.
+            17 => format!(
+                "{} {} {}[#<_{}> + {}] Z[#<_z> + 1] R{}\nG17",
+                rng.pick(&["G18", "G19"]),
+                rng.pick(&["G2", "G3"]),
+                rng.pick(&["X", "Y"]),
+                rng.pick(&["x", "y"]),
+                1 + rng.below(5),
+                4 + rng.below(5)
             ),
             // G59.3, in which G10 L11 reads the position.
             16 => format!(

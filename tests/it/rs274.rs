@@ -293,8 +293,17 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 program[normal] = values[5];
                 program[5] = values[8];
                 let end = pose(&program);
-                // The centre is turned as the points are (XY arcs: rs274 rotates no other plane's
-                // arcs, which are refused here).
+                if rotation != 0.0 && plane != Plane::Xy {
+                    // In a tilted plane (LinuxCNC's canon turns the arc's basis vectors): our
+                    // straight moves stand for it, its end is checked (see `expand_splines`).
+                    let feed = Feed { mm_per_min: feed, inverse_time: false };
+                    let kind = MotionKind::Linear { end, feed };
+                    let blend = kind.end().and(blend);
+                    let tilted = Motion { blend, extrude: Some(f64::NAN), ..Motion::new(0, kind) };
+                    motions.push(tilted);
+                    continue;
+                }
+                // The centre is turned as the points are.
                 let mut point = [0.0; 6];
                 point[first] = values[2];
                 point[second] = values[3];
@@ -352,19 +361,28 @@ pub fn is_spline(motion: &Motion) -> bool {
     matches!(motion.kind, MotionKind::Linear { end, .. } if end[0].is_nan())
 }
 
+/// Whether `motion` stands for one of rs274's arcs in a tilted plane (an XZ or YZ arc of a
+/// rotated system, see [`parse`]): its end is known, its points are not compared.
+fn is_tilted_arc(motion: &Motion) -> bool {
+    motion.extrude.is_some_and(f64::is_nan)
+}
+
 /// rs274's motions with each spline (`NURBS_FEED`) replaced by the straight moves `ours` made
 /// of it: the moves of one line that stand where the spline stands in the sequence, with
 /// rs274's feed and blend. Their ends are ours (rs274 does not print the curve's points); where
 /// the curve ends is checked by the motions after it, which start there (a program ends with
 /// moves that show the position). A spline with no straight move of ours in its place is left
-/// as it is, and so differs.
+/// as it is, and so differs. An arc in a tilted plane is replaced the same way, but its last
+/// move keeps rs274's end, so that where it ends is compared too (that its points lie on the
+/// tilted arc is `biscara-gcode`'s test).
 pub fn expand_splines(ours: &[Motion], theirs: &[Motion]) -> Vec<Motion> {
     let mut expanded = Vec::with_capacity(theirs.len());
     let mut at = 0;
     for motion in theirs {
         let ours_here = ours.get(at);
-        match (is_spline(motion), motion.kind, ours_here) {
-            (true, MotionKind::Linear { feed, .. }, Some(first))
+        let curve = is_spline(motion) || is_tilted_arc(motion);
+        match (curve, motion.kind, ours_here) {
+            (true, MotionKind::Linear { feed, end: their_end }, Some(first))
                 if matches!(first.kind, MotionKind::Linear { .. }) =>
             {
                 let line = first.line;
@@ -372,7 +390,10 @@ pub fn expand_splines(ours: &[Motion], theirs: &[Motion]) -> Vec<Motion> {
                     && our.line == line
                     && let MotionKind::Linear { end, .. } = our.kind
                 {
-                    expanded.push(Motion { kind: MotionKind::Linear { end, feed }, ..*motion });
+                    let last = ours.get(at + 1).is_none_or(|next| next.line != line);
+                    let end = if last && is_tilted_arc(motion) { their_end } else { end };
+                    let kind = MotionKind::Linear { end, feed };
+                    expanded.push(Motion { kind, extrude: None, ..*motion });
                     at += 1;
                 }
             }

@@ -1476,7 +1476,6 @@ impl<R: BufRead> Interpreter<R> {
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
         );
-        self.check_rotated_arc(code_at)?;
         let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
@@ -1669,6 +1668,11 @@ impl<R: BufRead> Interpreter<R> {
             let center = [center1, center2];
             let arc = cutter_comp::CompArc { start: current, end, center, turn, feed };
             return self.comp_arc(arc);
+        }
+        if self.state.rotation != 0.0 && plane != Plane::Xy {
+            let arc = ([current, end], [center1, center2]);
+            let moved = self.tilted_arc(arc.0, arc.1, clockwise, turns, feed);
+            return moved.map_err(|message| fail(self, message));
         }
         let mut center_position = self.state.current;
         center_position[first] = center1;

@@ -26,8 +26,8 @@
 //!   (`G4 P-0.5`) are errors.
 //! - M19 and M62–M68 are events (`code`), M48–M53 do nothing; of the `$` (spindle) word only
 //!   what rs274 takes with one spindle (0, or −1 for all) is accepted.
-//! - In a rotated coordinate system (G10 L2 R), arcs outside the XY plane are refused as not
-//!   supported yet.
+//! - In a rotated coordinate system (G10 L2 R), an arc in the XZ or YZ plane lies in a tilted
+//!   plane the inter-file cannot describe: it becomes straight moves within 0.001 mm of it.
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
 //! - The tool table is in millimetres, and 5401–5410 hold millimetres (rs274's hold inches);
 //!   a tool table line LinuxCNC would skip is an error.

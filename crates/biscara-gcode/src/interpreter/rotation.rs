@@ -3,8 +3,9 @@
 //! The rotation is the system's parameter 5230 (+20 per system) and applies while the system
 //! is in force: a point `p` of the program is, on the machine, `rot(p + g92) + origin` in XY
 //! (Z and C are not rotated; the tool length offset is added after the rotation). Arcs in the
-//! XY plane turn with their centre; an arc in the XZ or YZ plane of a rotated system would lie
-//! in a tilted plane, which the inter-file (SPEC §5) cannot describe: refused. Nothing here
+//! XY plane turn with their centre; an arc in the XZ or YZ plane of a rotated system lies in a
+//! tilted plane, which the inter-file (SPEC §5) cannot describe: it runs as straight moves
+//! within 0.001 mm of it ([`Interpreter::tilted_arc`]). Nothing here
 //! runs while no system is rotated: [`State::rotation`] is zero and the plain sums are used.
 //!
 //! rs274's own bookkeeping is followed where it differs from that geometry: G10 L2 on the
@@ -13,10 +14,10 @@
 use std::f64::consts::PI;
 use std::io::BufRead;
 
-use biscara_motion::Plane;
+use biscara_motion::Feed;
 
+use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
 use super::{Interpreter, State};
-use crate::lexer::Fault;
 use crate::params::{COORDINATE_SYSTEM, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.
@@ -192,17 +193,66 @@ impl<R: BufRead> Interpreter<R> {
         Some([program[0], program[1]])
     }
 
-    /// An arc outside the XY plane of a rotated system.
-    pub(super) fn check_rotated_arc(&self, at: (usize, usize)) -> Result<(), Fault> {
-        if self.state.rotation == 0.0 || self.state.plane == Plane::Xy {
-            return Ok(());
+    /// An arc in the XZ or YZ plane of a rotated system, from `start` to `end` (program
+    /// coordinates) about `center` (the plane's two axes), `turns` times round: LinuxCNC's canon
+    /// turns the arc's basis vectors with the system, so the arc lies in a tilted plane, which
+    /// the inter-file (SPEC §5) cannot describe. It runs as straight moves within
+    /// [`CHORD_TOLERANCE_MM`] of it: equal steps of the angle, the radius going from the start's
+    /// to the end's (LinuxCNC's arcs may end a little off their radius), the normal axis and C
+    /// in proportion (a helix's chords leave it only in the plane). `Err` with the message when
+    /// it would take more than [`MAX_SEGMENTS`] moves.
+    pub(super) fn tilted_arc(
+        &mut self,
+        [start, end]: [[f64; 4]; 2],
+        center: [f64; 2],
+        clockwise: bool,
+        turns: u32,
+        feed: Feed,
+    ) -> Result<(), String> {
+        use std::f64::consts::TAU;
+        let [first, second, normal] = self.state.plane.axes();
+        let radius = |point: [f64; 4]| (point[first] - center[0]).hypot(point[second] - center[1]);
+        let angle = |point: [f64; 4]| (point[second] - center[1]).atan2(point[first] - center[0]);
+        let (radius0, radius1) = (radius(start), radius(end));
+        let (mut from, mut to) = (angle(start), angle(end));
+        // LinuxCNC's find_turn: at least one part of a turn, then the whole turns.
+        let extra = f64::from(turns.saturating_sub(1)) * TAU;
+        let sweep = if clockwise {
+            if from <= to {
+                from += TAU;
+            }
+            to - from - extra
+        } else {
+            if to <= from {
+                to += TAU;
+            }
+            to - from + extra
+        };
+        // A chord of angle φ on radius r stays r·(1 − cos(φ/2)) from the arc.
+        let tolerance = CHORD_TOLERANCE_MM / self.state.factor();
+        let largest = radius0.max(radius1);
+        let step =
+            if largest <= tolerance { TAU } else { 2.0 * (1.0 - tolerance / largest).acos() };
+        let count = (sweep.abs() / step).ceil().max(1.0);
+        if count > MAX_SEGMENTS as f64 {
+            return Err(format!(
+                "Arc too large in a rotated coordinate system: its plane is tilted, so it runs as \
+                 straight moves within {CHORD_TOLERANCE_MM} mm of it, and more than \
+                 {MAX_SEGMENTS} would be needed; split it into shorter arcs"
+            ));
         }
-        let (first, last) = self.span(at.0, at.1);
-        Err(Fault::not_supported(
-            first,
-            last,
-            "an XZ or YZ arc in a rotated coordinate system",
-            "its plane is tilted, which the inter-file cannot describe",
-        ))
+        let count = count as usize;
+        for index in 1..count {
+            let t = index as f64 / count as f64;
+            let (turned, r) = (from + sweep * t, radius0 + (radius1 - radius0) * t);
+            let mut point = start;
+            point[first] = center[0] + r * turned.cos();
+            point[second] = center[1] + r * turned.sin();
+            point[normal] = start[normal] + (end[normal] - start[normal]) * t;
+            point[3] = start[3] + (end[3] - start[3]) * t;
+            self.move_to(point, Some(feed));
+        }
+        self.move_to(end, Some(feed));
+        Ok(())
     }
 }

@@ -315,8 +315,71 @@ fn a_rotated_coordinate_system_turns_moves_and_arcs_about_its_origin() {
     assert!((center[0] - 10.0).abs() < 1e-9 && (center[1] - 7.0).abs() < 1e-9, "{center:?}");
     assert!(clockwise);
     assert_end(&got, 3, [0.0, 0.0, 0.0]);
-    let err = error("G10 L2 P1 R30\nG18 G2 X1 Z0 I0.5 K0 F10\nM2\n");
-    assert!(matches!(err, GcodeError::NotSupported { .. }), "{err}");
+}
+
+/// The straight moves of line `line` of `got` and the point before them.
+fn chords(got: &[(usize, MotionKind)], line: usize) -> Vec<[f64; 3]> {
+    let first = got.iter().position(|(at, _)| *at == line).expect("the line's moves");
+    let mut points = vec![got[first - 1].1.end().expect("a move before")];
+    for (_, kind) in got.iter().filter(|(at, _)| *at == line) {
+        let MotionKind::Linear { end, feed: f } = kind else { panic!("{kind:?}") };
+        assert_eq!(*f, feed(100.0));
+        points.push(*end);
+    }
+    points.iter().map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+#[test]
+fn xz_and_yz_arcs_of_a_rotated_system_run_as_chords_of_the_tilted_arc() {
+    // Turned by 30° about Z (and shifted): the XZ plane's normal, Y, becomes (−sin 30°, cos 30°).
+    let program = "G10 L2 P1 X5 Y2 Z1 R30\nG54 G0 X0 Y3 Z0\nG18 G2 X10 Z0 I5 K0 F100\n\
+                   G19 G3 X17 Y3 Z0 J4 K0 P2\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    let (sin, cos) = 30f64.to_radians().sin_cos();
+    let turn = |x: f64, y: f64| [5.0 + x * cos - y * sin, 2.0 + x * sin + y * cos];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    // (The arc, its normal, its radius, whether it climbs along the normal.)
+    let [cx, cy] = turn(5.0, 3.0);
+    let [ux, uy] = turn(0.0, 7.0);
+    let arcs = [
+        (3, [cx, cy, 1.0], [-sin, cos, 0.0], 5.0),
+        // Centre (y, z) = (3 + 4, 0): the normal is X turned; a helix going 7 along it in two
+        // turns.
+        (4, [ux + 10.0 * cos, uy + 10.0 * sin, 1.0], [cos, sin, 0.0], 4.0),
+    ];
+    for (line, centre, normal, radius) in arcs {
+        let points = chords(&got, line);
+        assert!(points.len() > 50, "line {line}: {} points", points.len());
+        for pair in points.windows(2) {
+            for point in pair {
+                let off = sub(*point, centre);
+                let along = dot(off, normal);
+                let across = (dot(off, off) - along * along).sqrt();
+                assert!((across - radius).abs() < 1e-9, "line {line}: {point:?} is {across} away");
+                if line == 3 {
+                    assert!(along.abs() < 1e-9, "line {line}: {point:?} leaves the plane");
+                }
+            }
+            // The chord's middle, off the arc by its sagitta only.
+            let middle = [0, 1, 2].map(|axis| (pair[0][axis] + pair[1][axis]) / 2.0);
+            let off = sub(middle, centre);
+            let along = dot(off, normal);
+            let sagitta = radius - (dot(off, off) - along * along).sqrt();
+            assert!((0.0..=0.001).contains(&sagitta), "line {line}: sagitta {sagitta}");
+        }
+    }
+    // G2 in G18 turns clockwise in (Z, X), LinuxCNC's order for that plane: from X0 to X10
+    // it dips to Z −5 (as it does unrotated), here Z 1 − 5 with the system's Z offset.
+    let lowest = chords(&got, 3).iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    assert!((lowest + 4.0).abs() < 0.001, "{lowest}");
+    // The helix ends where it was asked to.
+    let helix = chords(&got, 4);
+    let (last, [x, y]) = (helix.last().unwrap(), turn(17.0, 3.0));
+    assert!((last[0] - x).abs() < 1e-9 && (last[1] - y).abs() < 1e-9, "{last:?}");
+    assert!((last[2] - 1.0).abs() < 1e-9, "{last:?}");
+    let too_large = error("G10 L2 P1 R30\nG18 G2 X0 Z0 I5000 K0 P3 F10\nM2\n");
+    assert!(too_large.to_string().contains("Arc too large in a rotated coordinate system"));
 }
 
 #[test]
