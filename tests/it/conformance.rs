@@ -843,6 +843,22 @@ impl RandomRun {
         self.counts[verdict as usize]
     }
 
+    /// Prints how many of the `what` matched and how many both refused, then fails the test
+    /// when fewer than a tenth matched or any program differs.
+    #[track_caller]
+    fn assert_most_match_and_none_differ(&self, what: &str) {
+        let (matched, total) = (self.count(Verdict::Match), self.total);
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!(
+                "random {what}: {matched} match, {} refused by both alike",
+                self.count(Verdict::BothRefuse)
+            );
+        }
+        assert!(matched >= total / 10, "only {matched} of {total} random {what} were accepted");
+        self.assert_none_differ();
+    }
+
     /// Fails the test on any program that differs.
     #[track_caller]
     fn assert_none_differ(&self) {
@@ -999,16 +1015,7 @@ fn random_cutter_comp_programs_conform() {
     let allowed = [Verdict::Match, Verdict::BothRefuse];
     let seed = 0x00c0_77e2_c0b9_0001;
     let run = run_random(&dir, "comp", seed, Some(COMP_TOOLS), &allowed, random_comp_program);
-    let (accepted, count) = (run.count(Verdict::Match), run.total);
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!(
-            "random compensated programs: {accepted} match, {} refused by both alike",
-            run.count(Verdict::BothRefuse)
-        );
-    }
-    assert!(accepted >= count / 10, "only {accepted} of {count} random profiles were accepted");
-    run.assert_none_differ();
+    run.assert_most_match_and_none_differ("compensated programs");
 }
 
 /// A random program in the XY plane of rotated coordinate systems (G10 L2 R), with polar
@@ -1130,16 +1137,7 @@ fn random_rotated_programs_conform() {
     let allowed = [Verdict::Match, Verdict::BothRefuse];
     let seed = 0x0070_7a7e_d0a1_0001;
     let run = run_random(&dir, "rotated", seed, None, &allowed, random_rotated_program);
-    let (accepted, count) = (run.count(Verdict::Match), run.total);
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!(
-            "random rotated and polar programs: {accepted} match, {} refused by both alike",
-            run.count(Verdict::BothRefuse)
-        );
-    }
-    assert!(accepted >= count / 10, "only {accepted} of {count} random programs were accepted");
-    run.assert_none_differ();
+    run.assert_most_match_and_none_differ("rotated and polar programs");
 }
 
 /// A soup of tokens: words, numbers, expressions, comments and stray characters in any order,
