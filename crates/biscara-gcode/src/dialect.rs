@@ -461,6 +461,21 @@ fn first_command(raw: &[u8]) -> Option<(u8, &[u8], usize, usize)> {
     Some((letter, &raw[digits..at], start, at))
 }
 
+/// Whether the rest of a line holds a word (a letter outside `( … )` and `;` comments).
+fn has_words(rest: &[u8]) -> bool {
+    let mut depth = 0usize;
+    for &byte in rest {
+        match byte {
+            b';' if depth == 0 => return false,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            _ if depth == 0 && byte.is_ascii_alphabetic() => return true,
+            _ => {}
+        }
+    }
+    false
+}
+
 /// The number part of a code as an integer and its fraction digit (`862.3` → 862, Some(3)).
 fn code_number(number: &[u8]) -> Option<(u32, bool)> {
     let text = std::str::from_utf8(number).ok()?;
@@ -583,6 +598,11 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
             // Firmware retract and recover, mesh and probe codes, nozzle park, calibrations,
             // save position: no motion of the program's own.
             10 | 11 | 26 | 27 | 29 | 30..=35 | 60 | 76 | 425 => {
+                Prelude::Event { name: code_name(letter, number), known: true }
+            }
+            // A G5 with no word moves nowhere: a default Marlin build (no BEZIER_CURVE_SUPPORT)
+            // skips it as unknown, one with it draws a curve from here to here.
+            5 if !fraction && !has_words(&raw[end..]) => {
                 Prelude::Event { name: code_name(letter, number), known: true }
             }
             5 | 6 | 12 | 38 | 42 | 61 => Prelude::Refuse {
@@ -732,6 +752,23 @@ mod tests {
         assert_eq!(prelude(Dialect::Grbl, b"G0 X1"), Prelude::Block);
         assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), Prelude::Block);
         assert_eq!(prelude(Dialect::Linuxcnc, b"M104"), Prelude::Block);
+    }
+
+    /// Found on a real program (a Cura 5.2.1 start G-code with a lone `G5` line): a G5 with no
+    /// word moves nowhere in Marlin (a default build, without `BEZIER_CURVE_SUPPORT`, skips it
+    /// as an unknown command; with it, the curve ends where it starts), so it is an event, not a
+    /// refused Bézier curve. A G5 with words still is refused (`tests/bad_input/gcode/marlin_bezier`).
+    #[test]
+    fn a_bare_g5_moves_nowhere_in_marlin() {
+        let event = Prelude::Event { name: "G5".to_owned(), known: true };
+        assert_eq!(prelude(Dialect::Marlin, b"G5"), event);
+        assert_eq!(prelude(Dialect::Marlin, b"G5 ; no curve (really)"), event);
+        assert_eq!(prelude(Dialect::Marlin, b"N3 G5 (none)\r"), event);
+        for curve in [&b"G5 X2 Y2"[..], b"G5 I1", b"G5 F100", b"G5 (x) P1 Q1"] {
+            assert!(matches!(prelude(Dialect::Marlin, curve), Prelude::Refuse { .. }), "{curve:?}");
+        }
+        // LinuxCNC's G5 is a block as before (its cubic spline reader).
+        assert_eq!(prelude(Dialect::Linuxcnc, b"G5"), Prelude::Block);
     }
 
     #[test]

@@ -63,8 +63,10 @@ pub struct ToolInference {
 /// printer codes (M82, M83, M104, M109) → extruder; a comment that names a laser → laser; a
 /// comment that names a pen or a plotter → pen; a non-zero E word on a move → extruder; M4
 /// (Grbl's dynamic laser power) with S → laser; M3 or M4 with S and Z words → spindle; M3 or M4
-/// with S and no Z word → laser. M3 and M4 with no S word are the gripper's pick and place.
-/// `None` when nothing tells (the caller keeps the gripper).
+/// with S and no Z word → laser; M3 or M4 with no S word in a program whose comments name a cut
+/// ([`CUT_WORDS`]: gcodetools' `(Penetrate)`, PartKam's `(pocket 1)`) → spindle. Otherwise M3 and
+/// M4 with no S word are the gripper's pick and place. `None` when nothing tells (the caller
+/// keeps the gripper).
 pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
     let text = String::from_utf8_lossy(text);
     let found = |tool: Tool, reason: &str, line: usize| {
@@ -72,7 +74,7 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
     };
     let (mut spindle_word, mut s_word, mut z_word) = (None, false, false);
     let (mut laser_comment, mut pen_comment, mut dynamic) = (None, None, None);
-    let mut extrusion = None;
+    let (mut extrusion, mut cut_comment) = (None, None);
     for (index, raw) in text.lines().enumerate() {
         let number = index + 1;
         let lower = raw.to_ascii_lowercase();
@@ -82,6 +84,9 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
         }
         if (has_word(comment, "pen") || comment.contains("plotter")) && pen_comment.is_none() {
             pen_comment = Some(number);
+        }
+        if cut_comment.is_none() {
+            cut_comment = CUT_WORDS.iter().find(|word| has_word(comment, word)).copied();
         }
         let words = words(&code);
         let has = |letter: u8| words.iter().any(|(l, _)| *l == letter);
@@ -123,9 +128,36 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
         Some(line) if s_word => {
             found(Tool::Laser, "M3/M4 with S power and no Z move: a laser", line)
         }
-        _ => None,
+        Some(line) => cut_comment.and_then(|word| {
+            let reason = format!("M3/M4 with no S in a program whose comments name a cut (`{word}`): a cutting spindle");
+            found(Tool::Spindle, &reason, line)
+        }),
+        None => None,
     }
 }
+
+/// Comment words that say a program cuts (whole words, lower case): a bare M3 (no S, the speed
+/// set on the machine) in such a program turns a spindle on, as its firmware does.
+const CUT_WORDS: [&str; 18] = [
+    "cut",
+    "cuts",
+    "cutting",
+    "mill",
+    "milling",
+    "endmill",
+    "pocket",
+    "pocketing",
+    "profile",
+    "contour",
+    "drill",
+    "drilling",
+    "engrave",
+    "engraving",
+    "penetrate",
+    "plunge",
+    "spindle",
+    "router",
+];
 
 /// A line (lower case) split into its code and its comments (`( … )` and `; …`).
 fn split_comment(line: &str) -> (String, &str) {
@@ -204,5 +236,28 @@ mod tests {
             assert_eq!(Tool::from_name(tool.name()), Some(tool));
         }
         assert_eq!(Tool::from_name("torch"), None);
+    }
+
+    /// Found on real programs (Inkscape gcodetools, PartKam): a milling program that turns the
+    /// spindle on with a bare `M3` (its speed set on the machine) and says in its comments that
+    /// it cuts. The firmware turns a spindle on; it is no gripper's pick.
+    #[test]
+    fn a_bare_m3_in_a_program_whose_comments_name_a_cut_is_a_spindle() {
+        let gcodetools = "(Start cutting path id: path27)\nM3\nG00 Z5\nG01 Z-1 F100 (Penetrate)\n\
+                          G01 X10 F400\nM5\nM2\n";
+        assert_eq!(inferred(gcodetools), Some(Tool::Spindle));
+        assert_eq!(
+            inferred("(pocket 1)\nG0 Z3\nM3\nG1 Z-0.8 F10\nG1 X5 F500\nM5\nM30\n"),
+            Some(Tool::Spindle)
+        );
+        assert_eq!(inferred("M3 (spindle on)\nG1 Z-1 F100\nM5\nM2\n"), Some(Tool::Spindle));
+        let inference = infer_tool(gcodetools.as_bytes()).unwrap();
+        assert_eq!(inference.line, Some(2), "the M3 line tells");
+        // The paper's pick and place stays the gripper's, whatever its comments say.
+        assert_eq!(inferred("(pick the part)\nG1 Z0 F60\nM3\nG0 Z5 (place it)\nM4\nM2\n"), None);
+        // A word that only contains a cut word is no cut ("cutter" in a shortcut, "profiles").
+        assert_eq!(inferred("(shortcut)\nM3\nG1 Z0 F60\nM4\nM2\n"), None);
+        // A comment after M3 S still lets S and Z decide, as before.
+        assert_eq!(inferred("(cut)\nM3 S300\nG1 X5 F100\nM5\n"), Some(Tool::Laser));
     }
 }
