@@ -302,8 +302,8 @@ fn compare(ours: &[Motion], expected: &[(usize, Step)]) -> Result<(), String> {
 
 /// A reader of the plain G-code these programs use, as their firmware documents it: words,
 /// comments, G0–G3 (I J K offsets or R), G4, G17–G19, G20/G21, G28, G90/G91, G92 (with E),
-/// M82/M83, `#n = value` parameters; per dialect: Marlin's one command per line and its G4 and
-/// G28, Grbl's `$` lines, Mach3's nested comments, program numbers and G41/G42 P
+/// M82/M83, `#n = value` parameters; per dialect: Marlin's one command per line, its G0 (a G1)
+/// and its G4 and G28, Grbl's `$` lines, Mach3's nested comments, program numbers and G41/G42 P
 /// (checked as [`Step::Compensated`]). Positions in mm.
 struct Reader<'a> {
     dialect: &'static str,
@@ -568,6 +568,8 @@ impl<'a> Reader<'a> {
             None
         };
         let step = match motion {
+            // Marlin's G0 is its G1 (G0_G1: the same move, at the feed rate in force).
+            0 if marlin => Step::Linear { end, extrude },
             0 => Step::Rapid { end, extrude },
             10 => Step::Linear { end, extrude },
             _ => {

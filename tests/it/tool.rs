@@ -74,7 +74,7 @@ fn interpolate_events_counts_the_filament_along_the_moves() {
 }
 
 #[test]
-fn check_finds_a_laser_burning_and_an_extruder_feeding_during_a_rapid() {
+fn check_finds_a_laser_burning_during_a_rapid() {
     let dir = temp_dir("tool-check");
     let laser = "G0 X0 Y250\nM3 S500\nG1 X20 F1200\nG0 X40\nG1 X60\nM5\nG0 X0\nM2\n";
     std::fs::write(dir.join("laser.nc"), laser).expect("write");
@@ -90,11 +90,11 @@ fn check_finds_a_laser_burning_and_an_extruder_feeding_during_a_rapid() {
     assert!(run.stdout.contains(r#""kind":"tool""#), "{run}");
     // The same program for a spindle: a rapid with the spindle on is no problem.
     biscara(&dir, &["check", "laser.nc", "--tool", "spindle"]).success();
+    // Marlin's G0 is its G1: a G0 with an E word extrudes along a move at the feed rate, as
+    // Marlin runs it, which is no problem.
     let print = "M83\nG0 X0 Y250 Z10\nG1 X20 E2 F1200\nG0 X40 E1\nM2\n";
     std::fs::write(dir.join("print.gcode"), print).expect("write");
-    let run = biscara(&dir, &["check", "print.gcode"]);
-    run.expect_code(1);
-    assert!(run.stdout.contains("print.gcode:4: tool (extrusion during a rapid move)"), "{run}");
+    biscara(&dir, &["check", "print.gcode"]).success();
 }
 
 #[test]

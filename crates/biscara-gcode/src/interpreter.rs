@@ -1430,6 +1430,12 @@ impl<R: BufRead> Interpreter<R> {
         if motion == 0 && self.state.comp.active() {
             return self.comp_straight(true, end, None, g53);
         }
+        // Marlin moves G0 as G1, at the feed rate in force (its G0_G1; a separate G0 feed rate
+        // is a build option, off by default), so a slicer's `G0 F9000` travels at 150 mm/s.
+        if motion == 0 && self.dialect == Dialect::Marlin {
+            self.move_to(end, Some(Feed { mm_per_min: self.state.feed_mm, inverse_time: false }));
+            return Ok(());
+        }
         if motion == 0 {
             self.move_to(end, None);
             return Ok(());

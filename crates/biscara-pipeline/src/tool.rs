@@ -71,8 +71,8 @@ impl ToolState {
     }
 
     /// What only `tool` can get wrong at this sample (SPEC §1.6), for `check`: a laser burning
-    /// or an extruder feeding during a rapid move, as the subject, the detail and how much (the
-    /// power, the filament fed).
+    /// during a rapid move, as the subject, the detail and how much (the power). (An extruder
+    /// cannot feed during one: E words are Marlin's, whose G0 is a G1.)
     pub fn problem(&self, tool: Tool) -> Option<(&'static str, String, f64)> {
         if !self.rapid {
             return None;
@@ -82,11 +82,6 @@ impl ToolState {
                 "laser on during a rapid move",
                 format!("the laser burns at power S{} during a G0 move", self.laser_power),
                 self.laser_power,
-            )),
-            Tool::Extruder if self.move_extrude_mm > 0.0 => Some((
-                "extrusion during a rapid move",
-                format!("the extruder feeds {:.3} mm during a G0 move", self.move_extrude_mm),
-                self.move_extrude_mm,
             )),
             _ => None,
         }
@@ -351,7 +346,7 @@ mod tests {
     }
 
     #[test]
-    fn only_a_laser_on_or_an_extruder_feeding_during_a_rapid_is_a_tool_problem() {
+    fn only_a_laser_on_during_a_rapid_is_a_tool_problem() {
         let rapid = ToolState { rapid: true, ..ToolState::default() };
         let burning = ToolState { laser_power: 300.0, ..rapid };
         let (subject, detail, severity) = burning.problem(Tool::Laser).unwrap();
@@ -360,10 +355,9 @@ mod tests {
         assert_eq!(severity, 300.0);
         assert_eq!(ToolState { rapid: false, ..burning }.problem(Tool::Laser), None);
         assert_eq!(rapid.problem(Tool::Laser), None);
-        let feeding = ToolState { move_extrude_mm: 0.25, ..rapid };
-        assert_eq!(feeding.problem(Tool::Extruder).map(|p| p.2), Some(0.25));
         // A spindle or pen on during a rapid is how those tools travel.
-        let on = ToolState { spindle_rpm: 9000.0, pen_down: true, ..rapid };
+        let on = ToolState { spindle_rpm: 9000.0, pen_down: true, move_extrude_mm: 0.2, ..rapid };
+        assert_eq!(on.problem(Tool::Extruder), None);
         assert_eq!(on.problem(Tool::Spindle), None);
         assert_eq!(on.problem(Tool::Pen), None);
     }

@@ -26,8 +26,8 @@ pub enum ProblemKind {
     SelfCollision,
     /// A part of the body inside a box of the scene.
     SceneCollision,
-    /// What only the tool can get wrong (SPEC §1.6): a laser burning or an extruder feeding
-    /// during a rapid (G0) move.
+    /// What only the tool can get wrong (SPEC §1.6): a laser burning during a rapid (G0)
+    /// move.
     Tool,
 }
 
