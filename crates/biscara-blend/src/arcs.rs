@@ -11,9 +11,9 @@
 //! move).
 
 /// The largest fillet radius tried, mm: a nearly tangent corner would otherwise get a fillet
-/// so large that its points lose precision (its centre millions of mm away); this one still
-/// trims more than `MIN_TRIM_MM` at any corner that is not straight on (a turn above 1e-9 rad).
-const MAX_RADIUS_MM: f64 = 1e6;
+/// so large that its points lose precision (its centre kilometres away). Corners that turn by
+/// less than 2e-8 rad are then exact stops (their fillets would trim less than `MIN_TRIM_MM`).
+const MAX_RADIUS_MM: f64 = 1e4;
 
 /// How far a fillet's ends may lie off its circle, mm.
 pub(crate) const FIT_MM: f64 = 1e-10;
@@ -60,7 +60,8 @@ pub(crate) struct Fit {
     /// Its centre and radius.
     pub center: [f64; 2],
     pub radius: f64,
-    /// How far each leg is trimmed back from the corner: mm for a line, radians for an arc.
+    /// How far each leg is trimmed back from the corner: mm for a line; for an arc, radians
+    /// ([`fit`]) or the fraction of it ([`fit_line_arc`]).
     pub trims: [f64; 2],
 }
 
@@ -111,12 +112,6 @@ fn offset_radius(radius: f64, turn: f64, side: f64, r: f64) -> Option<f64> {
 /// (+1 left) on which it lies; `None` when there is none near the corner.
 fn center(corner: [f64; 2], a: Leg, b: Leg, sides: [f64; 2], r: f64) -> Option<[f64; 2]> {
     match (a, b) {
-        (Leg::Line { direction, .. }, Leg::Circle { center: o, radius, turn, .. }) => {
-            line_circle(corner, direction, sides[0], o, radius, turn, sides[1], r)
-        }
-        (Leg::Circle { center: o, radius, turn, .. }, Leg::Line { direction, .. }) => {
-            line_circle(corner, direction, sides[1], o, radius, turn, sides[0], r)
-        }
         (
             Leg::Circle { center: o1, radius: r1, turn: t1, .. },
             Leg::Circle { center: o2, radius: r2, turn: t2, .. },
@@ -140,45 +135,9 @@ fn center(corner: [f64; 2], a: Leg, b: Leg, sides: [f64; 2], r: f64) -> Option<[
             let other = [base[0] - h * across[0], base[1] - h * across[1]];
             Some(if norm(sub(one, corner)) <= norm(sub(other, corner)) { one } else { other })
         }
-        (Leg::Line { .. }, Leg::Line { .. }) => None,
+        // (A line and an arc: `fit_line_arc`.)
+        _ => None,
     }
-}
-
-/// The point `r` to the side `line_side` of the line through `corner` along `direction` and
-/// on the arc's offset circle, nearest the corner along the line.
-#[allow(clippy::too_many_arguments)]
-fn line_circle(
-    corner: [f64; 2],
-    direction: [f64; 2],
-    line_side: f64,
-    o: [f64; 2],
-    radius: f64,
-    turn: f64,
-    circle_side: f64,
-    r: f64,
-) -> Option<[f64; 2]> {
-    offset_radius(radius, turn, circle_side, r)?;
-    // The centre is corner + t·direction + r·side·left(direction), at ρ from o:
-    // t² + 2 B t + C = 0 with C = |m|² − ρ² written without cancellation.
-    let w = sub(corner, o);
-    let normal = left(direction);
-    let m = [w[0] + r * line_side * normal[0], w[1] + r * line_side * normal[1]];
-    let b = dot(m, direction);
-    let c = 2.0 * r * (line_side * dot(w, normal) + turn * circle_side * radius);
-    let discriminant = b * b - c;
-    if discriminant < 0.0 {
-        return None;
-    }
-    // The root that goes to 0 with r.
-    let q = -(b + b.signum() * discriminant.sqrt());
-    if q == 0.0 {
-        return None;
-    }
-    let t = c / q;
-    Some([
-        corner[0] + t * direction[0] + r * line_side * normal[0],
-        corner[1] + t * direction[1] + r * line_side * normal[1],
-    ])
 }
 
 /// The fillet of radius `r` at `corner` between the legs `a` (the move before the corner, run
@@ -254,6 +213,87 @@ pub(crate) fn fit(
         }
         if high - low <= 1e-12 * high {
             break;
+        }
+    }
+    best
+}
+
+/// The fillet at `corner` between a line and an arc, the arc given by its own geometry: `arc`
+/// maps a trim τ (the fraction of the arc cut away from the corner, in (0, ½]) to the arc's
+/// point there and its unit direction of travel, exactly as the trimmed arc will run (a spiral
+/// too: an arc whose end radius differs from its start radius, as CAM output rounded to a few
+/// decimals makes). The fillet touches the arc at that point with the arc's own tangent, and is
+/// tangent to the line; τ is the largest (by bisection) that keeps the corner within
+/// `tolerance` of the fillet and the line's trim within its limit.
+///
+/// `line` leaves the corner (`Leg::Line`), `arc_first` says whether the arc comes before the
+/// corner, `side` is the corner's turn (+1 left). The fit's trims are the line's (mm) and τ.
+pub(crate) fn fit_line_arc(
+    corner: [f64; 2],
+    line: Leg,
+    arc: impl Fn(f64) -> ([f64; 2], [f64; 2]),
+    arc_first: bool,
+    side: f64,
+    tolerance: f64,
+) -> Option<Fit> {
+    let Leg::Line { direction, limit } = line else { return None };
+    // The line's normal towards the fillet: left of its direction of travel for a left turn.
+    let forward = if arc_first { direction } else { [-direction[0], -direction[1]] };
+    let normal = left(forward);
+    let towards = [side * normal[0], side * normal[1]];
+    let fit_at = |tau: f64| -> Option<Fit> {
+        let (point, tangent) = arc(tau);
+        // The fillet's centre: r from the arc's point, on the turn's side of its tangent, and
+        // r from the line: (point − corner)·n + r (m·n) = r.
+        let inward = left(tangent);
+        let inward = [side * inward[0], side * inward[1]];
+        let denominator = 1.0 - dot(inward, towards);
+        if denominator.is_nan() || denominator <= 1e-12 {
+            return None;
+        }
+        let r = dot(sub(point, corner), towards) / denominator;
+        if !(r > 0.0 && r < MAX_RADIUS_MM) {
+            return None;
+        }
+        let center = [point[0] + r * inward[0], point[1] + r * inward[1]];
+        let trim = dot(sub(center, corner), direction);
+        if !(trim > 0.0 && trim <= limit) {
+            return None;
+        }
+        let foot = [corner[0] + trim * direction[0], corner[1] + trim * direction[1]];
+        let (start, end) = if arc_first { (point, foot) } else { (foot, point) };
+        let (ra, rb) = (sub(start, center), sub(end, center));
+        if (norm(ra) - r).abs() > FIT_MM || (norm(rb) - r).abs() > FIT_MM {
+            return None;
+        }
+        let sweep = side * angle(ra, rb);
+        // The fillet runs along the line where it touches it.
+        let along_line = if arc_first { rb } else { ra };
+        if !(sweep > 0.0 && side * dot(left(along_line), forward) > 0.0) {
+            return None;
+        }
+        let to_corner = sub(corner, center);
+        let at = side * angle(ra, to_corner);
+        let deviation = if (0.0..=sweep).contains(&at) {
+            (norm(to_corner) - r).abs()
+        } else {
+            norm(sub(corner, start)).min(norm(sub(corner, end)))
+        };
+        let trims = if arc_first { [tau, trim] } else { [trim, tau] };
+        (deviation <= tolerance).then_some(Fit { center, radius: r, trims })
+    };
+    if let Some(found) = fit_at(0.5) {
+        return Some(found);
+    }
+    let (mut low, mut high, mut best) = (0.0, 0.5, None);
+    for _ in 0..60 {
+        let middle = 0.5 * (low + high);
+        match fit_at(middle) {
+            Some(found) => {
+                best = Some(found);
+                low = middle;
+            }
+            None => high = middle,
         }
     }
     best

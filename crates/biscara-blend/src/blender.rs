@@ -2,7 +2,7 @@
 
 use std::collections::VecDeque;
 
-use biscara_motion::{Motion, MotionKind, Segment};
+use biscara_motion::{Circle, Motion, MotionKind, Segment};
 
 use crate::arcs::{self, Leg};
 use crate::piece::{Geometry, Piece, Speed, dot, norm, sub, unit, xyz};
@@ -304,12 +304,11 @@ fn corner(a: &Pending, b: &Pending) -> Corner {
 /// (see [`arcs`]), or `None` (an exact stop) when the arcs are not planar circles in one plane,
 /// a line leaves that plane, or no fillet fits.
 fn arc_corner(a: &Pending, b: &Pending, turn: f64, tolerance: f64) -> Option<Corner> {
-    let circle = |pending: &Pending| pending.arc.map(|(arc, _)| arc.circle());
-    let (circle_a, circle_b) = (circle(a), circle(b));
-    let axes = match (circle_a, circle_b) {
-        (Some(Some(ca)), Some(Some(cb))) if ca.axes == cb.axes => ca.axes,
-        (Some(Some(ca)), None) => ca.axes,
-        (None, Some(Some(cb))) => cb.axes,
+    let axes_of =
+        |pending: &Pending| pending.arc.map(|(arc, _)| arc.planar_arc().map(|arc| arc.axes));
+    let axes = match (axes_of(a), axes_of(b)) {
+        (Some(Some(first)), Some(Some(second))) if first == second => first,
+        (Some(Some(axes)), None) | (None, Some(Some(axes))) => axes,
         _ => return None,
     };
     // A line must lie in the arc's plane.
@@ -321,37 +320,52 @@ fn arc_corner(a: &Pending, b: &Pending, turn: f64, tolerance: f64) -> Option<Cor
     let corner = [a.to[axes[0]], a.to[axes[1]]];
     let (ua, ub) = (flat(a.direction(1.0)), flat(b.direction(0.0)));
     let side = (ua[0] * ub[1] - ua[1] * ub[0]).signum();
-    // Each move as a leg leaving the corner (the one before it backwards), and the length
-    // of its trim: mm for a line, radians for an arc.
-    let leg =
-        |pending: &Pending, backwards: bool| match pending.arc.and_then(|(arc, _)| arc.circle()) {
-            Some(circle) => {
-                let turn = if backwards { -circle.sweep.signum() } else { circle.sweep.signum() };
-                Leg::Circle {
-                    center: circle.center,
-                    radius: circle.radius,
-                    turn,
-                    limit: circle.sweep.abs() / 2.0,
-                }
-            }
-            None => {
-                let d = flat(sub(xyz(pending.to), xyz(pending.from)));
-                let (length, sign) = (d[0].hypot(d[1]), if backwards { -1.0 } else { 1.0 });
-                Leg::Line {
-                    direction: [sign * d[0] / length, sign * d[1] / length],
-                    limit: length / 2.0,
-                }
-            }
-        };
-    let (leg_a, leg_b) = (leg(a, true), leg(b, false));
-    let found = arcs::fit(corner, leg_a, leg_b, turn, side, tolerance)?;
-    // Fractions of each move, and the trims in mm.
-    let fraction = |leg: Leg, trim: f64| match leg {
-        Leg::Line { limit, .. } => (trim / (2.0 * limit), trim),
-        Leg::Circle { radius, limit, .. } => (trim / (2.0 * limit), radius * trim),
+    // A line as a leg leaving the corner (backwards for the move before it).
+    let line_leg = |pending: &Pending, backwards: bool| {
+        let d = flat(sub(xyz(pending.to), xyz(pending.from)));
+        let (length, sign) = (d[0].hypot(d[1]), if backwards { -1.0 } else { 1.0 });
+        Leg::Line { direction: [sign * d[0] / length, sign * d[1] / length], limit: length / 2.0 }
     };
-    let (cut_a, mm_a) = fraction(leg_a, found.trims[0]);
-    let (start_u, mm_b) = fraction(leg_b, found.trims[1]);
+    // An arc's point and direction of travel at the parameter `u`, in the plane.
+    let on = |arc: Segment, u: f64| (flat(xyz(arc.point(u))), flat(unit(xyz(arc.derivative(u)))));
+    // The fraction of each move cut away at the corner, and its length in mm.
+    let ([cut_a, start_u], [mm_a, mm_b], found) = match (a.arc, b.arc) {
+        (Some((arc, _)), None) => {
+            let leg = line_leg(b, false);
+            let found =
+                arcs::fit_line_arc(corner, leg, |tau| on(arc, 1.0 - tau), true, side, tolerance)?;
+            let [tau, trim] = found.trims;
+            ([tau, trim / b.length()], [tau * arc.length(), trim], found)
+        }
+        (None, Some((arc, _))) => {
+            let leg = line_leg(a, true);
+            let found =
+                arcs::fit_line_arc(corner, leg, |tau| on(arc, tau), false, side, tolerance)?;
+            let [trim, tau] = found.trims;
+            ([trim / a.length(), tau], [trim, tau * arc.length()], found)
+        }
+        (Some((first, _)), Some((second, _))) => {
+            // Two arcs: both circles, each a leg leaving the corner with its trim in radians.
+            let (Some(one), Some(other)) = (first.circle(), second.circle()) else {
+                return None;
+            };
+            let leg = |circle: Circle, backwards: bool| Leg::Circle {
+                center: circle.center,
+                radius: circle.radius,
+                turn: if backwards { -circle.sweep.signum() } else { circle.sweep.signum() },
+                limit: circle.sweep.abs() / 2.0,
+            };
+            let found =
+                arcs::fit(corner, leg(one, true), leg(other, false), turn, side, tolerance)?;
+            let [angle_a, angle_b] = found.trims;
+            (
+                [angle_a / one.sweep.abs(), angle_b / other.sweep.abs()],
+                [angle_a * one.radius, angle_b * other.radius],
+                found,
+            )
+        }
+        (None, None) => return None,
+    };
     if mm_a.min(mm_b) < MIN_TRIM_MM {
         return None;
     }
@@ -378,9 +392,17 @@ fn arc_corner(a: &Pending, b: &Pending, turn: f64, tolerance: f64) -> Option<Cor
     let sweep = side
         * (radial_a[0] * radial_b[1] - radial_a[1] * radial_b[0])
             .atan2(radial_a[0] * radial_b[0] + radial_a[1] * radial_b[1]);
-    // Tangent at the start: the radial turned a quarter towards the travel.
-    let length = radial_a[0].hypot(radial_a[1]);
-    let tangent = lift([-side * radial_a[1] / length, side * radial_a[0] / length], 0.0);
+    // The fillet leaves along the move before the corner and arrives along the move after it:
+    // its tangent and sweep from the moves' own directions where they are cut (exact, where a
+    // small fillet's radials hold only as many digits as it is small). They must agree with
+    // its radials: the fillet then ends within 1e-10 mm of the cut.
+    let (leaving, arriving) = (a.direction(end_u), b.direction(start_u));
+    let (ta, tb) = (flat(leaving), flat(arriving));
+    let turned = side * (ta[0] * tb[1] - ta[1] * tb[0]).atan2(ta[0] * tb[0] + ta[1] * tb[1]);
+    if (turned - sweep).abs() * found.radius > arcs::FIT_MM {
+        return None;
+    }
+    let (sweep, tangent) = (turned, leaving);
     let fillet = Piece {
         line: a.line,
         geometry: Geometry::Fillet { start, end, center, radius: found.radius, tangent, sweep },

@@ -40,18 +40,33 @@
 //! on) and C's rate per mm does not jump. Where an arc meets a line or another arc at a corner,
 //! the corner is blended as LinuxCNC does: the line and the arc are trimmed (the trimmed arc
 //! keeps its centre and radius, with a shorter sweep) and joined by a circular fillet tangent to
-//! both, in the arc's plane. The fillet's centre lies `r` from the line (on the offset line) and
-//! `R − r` or `R + r` from the arc's centre (inside the arc's circle where the arc bends towards
-//! the inside of the corner, outside it where it bends away); `r` is the largest (found by
-//! bisection) for which the programmed corner lies within P of the fillet, a line is trimmed by
-//! at most half of it, an arc by at most half of its sweep, and an inside fillet is smaller than
-//! the arc. The rules of straight corners hold: [`MAX_TURN_DEG`], [`MIN_TRIM_MM`], C turning on
-//! either move, P0 or no P. A corner stays an exact stop where the arc is a helix (or a
-//! spiral, its end radius not its start radius), a line leaves the arc's plane, two arcs lie in
-//! different planes, or no fillet fits (an arc that joins nothing passes unchanged, timed alone
+//! both, in the arc's plane, the largest (found by bisection) for which the programmed corner
+//! lies within P of the fillet, a line is trimmed by at most half of it, an arc by at most half
+//! of its sweep:
+//!
+//! - a line and an arc: the fillet touches the arc at the point where it is cut, with the arc's
+//!   own tangent there (its centre on the arc's normal, `r` from the line), so that an arc whose
+//!   end radius differs a little from its start radius (a spiral: CAM coordinates rounded to a
+//!   few decimals) blends too;
+//! - two arcs (both circles, in one plane): the fillet's centre lies `R ± r` from each arc's
+//!   centre (inside an arc's circle where it bends towards the inside of the corner, outside it
+//!   where it bends away).
+//!
+//! The rules of straight corners hold: [`MAX_TURN_DEG`], [`MIN_TRIM_MM`], C turning on either
+//! move, P0 or no P; a fillet's radius is at most 10 m. A corner stays an exact stop where an
+//! arc is a helix, a line leaves the arc's plane, two arcs lie in different planes or one of
+//! them is a spiral, or no fillet fits (an arc that joins nothing passes unchanged, timed alone
 //! as under exact stop). So a profile of lines and arcs — tangent (a rounded rectangle, cutter
 //! compensation's arcs round convex corners) or meeting at corners (a slot, a keyhole) — runs
 //! through without stopping.
+//!
+//! # G64 Q
+//!
+//! [`NaiveCam`] is LinuxCNC's naive-CAM detector, a stage to run before the [`Blender`]:
+//! consecutive straight feed moves under G64 (same feed, same P, C not turning, nothing between
+//! them) are merged into one while every end point left out lies within Q of it. The merged
+//! path lies within Q of the programmed one, the blends within P of the merged one: the
+//! deviation bound becomes P + Q. (The interpreter does not pass Q on yet: moves carry P only.)
 //!
 //! ```
 //! use biscara_blend::{Blended, Blender};
@@ -76,7 +91,9 @@
 
 mod arcs;
 mod blender;
+mod naive_cam;
 mod piece;
 
 pub use blender::{Blended, Blender, MAX_TURN_DEG, MIN_TRIM_MM, NO_TOLERANCE_CAP_MM};
+pub use naive_cam::{MAX_MERGED, NaiveCam};
 pub use piece::{Geometry, Piece, Speed};

@@ -38,8 +38,8 @@ enum Shape {
     },
 }
 
-/// A planar circular arc in its plane (see [`Segment::circle`]): what a corner's blend needs to
-/// fit a fillet tangent to it.
+/// A planar arc in its plane (see [`Segment::planar_arc`], [`Segment::circle`]): what a
+/// corner's blend needs to fit a fillet tangent to it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Circle {
     /// The plane's axes, as [`Plane::axes`]: the first two span the plane, the third is its
@@ -47,8 +47,10 @@ pub struct Circle {
     pub axes: [usize; 3],
     /// The centre, in the plane's first two axes, mm.
     pub center: [f64; 2],
-    /// The radius, mm.
+    /// The radius at the start, mm.
     pub radius: f64,
+    /// The radius at the end, mm (the start's, but for a spiral).
+    pub end_radius: f64,
     /// The angle swept, radians: positive counter-clockwise seen from the plane's normal.
     pub sweep: f64,
 }
@@ -160,16 +162,24 @@ impl Segment {
         Segment { start, end, shape }
     }
 
-    /// The arc's circle when it is a planar circular arc (no motion along the plane's normal,
-    /// start and end radii equal within 1e-9 of the radius); `None` for a line, a fillet, a
-    /// helix or a spiral.
-    pub fn circle(&self) -> Option<Circle> {
+    /// A planar arc's geometry in its plane (an arc that does not move along the plane's
+    /// normal: a circle, or a spiral whose end radius differs from its start radius); `None`
+    /// for a line, a fillet or a helix.
+    pub fn planar_arc(&self) -> Option<Circle> {
         let Shape::Arc { axes, center, start_radius, end_radius, sweep, .. } = self.shape else {
             return None;
         };
         let planar = self.delta()[axes[2]] == 0.0;
-        let round = (end_radius - start_radius).abs() <= 1e-9 * start_radius.max(1.0);
-        (planar && round).then_some(Circle { axes, center, radius: start_radius, sweep })
+        planar.then_some(Circle { axes, center, radius: start_radius, end_radius, sweep })
+    }
+
+    /// The arc's circle when it is a planar circular arc ([`planar_arc`](Self::planar_arc)
+    /// with its start and end radii equal within 1e-9 of the radius); `None` for a line, a
+    /// fillet, a helix or a spiral.
+    pub fn circle(&self) -> Option<Circle> {
+        self.planar_arc().filter(|circle| {
+            (circle.end_radius - circle.radius).abs() <= 1e-9 * circle.radius.max(1.0)
+        })
     }
 
     /// The path parameters s ∈ [0, 1] at which an arc passes the angle `angle` (radians, in its
@@ -548,11 +558,16 @@ mod tests {
         let quarter = Segment::arc(start, [0.0, 10.0, 3.0, 0.0], [0.0, 0.0], Plane::Xy, true, 1);
         let circle = quarter.circle().expect("a circle");
         assert_eq!((circle.axes, circle.center, circle.radius), ([0, 1, 2], [0.0, 0.0], 10.0));
+        assert_eq!(circle.end_radius, 10.0);
         assert_relative_eq!(circle.sweep, -1.5 * std::f64::consts::PI, epsilon = 1e-12);
         let helix = Segment::arc(start, [0.0, 10.0, 4.0, 0.0], [0.0, 0.0], Plane::Xy, false, 1);
         let spiral = Segment::arc(start, [0.0, 10.1, 3.0, 0.0], [0.0, 0.0], Plane::Xy, false, 1);
         let line = Segment::line(start, [0.0; 4]);
         assert!(helix.circle().is_none() && spiral.circle().is_none() && line.circle().is_none());
+        let axes = |segment: Segment| segment.planar_arc().map(|arc| arc.axes);
+        assert_eq!((axes(quarter), axes(spiral)), (Some([0, 1, 2]), Some([0, 1, 2])));
+        assert_eq!((axes(helix), axes(line)), (None, None));
+        assert!((spiral.planar_arc().unwrap().end_radius - 10.1).abs() < 1e-12);
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! continuous with continuous tangents inside a chain, and keeps the chain's end points.
 
 mod arcs;
+mod naive_cam;
 mod strategies;
 
 use biscara_blend::{Blended, Blender, Geometry, Piece, Speed};
