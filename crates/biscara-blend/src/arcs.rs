@@ -1,14 +1,18 @@
 //! The fillet at a corner where a programmed arc meets a line or another arc, in the arc's
 //! plane (plane coordinates, 2D).
 //!
-//! Both moves are seen leaving the corner `P` (the move before it run backwards): a leg. The
-//! fillet of radius `r` is tangent to both legs on the inside of the corner: its centre lies
-//! `r` from a line (on the offset line), and `R − r` (inside the arc's circle, when the arc
-//! bends towards the fillet) or `R + r` (outside) from an arc's centre. Each leg is trimmed back
-//! to its tangent point (a line by a length, an arc by an angle: the trimmed arc keeps its
-//! centre and radius). The radius is the largest, found by bisection, for which the distance of
-//! `P` from the fillet is at most the tolerance and each trim at most its leg's limit (half the
-//! move).
+//! Each move is trimmed back from the corner `P` to where the fillet touches it (a line by a
+//! length, an arc by a part of its sweep: the trimmed arc keeps its centre and radius), at
+//! most half of it; the fillet lies on the inside of the corner and is the largest for which
+//! the distance of `P` from it is at most the tolerance. Two searches, by bisection:
+//!
+//! - a line and an arc ([`fit_line_arc`]): on the arc's trim. The fillet touches the arc where
+//!   it is cut, with the arc's own tangent there (its centre on the arc's normal), and its
+//!   radius makes it tangent to the line: exact for a spiral too (an arc whose end radius
+//!   differs from its start radius, as rounded CAM coordinates make);
+//! - two circles ([`fit`]): on the radius `r`. Both moves are seen leaving the corner (the one
+//!   before it run backwards), and the fillet's centre lies `R − r` (inside an arc's circle,
+//!   when the arc bends towards the fillet) or `R + r` (outside) from each arc's centre.
 
 /// The largest fillet radius tried, mm: a nearly tangent corner would otherwise get a fillet
 /// so large that its points lose precision (its centre kilometres away). Corners that turn by
