@@ -283,3 +283,39 @@ fn lines_meeting_arcs_at_corners_are_blended_within_the_tolerance() {
 
     assert_within_the_joint_limits_and_clean(&dir, "g64.ngc");
 }
+
+#[test]
+fn g64_q_merges_nearly_collinear_chords_within_p_plus_q() {
+    // The CAM circle under G64 P0.01 Q0.05: runs of chords within 0.05 mm of one straight move
+    // are merged (LinuxCNC's naive-CAM detector) before the corners are blended, so the path
+    // strays up to P + Q from the chords, and the robot, with fewer corners, is no slower.
+    let dir = temp_dir("blending-q");
+    std::fs::write(dir.join("p.ngc"), program("G64 P0.01")).expect("write");
+    std::fs::write(dir.join("pq.ngc"), program("G64 P0.01 Q0.05")).expect("write");
+    let path = |name: &str| {
+        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
+        run.success();
+        rows(&run.stdout)
+    };
+    let (p, pq) = (path("p.ngc"), path("pq.ngc"));
+    let home = [pq[0][1], pq[0][2], pq[0][3]];
+    let mut programmed = vec![home, [home[0], home[1], 50.0]];
+    programmed.extend(vertices().iter().map(|&[x, y]| [x, y, 50.0]));
+    let worst = |rows: &[Vec<f64>]| {
+        rows.iter()
+            .map(|row| {
+                programmed
+                    .windows(2)
+                    .map(|pair| distance_to_segment([row[1], row[2], row[3]], pair[0], pair[1]))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0f64, f64::max)
+    };
+    let (worst_p, worst_pq) = (worst(&p), worst(&pq));
+    assert!(worst_p <= 0.01 + 1e-6, "P0.01 alone: {worst_p} mm off");
+    assert!(worst_pq <= 0.06 + 1e-6, "P0.01 Q0.05: {worst_pq} mm off");
+    assert!(worst_pq > 0.02, "no chord merged: {worst_pq} mm off at most");
+    let (t_p, t_pq) = (p[p.len() - 1][0], pq[pq.len() - 1][0]);
+    assert!(t_pq <= t_p, "Q0.05 takes {t_pq} s, without Q {t_p} s");
+    assert_within_the_joint_limits_and_clean(&dir, "pq.ngc");
+}

@@ -63,10 +63,10 @@
 //! # G64 Q
 //!
 //! [`NaiveCam`] is LinuxCNC's naive-CAM detector, a stage to run before the [`Blender`]:
-//! consecutive straight feed moves under G64 (same feed, same P, C not turning, nothing between
-//! them) are merged into one while every end point left out lies within Q of it. The merged
-//! path lies within Q of the programmed one, the blends within P of the merged one: the
-//! deviation bound becomes P + Q. (The interpreter does not pass Q on yet: moves carry P only.)
+//! consecutive straight feed moves under G64 Q ([`Motion::naive_cam`](biscara_motion::Motion::naive_cam);
+//! same feed, P and Q, C not turning, nothing between them) are merged into one while every end
+//! point left out lies within Q of it. The merged path lies within Q of the programmed one, the
+//! blends within P of the merged one: the deviation bound becomes P + Q.
 //!
 //! ```
 //! use biscara_blend::{Blended, Blender};

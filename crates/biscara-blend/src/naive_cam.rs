@@ -1,12 +1,12 @@
 //! G64 Q: LinuxCNC's naive-CAM detector, a stage before blending.
 //!
 //! CAM output often approximates a straight edge by many nearly collinear short moves. Under
-//! G64 with a Q tolerance, consecutive straight feed moves (G1) are merged into one while every
-//! end point the merged move leaves out lies within Q of the straight line from the chain's
-//! start to its new end. A move joins the chain only when it is a G1 under G64 like the chain's
-//! moves: the same feed, the same P, the same Q, C not turning; anything else (a rapid, an arc,
-//! an event, a move under exact stop, another feed) ends the chain first, and so do
-//! [`MAX_MERGED`] moves. The merged move keeps the line of the last move it replaces (as
+//! G64 with a Q tolerance (a straight feed move's [`Motion::naive_cam`]), consecutive straight
+//! feed moves (G1) are merged into one while every end point the merged move leaves out lies
+//! within Q of the straight line from the chain's start to its new end. A move joins the chain
+//! only when it is a G1 like the chain's moves: the same feed, the same P, the same Q, C not
+//! turning; anything else (a rapid, an arc, an event, a move without Q, another feed) ends the
+//! chain first, and so do [`MAX_MERGED`] moves. The merged move keeps the line of the last move it replaces (as
 //! LinuxCNC's does).
 //!
 //! Every point of the programmed polyline then lies within Q of the merged move and every
@@ -27,9 +27,8 @@ pub const MAX_MERGED: usize = 100;
 /// Holds at most [`MAX_MERGED`] end points and two motions to yield: memory does not grow with
 /// the program.
 #[derive(Debug)]
-pub struct NaiveCam<I, E> {
+pub struct NaiveCam<I: Iterator> {
     motions: I,
-    tolerance: f64,
     /// Where the next motion from the source starts.
     position: [f64; 4],
     /// The chain: where it starts, its first move (for its feed and tolerances), and the end
@@ -40,20 +39,19 @@ pub struct NaiveCam<I, E> {
     last_line: usize,
     out: VecDeque<Motion>,
     /// The source's error, given after what was read before it.
-    error: Option<E>,
+    error: Option<I::Item>,
     done: bool,
 }
 
-impl<I, E> NaiveCam<I, E>
+impl<I, E> NaiveCam<I>
 where
     I: Iterator<Item = Result<Motion, E>>,
 {
-    /// Merges the motions of `motions`, the first of which starts at `start`, with the
-    /// tolerance `tolerance` (Q, mm; 0 merges nothing).
-    pub fn new(motions: I, start: [f64; 4], tolerance: f64) -> NaiveCam<I, E> {
+    /// Merges the motions of `motions`, the first of which starts at `start`, each with its
+    /// own tolerance ([`Motion::naive_cam`]).
+    pub fn new(motions: I, start: [f64; 4]) -> NaiveCam<I> {
         NaiveCam {
             motions,
-            tolerance,
             position: start,
             start,
             first: None,
@@ -83,10 +81,14 @@ where
         else {
             return false;
         };
-        if feed != chain_feed || motion.blend != first.blend || self.points.len() >= MAX_MERGED {
+        let same = feed == chain_feed
+            && motion.blend == first.blend
+            && motion.naive_cam == first.naive_cam;
+        let Some(tolerance) = first.naive_cam.filter(|_| same) else { return false };
+        if self.points.len() >= MAX_MERGED {
             return false;
         }
-        self.points.iter().all(|&point| distance_to_chord(point, self.start, end) <= self.tolerance)
+        self.points.iter().all(|&point| distance_to_chord(point, self.start, end) <= tolerance)
     }
 
     fn take(&mut self, motion: Motion) {
@@ -97,7 +99,7 @@ where
         }
         let mergeable = matches!(motion.kind, MotionKind::Linear { .. })
             && motion.blend.is_some()
-            && self.tolerance > 0.0;
+            && motion.naive_cam.is_some_and(|q| q > 0.0);
         let Some(end) = end.filter(|end| mergeable && end[3] == from[3]) else {
             self.flush();
             self.out.push_back(motion);
@@ -127,7 +129,7 @@ fn distance_to_chord(point: [f64; 4], a: [f64; 4], b: [f64; 4]) -> f64 {
     (off[0] * off[0] + off[1] * off[1] + off[2] * off[2]).sqrt()
 }
 
-impl<I, E> Iterator for NaiveCam<I, E>
+impl<I, E> Iterator for NaiveCam<I>
 where
     I: Iterator<Item = Result<Motion, E>>,
 {
@@ -139,7 +141,7 @@ where
                 return Some(Ok(motion));
             }
             if self.done {
-                return self.error.take().map(Err);
+                return self.error.take();
             }
             match self.motions.next() {
                 Some(Ok(motion)) => self.take(motion),
@@ -147,7 +149,7 @@ where
                     // What was read before the error goes first, as one move.
                     self.flush();
                     self.done = true;
-                    self.error = Some(err);
+                    self.error = Some(Err(err));
                 }
                 None => {
                     self.done = true;

@@ -11,10 +11,15 @@ fn linear(line: usize, end: [f64; 4], blend: Option<f64>) -> Motion {
     Motion { blend, ..Motion::new(line, MotionKind::Linear { end, feed: FEED }) }
 }
 
+/// `motions`, each straight feed move under G64 given the naive-CAM tolerance `q` (none for 0),
+/// through the stage.
 fn merge(motions: &[Motion], start: [f64; 4], q: f64) -> Vec<Motion> {
-    NaiveCam::new(motions.iter().copied().map(Ok::<_, ()>), start, q)
-        .collect::<Result<_, _>>()
-        .expect("no error")
+    let with_q = motions.iter().map(|motion| {
+        let straight = matches!(motion.kind, MotionKind::Linear { .. }) && motion.blend.is_some();
+        let naive_cam = (straight && q > 0.0).then_some(q);
+        Ok::<_, ()>(Motion { naive_cam, ..*motion })
+    });
+    NaiveCam::new(with_q, start).collect::<Result<_, _>>().expect("no error")
 }
 
 fn distance_to_segment(p: [f64; 4], a: [f64; 4], b: [f64; 4]) -> f64 {
@@ -141,6 +146,12 @@ fn only_g1_moves_alike_are_merged() {
     assert_eq!(merged[0].kind.end(), Some([2.0, 400.001, 50.0, 0.0]));
     // No Q: everything passes as it is.
     assert_eq!(merge(&motions, start, 0.0), motions);
+    // Another Q ends the chain too.
+    let mut other = merge(&motions[..2], start, 0.0);
+    other[0].naive_cam = Some(0.01);
+    other[1].naive_cam = Some(0.02);
+    let got = NaiveCam::new(other.iter().copied().map(Ok::<_, ()>), start);
+    assert_eq!(got.count(), 2);
 }
 
 #[test]
@@ -152,7 +163,8 @@ fn an_error_comes_after_what_was_read_before_it() {
         Err("bad line 3"),
         Ok(linear(4, [3.0, 400.0, 50.0, 0.0], Some(0.1))),
     ];
-    let got: Vec<Result<Motion, &str>> = NaiveCam::new(source.into_iter(), start, 0.1).collect();
+    let source = source.map(|item| item.map(|motion| Motion { naive_cam: Some(0.1), ..motion }));
+    let got: Vec<Result<Motion, &str>> = NaiveCam::new(source.into_iter(), start).collect();
     assert_eq!(got.len(), 2, "{got:?}");
     assert_eq!(got[0].as_ref().map(|m| m.line), Ok(2));
     assert_eq!(got[1], Err("bad line 3"));
