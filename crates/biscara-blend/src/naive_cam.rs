@@ -144,6 +144,14 @@ where
                 return self.error.take();
             }
             match self.motions.next() {
+                // No chain held and a motion that cannot start one (any program without
+                // G64 Q): it passes at once.
+                Some(Ok(motion)) if self.first.is_none() && motion.naive_cam.is_none() => {
+                    if let Some(end) = motion.kind.end() {
+                        self.position = end;
+                    }
+                    return Some(Ok(motion));
+                }
                 Some(Ok(motion)) => self.take(motion),
                 Some(Err(err)) => {
                     // What was read before the error goes first, as one move.
