@@ -199,3 +199,123 @@ fn lines_and_tangent_arcs_run_through_without_stopping() {
 
     assert_within_the_joint_limits_and_clean(&dir, "g64.ngc");
 }
+
+/// A keyhole (a 6 mm slot up into a circle of radius 8 mm, the circle's arc meeting the slot's
+/// sides at corners of 68°), 10 times round at F3000, with `mode` on its second line.
+fn keyhole(mode: &str) -> String {
+    let mut text = format!("G21 G90 G17\n{mode}\nG0 Z50\nG0 X-3 Y390\nF3000\n");
+    for _ in 0..10 {
+        text.push_str("G1 X3 Y390\nG1 X3 Y402.584\nG3 X-3 Y402.584 I-3 J7.416\nG1 X-3 Y390\n");
+    }
+    text.push_str("M2\n");
+    text
+}
+
+/// The distance from `p` to the keyhole's programmed path (its lines and its arc).
+fn distance_to_keyhole(p: [f64; 3]) -> f64 {
+    let corners = [[-3.0, 390.0], [3.0, 390.0], [3.0, 402.584], [-3.0, 402.584]];
+    let lines = [(corners[0], corners[1]), (corners[1], corners[2]), (corners[3], corners[0])];
+    let line = lines
+        .iter()
+        .map(|(a, b)| distance_to_segment(p, [a[0], a[1], 50.0], [b[0], b[1], 50.0]))
+        .fold(f64::INFINITY, f64::min);
+    // The arc: the circle about (0, 410) of radius 8 except below y = 402.584 between the
+    // slot's sides.
+    let (dx, dy) = (p[0], p[1] - 410.0);
+    let arc = if dy < -7.416 && dx.abs() < 3.0 {
+        f64::INFINITY
+    } else {
+        ((dx.hypot(dy) - 3f64.hypot(7.416)).powi(2) + (p[2] - 50.0).powi(2)).sqrt()
+    };
+    line.min(arc)
+}
+
+#[test]
+fn lines_meeting_arcs_at_corners_are_blended_within_the_tolerance() {
+    let dir = temp_dir("blending-keyhole");
+    std::fs::write(dir.join("g61.ngc"), keyhole("G61")).expect("write");
+    std::fs::write(dir.join("g64.ngc"), keyhole("G64 P0.05")).expect("write");
+    let path = |name: &str| {
+        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
+        run.success();
+        rows(&run.stdout)
+    };
+    let (exact, blended) = (path("g61.ngc"), path("g64.ngc"));
+    // Every sample within P of the programmed path (from the home pose up to Z50, across to
+    // the keyhole's start, round it), and the corners (the arc's with the slot's sides among
+    // them) cut.
+    let home = [blended[0][1], blended[0][2], blended[0][3]];
+    let approach = [home, [home[0], home[1], 50.0], [-3.0, 390.0, 50.0]];
+    let worst =
+        blended
+            .iter()
+            .map(|row| {
+                let p = [row[1], row[2], row[3]];
+                let near = distance_to_segment(p, approach[0], approach[1])
+                    .min(distance_to_segment(p, approach[1], approach[2]));
+                distance_to_keyhole(p).min(near)
+            })
+            .fold(0.0f64, f64::max);
+    assert!(worst <= 0.05 + 1e-6, "a sample is {worst} mm off the keyhole");
+    assert!(worst > 0.01, "the corners are cut: {worst}");
+    let start = blended.iter().position(|row| row[2] < 390.5).expect("the keyhole");
+    let on_keyhole = &blended[start..];
+    // Near the arc's corner with the slot's right side, the blended path leaves the line
+    // before the corner and joins the arc after it: no sample on the corner itself.
+    let at_corner = on_keyhole
+        .iter()
+        .map(|row| (row[1] - 3.0).hypot(row[2] - 402.584))
+        .fold(f64::INFINITY, f64::min);
+    assert!(at_corner > 0.01, "a sample {at_corner} mm from the corner");
+    // The robot never stops on the way round: the slowest step, away from the ends, above a
+    // fifth of the feed (50 mm/s).
+    let speeds: Vec<f64> = on_keyhole
+        .windows(2)
+        .map(|pair| {
+            (pair[1][1] - pair[0][1]).hypot(pair[1][2] - pair[0][2]) / (pair[1][0] - pair[0][0])
+        })
+        .collect();
+    let middle = &speeds[speeds.len() / 10..speeds.len() * 9 / 10];
+    let slowest = middle.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(slowest > 10.0, "the robot slows to {slowest} mm/s between the ends");
+    let (t_exact, t_blended) = (exact[exact.len() - 1][0], blended[blended.len() - 1][0]);
+    assert!(t_blended <= t_exact, "G64 P0.05 takes {t_blended} s, G61 {t_exact} s");
+
+    assert_within_the_joint_limits_and_clean(&dir, "g64.ngc");
+}
+
+#[test]
+fn g64_q_merges_nearly_collinear_chords_within_p_plus_q() {
+    // The CAM circle under G64 P0.01 Q0.05: runs of chords within 0.05 mm of one straight move
+    // are merged (LinuxCNC's naive-CAM detector) before the corners are blended, so the path
+    // strays up to P + Q from the chords, and the robot, with fewer corners, is no slower.
+    let dir = temp_dir("blending-q");
+    std::fs::write(dir.join("p.ngc"), program("G64 P0.01")).expect("write");
+    std::fs::write(dir.join("pq.ngc"), program("G64 P0.01 Q0.05")).expect("write");
+    let path = |name: &str| {
+        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
+        run.success();
+        rows(&run.stdout)
+    };
+    let (p, pq) = (path("p.ngc"), path("pq.ngc"));
+    let home = [pq[0][1], pq[0][2], pq[0][3]];
+    let mut programmed = vec![home, [home[0], home[1], 50.0]];
+    programmed.extend(vertices().iter().map(|&[x, y]| [x, y, 50.0]));
+    let worst = |rows: &[Vec<f64>]| {
+        rows.iter()
+            .map(|row| {
+                programmed
+                    .windows(2)
+                    .map(|pair| distance_to_segment([row[1], row[2], row[3]], pair[0], pair[1]))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0f64, f64::max)
+    };
+    let (worst_p, worst_pq) = (worst(&p), worst(&pq));
+    assert!(worst_p <= 0.01 + 1e-6, "P0.01 alone: {worst_p} mm off");
+    assert!(worst_pq <= 0.06 + 1e-6, "P0.01 Q0.05: {worst_pq} mm off");
+    assert!(worst_pq > 0.02, "no chord merged: {worst_pq} mm off at most");
+    let (t_p, t_pq) = (p[p.len() - 1][0], pq[pq.len() - 1][0]);
+    assert!(t_pq <= t_p, "Q0.05 takes {t_pq} s, without Q {t_p} s");
+    assert_within_the_joint_limits_and_clean(&dir, "pq.ngc");
+}

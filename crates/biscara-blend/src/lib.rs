@@ -1,11 +1,11 @@
-//! Corner blending under G64 P (SPEC §6): consecutive straight moves programmed under G64 are
-//! joined by circular fillets that stay within the tolerance P of the programmed corner, and
-//! arcs tangent to the moves before and after them join the same chain, so that a timing law can
-//! run through the corner without stopping.
+//! Corner blending under G64 P (SPEC §6): consecutive moves programmed under G64 (straight or
+//! arcs) are joined by circular fillets that stay within the tolerance P of the programmed
+//! corner, and arcs tangent to the moves before and after them join the same chain, so that a
+//! timing law can run through the corner without stopping.
 //!
 //! The [`Blender`] reads motions (with one motion of look-ahead) and yields [`Blended`] items:
-//! the [`Piece`]s of a blended chain (trimmed straight moves, the fillets between them, and
-//! programmed arcs), or the motions it leaves alone (events, moves under exact stop, arcs that
+//! the [`Piece`]s of a blended chain (trimmed straight moves and arcs, the fillets between
+//! them), or the motions it leaves alone (events, moves under exact stop, arcs that
 //! join no chain), which it passes on unchanged. It knows nothing of kinematics, limits or time.
 //!
 //! # The blend
@@ -35,13 +35,38 @@
 //!
 //! # Arcs
 //!
-//! A programmed arc (G2/G3, helical too) under G64 is run as programmed, never cut: it joins
-//! the chain where its direction of travel at the junction is the neighbour's (within 1e-9 rad,
-//! as for moves that go straight on) and C's rate per mm does not jump; anywhere else the robot
-//! stops at its ends (an arc tangent to neither neighbour passes unchanged, to be timed alone as
-//! under exact stop). So a profile of lines and tangent arcs (a rounded rectangle, cutter
-//! compensation's arcs round convex corners) runs through without stopping; an arc meeting a
-//! line at a corner is an exact stop, where LinuxCNC would blend it (not done here).
+//! A programmed arc (G2/G3) under G64 joins the chain without a fillet where its direction of
+//! travel at the junction is the neighbour's (within 1e-9 rad, as for moves that go straight
+//! on) and C's rate per mm does not jump. Where an arc meets a line or another arc at a corner,
+//! the corner is blended as LinuxCNC does: the line and the arc are trimmed (the trimmed arc
+//! keeps its centre and radius, with a shorter sweep) and joined by a circular fillet tangent to
+//! both, in the arc's plane, the largest (found by bisection) for which the programmed corner
+//! lies within P of the fillet, a line is trimmed by at most half of it, an arc by at most half
+//! of its sweep:
+//!
+//! - a line and an arc: the fillet touches the arc at the point where it is cut, with the arc's
+//!   own tangent there (its centre on the arc's normal, `r` from the line), so that an arc whose
+//!   end radius differs a little from its start radius (a spiral: CAM coordinates rounded to a
+//!   few decimals) blends too;
+//! - two arcs (both circles, in one plane): the fillet's centre lies `R ± r` from each arc's
+//!   centre (inside an arc's circle where it bends towards the inside of the corner, outside it
+//!   where it bends away).
+//!
+//! The rules of straight corners hold: [`MAX_TURN_DEG`], [`MIN_TRIM_MM`], C turning on either
+//! move, P0 or no P; a fillet's radius is at most 10 m. A corner stays an exact stop where an
+//! arc is a helix, a line leaves the arc's plane, two arcs lie in different planes or one of
+//! them is a spiral, or no fillet fits (an arc that joins nothing passes unchanged, timed alone
+//! as under exact stop). So a profile of lines and arcs — tangent (a rounded rectangle, cutter
+//! compensation's arcs round convex corners) or meeting at corners (a slot, a keyhole) — runs
+//! through without stopping.
+//!
+//! # G64 Q
+//!
+//! [`NaiveCam`] is LinuxCNC's naive-CAM detector, a stage to run before the [`Blender`]:
+//! consecutive straight feed moves under G64 Q ([`Motion::naive_cam`](biscara_motion::Motion::naive_cam);
+//! same feed, P and Q, C not turning, nothing between them) are merged into one while every end
+//! point left out lies within Q of it. The merged path lies within Q of the programmed one, the
+//! blends within P of the merged one: the deviation bound becomes P + Q.
 //!
 //! ```
 //! use biscara_blend::{Blended, Blender};
@@ -64,8 +89,11 @@
 
 #![warn(missing_docs)]
 
+mod arcs;
 mod blender;
+mod naive_cam;
 mod piece;
 
 pub use blender::{Blended, Blender, MAX_TURN_DEG, MIN_TRIM_MM, NO_TOLERANCE_CAP_MM};
+pub use naive_cam::{MAX_MERGED, NaiveCam};
 pub use piece::{Geometry, Piece, Speed};

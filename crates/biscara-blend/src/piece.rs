@@ -47,11 +47,12 @@ pub enum Geometry {
         radius: f64,
         /// Unit tangent at the start.
         tangent: [f64; 3],
-        /// Angle swept, radians, in (0, π).
+        /// Angle swept, radians, in (0, π].
         sweep: f64,
     },
-    /// A programmed arc (G2/G3, helical or not) run as it is: it joins a chain where its ends
-    /// are tangent to its neighbours, and is never cut.
+    /// A programmed arc (G2/G3, helical or not), or the part of it a corner's fillets leave
+    /// (same centre and radius, a shorter sweep): it joins a chain where its ends are tangent
+    /// to its neighbours or blended with them.
     Arc(Segment),
 }
 

@@ -231,6 +231,8 @@ struct State {
     /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
     /// G61/G61.1.
     blend: Option<f64>,
+    /// G64 Q in millimetres when positive (LinuxCNC's naive-CAM tolerance), `None` otherwise.
+    naive_cam: Option<f64>,
     /// Cutter radius compensation and the motions it holds back.
     comp: cutter_comp::CutterComp,
 }
@@ -275,6 +277,7 @@ impl State {
             flood: false,
             owords: control::Values::default(),
             blend: config.blend,
+            naive_cam: None,
             comp: cutter_comp::CutterComp::new(),
         };
         state.publish_position();
@@ -641,7 +644,8 @@ impl<R: BufRead> Interpreter<R> {
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
         let blend = kind.end().and(self.state.blend);
-        let motion = Motion { line: self.state.line, kind, extrude, blend };
+        let naive_cam = self.naive_cam(&kind, blend);
+        let motion = Motion { line: self.state.line, kind, extrude, blend, naive_cam };
         if self.state.comp.holding() {
             self.state.comp.hold(motion);
         } else {
@@ -1205,18 +1209,28 @@ impl<R: BufRead> Interpreter<R> {
     /// tolerance given).
     ///
     /// Q is LinuxCNC's naive-CAM tolerance: its motion layer (not its interpreter) may merge
-    /// nearly collinear feed moves into one when every point left out lies within Q of it. Q is
-    /// accepted at any value and no move is merged: every programmed move is kept, which is
-    /// within any Q, and the blends keep the path within P. (rs274 reads Q the same way: its
-    /// canonical calls carry only P.)
+    /// nearly collinear feed moves into one when every point left out lies within Q of it. The
+    /// interpreter keeps every move and marks the straight feed moves under G64 with a positive
+    /// Q ([`Motion::naive_cam`], millimetres); the merging is `biscara-blend`'s `NaiveCam`, before
+    /// the blends. (rs274 reads Q the same way: its canonical calls carry only P.)
     fn set_path_control(&mut self, code: Code) -> Result<(), Fault> {
         if code.code != 640 {
             self.state.blend = None;
+            self.state.naive_cam = None;
             return Ok(());
         }
+        let scale = if self.state.metric { 1.0 } else { MM_PER_INCH };
         let p = self.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
-        self.state.blend = Some(if self.state.metric { p } else { p * MM_PER_INCH });
+        self.state.blend = Some(p * scale);
+        let q = self.block.word(b'q').map_or(0.0, |q| q.value);
+        self.state.naive_cam = (q > 0.0).then_some(q * scale);
         Ok(())
+    }
+
+    /// The naive-CAM tolerance a motion carries: G64 Q on a straight feed move under G64.
+    fn naive_cam(&self, kind: &MotionKind, blend: Option<f64>) -> Option<f64> {
+        let straight = matches!(kind, MotionKind::Linear { .. });
+        self.state.naive_cam.filter(|_| straight && blend.is_some())
     }
 
     fn set_units(&mut self, metric: bool) {

@@ -45,7 +45,7 @@ struct ChainPiece {
     speed: f64,
     /// |dC/ds|, degrees per mm.
     rotation_rate: f64,
-    /// Radius of a fillet or an arc, mm (infinite for a line).
+    /// Radius of a fillet, mm (infinite for a line or a programmed arc).
     radius: f64,
     /// A corner's fillet (short, and run at the speed its ends allow): no extra grid points.
     fillet: bool,
@@ -177,7 +177,10 @@ impl Chain {
         let rotation_rate = (segment.rotation() / length).abs();
         let acceleration = limits.acceleration.min(limits.rotation_acceleration / rotation_rate);
         let along = along.min(limits.rapid_rotation / rotation_rate);
-        let radius = piece.radius().unwrap_or(f64::INFINITY);
+        // A fillet's centripetal acceleration within the path acceleration; a programmed arc
+        // (or what a corner's fillets leave of it) is bounded as when it runs alone, by the
+        // joints: blending its corners never slows it down.
+        let radius = if fillet { piece.radius().unwrap_or(f64::INFINITY) } else { f64::INFINITY };
         let cap = (along * along).min(limits.acceleration * radius);
         self.pieces.push_back(ChainPiece {
             segment,

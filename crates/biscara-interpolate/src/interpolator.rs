@@ -1,6 +1,6 @@
 //! The interpolator: an iterator of motions in, an iterator of Cartesian samples out.
 
-use biscara_blend::{Blended, Blender, Piece};
+use biscara_blend::{Blended, Blender, NaiveCam, Piece};
 use biscara_motion::{Motion, MotionKind, Position};
 use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal, TimingError};
 
@@ -253,9 +253,10 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
 /// The first sample is the start pose at t = 0; every programmed end point is hit exactly by a
 /// sample. Memory does not depend on the program length. `on_slow` hears of every motion that
 /// runs slower than programmed.
-pub struct Interpolator<I, L, F> {
-    /// The motions, their corners blended where they ask for it (optimal profile only).
-    motions: Blender<I>,
+pub struct Interpolator<I: Iterator, L, F> {
+    /// The motions, nearly collinear G1 moves merged under G64 Q (LinuxCNC's naive-CAM
+    /// detector), their corners blended where they ask for it (optimal profile only).
+    motions: Blender<NaiveCam<I>>,
     /// Whether corners under G64 are blended (the optimal profile).
     blending: bool,
     limit: L,
@@ -305,7 +306,8 @@ where
     pub fn new(motions: I, config: InterpolationConfig, limit: L, on_slow: F) -> Self {
         let blending = config.profile == Profile::Optimal;
         Interpolator {
-            motions: Blender::new(motions, config.start).blending(blending),
+            motions: Blender::new(NaiveCam::new(motions, config.start), config.start)
+                .blending(blending),
             blending,
             limit,
             planner: TimeOptimal::default(),
@@ -663,7 +665,7 @@ where
 }
 
 #[cfg(test)]
-impl<I, L, F> Interpolator<I, L, F> {
+impl<I: Iterator, L, F> Interpolator<I, L, F> {
     /// Number of blended pieces held (0 outside a chain).
     pub(crate) fn held_pieces(&self) -> usize {
         match &self.active {

@@ -32,6 +32,7 @@
 //!     kind: MotionKind::Linear { end: [10.0, 400.0, 50.0, 0.0], feed },
 //!     extrude: None,
 //!     blend: None,
+//!     naive_cam: None,
 //! })];
 //! let samples: Vec<_> = Interpolator::new(motions.into_iter(), config, NoSpeedLimit, |_| {})
 //!     .collect::<Result<_, _>>()?;

@@ -106,6 +106,10 @@ pub fn write_jsonl(out: &mut impl Write, motion: &Motion) -> io::Result<()> {
         out.write_all(b",\"blend\":")?;
         write_f64(out, blend)?;
     }
+    if let Some(q) = motion.naive_cam {
+        out.write_all(b",\"naive_cam\":")?;
+        write_f64(out, q)?;
+    }
     match motion.kind {
         MotionKind::LaserOn { power, dynamic } => {
             out.write_all(b",\"power\":")?;
@@ -289,6 +293,9 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
     if let Some(blend) = motion.blend.filter(|blend| !(blend.is_finite() && *blend >= 0.0)) {
         return Err(invalid(format!("\"blend\" must be a finite number ≥ 0, got {blend}")));
     }
+    if let Some(q) = motion.naive_cam.filter(|q| !(q.is_finite() && *q > 0.0)) {
+        return Err(invalid(format!("\"naive_cam\" must be a finite number > 0, got {q}")));
+    }
     if let MotionKind::Linear { feed, .. } | MotionKind::Arc { feed, .. } = motion.kind
         && !(feed.mm_per_min.is_finite() && feed.mm_per_min > 0.0)
     {
@@ -383,6 +390,7 @@ mod tests {
             kind: MotionKind::Linear { end: [1.0, 2.0, 3.0, 0.0], feed },
             extrude: Some(0.5),
             blend: None,
+            naive_cam: None,
         };
         assert_eq!(
             round_trip(linear).trim_end(),
@@ -393,6 +401,7 @@ mod tests {
             kind: MotionKind::Rapid { end: [0.0; 4] },
             extrude: Some(-2.0),
             blend: None,
+            naive_cam: None,
         };
         assert!(round_trip(retract).contains(r#""extrude":-2.0"#));
     }
@@ -419,6 +428,23 @@ mod tests {
             assert!(round_trip(no_tolerance).contains(r#""blend":0.0"#));
             assert!(!round_trip(Motion::new(4, kind)).contains("blend"));
         }
+    }
+
+    #[test]
+    fn straight_feed_moves_carry_their_naive_cam_tolerance() {
+        let feed = Feed { mm_per_min: 600.0, inverse_time: false };
+        let linear = MotionKind::Linear { end: [1.0, 2.0, 3.0, 0.0], feed };
+        let motion = Motion { blend: Some(0.0), naive_cam: Some(0.05), ..Motion::new(4, linear) };
+        assert!(round_trip(motion).trim_end().ends_with(r#","blend":0.0,"naive_cam":0.05}"#));
+        assert!(!round_trip(Motion::new(4, linear)).contains("naive_cam"));
+        check_error(
+            "{\"line\":1,\"kind\":\"rapid\",\"end\":[0,0,0,0],\"naive_cam\":0.1}",
+            "1: field `naive_cam` does not belong to a rapid motion",
+        );
+        check_error(
+            "{\"line\":1,\"kind\":\"linear\",\"end\":[0,0,0,0],\"feed\":1,\"naive_cam\":0}",
+            "1: \"naive_cam\" must be a finite number > 0, got 0",
+        );
     }
 
     #[track_caller]
@@ -449,7 +475,7 @@ mod tests {
         );
         check_error(
             "{\"line\":1,\"kind\":\"pick\",\"extra\":1}",
-            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`, `extrude`, `blend`, `power`, `dynamic`, `rpm`, `code`",
+            "1:31: unknown field `extra`, expected one of `line`, `kind`, `end`, `center`, `plane`, `clockwise`, `turns`, `feed`, `inverse_time`, `seconds`, `extrude`, `blend`, `naive_cam`, `power`, `dynamic`, `rpm`, `code`",
         );
         check_error(
             "{\"line\":1,\"kind\":\"pick\",\"extrude\":1}",
@@ -590,8 +616,9 @@ mod tests {
                 kind in kind(),
                 extrude in proptest::option::of(number()),
                 blend in proptest::option::of(number()),
+                naive_cam in proptest::option::of(number()),
             ) {
-                let motion = Motion { line, kind, extrude, blend };
+                let motion = Motion { line, kind, extrude, blend, naive_cam };
                 let mut written = Vec::new();
                 write_jsonl(&mut written, &motion).unwrap();
                 let mut expected = serde_json::to_vec(&motion).unwrap();

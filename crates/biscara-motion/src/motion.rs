@@ -20,12 +20,17 @@ pub struct Motion {
     /// no P, the canon's "no tolerance given"); `None` under G61/G61.1, an exact stop. Only moves
     /// carry it.
     pub blend: Option<f64>,
+    /// G64 Q, LinuxCNC's naive-CAM tolerance, mm: `Some(q)` on a straight feed move (G1)
+    /// programmed under G64 with a positive Q, which may be merged with the G1 moves around it
+    /// while every end point left out lies within `q` of the merged move (`biscara-blend`'s
+    /// `NaiveCam`); `None` otherwise.
+    pub naive_cam: Option<f64>,
 }
 
 impl Motion {
     /// A motion with no extrusion, under exact stop.
     pub fn new(line: usize, kind: MotionKind) -> Motion {
-        Motion { line, kind, extrude: None, blend: None }
+        Motion { line, kind, extrude: None, blend: None, naive_cam: None }
     }
 }
 
@@ -295,6 +300,8 @@ struct Record {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     blend: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    naive_cam: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     power: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     dynamic: Option<bool>,
@@ -319,6 +326,7 @@ impl From<Motion> for Record {
             seconds: None,
             extrude: motion.extrude,
             blend: motion.blend,
+            naive_cam: motion.naive_cam,
             power: None,
             dynamic: None,
             rpm: None,
@@ -377,6 +385,7 @@ impl TryFrom<Record> for Motion {
                 take("feed");
                 take("inverse_time");
                 take("blend");
+                take("naive_cam");
                 MotionKind::Linear {
                     end: record.end.ok_or_else(|| missing("end"))?,
                     feed: Feed {
@@ -464,6 +473,7 @@ impl TryFrom<Record> for Motion {
             ("seconds", record.seconds.is_some()),
             ("extrude", record.extrude.is_some()),
             ("blend", record.blend.is_some()),
+            ("naive_cam", record.naive_cam.is_some()),
             ("power", record.power.is_some()),
             ("dynamic", record.dynamic.is_some()),
             ("rpm", record.rpm.is_some()),
@@ -472,6 +482,12 @@ impl TryFrom<Record> for Motion {
         if let Some((key, _)) = present.iter().find(|(key, here)| *here && !used.contains(key)) {
             return Err(format!("field `{key}` does not belong to a {kind_name} motion"));
         }
-        Ok(Motion { line: record.line, kind, extrude: record.extrude, blend: record.blend })
+        Ok(Motion {
+            line: record.line,
+            kind,
+            extrude: record.extrude,
+            blend: record.blend,
+            naive_cam: record.naive_cam,
+        })
     }
 }

@@ -38,6 +38,23 @@ enum Shape {
     },
 }
 
+/// A planar arc in its plane (see [`Segment::planar_arc`], [`Segment::circle`]): what a
+/// corner's blend needs to fit a fillet tangent to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    /// The plane's axes, as [`Plane::axes`]: the first two span the plane, the third is its
+    /// normal (indices into `[x, y, z, c]`).
+    pub axes: [usize; 3],
+    /// The centre, in the plane's first two axes, mm.
+    pub center: [f64; 2],
+    /// The radius at the start, mm.
+    pub radius: f64,
+    /// The radius at the end, mm (the start's, but for a spiral).
+    pub end_radius: f64,
+    /// The angle swept, radians: positive counter-clockwise seen from the plane's normal.
+    pub sweep: f64,
+}
+
 /// Gap below which an arc's start and end angles count as equal (a full circle).
 const FULL_CIRCLE_EPSILON: f64 = 1e-12;
 
@@ -88,7 +105,7 @@ impl Segment {
     }
 
     /// A circular fillet from `start`, leaving along the unit vector `tangent`, turning by
-    /// `sweep` radians (in (0, π)) about `center`, to `end`; C goes linearly (a corner's blend,
+    /// `sweep` radians (in (0, π]) about `center`, to `end`; C goes linearly (a corner's blend,
     /// see `biscara-blend`).
     pub fn fillet(
         start: [f64; 4],
@@ -101,6 +118,68 @@ impl Segment {
         let radius = radial.iter().map(|value| value * value).sum::<f64>().sqrt();
         let across = std::array::from_fn(|k| radius * tangent[k]);
         Segment { start, end, shape: Shape::Fillet { center, radial, across, sweep } }
+    }
+
+    /// The part of the move between the path parameters `from` and `to` (0 ≤ `from` < `to` ≤ 1),
+    /// traversed the same way: a line's piece, or an arc's with the same centre and radius law
+    /// and a shorter sweep (a corner's blend trims the moves it joins). Its ends are
+    /// `point(from)` and `point(to)`, so a part to 1 ends exactly at `end`.
+    pub fn part(&self, from: f64, to: f64) -> Segment {
+        let start = if from <= 0.0 { self.start } else { self.point(from) };
+        let end = self.point(to);
+        let shape = match self.shape {
+            Shape::Line => Shape::Line,
+            Shape::Arc { axes, center, start_radius, end_radius, start_angle, sweep } => {
+                let change = end_radius - start_radius;
+                let (mut first, mut last) =
+                    (start_radius + from * change, start_radius + to * change);
+                // A circle whose radii differ by rounding stays a circle: on a short part, a
+                // rounding difference of its radii would tilt its tangent (by the difference
+                // over the part's length).
+                if change.abs() <= 1e-9 * start_radius.max(1.0) {
+                    let middle = start_radius + 0.5 * (from + to) * change;
+                    (first, last) = (middle, middle);
+                }
+                Shape::Arc {
+                    axes,
+                    center,
+                    start_radius: first,
+                    end_radius: last,
+                    start_angle: start_angle + from * sweep,
+                    sweep: (to - from) * sweep,
+                }
+            }
+            Shape::Fillet { center, radial, across, sweep } => {
+                let (sin, cos) = (from * sweep).sin_cos();
+                Shape::Fillet {
+                    center,
+                    radial: std::array::from_fn(|k| cos * radial[k] + sin * across[k]),
+                    across: std::array::from_fn(|k| cos * across[k] - sin * radial[k]),
+                    sweep: (to - from) * sweep,
+                }
+            }
+        };
+        Segment { start, end, shape }
+    }
+
+    /// A planar arc's geometry in its plane (an arc that does not move along the plane's
+    /// normal: a circle, or a spiral whose end radius differs from its start radius); `None`
+    /// for a line, a fillet or a helix.
+    pub fn planar_arc(&self) -> Option<Circle> {
+        let Shape::Arc { axes, center, start_radius, end_radius, sweep, .. } = self.shape else {
+            return None;
+        };
+        let planar = self.delta()[axes[2]] == 0.0;
+        planar.then_some(Circle { axes, center, radius: start_radius, end_radius, sweep })
+    }
+
+    /// The arc's circle when it is a planar circular arc ([`planar_arc`](Self::planar_arc)
+    /// with its start and end radii equal within 1e-9 of the radius); `None` for a line, a
+    /// fillet, a helix or a spiral.
+    pub fn circle(&self) -> Option<Circle> {
+        self.planar_arc().filter(|circle| {
+            (circle.end_radius - circle.radius).abs() <= 1e-9 * circle.radius.max(1.0)
+        })
     }
 
     /// The path parameters s ∈ [0, 1] at which an arc passes the angle `angle` (radians, in its
@@ -424,6 +503,71 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A part of a move runs along the move: its points, derivatives along the length and
+    /// ends are the move's at the matching parameters.
+    #[test]
+    fn parts_follow_the_move() {
+        let spiral = Segment::arc(
+            [10.0, 1.0, 0.0, 5.0],
+            [0.0, 3.0, 10.5, 30.0],
+            [0.0, 0.0],
+            Plane::Xz,
+            false,
+            2,
+        );
+        let line = Segment::line([1.0, 2.0, 3.0, 4.0], [-5.0, 7.0, 1.0, 0.0]);
+        let fillet = Segment::fillet(
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            1.5,
+        );
+        for segment in [spiral, line, fillet] {
+            let (from, to) = (0.2, 0.7);
+            let part = segment.part(from, to);
+            assert_eq!(part.start(), segment.point(from));
+            assert_eq!(part.end(), segment.point(to));
+            // (A spiral's length uses its mean radius: its part's is near, not equal.)
+            assert_relative_eq!(part.length(), (to - from) * segment.length(), max_relative = 1e-2);
+            for u in [0.0, 0.3, 0.5, 1.0] {
+                let s = from + u * (to - from);
+                let (here, whole) = (part.point(u), segment.point(s));
+                let (slope, whole_slope) = (part.derivative(u), segment.derivative(s));
+                for axis in 0..4 {
+                    assert_relative_eq!(here[axis], whole[axis], epsilon = 1e-9);
+                    // d/du of the part is (to − from) × d/ds of the move.
+                    assert_relative_eq!(
+                        slope[axis],
+                        (to - from) * whole_slope[axis],
+                        epsilon = 1e-9
+                    );
+                }
+            }
+            // A part to the end ends exactly there, a part from 0 starts exactly at the start.
+            assert_eq!(segment.part(0.4, 1.0).end(), segment.end());
+            assert_eq!(segment.part(0.0, 0.4).start(), segment.start());
+        }
+    }
+
+    #[test]
+    fn only_planar_circular_arcs_have_a_circle() {
+        let start = [10.0, 0.0, 3.0, 0.0];
+        let quarter = Segment::arc(start, [0.0, 10.0, 3.0, 0.0], [0.0, 0.0], Plane::Xy, true, 1);
+        let circle = quarter.circle().expect("a circle");
+        assert_eq!((circle.axes, circle.center, circle.radius), ([0, 1, 2], [0.0, 0.0], 10.0));
+        assert_eq!(circle.end_radius, 10.0);
+        assert_relative_eq!(circle.sweep, -1.5 * std::f64::consts::PI, epsilon = 1e-12);
+        let helix = Segment::arc(start, [0.0, 10.0, 4.0, 0.0], [0.0, 0.0], Plane::Xy, false, 1);
+        let spiral = Segment::arc(start, [0.0, 10.1, 3.0, 0.0], [0.0, 0.0], Plane::Xy, false, 1);
+        let line = Segment::line(start, [0.0; 4]);
+        assert!(helix.circle().is_none() && spiral.circle().is_none() && line.circle().is_none());
+        let axes = |segment: Segment| segment.planar_arc().map(|arc| arc.axes);
+        assert_eq!((axes(quarter), axes(spiral)), (Some([0, 1, 2]), Some([0, 1, 2])));
+        assert_eq!((axes(helix), axes(line)), (None, None));
+        assert!((spiral.planar_arc().unwrap().end_radius - 10.1).abs() < 1e-12);
     }
 
     #[test]

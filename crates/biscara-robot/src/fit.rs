@@ -340,6 +340,7 @@ mod tests {
             },
             extrude: None,
             blend: None,
+            naive_cam: None,
         }
     }
 
@@ -420,6 +421,7 @@ mod tests {
                 },
                 extrude: None,
                 blend: None,
+                naive_cam: None,
             },
         ];
         let offset = [3.0, 4.0];

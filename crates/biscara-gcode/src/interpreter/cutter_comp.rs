@@ -71,6 +71,8 @@ struct HeldMove {
     extrude: Option<f64>,
     /// The path-control mode when the move was programmed ([`Motion::blend`]).
     blend: Option<f64>,
+    /// G64 Q when the move was programmed ([`Motion::naive_cam`]).
+    naive_cam: Option<f64>,
     plane: Plane,
     /// `[x, y, z, c]`, program units.
     end: [f64; 4],
@@ -412,7 +414,16 @@ impl<R: BufRead> Interpreter<R> {
                             }
                         }
                     };
-                    Motion { line: held.line, kind, extrude: held.extrude, blend: held.blend }
+                    // (Only a straight feed move carries Q; comp may turn one into an arc.)
+                    let straight = matches!(kind, MotionKind::Linear { .. });
+                    let naive_cam = held.naive_cam.filter(|_| straight && held.blend.is_some());
+                    Motion {
+                        line: held.line,
+                        kind,
+                        extrude: held.extrude,
+                        blend: held.blend,
+                        naive_cam,
+                    }
                 }
             };
             self.queue.push_back(motion);
@@ -431,6 +442,7 @@ impl<R: BufRead> Interpreter<R> {
             line: self.state.line,
             extrude,
             blend: self.state.blend,
+            naive_cam: self.state.naive_cam,
             plane: self.state.plane,
             end,
             shape,

@@ -198,16 +198,35 @@ fn the_configured_path_control_mode_holds_until_the_program_says_one() {
 }
 
 #[test]
-fn naive_cam_tolerance_is_accepted_and_no_move_is_merged() {
-    // Q, above or below P, keeps every programmed move (within any Q); the blend is P's.
+fn straight_feed_moves_carry_the_naive_cam_tolerance() {
+    // The interpreter keeps every move (the merging is biscara-blend's, before the blends); a
+    // G1 under G64 with a positive Q carries Q in millimetres, nothing else does.
     let config = Config::default();
+    let naive_cam = |program: &str| -> Vec<(usize, Option<f64>, Option<f64>)> {
+        interpret(program.as_bytes(), &config)
+            .map(|result| result.map(|motion| (motion.line, motion.blend, motion.naive_cam)))
+            .collect::<Result<_, _>>()
+            .unwrap_or_else(|err| panic!("{err}"))
+    };
     for program in ["G64 P0.05 Q0.06\n", "G64 P0.05 Q0.05\n", "G64 P0.05 Q0.01\n", "G64 Q0.2\n"] {
-        let text = format!("{program}G1 X1 F100\nG1 X2 Y0.001\nG1 X3\nM2\n");
-        let blends = blends(&text, &config);
+        let text = format!("{program}G1 X1 F100\nG1 X2 Y0.001\nG0 X3\nG2 X4 I0.5\nM2\n");
         let p = if program.contains("P0.05") { 0.05 } else { 0.0 };
+        let q: f64 = program.split('Q').nth(1).and_then(|q| q.trim().parse().ok()).expect("Q");
         // (M2 ends the program: an event, under no blend.)
-        assert_eq!(blends, vec![(2, Some(p)), (3, Some(p)), (4, Some(p)), (5, None)], "{program}");
+        let expected = vec![
+            (2, Some(p), Some(q)),
+            (3, Some(p), Some(q)),
+            (4, Some(p), None),
+            (5, Some(p), None),
+            (6, None, None),
+        ];
+        assert_eq!(naive_cam(&text), expected, "{program}");
     }
+    // Q0, a negative Q, G61 after G64 Q: none; inches: Q in the program's units.
+    let got = naive_cam("G64 P0.1 Q0\nG1 X1 F100\nG64 Q-1\nG1 X2\nG64 Q0.1\nG61\nG1 X3\nM2\n");
+    assert!(got.iter().all(|(_, _, q)| q.is_none()), "{got:?}");
+    let inches = naive_cam("G20 G64 P0.01 Q0.01\nG1 X1 F10\nM2\n");
+    assert!((inches[0].2.unwrap() - 0.254).abs() < 1e-12, "{inches:?}");
 }
 
 /// The XY end of a move (of any kind with one).

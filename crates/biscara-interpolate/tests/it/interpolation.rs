@@ -155,6 +155,7 @@ fn arcs_follow_the_circle() {
             },
             extrude: None,
             blend: None,
+            naive_cam: None,
         },
     ];
     let (samples, _) = run(&motions, config(Profile::Trapezoid, 0.001));

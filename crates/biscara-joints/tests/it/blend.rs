@@ -1,6 +1,6 @@
 //! Corner blending under G64 P (issue 17): on random polylines (CAM-style, sharp and shallow
 //! corners, short and long segments, rapids among feeds, C and Z moving) and on random chains of
-//! lines and arcs, the blended trajectory keeps every joint limit in its own central
+//! lines and arcs (tangent or meeting at corners), the blended trajectory keeps every joint limit in its own central
 //! differences, FK of every row lies within P of the programmed path, the program ends on its
 //! last programmed point, and it is never slower than the same program with exact stops (up to
 //! the planner's grid).
@@ -129,6 +129,45 @@ fn rounded(vertices: &[Vertex], radius: f64, blend: Option<f64>) -> Vec<Motion> 
     motions
 }
 
+/// The polyline of `vertices` in a plane (rapids, Z and C changes dropped, as in [`rounded`]),
+/// each move a line or, where `bulges` says, an arc to the same end point sweeping that many
+/// degrees (negative: clockwise): lines and arcs meeting at corners at any angle, under `blend`.
+fn line_arcs(vertices: &[Vertex], bulges: &[f64], blend: Option<f64>) -> Vec<Motion> {
+    let corners: Vec<[f64; 4]> = polyline(vertices, None)
+        .iter()
+        .filter_map(|motion| motion.kind.end())
+        .map(|end| [end[0], end[1], 50.0, 0.0])
+        .collect();
+    let f = feed(vertices.first().map_or(3000.0, |vertex| vertex.4));
+    let mut motions =
+        vec![Motion { blend, ..Motion::new(1, MotionKind::Rapid { end: corners[0] }) }];
+    for (k, pair) in corners.windows(2).enumerate() {
+        let (a, b) = (pair[0], pair[1]);
+        let bulge = bulges.get(k).copied().unwrap_or(0.0);
+        let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let kind = if bulge == 0.0 || chord < 1e-6 {
+            MotionKind::Linear { end: b, feed: f }
+        } else {
+            // The centre on the chord's bisector, to the left for a counter-clockwise arc.
+            let half = bulge.to_radians().abs() / 2.0;
+            let off = bulge.signum() * chord / 2.0 / half.tan();
+            let normal = [-(b[1] - a[1]) / chord, (b[0] - a[0]) / chord];
+            let center =
+                [(a[0] + b[0]) / 2.0 + off * normal[0], (a[1] + b[1]) / 2.0 + off * normal[1]];
+            MotionKind::Arc {
+                end: b,
+                center,
+                plane: biscara_motion::Plane::Xy,
+                clockwise: bulge < 0.0,
+                turns: 1,
+                feed: f,
+            }
+        };
+        motions.push(Motion { blend, ..Motion::new(k + 2, kind) });
+    }
+    motions
+}
+
 /// The same motions under exact stop.
 fn exact(motions: &[Motion]) -> Vec<Motion> {
     motions.iter().map(|motion| Motion { blend: None, ..*motion }).collect()
@@ -213,6 +252,22 @@ proptest! {
     ) {
         let robot = robot(weak);
         check_blended(&rounded(&vertices, radius, Some(tolerance)), &robot, tolerance)?;
+    }
+
+    /// Random profiles of lines and arcs in a plane meeting at corners (a slot, a keyhole):
+    /// the corners blended by fillets tangent to the line and the trimmed arc.
+    #[test]
+    fn line_arc_profiles_keep_the_tolerance_and_the_limits(
+        vertices in proptest::collection::vec(vertex(), 2..8),
+        bulges in proptest::collection::vec(
+            prop_oneof![Just(0.0), 20.0..300.0f64, -300.0..-20.0f64],
+            8,
+        ),
+        tolerance in tolerance(),
+        weak: bool,
+    ) {
+        let robot = robot(weak);
+        check_blended(&line_arcs(&vertices, &bulges, Some(tolerance)), &robot, tolerance)?;
     }
 
     /// Random chains of lines, tight arcs, C rotations and moves near the workspace's edge: an

@@ -222,6 +222,7 @@ fn an_unreachable_sample_names_its_line_and_time() {
             kind: MotionKind::Linear { end: [0.0, 600.0, 50.0, 0.0], feed: feed(6000.0) },
             extrude: None,
             blend: None,
+            naive_cam: None,
         },
     ];
     let robot = Robot::default();
