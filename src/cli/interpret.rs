@@ -24,8 +24,9 @@ use super::files::{FileSource, write_output};
 /// M61 G43 G43.1 G43.2 G49 G10 L1/L10/L11 (tools, with --tool-table), canned cycles G73 G74
 /// G81–G89 G98 G99 G80, G52, M70–M73, M100–M199 M19 M62–M68 (events), M48–M53 and `$0`/`$-1`
 /// (no effect here), G61 G61.1 G64 P (path control: each
-/// move under G64 carries `"blend":P`, in mm, 0 when P is not given; a Q up to P is accepted, no
-/// collinear merging is done), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
+/// move under G64 carries `"blend":P`, in mm, 0 when P is not given; a G1 under G64 Q carries
+/// `"naive_cam":Q`, and runs of them within Q of one straight line are merged when timed, as
+/// LinuxCNC's naive-CAM detector does), M0 M1 M2 M30 M60 (pause, end), M3 (pick), M4 (place), M5
 /// (gripper off), M7 M8 M9, F S; numbered and named parameters and expressions; O-word
 /// subroutines (also from files, with --subroutine-path) and control flow; G5 and G5.1 splines
 /// in G17 (straight moves within 0.001 mm of the curve, on the spline's line). The program
