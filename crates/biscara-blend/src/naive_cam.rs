@@ -5,7 +5,8 @@
 //! feed moves (G1) are merged into one while every end point the merged move leaves out lies
 //! within Q of the straight line from the chain's start to its new end. A move joins the chain
 //! only when it is a G1 like the chain's moves: the same feed, the same P, the same Q, C not
-//! turning; anything else (a rapid, an arc, an event, a move without Q, another feed) ends the
+//! turning, no extrusion; anything else (a rapid, an arc, an event, a move without Q, another
+//! feed, a move that feeds filament) ends the
 //! chain first, and so do [`MAX_MERGED`] moves. The merged move keeps the line of the last move it replaces (as
 //! LinuxCNC's does).
 //!
@@ -97,8 +98,10 @@ where
         if let Some(end) = end {
             self.position = end;
         }
+        // A move that feeds filament keeps it: merged, its extrusion would be lost.
         let mergeable = matches!(motion.kind, MotionKind::Linear { .. })
             && motion.blend.is_some()
+            && motion.extrude.is_none()
             && motion.naive_cam.is_some_and(|q| q > 0.0);
         let Some(end) = end.filter(|end| mergeable && end[3] == from[3]) else {
             self.flush();

@@ -169,3 +169,17 @@ fn an_error_comes_after_what_was_read_before_it() {
     assert_eq!(got[0].as_ref().map(|m| m.line), Ok(2));
     assert_eq!(got[1], Err("bad line 3"));
 }
+
+#[test]
+fn moves_that_feed_filament_are_never_merged() {
+    // Three collinear moves: merged without E, each kept with its own E.
+    let start = [0.0, 400.0, 50.0, 0.0];
+    let motions: Vec<Motion> =
+        (1..=3).map(|k| linear(k, [f64::from(k as u32), 400.0, 50.0, 0.0], Some(0.0))).collect();
+    assert_eq!(merge(&motions, start, 0.05).len(), 1);
+    let fed: Vec<Motion> =
+        motions.iter().map(|motion| Motion { extrude: Some(0.1), ..*motion }).collect();
+    let kept = merge(&fed, start, 0.05);
+    assert_eq!(kept.len(), 3);
+    assert!(kept.iter().all(|motion| motion.extrude == Some(0.1)));
+}
