@@ -6,9 +6,8 @@
 //! within Q of the straight line from the chain's start to its new end. A move joins the chain
 //! only when it is a G1 like the chain's moves: the same feed, the same P, the same Q, C not
 //! turning, no extrusion; anything else (a rapid, an arc, an event, a move without Q, another
-//! feed, a move that feeds filament) ends the
-//! chain first, and so do [`MAX_MERGED`] moves. The merged move keeps the line of the last move it replaces (as
-//! LinuxCNC's does).
+//! feed, a move that feeds filament) ends the chain first, and so do [`MAX_MERGED`] moves. The
+//! merged move keeps the line of the last move it replaces (as LinuxCNC's does).
 //!
 //! Every point of the programmed polyline then lies within Q of the merged move and every
 //! point of the merged move within Q of the polyline (each left-out point is within Q of the
