@@ -64,8 +64,8 @@ pub struct ToolInference {
 /// comment that names a pen or a plotter → pen; a non-zero E word on a move → extruder; M4
 /// (Grbl's dynamic laser power) with S → laser; M3 or M4 with S and Z words → spindle; M3 or M4
 /// with S and no Z word → laser; M3 or M4 with no S word in a program whose comments name a cut
-/// ([`CUT_WORDS`]: gcodetools' `(Penetrate)`, PartKam's `(pocket 1)`) → spindle. Otherwise M3 and
-/// M4 with no S word are the gripper's pick and place. `None` when nothing tells (the caller
+/// (words such as `cut`, `pocket` or `penetrate`: gcodetools' `(Penetrate)`, PartKam's
+/// `(pocket 1)`) → spindle. Otherwise M3 and M4 with no S word are the gripper's pick and place. `None` when nothing tells (the caller
 /// keeps the gripper).
 pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
     let text = String::from_utf8_lossy(text);
