@@ -28,6 +28,8 @@
 //!   what rs274 takes with one spindle (0, or −1 for all) is accepted.
 //! - In a rotated coordinate system (G10 L2 R), an arc in the XZ or YZ plane lies in a tilted
 //!   plane the inter-file cannot describe: it becomes straight moves within 0.001 mm of it.
+//!   Cutter compensation in the XZ plane of a rotated system, whose corner arcs would be
+//!   tilted too, is refused as not supported yet.
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
 //! - The tool table is in millimetres, and 5401–5410 hold millimetres (rs274's hold inches);
 //!   a tool table line LinuxCNC would skip is an error.

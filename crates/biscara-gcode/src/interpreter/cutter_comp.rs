@@ -365,6 +365,15 @@ impl<R: BufRead> Interpreter<R> {
         } else {
             radius
         };
+        if self.state.rotation != 0.0 && self.state.plane != Plane::Xy {
+            let (first, last) = self.span(code.at, code.end);
+            return Err(Fault::not_supported(
+                first,
+                last,
+                format!("G{whole} in the XZ plane of a rotated coordinate system"),
+                "its corner arcs would lie in a tilted plane",
+            ));
+        }
         let comp = &mut self.state.comp;
         comp.radius = radius;
         comp.side = Some(side);
