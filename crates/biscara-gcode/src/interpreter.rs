@@ -12,7 +12,8 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
 use crate::lexer::{
-    Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
+    Compact, Fault, FaultKind, InnerParen, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT,
+    compact,
 };
 use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
@@ -495,8 +496,12 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 continue;
             }
-            let nested = matches!(self.dialect, Dialect::Mach3 | Dialect::Marlin);
-            if let Err(fault) = compact(&self.lines.line, &mut self.compact, nested) {
+            let inner = match self.dialect {
+                Dialect::Mach3 | Dialect::Marlin => InnerParen::Opens,
+                Dialect::Grbl => InnerParen::Ignored,
+                _ => InnerParen::Refused,
+            };
+            if let Err(fault) = compact(&self.lines.line, &mut self.compact, inner) {
                 // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
                 // characters until ')' or EOL"): closed there, the line is read.
                 if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {

@@ -550,14 +550,25 @@ impl Compact {
 /// LinuxCNC's error for a `(` comment with no `)` on its line.
 pub(crate) const UNCLOSED_COMMENT: &str = "Unclosed comment found";
 
-/// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`).
-/// With `nested` (Mach3), a `(` inside a comment opens a comment within it; otherwise it is
-/// LinuxCNC's "Nested comment found". A line longer than [`MAX_LINE`] (a dialect's long comment)
-/// is refused if more than [`MAX_LINE`] significant characters remain.
+/// What a `(` inside a `( )` comment is, by dialect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum InnerParen {
+    /// LinuxCNC's "Nested comment found".
+    Refused,
+    /// A comment within the comment, closed by its own `)` (Mach3, Marlin).
+    Opens,
+    /// A character of the comment, which the first `)` ends (Grbl's protocol.c: "ignore all
+    /// characters until ')' or EOL").
+    Ignored,
+}
+
+/// Fills `out` with the significant characters of `raw` (LinuxCNC's `close_and_downcase`), a
+/// `(` inside a comment read as `inner` says. A line longer than [`MAX_LINE`] (a dialect's long
+/// comment) is refused if more than [`MAX_LINE`] significant characters remain.
 // Not inlined into the interpreter's loop, whose registers are all taken: its own function
 // keeps the loop's pointers and counters in registers.
 #[inline(never)]
-pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(), Fault> {
+pub(crate) fn compact(raw: &[u8], out: &mut Compact, inner: InnerParen) -> Result<(), Fault> {
     // Every line passes here: one table look-up tells an ordinary character (kept, lower
     // case) from the four that are not, the length is kept in a local, and a comment is
     // skipped by its own loop. Characters beyond the slots (a long line's: it is refused below)
@@ -572,7 +583,7 @@ pub(crate) fn compact(raw: &[u8], out: &mut Compact, nested: bool) -> Result<(),
         } else {
             match byte {
                 b'(' => {
-                    if let Err(fault) = skip_comment(&mut chars, raw.len(), index, nested) {
+                    if let Err(fault) = skip_comment(&mut chars, raw.len(), index, inner) {
                         // The line as far as it was read, for a dialect that ends an unclosed
                         // comment at the end of its line (Grbl).
                         out.keep(&mut len, b'(', index);
@@ -626,15 +637,20 @@ fn skip_comment(
     chars: &mut std::iter::Enumerate<std::slice::Iter<'_, u8>>,
     raw_len: usize,
     open: usize,
-    nested: bool,
+    inner: InnerParen,
 ) -> Result<(), Fault> {
     let mut depth = 1usize;
     for (index, &byte) in chars {
         match byte {
             b')' if depth > 1 => depth -= 1,
             b')' => return Ok(()),
-            b'(' if nested => depth += 1,
-            b'(' => return Err(Fault::syntax(open, index + 1, "Nested comment found")),
+            b'(' => match inner {
+                InnerParen::Opens => depth += 1,
+                InnerParen::Ignored => {}
+                InnerParen::Refused => {
+                    return Err(Fault::syntax(open, index + 1, "Nested comment found"));
+                }
+            },
             _ => {}
         }
     }
@@ -647,7 +663,7 @@ mod tests {
 
     fn squeeze(raw: &str) -> Result<(String, Vec<u32>), String> {
         let mut out = Compact::default();
-        compact(raw.as_bytes(), &mut out, false).map_err(|fault| fault.message)?;
+        compact(raw.as_bytes(), &mut out, InnerParen::Refused).map_err(|fault| fault.message)?;
         let columns = (0..out.bytes().len()).map(|i| out.column(i, raw.len()) as u32).collect();
         Ok((String::from_utf8(out.bytes().to_vec()).unwrap(), columns))
     }
@@ -664,22 +680,27 @@ mod tests {
     #[test]
     fn nested_comments_close_at_their_own_parenthesis() {
         let mut out = Compact::default();
-        compact(b"G0 (a (b) c) X1", &mut out, true).unwrap();
+        compact(b"G0 (a (b) c) X1", &mut out, InnerParen::Opens).unwrap();
         assert_eq!(out.bytes(), b"g0(x1");
         assert_eq!(out.column(3, 15), 13);
-        let fault = compact(b"G0 (a (b) c", &mut out, true).unwrap_err();
+        let fault = compact(b"G0 (a (b) c", &mut out, InnerParen::Opens).unwrap_err();
         assert_eq!(fault.message, "Unclosed comment found");
+        // Grbl: the first `)` ends the comment, an inner `(` is one of its characters.
+        compact(b"G0 (a (b) X1", &mut out, InnerParen::Ignored).unwrap();
+        assert_eq!(out.bytes(), b"g0(x1");
+        let fault = compact(b"G0 (a (b) c) X1", &mut out, InnerParen::Refused).unwrap_err();
+        assert_eq!(fault.message, "Nested comment found");
     }
 
     #[test]
     fn long_lines_keep_columns_and_refuse_long_commands() {
         let mut out = Compact::default();
         let long = format!("({}) G1 X1", "c".repeat(1000));
-        compact(long.as_bytes(), &mut out, false).unwrap();
+        compact(long.as_bytes(), &mut out, InnerParen::Refused).unwrap();
         assert_eq!(out.bytes(), b"(g1x1");
         assert_eq!(out.column(1, long.len()), 1003);
         let command = format!("G1 X{}", "1".repeat(400));
-        let fault = compact(command.as_bytes(), &mut out, false).unwrap_err();
+        let fault = compact(command.as_bytes(), &mut out, InnerParen::Refused).unwrap_err();
         assert!(fault.message.starts_with("Command too long"), "{}", fault.message);
     }
 

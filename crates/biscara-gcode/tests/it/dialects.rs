@@ -431,3 +431,15 @@ fn marlin_selects_a_tool_with_the_firmware_s_own_parameters() {
     let err = refused("T0 S1 L0 D0\nM2\n", Dialect::Linuxcnc);
     assert!(err.to_string().contains("D word with no G41"), "{err}");
 }
+
+#[test]
+fn grbl_ends_a_comment_at_its_first_parenthesis() {
+    // Grbl's protocol.c ignores every character until `)`: an inner `(` is one of them.
+    let motions = read("G0 X1 Y1 ( a ( b )\nG1 X2 F100\n", Dialect::Grbl);
+    assert_eq!(ends(&motions), [[1.0, 1.0, 100.0, 0.0], [2.0, 1.0, 100.0, 0.0]]);
+    // LinuxCNC refuses it; Mach3 reads a comment within the comment, which stays open here.
+    let err = refused("G0 X1 ( a ( b )\nM2\n", Dialect::Linuxcnc);
+    assert!(err.to_string().contains("Nested comment found"), "{err}");
+    let err = refused("G0 X1 ( a ( b )\nM30\n", Dialect::Mach3);
+    assert!(err.to_string().contains("Unclosed comment found"), "{err}");
+}
