@@ -60,6 +60,13 @@ fn rows(csv: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// The path CSV of `interpolate NAME --precision 9` in `dir`, as rows.
+fn interpolated(dir: &std::path::Path, name: &str) -> Vec<Vec<f64>> {
+    let run = biscara(dir, &["interpolate", name, "--precision", "9"]);
+    run.success();
+    rows(&run.stdout)
+}
+
 /// The largest ratio of a joint's central-difference acceleration to its limit (the default
 /// robot), over the rows of a joint CSV in radians and mm.
 fn peak_acceleration_ratio(joints: &[Vec<f64>]) -> f64 {
@@ -164,11 +171,7 @@ fn lines_and_tangent_arcs_run_through_without_stopping() {
     let dir = temp_dir("blending-arcs");
     std::fs::write(dir.join("g61.ngc"), stadium("G61")).expect("write");
     std::fs::write(dir.join("g64.ngc"), stadium("G64 P0.05")).expect("write");
-    let path = |name: &str| {
-        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
-        run.success();
-        rows(&run.stdout)
-    };
+    let path = |name: &str| interpolated(&dir, name);
     let (exact, blended) = (path("g61.ngc"), path("g64.ngc"));
     // From the first arrival at the stadium's start, every sample lies on it: the arcs are run
     // as programmed (no fillet: every junction is tangent) ...
@@ -235,11 +238,7 @@ fn lines_meeting_arcs_at_corners_are_blended_within_the_tolerance() {
     let dir = temp_dir("blending-keyhole");
     std::fs::write(dir.join("g61.ngc"), keyhole("G61")).expect("write");
     std::fs::write(dir.join("g64.ngc"), keyhole("G64 P0.05")).expect("write");
-    let path = |name: &str| {
-        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
-        run.success();
-        rows(&run.stdout)
-    };
+    let path = |name: &str| interpolated(&dir, name);
     let (exact, blended) = (path("g61.ngc"), path("g64.ngc"));
     // Every sample within P of the programmed path (from the home pose up to Z50, across to
     // the keyhole's start, round it), and the corners (the arc's with the slot's sides among
@@ -292,11 +291,7 @@ fn g64_q_merges_nearly_collinear_chords_within_p_plus_q() {
     let dir = temp_dir("blending-q");
     std::fs::write(dir.join("p.ngc"), program("G64 P0.01")).expect("write");
     std::fs::write(dir.join("pq.ngc"), program("G64 P0.01 Q0.05")).expect("write");
-    let path = |name: &str| {
-        let run = biscara(&dir, &["interpolate", name, "--precision", "9"]);
-        run.success();
-        rows(&run.stdout)
-    };
+    let path = |name: &str| interpolated(&dir, name);
     let (p, pq) = (path("p.ngc"), path("pq.ngc"));
     let home = [pq[0][1], pq[0][2], pq[0][3]];
     let mut programmed = vec![home, [home[0], home[1], 50.0]];
