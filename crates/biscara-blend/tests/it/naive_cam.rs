@@ -22,16 +22,10 @@ fn merge(motions: &[Motion], start: [f64; 4], q: f64) -> Vec<Motion> {
     NaiveCam::new(with_q, start).collect::<Result<_, _>>().expect("no error")
 }
 
+/// [`super::distance_to_segment`] of poses: their XYZ.
 fn distance_to_segment(p: [f64; 4], a: [f64; 4], b: [f64; 4]) -> f64 {
-    let ab: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
-    let ap: [f64; 3] = std::array::from_fn(|k| p[k] - a[k]);
-    let length2: f64 = ab.iter().map(|v| v * v).sum();
-    let t = if length2 > 0.0 {
-        (ap.iter().zip(&ab).map(|(x, y)| x * y).sum::<f64>() / length2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (0..3).map(|k| (a[k] + t * ab[k] - p[k]).powi(2)).sum::<f64>().sqrt()
+    let xyz = |pose: [f64; 4]| [pose[0], pose[1], pose[2]];
+    super::distance_to_segment(xyz(p), xyz(a), xyz(b))
 }
 
 /// A circle of 720 half-degree chords (radius 50 mm) at Z50.
