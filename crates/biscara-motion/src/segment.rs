@@ -406,6 +406,20 @@ mod tests {
 
     use super::*;
 
+    /// A spiral helix in the XZ plane (two turns, its end off the start's radius) and a line
+    /// moving every axis: the moves the derivative tests run on.
+    fn spiral_and_line() -> [Segment; 2] {
+        let spiral = Segment::arc(
+            [10.0, 1.0, 0.0, 5.0],
+            [0.0, 3.0, 10.5, 30.0],
+            [0.0, 0.0],
+            Plane::Xz,
+            false,
+            2,
+        );
+        [spiral, Segment::line([1.0, 2.0, 3.0, 4.0], [-5.0, 7.0, 1.0, 0.0])]
+    }
+
     #[test]
     fn quarter_circles_in_both_directions() {
         let start = [10.0, 0.0, 0.0, 0.0];
@@ -476,15 +490,7 @@ mod tests {
     /// differences, on a spiral helix in a plane other than XY and on a line.
     #[test]
     fn second_derivative_matches_finite_differences() {
-        let spiral = Segment::arc(
-            [10.0, 1.0, 0.0, 5.0],
-            [0.0, 3.0, 10.5, 30.0],
-            [0.0, 0.0],
-            Plane::Xz,
-            false,
-            2,
-        );
-        let line = Segment::line([1.0, 2.0, 3.0, 4.0], [-5.0, 7.0, 1.0, 0.0]);
+        let [spiral, line] = spiral_and_line();
         let h = 1e-5;
         for segment in [spiral, line] {
             for s in [0.0, 0.1, 0.5, 0.9, 1.0] {
@@ -509,15 +515,7 @@ mod tests {
     /// ends are the move's at the matching parameters.
     #[test]
     fn parts_follow_the_move() {
-        let spiral = Segment::arc(
-            [10.0, 1.0, 0.0, 5.0],
-            [0.0, 3.0, 10.5, 30.0],
-            [0.0, 0.0],
-            Plane::Xz,
-            false,
-            2,
-        );
-        let line = Segment::line([1.0, 2.0, 3.0, 4.0], [-5.0, 7.0, 1.0, 0.0]);
+        let [spiral, line] = spiral_and_line();
         let fillet = Segment::fillet(
             [1.0, 0.0, 0.0, 0.0],
             [0.0, 1.0, 0.0, 0.0],
