@@ -65,16 +65,22 @@ fn polyline(vertices: &[Vertex], blend: Option<f64>) -> Vec<Motion> {
     motions
 }
 
+/// The end points of the polyline of `vertices` in the plane Z = 50 with C = 0: the corners of
+/// [`rounded`] and [`line_arcs`].
+fn planar_corners(vertices: &[Vertex]) -> Vec<[f64; 4]> {
+    polyline(vertices, None)
+        .iter()
+        .filter_map(|motion| motion.kind.end())
+        .map(|end| [end[0], end[1], 50.0, 0.0])
+        .collect()
+}
+
 /// The polyline of `vertices` (rapids and Z, C changes dropped: one feed move after another in
 /// a plane) with its corners rounded by arcs of radius `radius` (at most what fits in half of
 /// either side), each tangent to the lines on both sides: the profile of a part with rounded
 /// corners, every junction tangent, under `blend`.
 fn rounded(vertices: &[Vertex], radius: f64, blend: Option<f64>) -> Vec<Motion> {
-    let corners: Vec<[f64; 4]> = polyline(vertices, None)
-        .iter()
-        .filter_map(|motion| motion.kind.end())
-        .map(|end| [end[0], end[1], 50.0, 0.0])
-        .collect();
+    let corners = planar_corners(vertices);
     let f = feed(vertices.first().map_or(3000.0, |vertex| vertex.4));
     let mut motions =
         vec![Motion { blend, ..Motion::new(1, MotionKind::Rapid { end: corners[0] }) }];
@@ -133,11 +139,7 @@ fn rounded(vertices: &[Vertex], radius: f64, blend: Option<f64>) -> Vec<Motion> 
 /// each move a line or, where `bulges` says, an arc to the same end point sweeping that many
 /// degrees (negative: clockwise): lines and arcs meeting at corners at any angle, under `blend`.
 fn line_arcs(vertices: &[Vertex], bulges: &[f64], blend: Option<f64>) -> Vec<Motion> {
-    let corners: Vec<[f64; 4]> = polyline(vertices, None)
-        .iter()
-        .filter_map(|motion| motion.kind.end())
-        .map(|end| [end[0], end[1], 50.0, 0.0])
-        .collect();
+    let corners = planar_corners(vertices);
     let f = feed(vertices.first().map_or(3000.0, |vertex| vertex.4));
     let mut motions =
         vec![Motion { blend, ..Motion::new(1, MotionKind::Rapid { end: corners[0] }) }];
