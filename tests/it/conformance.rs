@@ -365,18 +365,9 @@ fn linuxcnc_examples_match_or_are_refused() {
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
-            "LinuxCNC examples: {} distinct programs ({files} files): {} match, {} refused as \
-             not supported yet, {} refused for A/B/U/V/W axis words, \
-             {} refused by rs274 itself and by us, {} with user M codes (events here, refused by \
-             rs274 without their programs), {} refused as this robot cannot do them (lathe, \
-             spindle-synchronised motion, probing), {} differ",
+            "LinuxCNC examples: {} distinct programs ({files} files): {}, {} differ",
             programs.len(),
-            counts[Verdict::Match as usize],
-            counts[Verdict::NotSupported as usize],
-            counts[Verdict::ForeignAxis as usize],
-            counts[Verdict::BothRefuse as usize],
-            counts[Verdict::UserMCode as usize],
-            counts[Verdict::CannotRun as usize],
+            verdict_counts(&counts),
             differ.len()
         );
         eprintln!("matching: {}", matched.join(", "));
@@ -408,6 +399,23 @@ fn corpus_programs(root: &Path) -> Vec<PathBuf> {
         .collect();
     programs.sort();
     programs
+}
+
+/// How many programs of a LinuxCNC folder got each verdict but `Stricter`, in words.
+fn verdict_counts(counts: &[usize; 7]) -> String {
+    let count = |verdict: Verdict| counts[verdict as usize];
+    format!(
+        "{} match, {} refused as not supported yet, {} refused for A/B/U/V/W axis words, {} \
+         refused by rs274 itself and by us, {} with user M codes (events here, refused by rs274 \
+         without their programs), {} refused as this robot cannot do them (lathe, \
+         spindle-synchronised motion, probing)",
+        count(Verdict::Match),
+        count(Verdict::NotSupported),
+        count(Verdict::ForeignAxis),
+        count(Verdict::BothRefuse),
+        count(Verdict::UserMCode),
+        count(Verdict::CannotRun),
+    )
 }
 
 #[test]
@@ -466,18 +474,10 @@ fn linuxcnc_interp_corpus_matches_or_is_refused() {
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
-            "LinuxCNC interpreter tests: {} programs: {} match, {} refused as not supported \
-             yet, {} refused for A/B/U/V/W axis words, {} refused by rs274 itself and by us, \
-             {} with user M codes, {} refused as this robot cannot do them (lathe, \
-             spindle-synchronised motion, probing), {} need LinuxCNC's Python plug-ins and are \
-             refused, {} differ",
+            "LinuxCNC interpreter tests: {} programs: {}, {} need LinuxCNC's Python plug-ins \
+             and are refused, {} differ",
             programs.len(),
-            counts[Verdict::Match as usize],
-            counts[Verdict::NotSupported as usize],
-            counts[Verdict::ForeignAxis as usize],
-            counts[Verdict::BothRefuse as usize],
-            counts[Verdict::UserMCode as usize],
-            counts[Verdict::CannotRun as usize],
+            verdict_counts(&counts),
             python.len(),
             differ.len()
         );
