@@ -67,6 +67,19 @@ fn interpolated(dir: &std::path::Path, name: &str) -> Vec<Vec<f64>> {
     rows(&run.stdout)
 }
 
+/// The slowest XY speed from one row to the next of a path CSV's `rows`, leaving out the first
+/// and last tenth (where the robot starts and stops), mm/s.
+fn slowest_between_the_ends(rows: &[Vec<f64>]) -> f64 {
+    let speeds: Vec<f64> = rows
+        .windows(2)
+        .map(|pair| {
+            (pair[1][1] - pair[0][1]).hypot(pair[1][2] - pair[0][2]) / (pair[1][0] - pair[0][0])
+        })
+        .collect();
+    let middle = &speeds[speeds.len() / 10..speeds.len() * 9 / 10];
+    middle.iter().copied().fold(f64::INFINITY, f64::min)
+}
+
 /// The largest ratio of a joint's central-difference acceleration to its limit (the default
 /// robot), over the rows of a joint CSV in radians and mm.
 fn peak_acceleration_ratio(joints: &[Vec<f64>]) -> f64 {
@@ -187,14 +200,7 @@ fn lines_and_tangent_arcs_run_through_without_stopping() {
     }
     // ... and the robot never stops on the way round: the slowest step, away from the two
     // ends, is well above half the feed (50 mm/s).
-    let speeds: Vec<f64> = on_stadium
-        .windows(2)
-        .map(|pair| {
-            (pair[1][1] - pair[0][1]).hypot(pair[1][2] - pair[0][2]) / (pair[1][0] - pair[0][0])
-        })
-        .collect();
-    let middle = &speeds[speeds.len() / 10..speeds.len() * 9 / 10];
-    let slowest = middle.iter().copied().fold(f64::INFINITY, f64::min);
+    let slowest = slowest_between_the_ends(on_stadium);
     assert!(slowest > 25.0, "the robot slows to {slowest} mm/s between the ends");
     let (t_exact, t_blended) = (exact[exact.len() - 1][0], blended[blended.len() - 1][0]);
     // (80 stops saved, a hundredth of a second each at this feed.)
@@ -268,14 +274,7 @@ fn lines_meeting_arcs_at_corners_are_blended_within_the_tolerance() {
     assert!(at_corner > 0.01, "a sample {at_corner} mm from the corner");
     // The robot never stops on the way round: the slowest step, away from the ends, above a
     // fifth of the feed (50 mm/s).
-    let speeds: Vec<f64> = on_keyhole
-        .windows(2)
-        .map(|pair| {
-            (pair[1][1] - pair[0][1]).hypot(pair[1][2] - pair[0][2]) / (pair[1][0] - pair[0][0])
-        })
-        .collect();
-    let middle = &speeds[speeds.len() / 10..speeds.len() * 9 / 10];
-    let slowest = middle.iter().copied().fold(f64::INFINITY, f64::min);
+    let slowest = slowest_between_the_ends(on_keyhole);
     assert!(slowest > 10.0, "the robot slows to {slowest} mm/s between the ends");
     let (t_exact, t_blended) = (exact[exact.len() - 1][0], blended[blended.len() - 1][0]);
     assert!(t_blended <= t_exact, "G64 P0.05 takes {t_blended} s, G61 {t_exact} s");
