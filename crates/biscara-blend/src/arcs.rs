@@ -157,12 +157,7 @@ fn fit_at(corner: [f64; 2], a: Leg, b: Leg, side: f64, tolerance: f64, r: f64) -
         return None;
     }
     let (ra, rb) = (sub(point_a, center), sub(point_b, center));
-    // Where a line is nearly tangent to an arc and the fillet nearly its circle, the centre is
-    // ill-conditioned: a fillet whose ends are not on it (to 1e-10 mm) is none.
-    if (norm(ra) - r).abs() > FIT_MM || (norm(rb) - r).abs() > FIT_MM {
-        return None;
-    }
-    let sweep = side * angle(ra, rb);
+    let sweep = fillet_sweep(center, r, [point_a, point_b], side)?;
     // The fillet runs the way the moves do: against leg a (which leaves the corner backwards),
     // along leg b.
     let (ta, tb) = (left(ra), left(rb));
@@ -171,14 +166,40 @@ fn fit_at(corner: [f64; 2], a: Leg, b: Leg, side: f64, tolerance: f64, r: f64) -
     if !(sweep > 0.0 && along) {
         return None;
     }
+    let deviation = corner_deviation(corner, center, r, [point_a, point_b], side, sweep);
+    (deviation <= tolerance).then_some(Fit { center, radius: r, trims: [trim_a, trim_b] })
+}
+
+/// The sweep (radians, positive when the fillet turns to `side`) of the fillet of radius `r`
+/// about `center` from `ends[0]` to `ends[1]`; `None` when an end is off its circle. Where a
+/// line is nearly tangent to an arc and the fillet nearly its circle, the centre is
+/// ill-conditioned: a fillet whose ends are not on it (to [`FIT_MM`]) is none.
+fn fillet_sweep(center: [f64; 2], r: f64, ends: [[f64; 2]; 2], side: f64) -> Option<f64> {
+    let [ra, rb] = ends.map(|end| sub(end, center));
+    if (norm(ra) - r).abs() > FIT_MM || (norm(rb) - r).abs() > FIT_MM {
+        return None;
+    }
+    Some(side * angle(ra, rb))
+}
+
+/// How far `corner` is from the fillet of radius `r` about `center` from `ends[0]` sweeping
+/// `sweep` to `side`: from its circle where the corner faces the fillet, else from the nearer
+/// end.
+fn corner_deviation(
+    corner: [f64; 2],
+    center: [f64; 2],
+    r: f64,
+    ends: [[f64; 2]; 2],
+    side: f64,
+    sweep: f64,
+) -> f64 {
     let towards = sub(corner, center);
-    let at = side * angle(ra, towards);
-    let deviation = if (0.0..=sweep).contains(&at) {
+    let at = side * angle(sub(ends[0], center), towards);
+    if (0.0..=sweep).contains(&at) {
         (norm(towards) - r).abs()
     } else {
-        norm(sub(corner, point_a)).min(norm(sub(corner, point_b)))
-    };
-    (deviation <= tolerance).then_some(Fit { center, radius: r, trims: [trim_a, trim_b] })
+        norm(sub(corner, ends[0])).min(norm(sub(corner, ends[1])))
+    }
 }
 
 /// The largest fillet at `corner` between the legs `a` (the move before the corner, run
@@ -267,22 +288,13 @@ pub(crate) fn fit_line_arc(
         let foot = [corner[0] + trim * direction[0], corner[1] + trim * direction[1]];
         let (start, end) = if arc_first { (point, foot) } else { (foot, point) };
         let (ra, rb) = (sub(start, center), sub(end, center));
-        if (norm(ra) - r).abs() > FIT_MM || (norm(rb) - r).abs() > FIT_MM {
-            return None;
-        }
-        let sweep = side * angle(ra, rb);
+        let sweep = fillet_sweep(center, r, [start, end], side)?;
         // The fillet runs along the line where it touches it.
         let along_line = if arc_first { rb } else { ra };
         if !(sweep > 0.0 && side * dot(left(along_line), forward) > 0.0) {
             return None;
         }
-        let to_corner = sub(corner, center);
-        let at = side * angle(ra, to_corner);
-        let deviation = if (0.0..=sweep).contains(&at) {
-            (norm(to_corner) - r).abs()
-        } else {
-            norm(sub(corner, start)).min(norm(sub(corner, end)))
-        };
+        let deviation = corner_deviation(corner, center, r, [start, end], side, sweep);
         let trims = if arc_first { [tau, trim] } else { [trim, tau] };
         (deviation <= tolerance).then_some(Fit { center, radius: r, trims })
     };
