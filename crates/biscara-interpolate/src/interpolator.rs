@@ -664,6 +664,45 @@ where
     }
 }
 
+impl<I, E, L, F> Interpolator<I, L, F>
+where
+    I: Iterator<Item = Result<Motion, E>>,
+    L: SpeedLimit,
+    F: FnMut(&SlowDown),
+{
+    /// Calls `each` with every sample in turn, by reference, and stops at the first error:
+    /// `each`'s own, or the interpolator's turned into `G` by `error`. The same samples as
+    /// iterating, but the inner samples of a move with a closed-form schedule (the constant and
+    /// trapezoid profiles) come from a tight loop, without a pass through [`Iterator::next`]'s
+    /// dispatch and its `Option<Result<…>>` each.
+    pub fn try_for_each_sample<G>(
+        &mut self,
+        mut each: impl FnMut(&CartesianSample) -> Result<(), G>,
+        error: impl FnOnce(InterpolateError<E>) -> G,
+    ) -> Result<(), G> {
+        loop {
+            if let Some(Active::Move { segment, schedule: Schedule::Closed(timing), done, line }) =
+                &mut self.active
+            {
+                // Every step but the last, which `next` ends exactly on the segment's end.
+                let (dt, last) = (self.config.dt, timing.steps());
+                while *done + 1 < last {
+                    *done += 1;
+                    self.step += 1;
+                    let pose = segment.point(timing.s_at(*done as f64 * dt));
+                    let t = self.step as f64 * dt;
+                    each(&CartesianSample { t, pose, line: *line, gripper: self.gripper })?;
+                }
+            }
+            match self.next() {
+                None => return Ok(()),
+                Some(Ok(sample)) => each(&sample)?,
+                Some(Err(err)) => return Err(error(err)),
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 impl<I: Iterator, L, F> Interpolator<I, L, F> {
     /// Number of blended pieces held (0 outside a chain).

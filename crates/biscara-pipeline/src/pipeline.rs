@@ -312,13 +312,10 @@ impl Samples {
                 }
             }
             Samples::Program { interpolator, file } => {
-                for sample in interpolator.as_mut() {
-                    match sample {
-                        Ok(sample) => each(&sample)?,
-                        Err(InterpolateError::Input(err)) => return Err(err.into()),
-                        Err(other) => return Err(PipelineError::program(file, other).into()),
-                    }
-                }
+                interpolator.try_for_each_sample(each, |err| match err {
+                    InterpolateError::Input(err) => err.into(),
+                    other => PipelineError::program(file, other).into(),
+                })?;
             }
         }
         Ok(())

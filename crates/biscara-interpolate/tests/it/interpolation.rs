@@ -375,3 +375,67 @@ proptest! {
         }
     }
 }
+
+/// The samples of `motions` through [`Interpolator::try_for_each_sample`], up to the first error.
+fn run_by_reference(
+    motions: &[Motion],
+    config: InterpolationConfig,
+) -> (Vec<CartesianSample>, Option<String>) {
+    let mut samples = Vec::new();
+    let outcome = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config,
+        NoSpeedLimit,
+        |_: &SlowDown| {},
+    )
+    .try_for_each_sample(
+        |sample| {
+            samples.push(*sample);
+            Ok::<(), String>(())
+        },
+        |err| err.to_string(),
+    );
+    (samples, outcome.err())
+}
+
+#[test]
+fn sampling_by_reference_stops_at_errors_and_at_the_callers_error() {
+    let motions =
+        [linear(1, [10.0, 400.0, 50.0, 0.0], 600.0), linear(2, [10.0, 410.0, 50.0, 0.0], 0.0)];
+    let (samples, err) = run_by_reference(&motions, config(Profile::Trapezoid, 0.01));
+    assert_eq!(err.as_deref(), Some("2: the feed 0 mm/min is not positive"));
+    assert_eq!(samples.last().map(|s| s.pose), Some([10.0, 400.0, 50.0, 0.0]));
+    // The caller's error stops the stream in the middle of a move.
+    let mut seen = 0;
+    let stopped = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config(Profile::Trapezoid, 0.01),
+        NoSpeedLimit,
+        |_: &SlowDown| {},
+    )
+    .try_for_each_sample(
+        |_| {
+            seen += 1;
+            if seen == 5 { Err("enough") } else { Ok(()) }
+        },
+        |_| "interpolation",
+    );
+    assert_eq!((stopped, seen), (Err("enough"), 5));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// Sampling by reference (the closed-form schedules' tight loop) gives exactly the samples
+    /// of iterating, in every profile.
+    #[test]
+    fn sampling_by_reference_is_iterating(
+        motions in program(12),
+        profile in prop_oneof![Just(Profile::Constant), Just(Profile::Trapezoid), Just(Profile::Optimal)],
+    ) {
+        let (iterated, _) = run(&motions, config(profile, 0.002));
+        let (by_reference, err) = run_by_reference(&motions, config(profile, 0.002));
+        prop_assert_eq!(err, None);
+        prop_assert_eq!(iterated, by_reference);
+    }
+}
