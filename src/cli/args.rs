@@ -237,30 +237,30 @@ pub(crate) struct BlendArgs {
 
 /// A tolerance in mm in [0, 100] (0: G64 with no P, see `biscara-blend`).
 fn parse_blend(text: &str) -> Result<f64, String> {
-    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
-    if value.is_finite() && (0.0..=100.0).contains(&value) {
-        Ok(value)
-    } else {
-        Err(format!("the blend tolerance must lie in [0, 100] mm, got {text}"))
-    }
+    number_in(text, 0.0..=100.0, "the blend tolerance", "[0, 100] mm")
 }
 
 fn parse_step(text: &str) -> Result<f64, String> {
-    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
-    if value.is_finite() && (1e-6..=10.0).contains(&value) {
-        Ok(value)
-    } else {
-        Err(format!("the time step must lie in [0.000001, 10] s, got {text}"))
-    }
+    number_in(text, 1e-6..=10.0, "the time step", "[0.000001, 10] s")
 }
 
 /// Seconds in [0, 3600].
 pub(crate) fn parse_duration(text: &str) -> Result<f64, String> {
+    number_in(text, 0.0..=3600.0, "the time", "[0, 3600] s")
+}
+
+/// `text` as a number in `range`, else an error that says `what` must lie in `shown`.
+fn number_in(
+    text: &str,
+    range: std::ops::RangeInclusive<f64>,
+    what: &str,
+    shown: &str,
+) -> Result<f64, String> {
     let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
-    if value.is_finite() && (0.0..=3600.0).contains(&value) {
+    if range.contains(&value) {
         Ok(value)
     } else {
-        Err(format!("expected seconds in [0, 3600], got {text}"))
+        Err(format!("{what} must lie in {shown}, got {text}"))
     }
 }
 
