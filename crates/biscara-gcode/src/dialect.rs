@@ -7,6 +7,7 @@
 //! line length, nested comments, Marlin's G4 and G28, Grbl's K in G17). [`Dialect::Linuxcnc`]
 //! has no hook at all.
 
+use biscara_motion::CodeName;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
@@ -504,7 +505,7 @@ fn code_name(letter: u8, number: &[u8]) -> String {
         trimmed.to_owned()
     };
     let mut name = format!("{}{shown}", char::from(letter));
-    truncate_chars(&mut name, 15);
+    truncate_chars(&mut name, CodeName::MAX);
     name
 }
 
@@ -552,7 +553,7 @@ fn grbl_prelude(raw: &[u8]) -> Prelude {
             note: "a jog is an operator's move, not part of a program",
         };
     }
-    truncate_chars(&mut name, 15);
+    truncate_chars(&mut name, CodeName::MAX);
     Prelude::Event { name, known: true }
 }
 
@@ -647,7 +648,7 @@ fn unknown_text(raw: &[u8]) -> Prelude {
     let word: String = text
         .iter()
         .take_while(|b| b.is_ascii_graphic() && **b != b';' && **b != b'(')
-        .take(15)
+        .take(CodeName::MAX)
         .map(|&b| char::from(b))
         .collect();
     Prelude::Event { name: word, known: false }
@@ -664,12 +665,12 @@ mod tests {
     }
 
     /// Found by the `dialects` fuzz target: a `$` line whose name runs into a multi-byte
-    /// character at byte 15 panicked in `String::truncate`.
+    /// character at the name's longest length panicked in `String::truncate`.
     #[test]
     fn event_names_are_cut_at_a_character_boundary() {
-        let raw = b"$\xb1\xcc\xf6\xf6\xfb";
+        let raw = b"$\xb1\xcc\xf6\xf6\xfb\xb1\xcc\xf6\xf6\xfb\xb1";
         let Prelude::Event { name, .. } = grbl_prelude(raw) else { panic!("not an event") };
-        assert!(name.len() <= 15 && name.starts_with('$'), "{name}");
+        assert!(name.len() <= CodeName::MAX && name.starts_with('$'), "{name}");
         let mut long = "Méééééééé".to_owned();
         truncate_chars(&mut long, 16);
         assert_eq!(long, "Mééééééé");
@@ -731,6 +732,14 @@ mod tests {
         assert_eq!(prelude(Dialect::Marlin, b"T0 S1 L0 D0"), event("T0", true));
         assert_eq!(prelude(Dialect::Marlin, b";0.2"), Prelude::Block);
         assert_eq!(prelude(Dialect::Marlin, b"X10 Y2"), event("X10", false));
+        // Klipper's macros keep their whole names, up to CodeName::MAX bytes.
+        let long = b"SET_VELOCITY_LIMIT ACCEL=500";
+        assert_eq!(prelude(Dialect::Marlin, long), event("SET_VELOCITY_LIMIT", false));
+        let longest = b"EXCLUDE_OBJECT_DEFINE_THAT_IS_TOO_LONG NAME=a";
+        assert_eq!(
+            prelude(Dialect::Marlin, longest),
+            event("EXCLUDE_OBJECT_DEFINE_THAT_IS_T", false)
+        );
         let home = |axes: [bool; 4]| Prelude::Home { axes };
         assert_eq!(prelude(Dialect::Marlin, b"G28 X; home"), home([true, false, false, false]));
         assert_eq!(prelude(Dialect::Marlin, b"G28 X0 Y0 (Z)"), home([true, true, false, false]));

@@ -504,7 +504,7 @@ mod tests {
         check_error("{\"line\":1,\"kind\":\"code\"}", "1: missing field `code` for a code motion");
         check_error(
             "{\"line\":1,\"kind\":\"code\",\"code\":\"M 104\"}",
-            "1: \"code\" must be 1 to 15 printable ASCII characters without spaces, got \"M 104\"",
+            "1: \"code\" must be 1 to 31 printable ASCII characters without spaces, got \"M 104\"",
         );
         check_error(
             "{\"line\":1,\"kind\":\"code\",\"code\":\"M104\",\"end\":[0,0,0,0]}",

@@ -44,7 +44,7 @@ pub struct CodeName {
 
 impl CodeName {
     /// The longest name, bytes.
-    pub const MAX: usize = 15;
+    pub const MAX: usize = 31;
 
     /// `name` as a code name; `None` when it is empty, longer than [`CodeName::MAX`] bytes or
     /// holds anything but printable ASCII without spaces.
