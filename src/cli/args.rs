@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use biscara::gcode::{Dialect, Tool, ToolTable};
+use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use clap::{Args, ValueEnum};
@@ -147,16 +147,11 @@ pub(crate) struct GcodeFilesArgs {
         help = "LinuxCNC tool table (.tbl, mm) for G43 tool lengths and tool diameters"
     )]
     pub(crate) tool_table: Option<PathBuf>,
-}
-
-impl GcodeFilesArgs {
-    /// The tool table, read.
-    pub(crate) fn tool_table(&self) -> anyhow::Result<Option<Arc<ToolTable>>> {
-        match &self.tool_table {
-            None => Ok(None),
-            Some(path) => Ok(Some(Arc::new(ToolTable::read(path)?))),
-        }
-    }
+    /// LinuxCNC's INI file of the machine: G-code reads its values as `#<_ini[SECTION]NAME>`
+    /// (LinuxCNC's INI_VARS; read-only). Without it, such names are global names like any
+    /// other, as in LinuxCNC without an INI file. Nothing else of the INI file is used.
+    #[arg(long, value_name = "FILE", help = "LinuxCNC INI file for #<_ini[SECTION]NAME> values")]
+    pub(crate) ini: Option<PathBuf>,
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
@@ -214,7 +209,8 @@ pub(crate) fn placed_reading(
         dialect: dialect.dialect,
         tool: dialect.tool,
         subroutine_path: files.subroutine_path.clone(),
-        tool_table: files.tool_table()?,
+        tool_table: files.tool_table.as_deref().map(ToolTable::read).transpose()?.map(Arc::new),
+        ini: files.ini.as_deref().map(IniFile::read).transpose()?.map(Arc::new),
         ..SamplingConfig::default()
     })
 }

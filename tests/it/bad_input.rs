@@ -9,7 +9,7 @@ use crate::util::{biscara, repo_root, temp_dir};
 
 /// Each reader: its folder, its file extension, and the command that reads it (`{}` is the
 /// file, `{out}` the output that must not appear; `check` gets a good program, [`PROGRAM`]).
-const READERS: [(&str, &str, &[&str]); 8] = [
+const READERS: [(&str, &str, &[&str]); 9] = [
     ("points", "txt", &["clf", "{}", "-o", "{out}"]),
     ("cl", "cl", &["post", "{}", "-o", "{out}"]),
     ("gcode", "ngc", &["interpret", "{}", "-o", "{out}"]),
@@ -18,10 +18,14 @@ const READERS: [(&str, &str, &[&str]); 8] = [
     ("jsonl", "jsonl", &["interpolate", "--from", "jsonl", "{}", "-o", "{out}"]),
     ("scene", "json", &["check", "--scene", "{}", "program.jsonl", "-o", "{out}"]),
     ("tool_table", "tbl", &["check", "--tool-table", "{}", "program.jsonl", "-o", "{out}"]),
+    ("ini", "ini", &["interpret", "--ini", "{}", "program.ngc", "-o", "{out}"]),
 ];
 
 /// A clean program, for the commands that read a bad file beside a good program.
 const PROGRAM: &str = "{\"line\":1,\"kind\":\"rapid\",\"end\":[0.0,400.0,80.0,0.0]}\n";
+
+/// A G-code program that reads `[VARS] X` of its INI file, for the bad INI files.
+const INI_PROGRAM: &str = "G0 X#<_ini[vars]x> Y300\nM2\n";
 
 /// The generated cases: the same for every reader.
 fn generated_cases() -> Vec<(&'static str, Vec<u8>)> {
@@ -66,6 +70,7 @@ fn every_bad_input_fails_cleanly_with_its_expected_message() {
         let catalogue = repo_root().join("tests/bad_input").join(reader);
         let dir = temp_dir(&format!("bad-input-{reader}"));
         std::fs::write(dir.join("program.jsonl"), PROGRAM).expect("write the good program");
+        std::fs::write(dir.join("program.ngc"), INI_PROGRAM).expect("write the INI program");
         let mut inputs: Vec<(String, Vec<u8>)> = Vec::new();
         for entry in std::fs::read_dir(&catalogue).expect("catalogue folder") {
             let path = entry.expect("entry").path();

@@ -14,7 +14,7 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use biscara::gcode::{Config, GcodeError, Interpreter, interpret_seekable};
+use biscara::gcode::{Config, GcodeError, IniFile, Interpreter, interpret_seekable};
 use biscara::motion::{Motion, MotionKind};
 
 use crate::rs274::{self, Outcome};
@@ -22,10 +22,12 @@ use crate::util::{repo_root, temp_dir};
 
 /// The configuration rs274 is matched with: the defaults but rs274's path control mode (G64 with
 /// no tolerance, where `interpret` starts in exact stop), and the program's own tool table
-/// (`NAME.tbl`) when it has one.
+/// (`NAME.tbl`) and INI file (`NAME.ini`) when it has them.
 fn config(path: &Path) -> Config {
+    let ini = rs274::own_ini(path).map(|ini| IniFile::read(&ini).expect("read the INI file"));
     Config {
         tool_table: rs274::own_table(path).map(std::sync::Arc::new),
+        ini: ini.map(std::sync::Arc::new),
         blend: Some(0.0),
         ..Config::default()
     }

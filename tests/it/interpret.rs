@@ -212,3 +212,21 @@ fn file_subroutines_come_from_beside_the_program_or_the_subroutine_path() {
         biscara_with_input(&dir, &["interpret", "-", "--subroutine-path", "lib"], Some(program));
     assert_eq!(run.success().stdout.lines().count(), 5, "{run}");
 }
+
+#[test]
+fn ini_file_variables_are_read_with_ini_and_joints_takes_it_too() {
+    let dir = temp_dir("interpret-ini");
+    std::fs::write(dir.join("machine.ini"), "[VARS]\nCHANGE_X = 12.5\nCHANGE_Y = 300\n")
+        .expect("write the INI file");
+    let program = "G0 X#<_ini[vars]change_x> Y#<_INI[VARS]CHANGE_Y> Z50\nM2\n";
+    std::fs::write(dir.join("change.ngc"), program).expect("write the program");
+    let run = biscara(&dir, &["interpret", "change.ngc", "--ini", "machine.ini"]);
+    let first = run.success().stdout.lines().next().expect("a motion").to_owned();
+    assert_eq!(first, r#"{"line":1,"kind":"rapid","end":[12.5,300.0,50.0,0.0]}"#);
+    // Every command that reads G-code takes it; without it the name is not defined.
+    let joints = biscara(&dir, &["joints", "change.ngc", "--ini", "machine.ini", "-o", "j.csv"]);
+    joints.success();
+    let without = biscara(&dir, &["interpret", "change.ngc"]);
+    assert_eq!(without.code, 1, "{without}");
+    assert!(without.stderr.contains("change.ngc:1:5: Named parameter #<_ini[vars]change_x> not"));
+}

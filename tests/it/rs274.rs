@@ -90,8 +90,7 @@ pub fn run(program: &Path, dir: &Path) -> Outcome {
         let table: String = (1..1000).map(|tool| format!("T{tool} P{tool} Z0 D0\n")).collect();
         std::fs::write(&tools, table).expect("write the tool table");
     }
-    // LinuxCNC's interpreter tests give rs274 their folder's `test.ini` (`-i`).
-    let ini = program.parent().map(|folder| folder.join("test.ini")).filter(|ini| ini.exists());
+    let ini = own_ini(program);
     let mut attempt = 0;
     let run = loop {
         let _ = std::fs::remove_file(&output);
@@ -187,6 +186,14 @@ pub fn own_table(program: &Path) -> Option<ToolTable> {
     let folder = program.parent().map(|folder| folder.join("test.tbl"));
     let path = std::iter::once(own).chain(folder).find(|path| path.exists())?;
     Some(ToolTable::read(&path).expect("read the program's tool table"))
+}
+
+/// The INI file rs274 is given (`-i`) for `program`: `NAME.ini` beside `NAME.ngc`, else the
+/// `test.ini` of its folder, as LinuxCNC's interpreter tests have it.
+pub fn own_ini(program: &Path) -> Option<std::path::PathBuf> {
+    let own = program.with_extension("ini");
+    let folder = program.parent().map(|folder| folder.join("test.ini"));
+    std::iter::once(own).chain(folder).find(|path| path.exists())
 }
 
 /// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).

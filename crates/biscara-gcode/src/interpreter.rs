@@ -11,6 +11,7 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::error::{GcodeError, Location};
+use crate::ini_file::IniFile;
 use crate::lexer::{
     Compact, Fault, FaultKind, InnerParen, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT,
     compact,
@@ -19,7 +20,7 @@ use crate::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
 };
-use crate::parser::{Block, Code, INI_NOTE, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::ToolTable;
 
@@ -92,6 +93,10 @@ pub struct Config {
     /// every tool has zero length and diameter ([`Interpreter::tools_without_table`] says
     /// whether the program used them).
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
+    /// LinuxCNC's INI file (`--ini`): the values of `#<_ini[SECTION]NAME>` (its INI_VARS
+    /// feature), read-only. `None`: such names are global names like any other, as in LinuxCNC
+    /// without an INI file.
+    pub ini: Option<std::sync::Arc<IniFile>>,
 }
 
 impl Default for Config {
@@ -106,6 +111,7 @@ impl Default for Config {
             infer_tool: false,
             blend: None,
             tool_table: None,
+            ini: None,
         }
     }
 }
@@ -236,6 +242,8 @@ struct State {
     naive_cam: Option<f64>,
     /// Cutter radius compensation and the motions it holds back.
     comp: cutter_comp::CutterComp,
+    /// The INI file whose variables `#<_ini[…]…>` names read, when it allows it.
+    ini: Option<std::sync::Arc<IniFile>>,
 }
 
 impl State {
@@ -280,6 +288,7 @@ impl State {
             blend: config.blend,
             naive_cam: None,
             comp: cutter_comp::CutterComp::new(),
+            ini: config.ini.clone().filter(|ini| ini.variables_enabled()),
         };
         state.publish_position();
         state
@@ -375,12 +384,17 @@ impl Predefined for State {
             b"_remap_level" | b"_task" => 0.0,
             b"_vmajor" => 2.0,
             b"_vminor" => 9.0,
-            _ => return None,
+            // An INI file variable: read-only, as LinuxCNC caches it.
+            _ => return self.ini.as_ref()?.variable(name),
         })
     }
 
     fn defining_sub(&self) -> bool {
         self.owords.defining
+    }
+
+    fn ini_why_not(&self, name: &[u8]) -> Option<String> {
+        Some(self.ini.as_ref()?.why_not(name))
     }
 }
 
@@ -588,11 +602,6 @@ impl<R: BufRead> Interpreter<R> {
                     .filter(|b| !b.is_ascii_whitespace())
                     .map(u8::to_ascii_lowercase)
                     .collect();
-                if name.starts_with(b"_ini[") {
-                    let name = String::from_utf8_lossy(&name);
-                    let (first, last) = (open + 1 + index, open + 1 + index + end + 2);
-                    return Err(Fault::not_supported(first, last, format!("#<{name}>"), INI_NOTE));
-                }
                 let value = if name.first() == Some(&b'_') {
                     self.state.predefined(&name).or_else(|| self.state.params.named(&name))
                 } else {

@@ -78,6 +78,7 @@
 mod degrees;
 mod dialect;
 mod error;
+mod ini_file;
 mod interpreter;
 mod lexer;
 mod params;
@@ -89,6 +90,7 @@ pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
 };
 pub use error::{GcodeError, Location};
+pub use ini_file::{IniFile, IniFileError};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
 pub use lexer::{Forward, Seekable};
 pub use tool::{Tool, ToolInference, infer_tool};

@@ -185,6 +185,12 @@ pub(crate) trait Predefined {
     fn defining_sub(&self) -> bool {
         false
     }
+
+    /// Why the INI file gives `#<_ini[SECTION]NAME>` no value; `None` when no INI file is read
+    /// (such names are then global names).
+    fn ini_why_not(&self, _name: &[u8]) -> Option<String> {
+        None
+    }
 }
 
 /// LinuxCNC's ROUND: `(double) (int) (x ± 0.5)`, half away from zero through a C `int`. A zero
@@ -282,10 +288,6 @@ fn fast_decimal(text: &[u8]) -> Option<f64> {
 
 /// LinuxCNC's `TOLERANCE_EQUAL` for EQ and NE.
 const TOLERANCE_EQUAL: f64 = 0.0001;
-
-/// Why `#<_ini[section]name>` is refused.
-pub(crate) const INI_NOTE: &str =
-    "a variable of LinuxCNC's INI file (INI_VARS); interpret has no INI file to read it from";
 
 /// Reads one line's compact bytes into a block.
 pub(crate) struct Reader<'a> {
@@ -597,8 +599,9 @@ impl<'a> Reader<'a> {
         Ok(index as usize)
     }
 
-    /// `<name>` after a `#`: returns the compact range of the name. LinuxCNC's INI file
-    /// variables (`#<_ini[section]name>`) are refused: there is no INI file here.
+    /// `<name>` after a `#`: returns the compact range of the name. `#<_ini[section]name>` is
+    /// a global name like any other, as in LinuxCNC without an INI file (its INI_VARS feature
+    /// reads such names from the INI file; there is none here).
     fn read_name(&mut self) -> Result<(usize, usize), Fault> {
         let open = self.pos;
         self.pos += 1;
@@ -616,11 +619,6 @@ impl<'a> Reader<'a> {
         self.pos += 1;
         if end == start {
             return Err(self.syntax(open, self.pos, "Named parameter has no name"));
-        }
-        if self.bytes[start..end].starts_with(b"_ini[") {
-            let (first, last) = self.span(open - 1, self.pos);
-            let name = String::from_utf8_lossy(&self.bytes[start..end]);
-            return Err(Fault::not_supported(first, last, format!("#<{name}>"), INI_NOTE));
         }
         Ok((start, end))
     }
@@ -725,10 +723,20 @@ impl<'a> Reader<'a> {
             let value = self.named_value(name);
             let value = value.or_else(|| self.predefined.defining_sub().then_some(0.0));
             return value.ok_or_else(|| {
+                let shown = String::from_utf8_lossy(name);
+                // LinuxCNC's wording, and why for a name only its INI file would define.
+                let why = match self.predefined.ini_why_not(name) {
+                    _ if !name.starts_with(b"_ini[") => String::new(),
+                    Some(why) => format!(" ({why}, and the program did not set it)"),
+                    None => " (an INI file variable, and no INI file is read: none was given, or \
+                              its [RS274NGC] INI_VARS is 0; the name is then a global one that the \
+                              program must set first, as in LinuxCNC without an INI file)"
+                        .to_owned(),
+                };
                 self.invalid(
                     start,
                     self.pos,
-                    format!("Named parameter #<{}> not defined", String::from_utf8_lossy(name)),
+                    format!("Named parameter #<{shown}> not defined{why}"),
                 )
             });
         }

@@ -9,8 +9,8 @@ use std::sync::Arc;
 use std::path::{Path, PathBuf};
 
 use biscara_gcode::{
-    Config as GcodeConfig, Dialect, Forward, GcodeError, Interpreter, Seekable, Tool, ToolTable,
-    interpret_seekable,
+    Config as GcodeConfig, Dialect, Forward, GcodeError, IniFile, Interpreter, Seekable, Tool,
+    ToolTable, interpret_seekable,
 };
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
@@ -49,7 +49,7 @@ impl NoteSink {
 
 /// How a G-code program is read: its G54 offset, where it starts (`None`: the home pose), its
 /// dialect, its tool (`None`: inferred from the program, the gripper when nothing tells), where
-/// its file subroutines are, the tool table and the default G64 P.
+/// its file subroutines are, the tool table, the INI file and the default G64 P.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Reading<'a> {
     pub(crate) origin: Position,
@@ -58,6 +58,7 @@ pub(crate) struct Reading<'a> {
     pub(crate) tool: Option<Tool>,
     pub(crate) subroutine_path: &'a [PathBuf],
     pub(crate) tool_table: Option<&'a Arc<ToolTable>>,
+    pub(crate) ini: Option<&'a Arc<IniFile>>,
     /// The G64 P of a program that never says G61 or G64.
     pub(crate) blend: Option<f64>,
 }
@@ -77,6 +78,7 @@ impl<'a> Reading<'a> {
             tool,
             subroutine_path: &config.subroutine_path,
             tool_table: config.tool_table.as_ref(),
+            ini: config.ini.as_ref(),
             blend: config.blend,
         }
     }
@@ -118,6 +120,7 @@ pub(crate) fn read_motions(
                 tool: tool.unwrap_or_default(),
                 infer_tool: tool.is_none(),
                 tool_table: reading.tool_table.cloned(),
+                ini: reading.ini.cloned(),
                 blend: reading.blend,
                 ..GcodeConfig::default()
             };

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use biscara_gcode::{Dialect, Tool, ToolTable};
+use biscara_gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara_interpolate::{
     CartesianSample, InterpolateError, InterpolationConfig, Interpolator, PathCsvReader, Profile,
     SlowDown, read_path_csv,
@@ -50,6 +50,9 @@ pub struct SamplingConfig {
     /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
     /// length and diameter.
     pub tool_table: Option<Arc<ToolTable>>,
+    /// LinuxCNC's INI file for G-code programs (`--ini`): the values of their
+    /// `#<_ini[SECTION]NAME>` names; `None`: those are global names like any other.
+    pub ini: Option<Arc<IniFile>>,
 }
 
 impl Default for SamplingConfig {
@@ -67,6 +70,7 @@ impl Default for SamplingConfig {
             subroutine_path: Vec::new(),
             blend: None,
             tool_table: None,
+            ini: None,
         }
     }
 }
