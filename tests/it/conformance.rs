@@ -797,6 +797,27 @@ fn random_program(rng: &mut Rng) -> String {
                 4 => format!("T{} M6", rng.below(4)),
                 _ => rng.pick(&["G49", "G43", "G43.2 H1", "M61 Q2"]).to_owned(),
             },
+            24 => {
+                // The modal state saved and restored (M70–M73), the path-control mode and
+                // feeds and speeds to restore, and an M72 with a motion on its line.
+                match rng.below(8) {
+                    0 | 1 => rng.pick(&["M70", "M72", "M71", "M73"]).to_owned(),
+                    2 => rng.pick(&["G61", "G61.1", "G64", "G64 P0.5", "G64 P0.2 Q0.1"]).to_owned(),
+                    3 => format!(
+                        "F{}.{} S{}.{}",
+                        1 + rng.below(900),
+                        rng.below(100),
+                        rng.below(9000),
+                        rng.below(10)
+                    ),
+                    4 => format!("M72 G1 {} F{}", axis(rng), 1 + rng.below(500)),
+                    5 => format!(
+                        "M72 {}",
+                        rng.pick(&["G0 X1", "M8", "G91", "G20", "G1 X[#<_x> + 1]"])
+                    ),
+                    _ => rng.pick(&["M70 G91", "M70 G20", "M72 M2"]).to_owned(),
+                }
+            }
             25 => {
                 // A spline: G5 (sometimes without I J: it continues from the last G5's P Q, or
                 // G87's I J) or G5.1; now and then outside G17, which both refuse.

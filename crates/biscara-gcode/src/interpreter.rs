@@ -817,7 +817,11 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 9. spindle: the gripper (or the tool)
         if let Some(code) = self.block.m[7].filter(|code| code.code >= 70) {
-            self.modal_state(code)?;
+            if self.modal_state(code)? {
+                // rs274 read the restoring codes into this block's place: the rest is lost.
+                self.state.publish_position();
+                return Ok(());
+            }
         } else if self.block.m[7].is_some_and(|code| code.code == 19) {
             self.orient_spindle()?;
         } else if let Some(code) = self.block.m[7] {

@@ -6,8 +6,10 @@
 //! returns. Saved and restored: the length units, the plane,
 //! the distance and arc distance modes, the feed mode and rate, the spindle speed and
 //! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
-//! coordinate system, the canned cycles' retract mode and the tool length offset. Not the
-//! motion mode.
+//! coordinate system, the canned cycles' retract mode, the tool length offset and the
+//! path-control mode (G61, G61.1, G64 P Q). Not the motion mode. As in rs274, the feed comes
+//! back with one decimal and the speed with none, and an M72 that changes anything loses the
+//! rest of its line (see [`Interpreter::modal_state`]).
 
 use std::io::BufRead;
 
@@ -34,6 +36,8 @@ pub(super) struct SavedModes {
     retract_to_old: bool,
     tool_offset: [f64; 4],
     tool_offset_mm: [f64; 4],
+    blend: Option<f64>,
+    naive_cam: Option<f64>,
 }
 
 /// The saved state, if any, and whether M73 asked for it to be restored on return.
@@ -45,8 +49,12 @@ pub(super) struct ModalStack {
 }
 
 impl<R: BufRead> Interpreter<R> {
-    /// M70, M71, M72 or M73.
-    pub(super) fn modal_state(&mut self, code: Code) -> Result<(), Fault> {
+    /// M70, M71, M72 or M73. `Ok(true)` when M72 restored a state that differs from the one in
+    /// force: rs274 then runs the restoring codes as blocks of their own, read into the place of
+    /// the current one, so that the rest of the M72's line (what comes after M70–M73 in the
+    /// order of execution: coolant, dwell, G-codes, the motion, a stop) is lost; the caller skips
+    /// it. When nothing differs, nothing is run and the line goes on.
+    pub(super) fn modal_state(&mut self, code: Code) -> Result<bool, Fault> {
         match code.code {
             70 | 73 => {
                 let state = &self.state;
@@ -66,33 +74,24 @@ impl<R: BufRead> Interpreter<R> {
                         retract_to_old: state.cycle.retract_to_old,
                         tool_offset: state.tool_offset,
                         tool_offset_mm: state.tool_offset_mm,
+                        blend: state.blend,
+                        naive_cam: state.naive_cam,
                     }),
                     auto_restore: code.code == 73,
                 };
             }
             71 => self.state.modal_stack = ModalStack::default(),
             _ => {
-                let axis_words =
-                    super::AXES.iter().any(|&letter| self.block.word(letter).is_some());
-                if axis_words || self.block.g[1].is_some() {
-                    let (first, last) = self.span(code.at, code.end);
-                    return Err(Fault::not_supported(
-                        first,
-                        last,
-                        "M72 with a motion on its line".to_owned(),
-                        "rs274 drops that motion",
-                    ));
-                }
                 let Some(saved) = self.state.modal_stack.saved else {
                     return Err(self.code_fault(
                         code,
                         "Cannot restore context from invalid stack frame - missing M70/M73?",
                     ));
                 };
-                self.restore_modes(saved);
+                return Ok(self.restore_modes(saved));
             }
         }
-        Ok(())
+        Ok(false)
     }
 
     /// The return from a subroutine: the state M73 saved at its level, if M71 did not forget
@@ -107,8 +106,29 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
-    /// M72: the saved state back, in rs274's order.
-    fn restore_modes(&mut self, saved: SavedModes) {
+    /// M72: the saved state back, in rs274's order; whether it differed from the state in
+    /// force (in what rs274's `gen_settings` and `gen_m_codes` compare). rs274 writes the feed
+    /// back as `F%.1f` and the speed as `S%.0f`: both come back rounded so.
+    fn restore_modes(&mut self, saved: SavedModes) -> bool {
+        let state = &self.state;
+        let differs = saved.metric != state.metric
+            || saved.incremental != state.incremental
+            || saved.ijk_absolute != state.ijk_absolute
+            || saved.plane != state.plane
+            || saved.inverse_time != state.inverse_time
+            || saved.feed_rate != state.feed_rate
+            || saved.speed != state.speed
+            || saved.spindle != state.spindle
+            || saved.mist != state.mist
+            || saved.flood != state.flood
+            || saved.system != state.system
+            || saved.retract_to_old != state.cycle.retract_to_old
+            || saved.tool_offset != state.tool_offset
+            || saved.blend != state.blend
+            || saved.naive_cam != state.naive_cam;
+        let rounded = |value: f64, decimals: usize| {
+            format!("{value:.decimals$}").parse::<f64>().unwrap_or(value)
+        };
         self.set_units(saved.metric);
         // rs274 sets F again only when it differs from the F in force before the feed mode
         // is restored (and G94 zeroes the feed rate).
@@ -121,10 +141,14 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if feed_differs {
-            self.state.feed_rate = saved.feed_rate;
-            self.state.feed_mm = saved.feed_rate * self.state.factor();
+            self.state.feed_rate = rounded(saved.feed_rate, 1);
+            self.state.feed_mm = self.state.feed_rate * self.state.factor();
         }
-        self.state.speed = saved.speed;
+        if saved.speed != self.state.speed {
+            self.state.speed = rounded(saved.speed, 0);
+        }
+        self.state.blend = saved.blend;
+        self.state.naive_cam = saved.naive_cam;
         if saved.spindle != self.state.spindle {
             self.state.spindle = saved.spindle;
             self.tool_event(saved.spindle);
@@ -149,5 +173,6 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tool_offset = saved.tool_offset;
         self.state.tool_offset_mm = saved.tool_offset_mm;
         self.state.tools.offset_active = saved.tool_offset.iter().any(|&value| value != 0.0);
+        differs
     }
 }
