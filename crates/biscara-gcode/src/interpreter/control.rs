@@ -756,9 +756,9 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// Back to the caller's level (`leave_context`).
-    fn leave_context(&mut self) {
+    fn leave_context(&mut self) -> Result<(), Fault> {
         // M73: the modal state saved at this level comes back as the subroutine returns.
-        self.restore_on_return();
+        self.restore_on_return()?;
         if self.control.frames.len() > 1 {
             self.control.frames.pop();
         }
@@ -768,6 +768,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.locals));
         self.state.params.restore_locals(locals.unwrap_or_default());
         self.state.owords.level = self.control.level();
+        Ok(())
     }
 
     /// `o… call` and `M98` (`execute_call`).
@@ -824,7 +825,7 @@ impl<R: BufRead> Interpreter<R> {
             let (file, position, line) = (frame.file.clone(), frame.position, frame.line);
             self.switch_to(file)?;
             self.go_to(position, line)?;
-            self.leave_context();
+            self.leave_context()?;
             self.control.sub_name = self.control.frames.last().and_then(|f| f.name.clone());
             if self.control.level() == 0 {
                 self.control.forward = false;

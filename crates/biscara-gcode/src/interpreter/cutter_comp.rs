@@ -267,25 +267,30 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// G40, G41, G42, G41.1, G42.1 (execution step 17).
+    /// G40: compensation off; the move held back ends where the programmed path is.
+    pub(super) fn cutter_comp_off(&mut self) -> Result<(), Fault> {
+        let comp = &self.state.comp;
+        if comp.active() && !comp.first_move {
+            let current = self.plane_point(self.state.current);
+            self.move_endpoint_and_flush(current)?;
+            self.dequeue();
+            let programmed = self.state.comp.programmed;
+            let [first, second, normal] = self.state.plane.axes();
+            for axis in [first, second, normal] {
+                self.state.current[axis] = programmed[axis];
+            }
+            self.state.comp.arc_not_allowed = true;
+        }
+        self.state.comp.side = None;
+        self.state.comp.first_move = true;
+        Ok(())
+    }
+
     pub(super) fn set_cutter_comp(&mut self) -> Result<(), Fault> {
         let Some(code) = self.block.g[7] else { return Ok(()) };
         let fail = |this: &Self, message: String| this.code_fault(code, message);
         if code.code == 400 {
-            let comp = &self.state.comp;
-            if comp.active() && !comp.first_move {
-                let current = self.plane_point(self.state.current);
-                self.move_endpoint_and_flush(current)?;
-                self.dequeue();
-                let programmed = self.state.comp.programmed;
-                let [first, second, normal] = self.state.plane.axes();
-                for axis in [first, second, normal] {
-                    self.state.current[axis] = programmed[axis];
-                }
-                self.state.comp.arc_not_allowed = true;
-            }
-            self.state.comp.side = None;
-            self.state.comp.first_move = true;
-            return Ok(());
+            return self.cutter_comp_off();
         }
         if self.state.plane == Plane::Yz {
             return Err(fail(

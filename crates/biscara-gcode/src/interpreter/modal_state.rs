@@ -7,7 +7,8 @@
 //! the distance and arc distance modes, the feed mode and rate, the spindle speed and
 //! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
 //! coordinate system, the canned cycles' retract mode, the tool length offset and the
-//! path-control mode (G61, G61.1, G64 P Q). Not the motion mode. As in rs274, the feed comes
+//! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused as
+//! not supported). Not the motion mode. As in rs274, the feed comes
 //! back with one decimal and the speed with none, and an M72 that changes anything loses the
 //! rest of its line (see [`Interpreter::modal_state`]).
 
@@ -38,6 +39,8 @@ pub(super) struct SavedModes {
     tool_offset_mm: [f64; 4],
     blend: Option<f64>,
     naive_cam: Option<f64>,
+    /// Cutter radius compensation's code: 400 (G40), 410 (left) or 420 (right).
+    comp: f64,
 }
 
 /// The saved state, if any, and whether M73 asked for it to be restored on return.
@@ -76,6 +79,7 @@ impl<R: BufRead> Interpreter<R> {
                         tool_offset_mm: state.tool_offset_mm,
                         blend: state.blend,
                         naive_cam: state.naive_cam,
+                        comp: state.comp.code(),
                     }),
                     auto_restore: code.code == 73,
                 };
@@ -88,7 +92,8 @@ impl<R: BufRead> Interpreter<R> {
                         "Cannot restore context from invalid stack frame - missing M70/M73?",
                     ));
                 };
-                return Ok(self.restore_modes(saved));
+                let span = self.span(code.at, code.end);
+                return self.restore_modes(saved, span);
             }
         }
         Ok(false)
@@ -97,20 +102,32 @@ impl<R: BufRead> Interpreter<R> {
     /// The return from a subroutine: the state M73 saved at its level, if M71 did not forget
     /// it. Each call level has its own saved state (M70 in a subroutine is forgotten when it
     /// returns; M72 finds only what its own level saved).
-    pub(super) fn restore_on_return(&mut self) {
+    pub(super) fn restore_on_return(&mut self) -> Result<(), Fault> {
         let stack = std::mem::take(&mut self.state.modal_stack);
         if stack.auto_restore
             && let Some(saved) = stack.saved
         {
-            self.restore_modes(saved);
+            // (The line is the return's: the whole of it is shown.)
+            self.restore_modes(saved, (0, self.lines.line.len().max(1)))?;
         }
+        Ok(())
     }
 
-    /// M72: the saved state back, in rs274's order; whether it differed from the state in
-    /// force (in what rs274's `gen_settings` and `gen_m_codes` compare). rs274 writes the feed
-    /// back as `F%.1f` and the speed as `S%.0f`: both come back rounded so.
-    fn restore_modes(&mut self, saved: SavedModes) -> bool {
+    /// M72 (on `span` of its line): the saved state back, in rs274's order; whether it differed
+    /// from the state in force (in what rs274's `gen_settings` and `gen_m_codes` compare).
+    /// rs274 writes the feed back as `F%.1f` and the speed as `S%.0f`: both come back rounded
+    /// so.
+    fn restore_modes(&mut self, saved: SavedModes, span: (usize, usize)) -> Result<bool, Fault> {
         let state = &self.state;
+        if saved.comp != state.comp.code() && saved.comp != 400.0 {
+            // rs274 would run a G41 or G42 with no D word (or G41.1 with none: an error).
+            return Err(Fault::not_supported(
+                span.0,
+                span.1,
+                "M72 or a return under M73 turning cutter compensation back on".to_owned(),
+                "rs274 runs G41 or G42 again without their D word",
+            ));
+        }
         let differs = saved.metric != state.metric
             || saved.incremental != state.incremental
             || saved.ijk_absolute != state.ijk_absolute
@@ -125,7 +142,8 @@ impl<R: BufRead> Interpreter<R> {
             || saved.retract_to_old != state.cycle.retract_to_old
             || saved.tool_offset != state.tool_offset
             || saved.blend != state.blend
-            || saved.naive_cam != state.naive_cam;
+            || saved.naive_cam != state.naive_cam
+            || saved.comp != state.comp.code();
         let rounded = |value: f64, decimals: usize| {
             format!("{value:.decimals$}").parse::<f64>().unwrap_or(value)
         };
@@ -154,6 +172,9 @@ impl<R: BufRead> Interpreter<R> {
             self.tool_event(saved.spindle);
         }
         self.state.plane = saved.plane;
+        if saved.comp != self.state.comp.code() {
+            self.cutter_comp_off()?;
+        }
         if saved.system != self.state.system {
             self.select_system(saved.system);
         }
@@ -173,6 +194,6 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tool_offset = saved.tool_offset;
         self.state.tool_offset_mm = saved.tool_offset_mm;
         self.state.tools.offset_active = saved.tool_offset.iter().any(|&value| value != 0.0);
-        differs
+        Ok(differs)
     }
 }
