@@ -539,6 +539,9 @@ pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
 /// reports. `$J=` jogging is motion, refused.
 fn grbl_prelude(raw: &[u8]) -> Prelude {
     let start = raw.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(raw.len());
+    if let Some(name) = grbl_realtime_line(&raw[start..]) {
+        return Prelude::Event { name, known: true };
+    }
     if raw.get(start) != Some(&b'$') {
         return Prelude::Block;
     }
@@ -555,6 +558,28 @@ fn grbl_prelude(raw: &[u8]) -> Prelude {
     }
     truncate_chars(&mut name, CodeName::MAX);
     Prelude::Event { name, known: true }
+}
+
+/// A line of Grbl's real-time commands `?` (status report) and `~` (cycle start, resume) with
+/// nothing after them but spaces and a comment: Grbl's serial reader takes these characters out
+/// of the stream before its line buffer (wiki "Grbl v1.1 Commands", real-time commands), so the
+/// line that is left is empty. Neither moves the machine: an event named by the characters.
+fn grbl_realtime_line(text: &[u8]) -> Option<String> {
+    let commands = text.iter().take_while(|b| matches!(b, b'?' | b'~' | b' ' | b'\t')).count();
+    let rest = &text[commands..];
+    let name: String = text[..commands]
+        .iter()
+        .filter(|b| !b.is_ascii_whitespace())
+        .map(|&b| char::from(b))
+        .collect();
+    let nothing_after = rest.iter().all(u8::is_ascii_whitespace)
+        || rest.first() == Some(&b';')
+        || (rest.first() == Some(&b'(') && rest.trim_ascii_end().ends_with(b")"));
+    (!name.is_empty() && nothing_after).then(|| {
+        let mut name = name;
+        truncate_chars(&mut name, 15);
+        name
+    })
 }
 
 /// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line
@@ -786,5 +811,22 @@ mod tests {
         assert!(detect_dialect(b"G0 X1\nM104 S2", true).is_some());
         let found = detect_dialect(b"(Miracle-Grue)\nG1 X1 A2\n", true).unwrap();
         assert!(found.makerbot && found.dialect == Dialect::Marlin && found.line == Some(1));
+    }
+
+    /// Found on a real program (a Grbl laser file that opens with `$I`, `$G`, `$$` and a `?`
+    /// line): Grbl's serial reader takes the real-time commands `?` and `~` out of the stream,
+    /// so a line of them (and a comment) is empty to the parser; they move nothing.
+    #[test]
+    fn grbl_real_time_command_lines_are_events() {
+        let event = |name: &str| Prelude::Event { name: name.to_owned(), known: true };
+        assert_eq!(prelude(Dialect::Grbl, b"?"), event("?"));
+        assert_eq!(prelude(Dialect::Grbl, b"?  ; View current status"), event("?"));
+        assert_eq!(prelude(Dialect::Grbl, b" ~ (resume)\r"), event("~"));
+        assert_eq!(prelude(Dialect::Grbl, b"? ~"), event("?~"));
+        // A real-time character before a command is not a line of them: the block reader
+        // refuses it as before, with its column.
+        assert_eq!(prelude(Dialect::Grbl, b"?G0 X1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Grbl, b"? (open comment"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Linuxcnc, b"?"), Prelude::Block);
     }
 }
