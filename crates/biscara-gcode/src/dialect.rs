@@ -664,7 +664,10 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
 fn unknown_text(raw: &[u8]) -> Prelude {
     let text = raw.trim_ascii_start();
     let Some(&first) = text.first() else { return Prelude::Block };
-    if !first.is_ascii_alphabetic() {
+    // Text that starts with a character no block starts with (NovaMaker's `<Slice> Blank`):
+    // Marlin finds no command letter and answers "Unknown command" too.
+    let foreign = first.is_ascii_punctuation() && !b";(%/#[*+-.@".contains(&first);
+    if !first.is_ascii_alphabetic() && !foreign {
         return Prelude::Block;
     }
     if first_command(raw).is_some_and(|(letter, ..)| matches!(letter, b'G' | b'M' | b'T')) {
@@ -784,6 +787,10 @@ mod tests {
         assert_eq!(prelude(Dialect::Grbl, b"  $32=1"), event("$32", true));
         assert!(matches!(prelude(Dialect::Grbl, b"$J=G91 X1 F100"), Prelude::Refuse { .. }));
         assert_eq!(prelude(Dialect::Grbl, b"G0 X1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"<Slice> Blank"), event("<Slice>", false));
+        assert_eq!(prelude(Dialect::Marlin, b"  {print_end}"), event("{print_end}", false));
+        assert_eq!(prelude(Dialect::Marlin, b"#1=2"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"/G1 X1"), Prelude::Block);
         assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), Prelude::Block);
         assert_eq!(prelude(Dialect::Linuxcnc, b"M104"), Prelude::Block);
     }
