@@ -404,10 +404,13 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
     if e_word && g_motion {
         return Some((Dialect::Marlin, "an E (extruder) word"));
     }
-    if compensation && p_word {
+    // Letters next to letters are no G-code words: a line of text or base64 (a thumbnail a
+    // program embeds without a comment marker) is no evidence of a G41 P or an XY K word.
+    let words = !squeezed.windows(2).any(|pair| pair.iter().all(u8::is_ascii_alphabetic));
+    if compensation && p_word && words {
         return Some((Dialect::Mach3, "Mach3's compensation radius in a G41/G42 P word"));
     }
-    if k_word && motion_arc && *plane_xy {
+    if k_word && motion_arc && *plane_xy && words {
         return Some((Dialect::Grbl, "a K word in an XY-plane arc (Grbl ignores it)"));
     }
     None
@@ -745,6 +748,14 @@ mod tests {
         check("G0 X1 (E5)\nG92 X0\nM3 S100\nM2\n", None);
         check("G0 X1e400 Y400\n", None);
         check("G0 X1 (a (b) c)\x01\n", None);
+        // Found on a real program (a PNG thumbnail pasted as a bare base64 line before the
+        // code): letters run into letters, so its `G3`, `0K` and `G42` are no words.
+        check(
+            "iVBORw0KGgoAAAANSUhEUgAAANwAAAQrh0oKNrkK2KCIWzAQQboaQ+0G2XILj1CNcZtbIlglwsHKEywgc\nG0 X1\n",
+            None,
+        );
+        check("G17 G2 X1 Y1 I1 K0\n", Some(Dialect::Grbl));
+        check("G41 P1.5 X0 Y0\n", Some(Dialect::Mach3));
     }
 
     #[test]
