@@ -310,8 +310,13 @@ fn split_comment(lower: &[u8]) -> (Vec<u8>, Vec<u8>) {
 /// M-codes no LinuxCNC program uses and Marlin (or another printer firmware) does: evidence
 /// for Marlin.
 fn printer_m_code(code: u32) -> bool {
-    // Not M100–M199 in general: those are LinuxCNC's user M-codes too.
-    matches!(code, 17 | 18 | 82 | 83 | 84 | 104..=107 | 109 | 117 | 140 | 141 | 190 | 191 | 200..)
+    // Not M100–M199 in general: those are LinuxCNC's user M-codes too. Below 100, Marlin's pin,
+    // print-job, power and steps-per-unit codes, which LinuxCNC, Grbl and Mach3 lack.
+    matches!(
+        code,
+        17 | 18 | 42 | 43 | 75..=78 | 80 | 81 | 82 | 83 | 84 | 92 | 104..=107 | 109 | 117 | 140
+            | 141 | 190 | 191 | 200..
+    )
 }
 
 /// The number after a letter at `at` in `code` (digits only).
@@ -755,6 +760,12 @@ mod tests {
             None,
         );
         check("G17 G2 X1 Y1 I1 K0\n", Some(Dialect::Grbl));
+        // Found on a real program (a bioprinter's Marlin fork: `C1` cap codes, bare `E0` lines,
+        // `M42` to switch a pin): M42 is Marlin's, unknown to LinuxCNC, Grbl and Mach3.
+        check("C1 S0 ; uncap\nG1 Z25\nM42 P16 S0\n", Some(Dialect::Marlin));
+        // A CNC post's M42 (say a gear change) in a program with modal motion stays LinuxCNC.
+        let cnc = detect_dialect(b"M42\nG1 X1 F100\nX2\nM2\n", true).map(|d| d.dialect);
+        assert_eq!(cnc, Some(Dialect::Linuxcnc));
         check("G41 P1.5 X0 Y0\n", Some(Dialect::Mach3));
     }
 
