@@ -418,6 +418,15 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
     if k_word && motion_arc && *plane_xy && words {
         return Some((Dialect::Grbl, "a K word in an XY-plane arc (Grbl ignores it)"));
     }
+    // A word whose value is an expression (`F[150*60]`) or a numbered parameter (`#1=10`,
+    // `X#1`): LinuxCNC's language (Mach3's too, which says so by other signs); Grbl and Marlin
+    // read neither, so a program using them is not called Grbl for lacking an M2.
+    let expression =
+        squeezed.windows(2).any(|pair| pair[0].is_ascii_alphabetic() && pair[1] == b'[');
+    let parameter = squeezed.windows(2).any(|pair| pair[0] == b'#' && pair[1].is_ascii_digit());
+    if expression || parameter {
+        return Some((Dialect::Linuxcnc, "a LinuxCNC expression or numbered parameter"));
+    }
     None
 }
 
@@ -760,6 +769,14 @@ mod tests {
             None,
         );
         check("G17 G2 X1 Y1 I1 K0\n", Some(Dialect::Grbl));
+        // Found on a real program (G5 splines after `G1 F[150 * 60]`, no M2): expressions and
+        // numbered parameters are LinuxCNC's language, which Grbl cannot read, so the program is
+        // not called Grbl for its missing M2 (LinuxCNC refuses it for that, as rs274 does).
+        check("G90 G17\nG1 F[150 * 60]\nG1 X10 Y10\n", Some(Dialect::Linuxcnc));
+        check("#1 = 10\nG0 X#1\n", Some(Dialect::Linuxcnc));
+        check("G0 X1 (#1 [2])\nG0 X2 ; F[3]\n", None);
+        // A printer code on the same line (PrusaSlicer's unexpanded `S[…]`) still says Marlin.
+        check("M140 S[first_layer_bed_temperature]\n", Some(Dialect::Marlin));
         // Found on a real program (a bioprinter's Marlin fork: `C1` cap codes, bare `E0` lines,
         // `M42` to switch a pin): M42 is Marlin's, unknown to LinuxCNC, Grbl and Mach3.
         check("C1 S0 ; uncap\nG1 Z25\nM42 P16 S0\n", Some(Dialect::Marlin));
