@@ -491,6 +491,75 @@ fn linuxcnc_interp_corpus_matches_or_is_refused() {
     assert!(differ.is_empty(), "{} programs differ:\n{}", differ.len(), differ.join("\n"));
 }
 
+/// Every `.ngc` and `.nc` program under the folder that `CONFORMANCE_DIR` names, checked against
+/// rs274 like LinuxCNC's examples (subroutine files that another program of their folder calls
+/// by name, `o<NAME> call`, run as part of their callers and are not checked alone): prints each
+/// program's verdict and fails when any differs. For collections of real programs kept outside
+/// the repository:
+///
+/// ```text
+/// CONFORMANCE_DIR=/path/to/programs cargo test -p biscara --test it conformance_of_a_folder \
+///     -- --ignored --nocapture
+/// ```
+#[test]
+#[ignore = "needs CONFORMANCE_DIR, a folder of programs outside the repository"]
+fn conformance_of_a_folder() {
+    const TEST: &str = "conformance_of_a_folder";
+    if !rs274::available(TEST) {
+        return;
+    }
+    let root = std::env::var_os("CONFORMANCE_DIR").map(PathBuf::from);
+    let Some(root) = root.filter(|root| root.is_dir()) else {
+        panic!("{TEST}: CONFORMANCE_DIR must name a folder of .ngc/.nc programs");
+    };
+    let mut files = Vec::new();
+    files_under(&root, &["ngc", "nc"], &mut files);
+    let called = |path: &Path| {
+        let (Some(folder), Some(stem)) = (path.parent(), path.file_stem()) else { return false };
+        let call = format!("o<{}>call", stem.to_string_lossy().to_ascii_lowercase());
+        files.iter().filter(|other| other.parent() == Some(folder) && *other != path).any(|other| {
+            std::fs::read(other).is_ok_and(|bytes| {
+                String::from_utf8_lossy(&bytes)
+                    .to_ascii_lowercase()
+                    .replace(' ', "")
+                    .contains(&call)
+            })
+        })
+    };
+    let mut programs: Vec<PathBuf> = files.iter().filter(|path| !called(path)).cloned().collect();
+    programs.sort();
+    let dir = temp_dir("conformance-folder");
+    let mut counts = [0usize; 7];
+    let mut differ = Vec::new();
+    for program in &programs {
+        let name = program.strip_prefix(&root).unwrap_or(program).display().to_string();
+        let verdict = check(program, &dir);
+        #[allow(clippy::print_stderr)]
+        {
+            match &verdict {
+                Ok(verdict) => eprintln!("{name}: {verdict:?}"),
+                Err(problem) => eprintln!("{name}: DIFFER: {problem}"),
+            }
+        }
+        match verdict {
+            Ok(verdict) => counts[verdict as usize] += 1,
+            Err(problem) => differ.push(format!("{name}: {problem}")),
+        }
+    }
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!(
+            "{}: {} programs: {}, {} differ",
+            root.display(),
+            programs.len(),
+            verdict_counts(&counts),
+            differ.len()
+        );
+    }
+    assert!(!programs.is_empty(), "no .ngc/.nc programs under {}", root.display());
+    assert!(differ.is_empty(), "{} programs differ:\n{}", differ.len(), differ.join("\n"));
+}
+
 /// `text` with every G41/G42 (and its `D1`) made a G41.1/G42.1 with a diameter of `diameter`.
 fn with_tool_diameter(text: &str, diameter: &str) -> String {
     let mut out = String::with_capacity(text.len());

@@ -310,8 +310,13 @@ fn split_comment(lower: &[u8]) -> (Vec<u8>, Vec<u8>) {
 /// M-codes no LinuxCNC program uses and Marlin (or another printer firmware) does: evidence
 /// for Marlin.
 fn printer_m_code(code: u32) -> bool {
-    // Not M100–M199 in general: those are LinuxCNC's user M-codes too.
-    matches!(code, 17 | 18 | 82 | 83 | 84 | 104..=107 | 109 | 117 | 140 | 141 | 190 | 191 | 200..)
+    // Not M100–M199 in general: those are LinuxCNC's user M-codes too. Below 100, Marlin's pin,
+    // print-job, power and steps-per-unit codes, which LinuxCNC, Grbl and Mach3 lack.
+    matches!(
+        code,
+        17 | 18 | 42 | 43 | 75..=78 | 80 | 81 | 82 | 83 | 84 | 92 | 104..=107 | 109 | 117 | 140
+            | 141 | 190 | 191 | 200..
+    )
 }
 
 /// The number after a letter at `at` in `code` (digits only).
@@ -404,11 +409,23 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
     if e_word && g_motion {
         return Some((Dialect::Marlin, "an E (extruder) word"));
     }
-    if compensation && p_word {
+    // Letters next to letters are no G-code words: a line of text or base64 (a thumbnail a
+    // program embeds without a comment marker) is no evidence of a G41 P or an XY K word.
+    let words = !squeezed.windows(2).any(|pair| pair.iter().all(u8::is_ascii_alphabetic));
+    if compensation && p_word && words {
         return Some((Dialect::Mach3, "Mach3's compensation radius in a G41/G42 P word"));
     }
-    if k_word && motion_arc && *plane_xy {
+    if k_word && motion_arc && *plane_xy && words {
         return Some((Dialect::Grbl, "a K word in an XY-plane arc (Grbl ignores it)"));
+    }
+    // A word whose value is an expression (`F[150*60]`) or a numbered parameter (`#1=10`,
+    // `X#1`): LinuxCNC's language (Mach3's too, which says so by other signs); Grbl and Marlin
+    // read neither, so a program using them is not called Grbl for lacking an M2.
+    let expression =
+        squeezed.windows(2).any(|pair| pair[0].is_ascii_alphabetic() && pair[1] == b'[');
+    let parameter = squeezed.windows(2).any(|pair| pair[0] == b'#' && pair[1].is_ascii_digit());
+    if expression || parameter {
+        return Some((Dialect::Linuxcnc, "a LinuxCNC expression or numbered parameter"));
     }
     None
 }
@@ -539,6 +556,9 @@ pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
 /// reports. `$J=` jogging is motion, refused.
 fn grbl_prelude(raw: &[u8]) -> Prelude {
     let start = raw.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(raw.len());
+    if let Some(name) = grbl_realtime_line(&raw[start..]) {
+        return Prelude::Event { name, known: true };
+    }
     if raw.get(start) != Some(&b'$') {
         return Prelude::Block;
     }
@@ -555,6 +575,28 @@ fn grbl_prelude(raw: &[u8]) -> Prelude {
     }
     truncate_chars(&mut name, CodeName::MAX);
     Prelude::Event { name, known: true }
+}
+
+/// A line of Grbl's real-time commands `?` (status report) and `~` (cycle start, resume) with
+/// nothing after them but spaces and a comment: Grbl's serial reader takes these characters out
+/// of the stream before its line buffer (wiki "Grbl v1.1 Commands", real-time commands), so the
+/// line that is left is empty. Neither moves the machine: an event named by the characters.
+fn grbl_realtime_line(text: &[u8]) -> Option<String> {
+    let commands = text.iter().take_while(|b| matches!(b, b'?' | b'~' | b' ' | b'\t')).count();
+    let rest = &text[commands..];
+    let name: String = text[..commands]
+        .iter()
+        .filter(|b| !b.is_ascii_whitespace())
+        .map(|&b| char::from(b))
+        .collect();
+    let nothing_after = rest.iter().all(u8::is_ascii_whitespace)
+        || rest.first() == Some(&b';')
+        || (rest.first() == Some(&b'(') && rest.trim_ascii_end().ends_with(b")"));
+    (!name.is_empty() && nothing_after).then(|| {
+        let mut name = name;
+        truncate_chars(&mut name, 15);
+        name
+    })
 }
 
 /// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line
@@ -639,7 +681,10 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
 fn unknown_text(raw: &[u8]) -> Prelude {
     let text = raw.trim_ascii_start();
     let Some(&first) = text.first() else { return Prelude::Block };
-    if !first.is_ascii_alphabetic() {
+    // Text that starts with a character no block starts with (NovaMaker's `<Slice> Blank`):
+    // Marlin finds no command letter and answers "Unknown command" too.
+    let foreign = first.is_ascii_punctuation() && !b";(%/#[*+-.@".contains(&first);
+    if !first.is_ascii_alphabetic() && !foreign {
         return Prelude::Block;
     }
     if first_command(raw).is_some_and(|(letter, ..)| matches!(letter, b'G' | b'M' | b'T')) {
@@ -717,6 +762,28 @@ mod tests {
         check("G0 X1 (E5)\nG92 X0\nM3 S100\nM2\n", None);
         check("G0 X1e400 Y400\n", None);
         check("G0 X1 (a (b) c)\x01\n", None);
+        // Found on a real program (a PNG thumbnail pasted as a bare base64 line before the
+        // code): letters run into letters, so its `G3`, `0K` and `G42` are no words.
+        check(
+            "iVBORw0KGgoAAAANSUhEUgAAANwAAAQrh0oKNrkK2KCIWzAQQboaQ+0G2XILj1CNcZtbIlglwsHKEywgc\nG0 X1\n",
+            None,
+        );
+        check("G17 G2 X1 Y1 I1 K0\n", Some(Dialect::Grbl));
+        // Found on a real program (G5 splines after `G1 F[150 * 60]`, no M2): expressions and
+        // numbered parameters are LinuxCNC's language, which Grbl cannot read, so the program is
+        // not called Grbl for its missing M2 (LinuxCNC refuses it for that, as rs274 does).
+        check("G90 G17\nG1 F[150 * 60]\nG1 X10 Y10\n", Some(Dialect::Linuxcnc));
+        check("#1 = 10\nG0 X#1\n", Some(Dialect::Linuxcnc));
+        check("G0 X1 (#1 [2])\nG0 X2 ; F[3]\n", None);
+        // A printer code on the same line (PrusaSlicer's unexpanded `S[…]`) still says Marlin.
+        check("M140 S[first_layer_bed_temperature]\n", Some(Dialect::Marlin));
+        // Found on a real program (a bioprinter's Marlin fork: `C1` cap codes, bare `E0` lines,
+        // `M42` to switch a pin): M42 is Marlin's, unknown to LinuxCNC, Grbl and Mach3.
+        check("C1 S0 ; uncap\nG1 Z25\nM42 P16 S0\n", Some(Dialect::Marlin));
+        // A CNC post's M42 (say a gear change) in a program with modal motion stays LinuxCNC.
+        let cnc = detect_dialect(b"M42\nG1 X1 F100\nX2\nM2\n", true).map(|d| d.dialect);
+        assert_eq!(cnc, Some(Dialect::Linuxcnc));
+        check("G41 P1.5 X0 Y0\n", Some(Dialect::Mach3));
     }
 
     #[test]
@@ -759,6 +826,10 @@ mod tests {
         assert_eq!(prelude(Dialect::Grbl, b"  $32=1"), event("$32", true));
         assert!(matches!(prelude(Dialect::Grbl, b"$J=G91 X1 F100"), Prelude::Refuse { .. }));
         assert_eq!(prelude(Dialect::Grbl, b"G0 X1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"<Slice> Blank"), event("<Slice>", false));
+        assert_eq!(prelude(Dialect::Marlin, b"  {print_end}"), event("{print_end}", false));
+        assert_eq!(prelude(Dialect::Marlin, b"#1=2"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Marlin, b"/G1 X1"), Prelude::Block);
         assert_eq!(prelude(Dialect::Mach3, b"O0001 (PART)"), Prelude::Block);
         assert_eq!(prelude(Dialect::Linuxcnc, b"M104"), Prelude::Block);
     }
@@ -786,5 +857,22 @@ mod tests {
         assert!(detect_dialect(b"G0 X1\nM104 S2", true).is_some());
         let found = detect_dialect(b"(Miracle-Grue)\nG1 X1 A2\n", true).unwrap();
         assert!(found.makerbot && found.dialect == Dialect::Marlin && found.line == Some(1));
+    }
+
+    /// Found on a real program (a Grbl laser file that opens with `$I`, `$G`, `$$` and a `?`
+    /// line): Grbl's serial reader takes the real-time commands `?` and `~` out of the stream,
+    /// so a line of them (and a comment) is empty to the parser; they move nothing.
+    #[test]
+    fn grbl_real_time_command_lines_are_events() {
+        let event = |name: &str| Prelude::Event { name: name.to_owned(), known: true };
+        assert_eq!(prelude(Dialect::Grbl, b"?"), event("?"));
+        assert_eq!(prelude(Dialect::Grbl, b"?  ; View current status"), event("?"));
+        assert_eq!(prelude(Dialect::Grbl, b" ~ (resume)\r"), event("~"));
+        assert_eq!(prelude(Dialect::Grbl, b"? ~"), event("?~"));
+        // A real-time character before a command is not a line of them: the block reader
+        // refuses it as before, with its column.
+        assert_eq!(prelude(Dialect::Grbl, b"?G0 X1"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Grbl, b"? (open comment"), Prelude::Block);
+        assert_eq!(prelude(Dialect::Linuxcnc, b"?"), Prelude::Block);
     }
 }

@@ -402,6 +402,12 @@ mod tests {
             fit(&Bounds::new([0.0; 4]), &rectangle).unwrap_err(),
             VirtualRobotError::NoMoves
         );
+        // Found on a resin printer's program (NovaMaker): it only lifts and lowers Z, which
+        // moves nowhere in XY, and the error says so instead of "no move".
+        let lifts = [linear(1, [0.0, 0.0, 4.0, 0.0]), linear(2, [0.0, 0.0, 0.05, 0.0])];
+        let err = fit(&Bounds::of([0.0; 4], &lifts), &rectangle).unwrap_err();
+        assert_eq!(err, VirtualRobotError::NoMoves);
+        assert!(err.to_string().contains("no move in X or Y away from its start"), "{err}");
     }
 
     #[test]

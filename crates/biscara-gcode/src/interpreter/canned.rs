@@ -165,7 +165,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         let clear_cc = if self.state.cycle.retract_to_old { old_cc } else { r };
         let path_control = self.state.blend.take();
-        // The values each cycle needs, sticky when the cycle goes on.
+        // The values each cycle needs, sticky when the cycle goes on. A cycle that reads no P
+        // (or Q) leaves the one in store: LinuxCNC keeps `cycle_p` for a later G74/G84, whose
+        // dwell is the last P any cycle read (G82 P0.6, then G83, then G84 dwells 0.6 s).
         let cycle = self.state.cycle;
         let missing = |letter: char| format!("{letter} word missing with g{}", motion / 10);
         let p = match motion {
@@ -181,7 +183,7 @@ impl<R: BufRead> Interpreter<R> {
                         .cycle_fault(format!("Dwell time p word missing with g{}", motion / 10)));
                 }
             },
-            _ => 0.0,
+            _ => cycle.p,
         };
         let q = match motion {
             730 | 830 => match word(b'q') {
@@ -189,7 +191,7 @@ impl<R: BufRead> Interpreter<R> {
                 _ if same => cycle.q,
                 _ => return Err(self.cycle_fault(missing('Q'))),
             },
-            _ => 0.0,
+            _ => cycle.q,
         };
         let mut ijk = cycle.ijk;
         if motion == 870 {
