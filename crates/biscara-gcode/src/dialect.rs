@@ -594,7 +594,7 @@ fn grbl_realtime_line(text: &[u8]) -> Option<String> {
         || (rest.first() == Some(&b'(') && rest.trim_ascii_end().ends_with(b")"));
     (!name.is_empty() && nothing_after).then(|| {
         let mut name = name;
-        truncate_chars(&mut name, 15);
+        truncate_chars(&mut name, CodeName::MAX);
         name
     })
 }
