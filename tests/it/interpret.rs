@@ -230,3 +230,30 @@ fn ini_file_variables_are_read_with_ini_and_joints_takes_it_too() {
     assert_eq!(without.code, 1, "{without}");
     assert!(without.stderr.contains("change.ngc:1:5: Named parameter #<_ini[vars]change_x> not"));
 }
+
+#[test]
+fn an_error_in_a_file_subroutine_names_that_file_and_its_line() {
+    let dir = temp_dir("interpret-sub-error");
+    std::fs::create_dir_all(dir.join("subs")).expect("subs folder");
+    std::fs::write(dir.join("main.ngc"), "G21 G90 F100\nG1 X1\no<bad> call\nM2\n")
+        .expect("write the program");
+    std::fs::write(dir.join("subs/bad.ngc"), "o<bad> sub\nG1 X2\nG1 X[1/0]\no<bad> endsub\nM2\n")
+        .expect("write the subroutine");
+    let run = biscara(&dir, &["interpret", "main.ngc", "--subroutine-path", "subs"]);
+    assert_eq!(run.code, 1, "{run}");
+    assert!(
+        run.stderr.starts_with("biscara: error: subs/bad.ngc:3:7: Attempt to divide by zero\n"),
+        "{run}"
+    );
+    assert!(run.stderr.contains("G1 X[1/0]"), "{run}");
+    // An error of the program's own lines still names the program.
+    std::fs::write(dir.join("main.ngc"), "G21 G90 F100\no<bad> call\nG1 X[2/0]\nM2\n")
+        .expect("write the program");
+    std::fs::write(dir.join("subs/bad.ngc"), "o<bad> sub\nG1 X2\no<bad> endsub\nM2\n")
+        .expect("write the subroutine");
+    let run = biscara(&dir, &["interpret", "main.ngc", "--subroutine-path", "subs"]);
+    assert!(
+        run.stderr.starts_with("biscara: error: main.ngc:3:7: Attempt to divide by zero"),
+        "{run}"
+    );
+}

@@ -15,6 +15,10 @@ pub struct Location {
     pub span: (usize, usize),
     /// The text of the line (lossily decoded, without its line ending; shortened when long).
     pub text: String,
+    /// The file subroutine (`o<name> call` → `name.ngc`) the line is in, as its path was found;
+    /// `None` when it is the program's own line. A caller prefixes this name instead of the
+    /// program's.
+    pub file: Option<Box<str>>,
 }
 
 impl Location {

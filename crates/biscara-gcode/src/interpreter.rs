@@ -441,7 +441,8 @@ impl<R: BufRead> Interpreter<R> {
             .chars()
             .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
             .collect();
-        Location { line: self.lines.number, column: start + 1, span: (start, end), text }
+        let file = self.control.file.as_ref().map(|path| path.display().to_string().into());
+        Location { line: self.lines.number, column: start + 1, span: (start, end), text, file }
     }
 
     fn error(&self, fault: Fault) -> GcodeError {

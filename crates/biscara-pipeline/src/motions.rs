@@ -163,8 +163,9 @@ struct GcodeMotions<R> {
 }
 
 impl<R: BufRead> GcodeMotions<R> {
-    /// The error, located, with the line and a caret, and with the dialect `auto` chose when it
-    /// is not LinuxCNC's (the error may be the dialect's, not the program's).
+    /// The error, located (in the program, or in the file subroutine whose line it is), with
+    /// the line and a caret, and with the dialect `auto` chose when it is not LinuxCNC's (the
+    /// error may be the dialect's, not the program's).
     fn located(&self, err: GcodeError) -> PipelineError {
         let mut snippet = err.location().map(|location| location.snippet());
         if let Some(detection) =
@@ -179,7 +180,10 @@ impl<R: BufRead> GcodeMotions<R> {
                 None => why,
             });
         }
-        PipelineError::Program { file: self.file.clone(), error: Box::new(err), snippet }
+        // An error in a file subroutine names that file, not the program.
+        let file = err.location().and_then(|location| location.file.as_deref());
+        let file = file.map_or_else(|| self.file.clone(), str::to_owned);
+        PipelineError::Program { file, error: Box::new(err), snippet }
     }
 
     /// The tool inferred, once.

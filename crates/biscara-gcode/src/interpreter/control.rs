@@ -185,7 +185,7 @@ pub(super) struct Control {
     frames: Vec<Frame>,
     test_value: f64,
     /// The file subroutine being read (`None`: the main program).
-    file: Option<Rc<Path>>,
+    pub(super) file: Option<Rc<Path>>,
     /// The program's path, for messages and to find file subroutines beside it.
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
