@@ -7,10 +7,10 @@
 //! the distance and arc distance modes, the feed mode and rate, the spindle speed and
 //! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
 //! coordinate system, the canned cycles' retract mode, the tool length offset and the
-//! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused as
-//! not supported). Not the motion mode. As in rs274, the feed comes
-//! back with one decimal and the speed with none, and an M72 that changes anything loses the
-//! rest of its line (see [`Interpreter::modal_state`]).
+//! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused
+//! as not supported). Not the motion mode. As in rs274, the feed comes back with one decimal
+//! and the speed with none, and an M72 that changes anything loses the rest of its line (see
+//! [`Interpreter::modal_state`]).
 
 use std::io::BufRead;
 
