@@ -89,12 +89,21 @@ pub struct Summary {
     /// Codes the firmware does not know and skips (Marlin answers "Unknown command" and goes
     /// on), with their counts.
     pub unknown: BTreeMap<String, usize>,
+    /// What the firmware itself would refuse and this interpreter reads as LinuxCNC does
+    /// (Grbl 1.1's unsupported commands: canned cycles, G41/G42, M6, O-words, parameters, …),
+    /// with their counts: the program runs here, not on that machine.
+    pub refused_by_firmware: BTreeMap<String, usize>,
 }
 
 impl Summary {
     /// Whether nothing was recorded.
     pub fn is_empty(&self) -> bool {
-        self.codes.is_empty() && self.unknown.is_empty()
+        self.codes.is_empty() && self.unknown.is_empty() && self.refused_by_firmware.is_empty()
+    }
+
+    /// Counts one use of `what`, which the firmware would refuse.
+    pub(crate) fn count_refused(&mut self, what: &str) {
+        *self.refused_by_firmware.entry(what.to_owned()).or_insert(0) += 1;
     }
 
     pub(crate) fn count(&mut self, code: &str, known: bool) {
@@ -597,6 +606,68 @@ fn grbl_realtime_line(text: &[u8]) -> Option<String> {
         truncate_chars(&mut name, CodeName::MAX);
         name
     })
+}
+
+/// Whether Grbl 1.1 runs G-code `code` (ten times its number): its README's list of supported
+/// G-codes (motion, G4, G10 L2/L20, G17–G19, G20/G21, G28/G30 and .1, G38.2–G38.5, G40, G43.1,
+/// G49, G53–G59, G61, G80, G90/G91, G91.1, G92, G92.1, G93/G94). Anything else is its error 20
+/// ("Unsupported or invalid g-code command found in block").
+pub(crate) fn grbl_runs_g(code: u16) -> bool {
+    matches!(
+        code,
+        0 | 10
+            | 20
+            | 30
+            | 40
+            | 100
+            | 170
+            | 180
+            | 190
+            | 200
+            | 210
+            | 280
+            | 281
+            | 300
+            | 301
+            | 382
+            | 383
+            | 384
+            | 385
+            | 400
+            | 431
+            | 490
+            | 530
+            | 540
+            | 550
+            | 560
+            | 570
+            | 580
+            | 590
+            | 610
+            | 800
+            | 900
+            | 910
+            | 911
+            | 920
+            | 921
+            | 930
+            | 940
+    )
+}
+
+/// Whether Grbl 1.1 runs M-code `code`: M0 M1 M2 M30, M3 M4 M5, M7 M8 M9 and M56 (its README);
+/// anything else, M6 included, is its error 20.
+pub(crate) fn grbl_runs_m(code: u16) -> bool {
+    matches!(code, 0 | 1 | 2 | 30 | 3 | 4 | 5 | 7 | 8 | 9 | 56)
+}
+
+/// The name of G-code `code` (ten times its number): `G81`, `G41.1`.
+pub(crate) fn g_name(code: u16) -> String {
+    if code.is_multiple_of(10) {
+        format!("G{}", code / 10)
+    } else {
+        format!("G{}.{}", code / 10, code % 10)
+    }
 }
 
 /// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line

@@ -535,6 +535,10 @@ impl<R: BufRead> Interpreter<R> {
             if (self.control.engaged() || control::may_control(self.compact.bytes()))
                 && self.control_line()?
             {
+                // (A line skipped inside a false `if` is no O-word of its own.)
+                if self.dialect == Dialect::Grbl && control::may_control(self.compact.bytes()) {
+                    self.summary.count_refused("O-words");
+                }
                 continue;
             }
             let raw_len = self.lines.line.len();
@@ -545,6 +549,9 @@ impl<R: BufRead> Interpreter<R> {
             };
             result.map_err(|fault| self.error(fault))?;
             if self.dialect != Dialect::Linuxcnc {
+                if self.dialect == Dialect::Grbl {
+                    self.count_refused_by_grbl();
+                }
                 self.pending_extrude = None;
                 if self.adapt_block().map_err(|fault| self.error(fault))? {
                     continue;

@@ -135,6 +135,16 @@ pub enum Note {
         /// Each code and how many times it occurs.
         codes: BTreeMap<String, usize>,
     },
+    /// The program uses what its firmware itself refuses (Grbl 1.1's unsupported commands),
+    /// read here as LinuxCNC reads it; one note with their counts.
+    RefusedByFirmware {
+        /// The program's name.
+        file: String,
+        /// The dialect the program was read in.
+        dialect: Dialect,
+        /// Each code or feature and how many lines use it.
+        codes: BTreeMap<String, usize>,
+    },
     /// The program used tool offsets (G43, G43.2, G10 L1/L10/L11, M61) with no tool table
     /// given: every tool has zero length and diameter.
     ToolsWithoutTable {
@@ -237,6 +247,12 @@ impl fmt::Display for Note {
                 f,
                 "{file}: codes {dialect} does not know, skipped as it does (\"Unknown command\"), \
                  recorded as events: {}",
+                Counted(codes)
+            ),
+            Note::RefusedByFirmware { file, dialect, codes } => write!(
+                f,
+                "{file}: {dialect} itself refuses these (its error 20, unsupported command); read \
+                 here as LinuxCNC reads them, so the program runs here but not on that machine: {}",
                 Counted(codes)
             ),
             Note::ToolsWithoutTable { file } => write!(

@@ -9,7 +9,8 @@ use biscara_motion::{CodeName, MotionKind};
 
 use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Percent};
 use crate::dialect::{
-    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, g_name,
+    grbl_runs_g, grbl_runs_m, prelude,
 };
 use crate::error::GcodeError;
 use crate::lexer::Fault;
@@ -163,6 +164,28 @@ impl<R: BufRead> Interpreter<R> {
         self.summary.count(name, known);
         if let Some(code) = CodeName::new(name) {
             self.emit(MotionKind::Code { code });
+        }
+    }
+
+    /// Grbl 1.1: counts what this block uses that Grbl itself refuses (error 20), read here as
+    /// LinuxCNC reads it: G and M codes outside its list, parameters and expressions.
+    pub(super) fn count_refused_by_grbl(&mut self) {
+        for code in self.block.g.iter().flatten() {
+            if !grbl_runs_g(code.code) {
+                self.summary.count_refused(&g_name(code.code));
+            }
+        }
+        for code in self.block.m.iter().flatten() {
+            if !grbl_runs_m(code.code) {
+                self.summary.count_refused(&format!("M{}", code.code));
+            }
+        }
+        let bytes = self.compact.bytes();
+        if bytes.contains(&b'#') {
+            self.summary.count_refused("parameters (#)");
+        }
+        if bytes.contains(&b'[') {
+            self.summary.count_refused("expressions ([ ])");
         }
     }
 

@@ -443,3 +443,39 @@ fn grbl_ends_a_comment_at_its_first_parenthesis() {
     let err = refused("G0 X1 ( a ( b )\nM30\n", Dialect::Mach3);
     assert!(err.to_string().contains("Unclosed comment found"), "{err}");
 }
+
+#[test]
+fn grbl_programs_count_what_grbl_itself_refuses() {
+    // FreeCAD's grbl_post can write G83 (a peck-drilling cycle Grbl 1.1 answers with error 20):
+    // read as LinuxCNC reads it, and counted for the note; Grbl's own codes are not.
+    let program = "G21 G90 G17 G94 G54 G40 G49 G80 G61 G91.1\nM3 S1000\nG0 X1 Y2 Z5\n\
+                   G98 G83 X5 Y5 Z-2 R1 Q1 F100\nX6\nG80\nM6 T2\nG43.1 Z1\n#1 = 3\nG1 X[#1 + 1]\n\
+                   G41.1 D2\nG1 Y9\nG40\nG64 P0.1\no100 if [1]\nG1 X1\no100 endif\nG4 P0.1\nM5 M9\n";
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Grbl));
+    let motions: Result<Vec<Motion>, _> = (&mut interpreter).collect();
+    assert!(motions.is_ok(), "{motions:?}");
+    let refused: Vec<(&str, usize)> = interpreter
+        .summary()
+        .refused_by_firmware
+        .iter()
+        .map(|(code, count)| (code.as_str(), *count))
+        .collect();
+    assert_eq!(
+        refused,
+        [
+            ("G41.1", 1),
+            ("G64", 1),
+            ("G83", 1),
+            ("G98", 1),
+            ("M6", 1),
+            ("O-words", 2),
+            ("expressions ([ ])", 1),
+            ("parameters (#)", 2),
+        ]
+    );
+    // The same program read as LinuxCNC counts nothing.
+    let program = format!("{program}M2\n");
+    let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Linuxcnc));
+    assert!(interpreter.by_ref().all(|result| result.is_ok()));
+    assert!(interpreter.summary().refused_by_firmware.is_empty());
+}

@@ -288,6 +288,45 @@ fn tool_offsets_come_from_the_table_or_a_note_says_there_is_none() {
     assert!(!notes.iter().any(|note| matches!(note, Note::ToolsWithoutTable { .. })), "{notes:?}");
 }
 
+#[test]
+fn a_grbl_program_is_told_what_grbl_itself_refuses() {
+    let model = RobotModel::default();
+    let notes_of = |name: &str, program: &str| {
+        let source = TextSource::new(name, program);
+        let notes = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+        let heard = std::rc::Rc::clone(&notes);
+        let config =
+            SamplingConfig { dialect: biscara_gcode::Dialect::Grbl, ..SamplingConfig::default() };
+        let motions = pipeline(&model, config)
+            .motions(&source, ProgramKind::Gcode, move |note| heard.borrow_mut().push(note))
+            .unwrap();
+        assert!(motions.collect::<Result<Vec<_>, _>>().is_ok());
+        notes.borrow().iter().map(ToString::to_string).collect::<Vec<_>>()
+    };
+    let notes = notes_of(
+        "peck.nc",
+        "G21 G90 F100
+G0 X0 Y400 Z10
+G83 X1 Y400 Z5 R8 Q1
+G80
+",
+    );
+    let note = notes.iter().find(|note| note.contains("itself refuses")).expect("a note");
+    assert_eq!(
+        note,
+        "peck.nc: grbl itself refuses these (its error 20, unsupported command); read here as \
+         LinuxCNC reads them, so the program runs here but not on that machine: G83 ×1"
+    );
+    let notes = notes_of(
+        "plain.nc",
+        "G21 G90 F100
+G0 X0 Y400 Z10
+G1 X1
+",
+    );
+    assert!(!notes.iter().any(|note| note.contains("itself refuses")), "{notes:?}");
+}
+
 /// A writer that refuses every byte, as a full disk does.
 struct FullDisk;
 
