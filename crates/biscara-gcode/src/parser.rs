@@ -600,8 +600,8 @@ impl<'a> Reader<'a> {
     }
 
     /// `<name>` after a `#`: returns the compact range of the name. `#<_ini[section]name>` is
-    /// a global name like any other, as in LinuxCNC without an INI file (its INI_VARS feature
-    /// reads such names from the INI file; there is none here).
+    /// read like any global name: the INI file's values, when one is given, are among the
+    /// predefined names ([`Predefined::predefined`]).
     fn read_name(&mut self) -> Result<(usize, usize), Fault> {
         let open = self.pos;
         self.pos += 1;
@@ -725,13 +725,15 @@ impl<'a> Reader<'a> {
             return value.ok_or_else(|| {
                 let shown = String::from_utf8_lossy(name);
                 // LinuxCNC's wording, and why for a name only its INI file would define.
-                let why = match self.predefined.ini_why_not(name) {
-                    _ if !name.starts_with(b"_ini[") => String::new(),
-                    Some(why) => format!(" ({why}, and the program did not set it)"),
-                    None => " (an INI file variable, and no INI file is read: none was given, or \
-                              its [RS274NGC] INI_VARS is 0; the name is then a global one that the \
-                              program must set first, as in LinuxCNC without an INI file)"
-                        .to_owned(),
+                let why = if !name.starts_with(b"_ini[") {
+                    String::new()
+                } else if let Some(why) = self.predefined.ini_why_not(name) {
+                    format!(" ({why}, and the program did not set it)")
+                } else {
+                    " (an INI file variable, and no INI file is read: none was given, or its \
+                     [RS274NGC] INI_VARS is 0; the name is then a global one that the program \
+                     must set first, as in LinuxCNC without an INI file)"
+                        .to_owned()
                 };
                 self.invalid(
                     start,
