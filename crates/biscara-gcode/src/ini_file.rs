@@ -129,6 +129,12 @@ impl IniFile {
         None
     }
 
+    /// Whether the file has a line starting with `[section]`.
+    pub fn has_section(&self, section: &str) -> bool {
+        let header = format!("[{section}]");
+        self.lines.iter().any(|line| line.trim_start().starts_with(&header))
+    }
+
     /// The number `name` in `[section]` holds; `None` when it is missing or not a finite number.
     pub fn number(&self, section: &str, name: &str) -> Option<f64> {
         self.find(section, name)?.parse::<f64>().ok().filter(|value| value.is_finite())
@@ -154,7 +160,7 @@ impl IniFile {
             return "the name is not of the form #<_ini[SECTION]NAME>".to_owned();
         };
         let header = format!("[{section}]");
-        if !self.lines.iter().any(|line| line.trim_start().starts_with(&header)) {
+        if !self.has_section(&section) {
             return format!("the INI file has no section {header}");
         }
         match self.find(&section, &name) {
@@ -234,6 +240,13 @@ mod tests {
             assert!(file.why_not(missing).starts_with("the first [VARS] of the INI file has no "));
         }
         assert_eq!(file.why_not(b"_ini[]"), "the name is not of the form #<_ini[SECTION]NAME>");
+    }
+
+    #[test]
+    fn sections_are_found_by_their_header() {
+        let file = ini("[EMC]\n  [PYTHON] ; plug-ins\nPATH_PREPEND = python\n");
+        assert!(file.has_section("PYTHON") && file.has_section("EMC"));
+        assert!(!file.has_section("python") && !file.has_section("PATH_PREPEND"));
     }
 
     #[test]

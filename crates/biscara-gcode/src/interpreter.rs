@@ -429,7 +429,9 @@ impl<R: BufRead> Interpreter<R> {
             pending_extrude: None,
             moved: false,
             zeroed_at_start: [false; 4],
-            control: Box::default(),
+            control: Box::new(control::Control::new(
+                config.ini.as_ref().is_some_and(|ini| ini.has_section("PYTHON")),
+            )),
         }
         .with_line_limit()
     }

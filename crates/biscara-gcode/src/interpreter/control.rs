@@ -190,6 +190,9 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// Whether the INI file loads LinuxCNC's Python plug-ins (a `[PYTHON]` section), whose
+    /// subroutines and remaps interpret cannot run: said when a subroutine is not found.
+    python_plugins: bool,
     /// The loops of the main program being run (for an input read only forwards, whose lines
     /// are kept while a loop runs).
     open_loops: Vec<Rc<str>>,
@@ -217,6 +220,7 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            python_plugins: false,
             open_loops: Vec::new(),
             recording: None,
             forward: false,
@@ -225,6 +229,12 @@ impl Default for Control {
 }
 
 impl Control {
+    /// The state before the first line; `python_plugins`: whether the INI file loads LinuxCNC's
+    /// Python plug-ins.
+    pub(super) fn new(python_plugins: bool) -> Control {
+        Control { python_plugins, ..Control::default() }
+    }
+
     /// Whether lines are being skipped (then every line goes through the control flow).
     pub(super) fn engaged(&self) -> bool {
         self.skipping_o.is_some() || self.skipping_to_sub.is_some()
@@ -302,11 +312,17 @@ impl<R: BufRead> Interpreter<R> {
     /// The end of the input while a subroutine was being looked for.
     pub(super) fn control_end(&self) -> Option<GcodeError> {
         let name = self.control.skipping_to_sub.as_ref()?;
-        let message = format!(
+        let mut message = format!(
             "EOF in file:{} seeking o-word: o<{name}> from line: {}",
             self.control.file_name(),
             self.control.skipping_start
         );
+        if self.control.python_plugins {
+            message.push_str(
+                " (the INI file loads LinuxCNC's Python plug-ins, [PYTHON], which may define it: \
+                 interpret cannot run them)",
+            );
+        }
         Some(self.error(self.line_fault(message)))
     }
 
