@@ -3,14 +3,14 @@
 //! M70 saves, M71 forgets, M72 restores, M73 saves for restoring when a subroutine returns
 //! (at the program's level it only saves). Each call level has its own saved state: a
 //! subroutine starts with none, and what it saved is forgotten (M70) or restored (M73) when it
-//! returns. Saved and restored: the length units, the plane,
-//! the distance and arc distance modes, the feed mode and rate, the spindle speed and
-//! direction (a change of direction is the tool's event, as M3/M4/M5), the coolant, the
-//! coordinate system, the canned cycles' retract mode, the tool length offset and the
-//! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused
-//! as not supported). Not the motion mode. As in rs274, the feed comes back with one decimal
-//! and the speed with none, and an M72 that changes anything loses the rest of its line (see
-//! [`Interpreter::modal_state`]).
+//! returns. Saved and restored: the length units, the plane, the distance and arc distance
+//! modes, the feed mode and rate, the spindle speed and direction (a change of direction is the
+//! tool's event, as M3/M4/M5), the coolant, the coordinate system, the canned cycles' retract
+//! mode, the tool length offset (G43 or G49, as rs274 saves it: G43 comes back as the offset of
+//! the tool in the spindle) and the path-control mode (G61, G61.1, G64 P Q); cutter
+//! compensation back off (back on is refused as not supported). Not the motion mode. As in
+//! rs274, the feed comes back with one decimal and the speed with none, and an M72 that changes
+//! anything loses the rest of its line (see [`Interpreter::modal_state`]).
 
 use std::io::BufRead;
 
@@ -35,8 +35,8 @@ pub(super) struct SavedModes {
     flood: bool,
     system: usize,
     retract_to_old: bool,
-    tool_offset: [f64; 4],
-    tool_offset_mm: [f64; 4],
+    /// G43 (an offset in force) rather than G49: what rs274 saves of the tool length offset.
+    tool_offset_on: bool,
     blend: Option<f64>,
     naive_cam: Option<f64>,
     /// Cutter radius compensation's code: 400 (G40), 410 (left) or 420 (right).
@@ -75,8 +75,7 @@ impl<R: BufRead> Interpreter<R> {
                         flood: state.flood,
                         system: state.system,
                         retract_to_old: state.cycle.retract_to_old,
-                        tool_offset: state.tool_offset,
-                        tool_offset_mm: state.tool_offset_mm,
+                        tool_offset_on: state.tool_offset.iter().any(|&value| value != 0.0),
                         blend: state.blend,
                         naive_cam: state.naive_cam,
                         comp: state.comp.code(),
@@ -140,7 +139,7 @@ impl<R: BufRead> Interpreter<R> {
             || saved.flood != state.flood
             || saved.system != state.system
             || saved.retract_to_old != state.cycle.retract_to_old
-            || saved.tool_offset != state.tool_offset
+            || saved.tool_offset_on != state.tool_offset.iter().any(|&value| value != 0.0)
             || saved.blend != state.blend
             || saved.naive_cam != state.naive_cam
             || saved.comp != state.comp.code();
@@ -183,17 +182,13 @@ impl<R: BufRead> Interpreter<R> {
         self.state.mist = saved.mist;
         self.state.flood = saved.flood;
         self.state.cycle.retract_to_old = saved.retract_to_old;
-        let old = self.state.tool_offset;
-        let shift = self
-            .state
-            .program_shift(std::array::from_fn(|axis| old[axis] - saved.tool_offset[axis]));
-        for (axis, shift) in shift.into_iter().enumerate() {
-            self.state.current[axis] += shift;
-            self.state.tool_shift[axis] += shift;
+        // rs274 saves G43 or G49, not the offset: restoring G43 runs `G43` (the tool in the
+        // spindle), and when both are G43 the offset in force stays.
+        let now_on = self.state.tool_offset.iter().any(|&value| value != 0.0);
+        if saved.tool_offset_on != now_on {
+            let new = if saved.tool_offset_on { self.spindle_tool_offset() } else { [0.0; 4] };
+            self.set_tool_offset(new);
         }
-        self.state.tool_offset = saved.tool_offset;
-        self.state.tool_offset_mm = saved.tool_offset_mm;
-        self.state.tools.offset_active = saved.tool_offset.iter().any(|&value| value != 0.0);
         Ok(differs)
     }
 }

@@ -269,6 +269,14 @@ impl<R: BufRead> Interpreter<R> {
                 offset
             }
         };
+        self.set_tool_offset(new);
+        Ok(())
+    }
+
+    /// The tool length offset `new` (program units) in force: the current point moves by the
+    /// change, as the machine keeps the tool's tip where it was.
+    pub(super) fn set_tool_offset(&mut self, new: [f64; 4]) {
+        let old = self.state.tool_offset;
         let shift = self.state.program_shift(std::array::from_fn(|axis| old[axis] - new[axis]));
         for (axis, shift) in shift.into_iter().enumerate() {
             self.state.current[axis] += shift;
@@ -278,7 +286,15 @@ impl<R: BufRead> Interpreter<R> {
         self.state.tool_offset_mm = std::array::from_fn(|axis| self.state.to_mm(axis, new[axis]));
         // `#<_tool_offset>` in rs274: whether any offset is not zero.
         self.state.tools.offset_active = new.iter().any(|&value| value != 0.0);
-        Ok(())
+    }
+
+    /// G43 with no H: the offsets of the tool in the spindle, in program units.
+    pub(super) fn spindle_tool_offset(&mut self) -> [f64; 4] {
+        self.note_no_table();
+        let (entry, factor) = (self.state.tools.spindle, self.state.factor());
+        std::array::from_fn(
+            |axis| if axis == 3 { entry.offset[3] } else { entry.offset[axis] / factor },
+        )
     }
 
     /// G10 L10's and L11's offsets of tool `entry`, as rs274's `convert_setup_tool` computes
