@@ -961,18 +961,10 @@ impl<R: BufRead> Interpreter<R> {
         }
         // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
         if let Some(code) = self.block.g[11].filter(|_| !self.state.comp.on()) {
-            if code.code == 923 {
-                let offsets = std::array::from_fn(|axis| {
-                    let value = self.state.params.get(G92_OFFSET + axis_slot(axis));
-                    self.state.mm_to_program(axis, value)
-                });
-                self.apply_axis_offsets(offsets);
-            } else {
-                self.apply_axis_offsets([0.0; 4]);
-                if code.code == 921 {
-                    for slot in 0..10 {
-                        self.state.params.set(G92_ENABLED + slot, 0.0);
-                    }
+            self.apply_g92(code.code == 923);
+            if code.code == 921 {
+                for slot in 0..10 {
+                    self.state.params.set(G92_ENABLED + slot, 0.0);
                 }
             }
         }
@@ -1394,6 +1386,17 @@ impl<R: BufRead> Interpreter<R> {
             self.state.params.set(G92_OFFSET + axis_slot(axis), value);
         }
         self.state.params.set(G92_ENABLED, 1.0);
+    }
+
+    /// G92.3 (`on`: the offsets of parameters 5211–5219 in force again) or G92.2 (none in
+    /// force, the parameters kept); 5210 says which, as in rs274.
+    pub(super) fn apply_g92(&mut self, on: bool) {
+        let offsets = std::array::from_fn(|axis| {
+            let value = if on { self.state.params.get(G92_OFFSET + axis_slot(axis)) } else { 0.0 };
+            self.state.mm_to_program(axis, value)
+        });
+        self.apply_axis_offsets(offsets);
+        self.state.params.set(G92_ENABLED, if on { 1.0 } else { 0.0 });
     }
 
     fn apply_axis_offsets(&mut self, offsets: [f64; 4]) {

@@ -7,10 +7,11 @@
 //! modes, the feed mode and rate, the spindle speed and direction (a change of direction is the
 //! tool's event, as M3/M4/M5), the coolant, the coordinate system, the canned cycles' retract
 //! mode, the tool length offset (G43 or G49, as rs274 saves it: G43 comes back as the offset of
-//! the tool in the spindle) and the path-control mode (G61, G61.1, G64 P Q); cutter
-//! compensation back off (back on is refused as not supported). Not the motion mode. As in
-//! rs274, the feed comes back with one decimal and the speed with none, and an M72 that changes
-//! anything loses the rest of its line (see [`Interpreter::modal_state`]).
+//! the tool in the spindle), whether the G92 offsets are in force (G92.3 or G92.2) and the
+//! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused
+//! as not supported). Not the motion mode. As in rs274, the feed comes back with one decimal
+//! and the speed with none, and an M72 that changes anything loses the rest of its line (see
+//! [`Interpreter::modal_state`]).
 
 use std::io::BufRead;
 
@@ -18,6 +19,7 @@ use biscara_motion::Plane;
 
 use super::Interpreter;
 use crate::lexer::Fault;
+use crate::params::G92_ENABLED;
 use crate::parser::Code;
 
 /// The modal state M70 saves.
@@ -37,6 +39,8 @@ pub(super) struct SavedModes {
     retract_to_old: bool,
     /// G43 (an offset in force) rather than G49: what rs274 saves of the tool length offset.
     tool_offset_on: bool,
+    /// G92.3 (the G92 offsets in force, parameter 5210) rather than G92.2.
+    g92_on: bool,
     blend: Option<f64>,
     naive_cam: Option<f64>,
     /// Cutter radius compensation's code: 400 (G40), 410 (left) or 420 (right).
@@ -76,6 +80,7 @@ impl<R: BufRead> Interpreter<R> {
                         system: state.system,
                         retract_to_old: state.cycle.retract_to_old,
                         tool_offset_on: state.tool_offset.iter().any(|&value| value != 0.0),
+                        g92_on: state.params.get(G92_ENABLED) != 0.0,
                         blend: state.blend,
                         naive_cam: state.naive_cam,
                         comp: state.comp.code(),
@@ -140,6 +145,7 @@ impl<R: BufRead> Interpreter<R> {
             || saved.system != state.system
             || saved.retract_to_old != state.cycle.retract_to_old
             || saved.tool_offset_on != state.tool_offset.iter().any(|&value| value != 0.0)
+            || saved.g92_on != (state.params.get(G92_ENABLED) != 0.0)
             || saved.blend != state.blend
             || saved.naive_cam != state.naive_cam
             || saved.comp != state.comp.code();
@@ -188,6 +194,10 @@ impl<R: BufRead> Interpreter<R> {
         if saved.tool_offset_on != now_on {
             let new = if saved.tool_offset_on { self.spindle_tool_offset() } else { [0.0; 4] };
             self.set_tool_offset(new);
+        }
+        // G92.2 or G92.3, which rs274 does not run while compensation is on.
+        if saved.g92_on != (self.state.params.get(G92_ENABLED) != 0.0) && !self.state.comp.on() {
+            self.apply_g92(saved.g92_on);
         }
         Ok(differs)
     }
