@@ -76,6 +76,31 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
     let close_all = |a: &[f64], b: &[f64], tolerance: f64| {
         a.iter().zip(b).all(|(x, y)| close(*x, *y, tolerance))
     };
+    let end_ok = |a: [f64; 4], b: [f64; 4]| {
+        close_all(&a[..3], &b[..3], length_tolerance) && close(a[3], b[3], 1.5e-4)
+    };
+    // A straight move to where the tool already is moves nothing, and rs274 makes some that we
+    // do not: it holds lengths in inches, so a Z it computes as 2 + 12.74 − 12.74 can come out
+    // a hair below a canned cycle's R plane of 2, and it rapids "up" to it. Both sides drop them.
+    let moving = |motions: &[Motion]| -> Vec<Motion> {
+        let mut at: Option<[f64; 4]> = None;
+        let mut kept = Vec::with_capacity(motions.len());
+        for motion in motions {
+            let end = motion.kind.end();
+            let straight =
+                matches!(motion.kind, MotionKind::Rapid { .. } | MotionKind::Linear { .. });
+            if straight
+                && let (Some(from), Some(to)) = (at, end)
+                && end_ok(from, to)
+            {
+                continue;
+            }
+            at = end.or(at);
+            kept.push(*motion);
+        }
+        kept
+    };
+    let (ours, theirs) = (&moving(ours)[..], &moving(theirs)[..]);
     for (index, (our, their)) in ours.iter().zip(theirs).enumerate() {
         let differ = || {
             Err(format!(
@@ -87,9 +112,6 @@ fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), Strin
                 their.kind,
                 their.blend
             ))
-        };
-        let end_ok = |a: [f64; 4], b: [f64; 4]| {
-            close_all(&a[..3], &b[..3], length_tolerance) && close(a[3], b[3], 1.5e-4)
         };
         let feed_ok = |a: f64, b: f64| close(a, b, 0.6e-4 * unit + 1e-9 * b.abs());
         let same = match (our.kind, their.kind) {
