@@ -175,6 +175,12 @@ impl<R: BufRead> Interpreter<R> {
                 self.summary.count_refused(&g_name(code.code));
             }
         }
+        // Grbl's G10 sets coordinate systems only (L2, L20), not tools (L1, L10, L11).
+        if self.block.g[0].is_some_and(|code| code.code == 100)
+            && let Some(l) = self.block.word(b'l').filter(|l| l.value != 2.0 && l.value != 20.0)
+        {
+            self.summary.count_refused(&format!("G10 L{}", l.value));
+        }
         for code in self.block.m.iter().flatten() {
             if !grbl_runs_m(code.code) {
                 self.summary.count_refused(&format!("M{}", code.code));

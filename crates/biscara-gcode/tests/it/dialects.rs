@@ -450,7 +450,8 @@ fn grbl_programs_count_what_grbl_itself_refuses() {
     // read as LinuxCNC reads it, and counted for the note; Grbl's own codes are not.
     let program = "G21 G90 G17 G94 G54 G40 G49 G80 G61 G91.1\nM3 S1000\nG0 X1 Y2 Z5\n\
                    G98 G83 X5 Y5 Z-2 R1 Q1 F100\nX6\nG80\nM6 T2\nG43.1 Z1\n#1 = 3\nG1 X[#1 + 1]\n\
-                   G41.1 D2\nG1 Y9\nG40\nG64 P0.1\no100 if [1]\nG1 X1\no100 endif\nG4 P0.1\nM5 M9\n";
+                   G41.1 D2\nG1 Y9\nG40\nG64 P0.1\no100 if [1]\nG1 X1\no100 endif\nG4 P0.1\nM5 M9\n\
+                   G10 L2 P1 X0\nG10 L1 P1 Z2\n";
     let mut interpreter = interpret(program.as_bytes(), &config(Dialect::Grbl));
     let motions: Result<Vec<Motion>, _> = (&mut interpreter).collect();
     assert!(motions.is_ok(), "{motions:?}");
@@ -463,6 +464,7 @@ fn grbl_programs_count_what_grbl_itself_refuses() {
     assert_eq!(
         refused,
         [
+            ("G10 L1", 1),
             ("G41.1", 1),
             ("G64", 1),
             ("G83", 1),
