@@ -22,7 +22,7 @@ use crate::params::{
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
-use crate::tool_table::ToolTable;
+use crate::tool_table::{ToolEntry, ToolTable};
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
 mod canned;
@@ -306,6 +306,11 @@ impl State {
 
     fn mm_to_program(&self, axis: usize, value: f64) -> f64 {
         if axis == 3 { value } else { value / self.factor() }
+    }
+
+    /// A tool table entry's offsets `[x, y, z, c]` (mm, degrees) in program units.
+    fn offsets_in_program_units(&self, entry: &ToolEntry) -> [f64; 4] {
+        std::array::from_fn(|axis| self.mm_to_program(axis, entry.offset[axis]))
     }
 
     /// A position in the current coordinate system → absolute mm and degrees.

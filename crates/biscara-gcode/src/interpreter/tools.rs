@@ -207,12 +207,6 @@ impl<R: BufRead> Interpreter<R> {
 
     /// G43, G43.1, G43.2 and G49 (`convert_tool_length_offset`).
     pub(super) fn tool_length_offset(&mut self, code: Code) -> Result<(), Fault> {
-        let factor = self.state.factor();
-        let to_program = |entry: &ToolEntry| -> [f64; 4] {
-            std::array::from_fn(|axis| {
-                if axis == 3 { entry.offset[axis] } else { entry.offset[axis] / factor }
-            })
-        };
         let h = self.block.word(b'h');
         let axes: [Option<f64>; 4] =
             std::array::from_fn(|axis| self.block.word(AXES[axis]).map(|word| word.value));
@@ -220,17 +214,16 @@ impl<R: BufRead> Interpreter<R> {
         let old = self.state.tool_offset;
         let new = match code.code {
             490 => [0.0; 4],
-            430 => {
-                let entry = match h {
-                    None => self.state.tools.spindle,
-                    Some(h) => match self.h_tool(h.value) {
-                        Some(entry) => entry,
-                        None => return Err(self.word_fault(h, not_found(h.value))),
-                    },
-                };
-                self.note_no_table();
-                to_program(&entry)
-            }
+            430 => match h {
+                None => self.spindle_tool_offset(),
+                Some(h) => match self.h_tool(h.value) {
+                    Some(entry) => {
+                        self.note_no_table();
+                        self.state.offsets_in_program_units(&entry)
+                    }
+                    None => return Err(self.word_fault(h, not_found(h.value))),
+                },
+            },
             431 => {
                 let mut offset = old;
                 for (axis, value) in axes.iter().enumerate() {
@@ -250,7 +243,7 @@ impl<R: BufRead> Interpreter<R> {
                         return Err(self.word_fault(h, not_found(h.value)));
                     };
                     self.note_no_table();
-                    let add = to_program(&entry);
+                    let add = self.state.offsets_in_program_units(&entry);
                     for axis in 0..4 {
                         offset[axis] += add[axis];
                     }
@@ -291,10 +284,7 @@ impl<R: BufRead> Interpreter<R> {
     /// G43 with no H: the offsets of the tool in the spindle, in program units.
     pub(super) fn spindle_tool_offset(&mut self) -> [f64; 4] {
         self.note_no_table();
-        let (entry, factor) = (self.state.tools.spindle, self.state.factor());
-        std::array::from_fn(
-            |axis| if axis == 3 { entry.offset[3] } else { entry.offset[axis] / factor },
-        )
+        self.state.offsets_in_program_units(&self.state.tools.spindle)
     }
 
     /// G10 L10's and L11's offsets of tool `entry`, as rs274's `convert_setup_tool` computes
