@@ -308,6 +308,12 @@ impl State {
         if axis == 3 { value } else { value / self.factor() }
     }
 
+    /// Whether the G92 offsets are in force (parameter 5210: G92 and G92.3 set it, G92.1 and
+    /// G92.2 clear it).
+    fn g92_in_force(&self) -> bool {
+        self.params.get(G92_ENABLED) != 0.0
+    }
+
     /// A tool table entry's offsets `[x, y, z, c]` (mm, degrees) in program units.
     fn offsets_in_program_units(&self, entry: &ToolEntry) -> [f64; 4] {
         std::array::from_fn(|axis| self.mm_to_program(axis, entry.offset[axis]))

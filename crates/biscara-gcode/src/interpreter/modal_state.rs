@@ -19,7 +19,6 @@ use biscara_motion::Plane;
 
 use super::Interpreter;
 use crate::lexer::Fault;
-use crate::params::G92_ENABLED;
 use crate::parser::Code;
 
 /// The modal state M70 saves.
@@ -79,8 +78,8 @@ impl<R: BufRead> Interpreter<R> {
                         flood: state.flood,
                         system: state.system,
                         retract_to_old: state.cycle.retract_to_old,
-                        tool_offset_on: state.tool_offset.iter().any(|&value| value != 0.0),
-                        g92_on: state.params.get(G92_ENABLED) != 0.0,
+                        tool_offset_on: state.tools.offset_active,
+                        g92_on: state.g92_in_force(),
                         blend: state.blend,
                         naive_cam: state.naive_cam,
                         comp: state.comp.code(),
@@ -144,8 +143,8 @@ impl<R: BufRead> Interpreter<R> {
             || saved.flood != state.flood
             || saved.system != state.system
             || saved.retract_to_old != state.cycle.retract_to_old
-            || saved.tool_offset_on != state.tool_offset.iter().any(|&value| value != 0.0)
-            || saved.g92_on != (state.params.get(G92_ENABLED) != 0.0)
+            || saved.tool_offset_on != state.tools.offset_active
+            || saved.g92_on != state.g92_in_force()
             || saved.blend != state.blend
             || saved.naive_cam != state.naive_cam
             || saved.comp != state.comp.code();
@@ -190,13 +189,12 @@ impl<R: BufRead> Interpreter<R> {
         self.state.cycle.retract_to_old = saved.retract_to_old;
         // rs274 saves G43 or G49, not the offset: restoring G43 runs `G43` (the tool in the
         // spindle), and when both are G43 the offset in force stays.
-        let now_on = self.state.tool_offset.iter().any(|&value| value != 0.0);
-        if saved.tool_offset_on != now_on {
+        if saved.tool_offset_on != self.state.tools.offset_active {
             let new = if saved.tool_offset_on { self.spindle_tool_offset() } else { [0.0; 4] };
             self.set_tool_offset(new);
         }
         // G92.2 or G92.3, which rs274 does not run while compensation is on.
-        if saved.g92_on != (self.state.params.get(G92_ENABLED) != 0.0) && !self.state.comp.on() {
+        if saved.g92_on != self.state.g92_in_force() && !self.state.comp.on() {
             self.apply_g92(saved.g92_on);
         }
         Ok(differs)

@@ -69,7 +69,7 @@ impl State {
             *at += self.origin[axis] + tool - param(base + axis_slot(axis), axis);
         }
         [at[0], at[1]] = rotate([at[0], at[1]], -self.params.get(rotation_parameter(system)));
-        if self.params.get(G92_ENABLED) != 0.0 {
+        if self.g92_in_force() {
             for (axis, at) in at.iter_mut().enumerate() {
                 *at -= param(G92_ENABLED + 1 + axis_slot(axis), axis);
             }

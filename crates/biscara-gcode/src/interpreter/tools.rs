@@ -296,7 +296,7 @@ impl<R: BufRead> Interpreter<R> {
         let state = &self.state;
         let system = if l == 11 { 9 } else { state.system };
         let mut at = state.position_in_system(system, true);
-        if l == 11 && state.params.get(G92_ENABLED) != 0.0 {
+        if l == 11 && state.g92_in_force() {
             for (axis, at) in at.iter_mut().enumerate() {
                 *at +=
                     state.mm_to_program(axis, state.params.get(G92_ENABLED + 1 + axis_slot(axis)));
