@@ -103,16 +103,20 @@ impl Summary {
 
     /// Counts one use of `what`, which the firmware would refuse.
     pub(crate) fn count_refused(&mut self, what: &str) {
-        *self.refused_by_firmware.entry(what.to_owned()).or_insert(0) += 1;
+        bump(&mut self.refused_by_firmware, what);
     }
 
     pub(crate) fn count(&mut self, code: &str, known: bool) {
-        let map = if known { &mut self.codes } else { &mut self.unknown };
-        match map.get_mut(code) {
-            Some(count) => *count += 1,
-            None => {
-                map.insert(code.to_owned(), 1);
-            }
+        bump(if known { &mut self.codes } else { &mut self.unknown }, code);
+    }
+}
+
+/// One more `key` in `counts` (the key allocated only the first time).
+fn bump(counts: &mut BTreeMap<String, usize>, key: &str) {
+    match counts.get_mut(key) {
+        Some(count) => *count += 1,
+        None => {
+            counts.insert(key.to_owned(), 1);
         }
     }
 }

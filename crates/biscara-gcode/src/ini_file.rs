@@ -108,10 +108,15 @@ impl IniFile {
         Ok(IniFile { lines })
     }
 
+    /// The index of the first line that starts (after blanks) with `[section]`.
+    fn section_start(&self, section: &str) -> Option<usize> {
+        let header = format!("[{section}]");
+        self.lines.iter().position(|line| line.trim_start().starts_with(&header))
+    }
+
     /// The value of `name` in `[section]`, as LinuxCNC's `IniFile::Find` finds it.
     pub fn find(&self, section: &str, name: &str) -> Option<&str> {
-        let header = format!("[{section}]");
-        let start = self.lines.iter().position(|line| line.trim_start().starts_with(&header))?;
+        let start = self.section_start(section)?;
         for line in &self.lines[start + 1..] {
             let text = line.trim_start_matches([' ', '\t', '\r']);
             if text.starts_with('[') {
@@ -131,8 +136,7 @@ impl IniFile {
 
     /// Whether the file has a line starting with `[section]`.
     pub fn has_section(&self, section: &str) -> bool {
-        let header = format!("[{section}]");
-        self.lines.iter().any(|line| line.trim_start().starts_with(&header))
+        self.section_start(section).is_some()
     }
 
     /// The number `name` in `[section]` holds; `None` when it is missing or not a finite number.
