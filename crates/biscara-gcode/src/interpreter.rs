@@ -1713,7 +1713,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let feed = if self.state.inverse_time {
             let f = f.map_or(0.0, |word| word.value);
-            let turn = if clockwise { -(turns as i64) } else { turns as i64 };
+            let turn = if clockwise { -(turns as i32) } else { turns as i32 };
             let length = arc_length(
                 [c1, c2, current[normal]],
                 [center1, center2],
@@ -1766,23 +1766,33 @@ fn straight_length(from: [f64; 4], to: [f64; 4]) -> f64 {
     }
 }
 
-/// LinuxCNC's `find_arc_length` (with `find_turn`): `turn` is negative for clockwise.
-fn arc_length(start: [f64; 3], center: [f64; 2], turn: i64, end: [f64; 3]) -> f64 {
+/// LinuxCNC's `find_turn`: the signed angle swept from `start` to `end` about `center`, `turn`
+/// times round (negative: clockwise; 0: no turn).
+fn find_turn(start: [f64; 2], center: [f64; 2], turn: i32, end: [f64; 2]) -> f64 {
     use std::f64::consts::PI;
-    let radius = (center[0] - start[0]).hypot(center[1] - start[1]);
+    if turn == 0 {
+        return 0.0;
+    }
     let mut alpha = (start[1] - center[1]).atan2(start[0] - center[0]);
     let mut beta = (end[1] - center[1]).atan2(end[0] - center[0]);
-    let theta = if turn > 0 {
+    if turn > 0 {
         if beta <= alpha {
             beta += 2.0 * PI;
         }
-        (beta - alpha) + ((turn - 1) as f64 * 2.0 * PI)
+        beta - alpha + f64::from(turn - 1) * 2.0 * PI
     } else {
         if alpha <= beta {
             alpha += 2.0 * PI;
         }
-        (beta - alpha) + ((turn + 1) as f64 * 2.0 * PI)
-    };
+        beta - alpha + f64::from(turn + 1) * 2.0 * PI
+    }
+}
+
+/// LinuxCNC's `find_arc_length`: `turn` is negative for clockwise (never 0 here: an arc turns
+/// at least once).
+fn arc_length(start: [f64; 3], center: [f64; 2], turn: i32, end: [f64; 3]) -> f64 {
+    let radius = (center[0] - start[0]).hypot(center[1] - start[1]);
+    let theta = find_turn([start[0], start[1]], center, turn, [end[0], end[1]]);
     if end[2] == start[2] {
         radius * theta.abs()
     } else {

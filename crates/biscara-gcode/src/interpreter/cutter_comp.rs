@@ -21,7 +21,7 @@ use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use super::Interpreter;
+use super::{Interpreter, find_turn};
 use crate::Dialect;
 use crate::lexer::Fault;
 use crate::parser::Word;
@@ -176,26 +176,6 @@ impl CutterComp {
 /// Whether the tool is inside an arc turning `turn` (LinuxCNC's `TOOL_INSIDE_ARC`).
 fn inside(side: Side, turn: i32) -> bool {
     (side == Side::Left && turn > 0) || (side == Side::Right && turn < 0)
-}
-
-/// LinuxCNC's `find_turn`: the signed angle swept from `start` to `end` about `center`.
-fn find_turn(start: [f64; 2], center: [f64; 2], turn: i32, end: [f64; 2]) -> f64 {
-    if turn == 0 {
-        return 0.0;
-    }
-    let mut alpha = (start[1] - center[1]).atan2(start[0] - center[0]);
-    let mut beta = (end[1] - center[1]).atan2(end[0] - center[0]);
-    if turn > 0 {
-        if beta <= alpha {
-            beta += 2.0 * PI;
-        }
-        beta - alpha + f64::from(turn - 1) * 2.0 * PI
-    } else {
-        if alpha <= beta {
-            alpha += 2.0 * PI;
-        }
-        beta - alpha + f64::from(turn + 1) * 2.0 * PI
-    }
 }
 
 fn polar(from: [f64; 2], length: f64, angle: f64) -> [f64; 2] {

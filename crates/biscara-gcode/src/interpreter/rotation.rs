@@ -17,14 +17,11 @@ use std::io::BufRead;
 use biscara_motion::Feed;
 
 use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
-use super::{Interpreter, State};
-use crate::params::{COORDINATE_SYSTEM, axis_slot, coordinate_system_base};
+use super::{Interpreter, State, find_turn};
+use crate::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.
 const ROTATION_SLOT: usize = 9;
-
-/// 1 while a G92 offset is in force; 5211–5219 hold it (x y z a b c u v w).
-pub(super) const G92_ENABLED: usize = 5210;
 
 /// `[x, y]` turned by `degrees` about the origin (LinuxCNC's `rotate`).
 pub(super) fn rotate([x, y]: [f64; 2], degrees: f64) -> [f64; 2] {
@@ -212,22 +209,12 @@ impl<R: BufRead> Interpreter<R> {
         use std::f64::consts::TAU;
         let [first, second, normal] = self.state.plane.axes();
         let radius = |point: [f64; 4]| (point[first] - center[0]).hypot(point[second] - center[1]);
-        let angle = |point: [f64; 4]| (point[second] - center[1]).atan2(point[first] - center[0]);
+        let in_plane = |point: [f64; 4]| [point[first], point[second]];
         let (radius0, radius1) = (radius(start), radius(end));
-        let (mut from, mut to) = (angle(start), angle(end));
-        // LinuxCNC's find_turn: at least one part of a turn, then the whole turns.
-        let extra = f64::from(turns.saturating_sub(1)) * TAU;
-        let sweep = if clockwise {
-            if from <= to {
-                from += TAU;
-            }
-            to - from - extra
-        } else {
-            if to <= from {
-                to += TAU;
-            }
-            to - from + extra
-        };
+        let from = (start[second] - center[1]).atan2(start[first] - center[0]);
+        // At least one part of a turn, then the whole turns (turns ≤ 1,000,000).
+        let turn = if clockwise { -(turns as i32) } else { turns as i32 };
+        let sweep = find_turn(in_plane(start), center, turn, in_plane(end));
         // A chord of angle φ on radius r stays r·(1 − cos(φ/2)) from the arc.
         let tolerance = CHORD_TOLERANCE_MM / self.state.factor();
         let largest = radius0.max(radius1);

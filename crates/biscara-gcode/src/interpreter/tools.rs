@@ -10,10 +10,10 @@
 
 use std::io::BufRead;
 
-use super::rotation::{G92_ENABLED, rotate, rotation_parameter};
+use super::rotation::{rotate, rotation_parameter};
 use super::{AXES, Interpreter};
 use crate::lexer::Fault;
-use crate::params::axis_slot;
+use crate::params::{G92_ENABLED, axis_slot};
 use crate::parser::Code;
 use crate::tool_table::{ToolEntry, ToolTable};
 
