@@ -63,8 +63,9 @@
 //! # G64 Q
 //!
 //! [`NaiveCam`] is LinuxCNC's naive-CAM detector, a stage to run before the [`Blender`]:
-//! consecutive straight feed moves under G64 Q ([`Motion::naive_cam`](biscara_motion::Motion::naive_cam);
-//! same feed, P and Q, C not turning, nothing between them) are merged into one while every end
+//! consecutive straight feed moves under G64 Q
+//! ([`Motion::naive_cam`](biscara_motion::Motion::naive_cam); same feed, P and Q, C not
+//! turning, nothing between them) are merged into one while every end
 //! point left out lies within Q of it. The merged path lies within Q of the programmed one, the
 //! blends within P of the merged one: the deviation bound becomes P + Q.
 //!

@@ -912,7 +912,8 @@ mod tests {
     /// Found on a real program (a Cura 5.2.1 start G-code with a lone `G5` line): a G5 with no
     /// word moves nowhere in Marlin (a default build, without `BEZIER_CURVE_SUPPORT`, skips it
     /// as an unknown command; with it, the curve ends where it starts), so it is an event, not a
-    /// refused Bézier curve. A G5 with words still is refused (`tests/bad_input/gcode/marlin_bezier`).
+    /// refused Bézier curve. A G5 with words still is refused
+    /// (`tests/bad_input/gcode/marlin_bezier`).
     #[test]
     fn a_bare_g5_moves_nowhere_in_marlin() {
         let event = Prelude::Event { name: "G5".to_owned(), known: true };

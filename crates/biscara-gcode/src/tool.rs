@@ -65,8 +65,8 @@ pub struct ToolInference {
 /// (Grbl's dynamic laser power) with S → laser; M3 or M4 with S and Z words → spindle; M3 or M4
 /// with S and no Z word → laser; M3 or M4 with no S word in a program whose comments name a cut
 /// (words such as `cut`, `pocket` or `penetrate`: gcodetools' `(Penetrate)`, PartKam's
-/// `(pocket 1)`) → spindle. Otherwise M3 and M4 with no S word are the gripper's pick and place. `None` when nothing tells (the caller
-/// keeps the gripper).
+/// `(pocket 1)`) → spindle. Otherwise M3 and M4 with no S word are the gripper's pick and
+/// place. `None` when nothing tells (the caller keeps the gripper).
 pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
     let text = String::from_utf8_lossy(text);
     let found = |tool: Tool, reason: &str, line: usize| {
@@ -129,7 +129,10 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
             found(Tool::Laser, "M3/M4 with S power and no Z move: a laser", line)
         }
         Some(line) => cut_comment.and_then(|word| {
-            let reason = format!("M3/M4 with no S in a program whose comments name a cut (`{word}`): a cutting spindle");
+            let reason = format!(
+                "M3/M4 with no S in a program whose comments name a cut (`{word}`): a cutting \
+                 spindle"
+            );
             found(Tool::Spindle, &reason, line)
         }),
         None => None,
