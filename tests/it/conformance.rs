@@ -164,7 +164,7 @@ fn uses_inches(path: &Path) -> bool {
 
 /// How one program fared.
 #[derive(Debug, PartialEq, Eq, Clone, Copy)]
-enum Verdict {
+pub(crate) enum Verdict {
     Match,
     NotSupported,
     ForeignAxis,
@@ -174,7 +174,7 @@ enum Verdict {
     /// rs274 refuses a user M code (M100–M199) for want of its program; we record it as an
     /// event (SPEC §4.2) and match up to it.
     UserMCode,
-    /// We refuse what this robot cannot do (lathe, spindle-synchronised motion, probing).
+    /// We refuse what this robot cannot do (lathe, spindle-synchronised motion).
     CannotRun,
 }
 
@@ -194,7 +194,7 @@ fn stricter(err: &GcodeError) -> bool {
 }
 
 /// Runs both on `path`: `Ok(verdict)` or the difference.
-fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
+pub(crate) fn check(path: &Path, dir: &Path) -> Result<Verdict, String> {
     let theirs = rs274::run(path, dir);
     let (before, ours) = ours_with_partial(path);
     let before = without_codes(&before);
@@ -432,7 +432,7 @@ fn verdict_counts(counts: &[usize; 7]) -> String {
         "{} match, {} refused as not supported yet, {} refused for A/B/U/V/W axis words, {} \
          refused by rs274 itself and by us, {} with user M codes (events here, refused by rs274 \
          without their programs), {} refused as this robot cannot do them (lathe, \
-         spindle-synchronised motion, probing)",
+         spindle-synchronised motion)",
         count(Verdict::Match),
         count(Verdict::NotSupported),
         count(Verdict::ForeignAxis),

@@ -6,10 +6,11 @@
 //! dialect's unit and extrusion per move are compared, motion by motion, with [`Reader`], a
 //! small reader of the plain subset of G-code these programs use, written from the firmware
 //! documentation and independent of the interpreter. The four expected refusals must fail with
-//! a clear `FILE:LINE:COL` error. Programs waiting for LinuxCNC features that another branch
-//! adds (O-words, tool length offsets, cutter compensation, user M-codes) are listed as such:
-//! they must fail with "… not supported yet" (or LinuxCNC's unknown-code error) until then, and
-//! this test fails as soon as one passes, so that the table is updated.
+//! a clear `FILE:LINE:COL` error. A LinuxCNC program with O-words and expressions, which that
+//! reader does not evaluate, is compared with LinuxCNC's own `rs274` instead.
+//!
+//! Every program that is read then goes through `check --fit`, which must be clean or find only
+//! the problems [`CHECK`] names.
 //!
 //! When `../shared/realworld` is missing the test says so and passes, except under `CI=true`.
 
@@ -25,6 +26,9 @@ use crate::util::{biscara, repo_root, temp_dir};
 enum Expect {
     /// Read as this dialect (its name on the command line), exit 0, moves as [`Reader`] says.
     Read(&'static str),
+    /// Read as LinuxCNC G-code, exit 0, moves as LinuxCNC's `rs274` makes them (a program with
+    /// O-words, parameters and expressions, which [`Reader`] does not evaluate).
+    ReadAsRs274,
     /// Refused with a `FILE:LINE:COL` error containing one of these texts.
     Refused(&'static [&'static str]),
 }
@@ -68,11 +72,9 @@ const PROGRAMS: &[(&str, Expect)] = &[
         Expect::Refused(&["B axis word", "O-word is not supported yet"]),
     ),
     ("other/millmasterpro-mastercam-hdr-g70.nc", Expect::Refused(&["Bad character '/' used"])),
-    // Probing (G38.2) for the autolevel: this robot has no probe input.
-    (
-        "other/pcb2gcode-autolevel-linuxcnc-back.ngc",
-        Expect::Refused(&["G38.2 is refused: probing"]),
-    ),
+    // O-word subroutines, expressions and probing (G38.2, run as rs274 simulates it) for the
+    // autolevel.
+    ("other/pcb2gcode-autolevel-linuxcnc-back.ngc", Expect::ReadAsRs274),
     ("plotter/estlcam10-crown-plotter.gcode", Expect::Read("grbl")),
     ("plotter/gcodeplot-3rect.gcode", Expect::Read("marlin")),
     ("plotter/rotrics-studio-dexarm-quote.gcode", Expect::Read("marlin")),
@@ -161,6 +163,25 @@ fn every_real_program_is_read_as_its_firmware_reads_it() {
                     failures.push(format!("{name} ({dialect}): {message}"));
                 }
             }
+            Expect::ReadAsRs274 => {
+                if run.code != 0 {
+                    failures.push(format!("{name}: refused\n{}", run.stderr));
+                    continue;
+                }
+                accepted += 1;
+                if run.stderr.contains("read as") && !run.stderr.contains("read as linuxcnc") {
+                    failures.push(format!("{name}: not read as linuxcnc\n{}", run.stderr));
+                    continue;
+                }
+                if !crate::rs274::available("every_real_program_is_read_as_its_firmware_reads_it") {
+                    continue;
+                }
+                match crate::conformance::check(&path, &dir) {
+                    Ok(crate::conformance::Verdict::Match) => compared += 1,
+                    Ok(verdict) => failures.push(format!("{name}: {verdict:?}, not a match")),
+                    Err(message) => failures.push(format!("{name} (rs274): {message}")),
+                }
+            }
             Expect::Refused(texts) => {
                 let located = format!("biscara: error: {program}:");
                 let rest = run.stderr.strip_prefix(&located).unwrap_or("");
@@ -189,6 +210,90 @@ fn every_real_program_is_read_as_its_firmware_reads_it() {
         failures.len(),
         failures.join("\n\n")
     );
+}
+
+/// What `check --fit` finds in a program that is read, where it is not clean: the kinds of
+/// problem (`check --json`'s `kind`), each with why.
+const CHECK: &[(&str, CheckFinds)] = &[
+    // Its LinuxCNC post switches the laser on at S1 ("set power to 0") and keeps it on through
+    // the G0 moves between paths: S1 is low, not 0, and LinuxCNC has no laser mode.
+    ("laser/inkscape-lasertools-qr.gcode", CheckFinds::Problems(&["tool"])),
+    // 54 x 488 mm: longer than the workspace's largest rectangle either way.
+    ("other/camotics-tpl-cds.gcode", CheckFinds::DoesNotFit),
+];
+
+/// What `check --fit` finds where it is not clean.
+#[derive(Debug, Clone, Copy)]
+enum CheckFinds {
+    /// Problems of these kinds only.
+    Problems(&'static [&'static str]),
+    /// `--fit` finds no place for the program.
+    DoesNotFit,
+}
+
+/// `check --fit` on every program that is read: clean (exit 0, no problem), or what [`CHECK`]
+/// names. Its Z range is centred in the robot's stroke when it lies outside it (what `--fit`
+/// does). Samples are 20 ms apart rather than 1 ms, to keep this debug-build test short.
+#[test]
+fn every_real_program_read_passes_check_fit() {
+    let Some(folder) = realworld() else { return };
+    let dir = temp_dir("realworld-check");
+    let read: Vec<&str> = PROGRAMS
+        .iter()
+        .filter(|(_, expect)| !matches!(expect, Expect::Refused(_)))
+        .map(|(name, _)| *name)
+        .collect();
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get().min(4));
+    let failures: Vec<String> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|worker| {
+                let (read, folder, dir) = (&read, &folder, &dir);
+                scope.spawn(move || {
+                    let mut failures = Vec::new();
+                    for name in read.iter().skip(worker).step_by(threads) {
+                        if let Err(message) = check_fit(&folder.join(name), dir, name) {
+                            failures.push(format!("{name}: {message}"));
+                        }
+                    }
+                    failures
+                })
+            })
+            .collect();
+        workers.into_iter().flat_map(|worker| worker.join().expect("worker")).collect()
+    });
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+/// `check PROGRAM --fit --json` as [`CHECK`] expects it for `name`.
+fn check_fit(path: &std::path::Path, dir: &std::path::Path, name: &str) -> Result<(), String> {
+    let program = path.to_string_lossy();
+    let run = biscara(dir, &["check", &program, "--fit", "--json", "--dt", "0.02"]);
+    let expected = CHECK.iter().find(|(file, _)| *file == name).map(|(_, finds)| *finds);
+    if let Some(CheckFinds::DoesNotFit) = expected {
+        return match run.code == 1 && run.stderr.contains("does not fit") {
+            true => Ok(()),
+            false => Err(format!("want \"does not fit\"\n{run}")),
+        };
+    }
+    let report: serde_json::Value = serde_json::from_str(&run.stdout)
+        .map_err(|err| format!("no JSON report ({err})\n{run}"))?;
+    let kinds: Vec<&str> = report["problems"]
+        .as_array()
+        .ok_or_else(|| format!("no problems array\n{run}"))?
+        .iter()
+        .filter_map(|problem| problem["kind"].as_str())
+        .collect();
+    match expected {
+        None if run.code == 0 && kinds.is_empty() => Ok(()),
+        Some(CheckFinds::Problems(allowed))
+            if run.code == 1
+                && !kinds.is_empty()
+                && kinds.iter().all(|kind| allowed.contains(kind)) =>
+        {
+            Ok(())
+        }
+        _ => Err(format!("expected {expected:?}, found problems {kinds:?}\n{run}")),
+    }
 }
 
 /// A move or dwell as the firmware makes it: what [`compare`] checks.

@@ -257,3 +257,22 @@ fn an_error_in_a_file_subroutine_names_that_file_and_its_line() {
         "{run}"
     );
 }
+
+#[test]
+fn a_probing_program_runs_with_a_note_on_how_probing_is_simulated() {
+    let dir = temp_dir("interpret-probe");
+    let program = "G21 G90 F200\nG0 X0 Y400 Z60\nG38.2 Z40\nG0 Z[#5063 + 5]\nG38.2 Z30\nM2\n";
+    std::fs::write(dir.join("probe.ngc"), program).expect("write the program");
+    let run = biscara(&dir, &["interpret", "probe.ngc"]);
+    let lines: Vec<&str> = run.success().stdout.lines().collect();
+    assert_eq!(lines[1], r#"{"line":3,"kind":"code","code":"G38.2"}"#, "{run}");
+    assert_eq!(lines[2], r#"{"line":3,"kind":"linear","end":[0.0,400.0,40.0,0.0],"feed":200.0}"#);
+    assert_eq!(lines[4], r#"{"line":4,"kind":"rapid","end":[0.0,400.0,45.0,0.0]}"#, "{run}");
+    assert!(
+        run.stderr.contains("probe.ngc: probe moves run as LinuxCNC's rs274 simulates them")
+            && run.stderr.contains("G38.2 ×2"),
+        "{run}"
+    );
+    // The joints follow it like any move.
+    biscara(&dir, &["joints", "probe.ngc", "-o", "probe.csv"]).success();
+}

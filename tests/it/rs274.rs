@@ -341,6 +341,28 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 },
                 blend,
             ),
+            // rs274's canon (`saicanon.cc`) goes to the probe's end point, where no probe
+            // trips, and stands 0.254 mm (0.01 inch) back from it along the move: our two
+            // straight moves.
+            "STRAIGHT_PROBE" => {
+                let start = motions
+                    .iter()
+                    .rev()
+                    .find_map(|motion: &Motion| motion.kind.end())
+                    .unwrap_or_else(|| pose(&[0.0; 6]));
+                let end = pose(&values);
+                let feed = Feed { mm_per_min: feed, inverse_time: false };
+                push(&mut motions, MotionKind::Linear { end, feed }, blend);
+                let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>();
+                if distance != 0.0 {
+                    let distance = distance.sqrt();
+                    let mut stop = end;
+                    for axis in 0..3 {
+                        stop[axis] += 0.254 * (start[axis] - end[axis]) / distance;
+                    }
+                    push(&mut motions, MotionKind::Linear { end: stop, feed }, blend);
+                }
+            }
             "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
             "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
             "START_SPINDLE_COUNTERCLOCKWISE" => push(&mut motions, MotionKind::Place, None),

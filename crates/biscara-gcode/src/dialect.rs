@@ -93,12 +93,23 @@ pub struct Summary {
     /// (Grbl 1.1's unsupported commands: canned cycles, G41/G42, M6, O-words, parameters, …),
     /// with their counts: the program runs here, not on that machine.
     pub refused_by_firmware: BTreeMap<String, usize>,
+    /// Probe moves (G38.2–G38.5), with their counts: run as LinuxCNC's `rs274` simulates them,
+    /// with no probe that trips.
+    pub probes: BTreeMap<String, usize>,
 }
 
 impl Summary {
     /// Whether nothing was recorded.
     pub fn is_empty(&self) -> bool {
-        self.codes.is_empty() && self.unknown.is_empty() && self.refused_by_firmware.is_empty()
+        self.codes.is_empty()
+            && self.unknown.is_empty()
+            && self.refused_by_firmware.is_empty()
+            && self.probes.is_empty()
+    }
+
+    /// Counts one probe move `code` (`G38.2`).
+    pub(crate) fn count_probe(&mut self, code: &str) {
+        bump(&mut self.probes, code);
     }
 
     /// Counts one use of `what`, which the firmware would refuse.

@@ -96,12 +96,12 @@ pub enum GcodeError {
         note: &'static str,
     },
     /// Occurs for a code of LinuxCNC's language this robot cannot do: lathe modes and cycles,
-    /// spindle-synchronised motion, probing (SPEC §4.2).
+    /// spindle-synchronised motion (SPEC §4.2).
     #[error("{at}: {code} is refused: {reason}")]
     CannotRun {
         /// Where.
         at: Location,
-        /// The code, as LinuxCNC names it (`G33`, `G38.2`).
+        /// The code, as LinuxCNC names it (`G33`, `G76`).
         code: String,
         /// Why this robot cannot do it.
         reason: &'static str,

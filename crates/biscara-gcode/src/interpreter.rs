@@ -38,6 +38,8 @@ mod io_codes;
 mod modal_state;
 /// Polar coordinates (`@`, `^`).
 mod polar;
+/// Probing, G38.2–G38.5.
+mod probe;
 /// G10 L2 R: coordinate systems rotated about Z.
 mod rotation;
 /// G5 and G5.1 splines, run as straight moves.
@@ -702,9 +704,10 @@ impl<R: BufRead> Interpreter<R> {
         let group0 = self.block.g[0];
         let axis_words =
             AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
-        // rs274 checks a spline's axis words first of all.
+        // rs274 checks the axis words of a motion other than G0–G3 first of all
+        // (`enhance_block`).
         if let Some(code) = motion_code
-            && spline::is_spline(code.code)
+            && !matches!(code.code, 0 | 10 | 20 | 30 | 800)
             && !axis_words
         {
             return Err(self.code_fault(code, "All axes missing with motion code"));
@@ -1001,6 +1004,7 @@ impl<R: BufRead> Interpreter<R> {
                 0 | 10 => self.straight(motion, g53)?,
                 20 | 30 => self.arc(motion == 20)?,
                 50 | 51 => self.spline(motion)?,
+                code if probe::is_probe(code) => self.probe(code)?,
                 _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
             }
         }

@@ -14,9 +14,10 @@
 //! print, or guess. Of tier 3 it reads tool offsets with a LinuxCNC tool table
 //! ([`Config::tool_table`], [`ToolTable`]), canned cycles, cutter radius compensation, G52,
 //! M70–M73 and user M codes (events), G5/G5.1 splines in G17 (as straight moves within
-//! 0.001 mm of the curve); NURBS and the rest are refused with "… is not supported yet", never
-//! interpreted wrongly; lathe codes, spindle-synchronised motion and probing are
-//! refused as this robot cannot do them; A, B, U, V and W words are errors.
+//! 0.001 mm of the curve), probing G38.2–G38.5 (as `rs274` simulates it: no probe trips); NURBS
+//! and the rest are refused with "… is not supported yet", never interpreted wrongly; lathe
+//! codes and spindle-synchronised motion are refused as this robot cannot do them; A, B, U, V
+//! and W words are errors.
 //!
 //! Where it differs from LinuxCNC, on purpose:
 //! - A, B, U, V, W words are errors (LinuxCNC machines may have those axes; this robot has not).
@@ -30,6 +31,9 @@
 //!   plane the inter-file cannot describe: it becomes straight moves within 0.001 mm of it.
 //!   Cutter compensation in the XZ plane of a rotated system, whose corner arcs would be
 //!   tilted too, is refused as not supported yet.
+//! - A probe move (G38.2–G38.5) is an event `code` (`G38.2`) and two straight moves: to its
+//!   end point and 0.254 mm back along it, where `rs274` puts the position without a move; it
+//!   is refused under G93, where LinuxCNC's motion controller has no feed for it.
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
 //! - The tool table is in millimetres, and 5401–5410 hold millimetres (rs274's hold inches);
 //!   a tool table line LinuxCNC would skip is an error.

@@ -20,7 +20,7 @@ pub(crate) enum Support {
     /// Part of LinuxCNC's language, refused with "… is not supported yet".
     No(&'static str),
     /// Part of LinuxCNC's language that this robot cannot do (lathe, spindle-synchronised
-    /// motion, probing; SPEC §4.2): refused, with why.
+    /// motion; SPEC §4.2): refused, with why.
     Cannot(&'static str),
 }
 
@@ -45,7 +45,8 @@ pub(crate) fn g_group(code: u16) -> Option<(usize, Support)> {
         52 | 53 => (1, No("NURBS: LinuxCNC's rs274 passes it on without its path")),
         330 | 331 => (1, Cannot(NO_SPINDLE_SYNC)),
         760 => (1, Cannot(NO_LATHE)),
-        382..=385 => (1, Cannot("probing needs a probe input this robot has not")),
+        // Probing runs as rs274 simulates it: no probe trips (interpreter/probe.rs).
+        382..=385 => (1, Yes),
         730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => (1, Yes),
         700 | 710 | 711 | 712 | 720 | 721 | 722 => (1, Cannot(NO_LATHE)),
         170 | 180 | 190 => (2, Yes),

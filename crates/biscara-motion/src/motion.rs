@@ -184,7 +184,8 @@ pub enum MotionKind {
     /// A pen lifted (M5). Takes no time.
     PenUp,
     /// A code with no motion that the program's dialect accepts (a temperature, fan, progress
-    /// or settings code, a Grbl `$` line, …): recorded, not acted on. Takes no time.
+    /// or settings code, a Grbl `$` line, …): recorded, not acted on. Takes no time. A probe
+    /// code (`G38.2`) marks the probe move that follows it.
     Code {
         /// The code as the program wrote it, upper case (`M104`, `G29`, `$H`).
         code: CodeName,

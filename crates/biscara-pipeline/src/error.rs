@@ -145,6 +145,14 @@ pub enum Note {
         /// Each code or feature and how many lines use it.
         codes: BTreeMap<String, usize>,
     },
+    /// The program probes (G38.2–G38.5): run as LinuxCNC's `rs274` simulates probing, with no
+    /// probe that trips; one note with the counts.
+    Probes {
+        /// The program's name.
+        file: String,
+        /// Each probe code and how many probe moves use it.
+        codes: BTreeMap<String, usize>,
+    },
     /// The program used tool offsets (G43, G43.2, G10 L1/L10/L11, M61) with no tool table
     /// given: every tool has zero length and diameter.
     ToolsWithoutTable {
@@ -253,6 +261,13 @@ impl fmt::Display for Note {
                 f,
                 "{file}: {dialect} itself refuses these (its error 20, unsupported command); read \
                  here as LinuxCNC reads them, so the program runs here but not on that machine: {}",
+                Counted(codes)
+            ),
+            Note::Probes { file, codes } => write!(
+                f,
+                "{file}: probe moves run as LinuxCNC's rs274 simulates them, with no probe to \
+                 trip: each goes to its end point and stops 0.254 mm back, and #5061–#5063 read \
+                 the end point with #5070 = 0 (not tripped): {}",
                 Counted(codes)
             ),
             Note::ToolsWithoutTable { file } => write!(

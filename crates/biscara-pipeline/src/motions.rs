@@ -220,6 +220,9 @@ impl<R: BufRead> GcodeMotions<R> {
         if !summary.codes.is_empty() {
             self.notes.say(Note::Codes { file: self.file.clone(), codes: summary.codes.clone() });
         }
+        if !summary.probes.is_empty() {
+            self.notes.say(Note::Probes { file: self.file.clone(), codes: summary.probes.clone() });
+        }
         if !summary.unknown.is_empty() {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
             self.notes.say(Note::UnknownCodes { file, dialect, codes: summary.unknown.clone() });

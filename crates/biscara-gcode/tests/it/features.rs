@@ -423,3 +423,39 @@ fn m73_in_a_subroutine_restores_the_modes_when_it_returns() {
     // Millimetres and absolute again after the call.
     assert_end(&got, 1, [2.0, 0.0, 0.0]);
 }
+
+#[test]
+fn a_probe_move_goes_to_its_end_and_stands_back_with_the_end_in_5061() {
+    // No probe trips: to Z-5, then 0.254 mm back toward the start; the next line reads the end
+    // point in #5061–#5063 and 0 in #5070.
+    let program = "G21 G90 F100\nG0 X1 Y2 Z3\nG38.2 Z-5\nG1 X[#5061 + 10] Y[#5070]\n\
+                   G20 G38.3 Z-1\nG1 X[#5063]\nM2\n";
+    let got = motions(program, [0.0; 4]);
+    let code = |name: &str| MotionKind::Code { code: biscara_motion::CodeName::new(name).unwrap() };
+    assert_eq!(got[1], (3, code("G38.2")));
+    assert_eq!(got[2], (3, MotionKind::Linear { end: [1.0, 2.0, -5.0, 0.0], feed: feed(100.0) }));
+    let MotionKind::Linear { end: back, .. } = got[3].1 else { panic!("{:?}", got[3]) };
+    assert!((back[2] - -4.746).abs() < 1e-12, "{back:?}");
+    let MotionKind::Linear { end, .. } = got[4].1 else { panic!("{:?}", got[4]) };
+    assert_eq!([end[0], end[1]], [11.0, 0.0]);
+    // In inches: the end is -1 inch, the stop 0.01 inch back, #5063 in inches.
+    assert_eq!(got[5], (5, code("G38.3")));
+    let MotionKind::Linear { end: back, .. } = got[7].1 else { panic!("{:?}", got[7]) };
+    assert!((back[2] - (-25.4 + 0.254)).abs() < 1e-9, "{back:?}");
+    let MotionKind::Linear { end, .. } = got[8].1 else { panic!("{:?}", got[8]) };
+    assert!((end[0] - -25.4).abs() < 1e-9, "{end:?}");
+}
+
+#[test]
+fn a_probe_refuses_as_linuxcnc_does() {
+    for (program, message) in [
+        ("G0 X1\nG38.2 Z-5\nM2\n", "2:1: Cannot probe with zero feed rate"),
+        ("F100 G0 X1\nG38.2 X1\nM2\n", "2:1: Start point too close to probe point"),
+        ("F100\nG38.3\nM2\n", "2:1: All axes missing with motion code"),
+        ("F100 G41.1 D2\nG1 X9\nG38.2 Z-5\nM2\n", "3:1: Cannot probe with cutter radius comp on"),
+        ("G93\nG38.2 Z-5 F2\nM2\n", "2:1: G38.2 is not supported yet"),
+    ] {
+        let err = error(program).to_string();
+        assert!(err.contains(message), "{program:?}: {err}");
+    }
+}

@@ -257,7 +257,7 @@ const TABLE: &[(&str, Fits)] = &[
     ("other/handwritten-linuxcnc-external-subs.ngc", Fits::Unread),
     ("other/handwritten-linuxcnc-spool-owords-b.nc", Fits::Unread),
     ("other/millmasterpro-mastercam-hdr-g70.nc", Fits::Unread),
-    ("other/pcb2gcode-autolevel-linuxcnc-back.ngc", Fits::Unread),
+    ("other/pcb2gcode-autolevel-linuxcnc-back.ngc", CUT),
     ("plotter/estlcam10-crown-plotter.gcode", Fits::Placed { g92: true, z_moved: true }),
     ("plotter/gcodeplot-3rect.gcode", PLACED),
     ("plotter/rotrics-studio-dexarm-quote.gcode", CUT),

@@ -1,0 +1,88 @@
+//! Probing, G38.2–G38.5, as LinuxCNC's standalone `rs274` simulates it (`convert_probe`, and
+//! `STRAIGHT_PROBE` and the probe queries of its canon, `saicanon.cc`).
+//!
+//! A virtual robot has no probe input, so no probe ever trips:
+//! - the probe move runs at the feed in force, straight to its end point;
+//! - the robot then stops 0.254 mm (0.01 inch) back from that point along the move, as rs274
+//!   does; this is a second, short straight move here, because motions must be continuous;
+//! - the next line reads the end point in #5061–#5063 (#5066 for C) and 0 ("not tripped") in
+//!   #5070.
+//!
+//! Before the moves comes an event with the code (`G38.2`), so that a time series shows where
+//! the robot probes, and the program's notes count the probe moves.
+
+use std::io::BufRead;
+
+use biscara_motion::{CodeName, Feed, MotionKind};
+
+use super::Interpreter;
+use crate::dialect::g_name;
+use crate::lexer::Fault;
+use crate::params::axis_slot;
+use crate::parser::Code;
+
+/// First of the parameters that receive the probed point (x y z a b c u v w follow).
+const PROBED_POINT: usize = 5061;
+/// Whether the probe tripped: 1, or 0 (always here: nothing to touch).
+const PROBE_TRIPPED: usize = 5070;
+/// How far rs274 stops back from a probe's end point, millimetres (0.01 inch).
+const BACKOFF_MM: f64 = 0.254;
+
+/// Whether G code `code` (ten times the number) is a probe move.
+pub(super) fn is_probe(code: u16) -> bool {
+    matches!(code, 382..=385)
+}
+
+impl<R: BufRead> Interpreter<R> {
+    /// G38.2 (`code` 382: toward the work, error on no contact), G38.3 (383: no error), G38.4
+    /// (384: away from the work, error on no loss of contact) and G38.5 (385: no error).
+    pub(super) fn probe(&mut self, code: u16) -> Result<(), Fault> {
+        let at = self.block.g[1].map_or_else(
+            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
+            |code: Code| (code.at, code.end),
+        );
+        if self.state.comp.on() {
+            return Err(self.fault_at(at.0, at.1, "Cannot probe with cutter radius comp on"));
+        }
+        if self.state.inverse_time {
+            // rs274 probes at the last F read, whatever it meant; LinuxCNC's motion controller
+            // takes no inverse-time feed for a probe.
+            return Err(Fault::not_supported(
+                at.0,
+                at.1,
+                g_name(code),
+                "probing in inverse time mode, G93: program G94 and a feed rate",
+            ));
+        }
+        if self.state.feed_rate == 0.0 {
+            return Err(self.fault_at(at.0, at.1, "Cannot probe with zero feed rate"));
+        }
+        let start = self.state.current;
+        let end = self.find_ends(false);
+        // G38.2 and G38.4 fail when the probe cannot move; G38.3 and G38.5 just report.
+        let must_move = matches!(code, 382 | 384);
+        if must_move && start == end {
+            return Err(self.fault_at(at.0, at.1, "Start point too close to probe point"));
+        }
+        self.summary.count_probe(&g_name(code));
+        if let Some(name) = CodeName::new(&g_name(code)) {
+            self.emit(MotionKind::Code { code: name });
+        }
+        let feed = Feed { mm_per_min: self.state.feed_mm, inverse_time: false };
+        self.move_to(end, Some(feed));
+        for (axis, &value) in end.iter().enumerate() {
+            self.state.params.set(PROBED_POINT + axis_slot(axis), value);
+        }
+        self.state.params.set(PROBE_TRIPPED, 0.0);
+        let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
+        if distance != 0.0 {
+            let backoff = BACKOFF_MM / self.state.factor();
+            let mut stop = end;
+            for axis in 0..3 {
+                stop[axis] = end[axis] + backoff * (start[axis] - end[axis]) / distance;
+            }
+            self.move_to(stop, Some(feed));
+        }
+        Ok(())
+    }
+}
