@@ -791,7 +791,7 @@ fn random_program(rng: &mut Rng) -> String {
             let (a, b) = (char::from(pair[0]), char::from(pair[1]));
             format!("{a}{} {b}{}", rng.coordinate(), rng.coordinate())
         };
-        let line = match rng.below(26) {
+        let line = match rng.below(27) {
             0 => rng
                 .pick(&["G17", "G18", "G19", "G20", "G21", "G90", "G91", "G90.1", "G91.1"])
                 .to_owned(),
@@ -926,6 +926,30 @@ fn random_program(rng: &mut Rng) -> String {
                 // NURBS_FEED does not), and its canon learns it (an M6 takes its position
                 // back from the canon, which does not follow a NURBS).
                 format!("G94 {plane}{words} F{}\nG1 X#<_x> Y#<_y>", 100 + rng.below(900))
+            }
+            26 => {
+                // A probe (no probe trips: to the end, 0.254 mm back), sometimes one that stands
+                // still (G38.2 and G38.4 refuse it), then a move to what #5061–#5070 read.
+                // G38.3 and G38.5 always move in X, Y or Z: rs274's canon backs off along the
+                // move as its own copy of the position sees it, which after a G92 or G10 can
+                // differ from the interpreter's by a rounding error (1e-15 mm); for a probe
+                // that does not move, that error alone gives the backoff a direction.
+                let code = rng.pick(&["G38.2", "G38.3", "G38.4", "G38.5"]);
+                let target = match rng.below(4) {
+                    0 if matches!(code, "G38.2" | "G38.4") => "Z#<_z>".to_owned(),
+                    1 => two_axes(rng),
+                    _ => {
+                        let letter = rng.pick(&["X", "Y", "Z"]);
+                        format!(
+                            "{letter}[#<_{}> + {}]",
+                            letter.to_ascii_lowercase(),
+                            1 + rng.below(20)
+                        )
+                    }
+                };
+                let feed = 1 + rng.below(500);
+                let then = rng.pick(&["X[#5061 + 1] Y[#5062 - #5070]", "Z#5063 C[#5066 + 1]"]);
+                format!("G94 {code} {target} F{feed}\nG1 {then}")
             }
             _ => format!("G1 {} F{}", axis(rng), 1 + rng.below(100)),
         };

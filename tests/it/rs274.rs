@@ -213,6 +213,10 @@ pub fn parse(canon: &str) -> Vec<Motion> {
     // SET_XY_ROTATION: the system's rotation about Z, degrees (canon: rot(p + g92) + g5x + tlo).
     let mut rotation = 0.0_f64;
     let mut feed = 0.0;
+    // Where rs274's canon (`saicanon.cc`) is, x y z c in program units: it follows the moves,
+    // the G5x and G92 offsets and the units, not the tool length offset (the start of a
+    // probe's backoff).
+    let mut canon_at = [0.0_f64; 4];
     // rs274's canon starts in CANON_CONTINUOUS with no tolerance (LinuxCNC's G64 by default);
     // canned cycles restore it after their exact-path moves.
     let mut blend = Some(0.0);
@@ -251,17 +255,25 @@ pub fn parse(canon: &str) -> Vec<Motion> {
         };
         match name {
             "USE_LENGTH_UNITS" => {
+                let old = factor;
                 factor = if arguments.contains("INCHES") { 25.4 } else { 1.0 };
+                for value in &mut canon_at[..3] {
+                    *value *= old / factor;
+                }
             }
             "SET_G5X_OFFSET" => {
-                g5x = [values[1] * factor, values[2] * factor, values[3] * factor, values[6]];
+                let new = [values[1] * factor, values[2] * factor, values[3] * factor, values[6]];
+                shift_canon(&mut canon_at, g5x, new, factor);
+                g5x = new;
             }
             "USE_TOOL_LENGTH_OFFSET" => {
                 tlo = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
             }
             "SET_XY_ROTATION" => rotation = values[0],
             "SET_G92_OFFSET" => {
-                g92 = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
+                let new = [values[0] * factor, values[1] * factor, values[2] * factor, values[5]];
+                shift_canon(&mut canon_at, g92, new, factor);
+                g92 = new;
             }
             "SELECT_PLANE" => {
                 plane = if arguments.ends_with("XZ") {
@@ -281,16 +293,20 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                     .then(|| values.first().copied().unwrap_or(0.0) * factor);
             }
             "STRAIGHT_TRAVERSE" => {
+                canon_at = [values[0], values[1], values[2], values[5]];
                 push(&mut motions, MotionKind::Rapid { end: pose(&values) }, blend)
             }
-            "STRAIGHT_FEED" => push(
-                &mut motions,
-                MotionKind::Linear {
-                    end: pose(&values),
-                    feed: Feed { mm_per_min: feed, inverse_time: false },
-                },
-                blend,
-            ),
+            "STRAIGHT_FEED" => {
+                canon_at = [values[0], values[1], values[2], values[5]];
+                push(
+                    &mut motions,
+                    MotionKind::Linear {
+                        end: pose(&values),
+                        feed: Feed { mm_per_min: feed, inverse_time: false },
+                    },
+                    blend,
+                );
+            }
             "ARC_FEED" => {
                 // first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c
                 let [first, second, normal] = plane.axes();
@@ -299,6 +315,7 @@ pub fn parse(canon: &str) -> Vec<Motion> {
                 program[second] = values[1];
                 program[normal] = values[5];
                 program[5] = values[8];
+                canon_at = [program[0], program[1], program[2], program[5]];
                 let end = pose(&program);
                 if rotation != 0.0 && plane != Plane::Xy {
                     // In a tilted plane (LinuxCNC's canon turns the arc's basis vectors): our
@@ -345,23 +362,19 @@ pub fn parse(canon: &str) -> Vec<Motion> {
             // trips, and stands 0.254 mm (0.01 inch) back from it along the move: our two
             // straight moves.
             "STRAIGHT_PROBE" => {
-                let start = motions
-                    .iter()
-                    .rev()
-                    .find_map(|motion: &Motion| motion.kind.end())
-                    .unwrap_or_else(|| pose(&[0.0; 6]));
-                let end = pose(&values);
                 let feed = Feed { mm_per_min: feed, inverse_time: false };
-                push(&mut motions, MotionKind::Linear { end, feed }, blend);
-                let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>();
+                push(&mut motions, MotionKind::Linear { end: pose(&values), feed }, blend);
+                let distance =
+                    (0..3).map(|axis| (canon_at[axis] - values[axis]).powi(2)).sum::<f64>();
+                let mut stop = values.clone();
                 if distance != 0.0 {
-                    let distance = distance.sqrt();
-                    let mut stop = end;
+                    let (distance, backoff) = (distance.sqrt(), 0.254 / factor);
                     for axis in 0..3 {
-                        stop[axis] += 0.254 * (start[axis] - end[axis]) / distance;
+                        stop[axis] += backoff * (canon_at[axis] - values[axis]) / distance;
                     }
-                    push(&mut motions, MotionKind::Linear { end: stop, feed }, blend);
+                    push(&mut motions, MotionKind::Linear { end: pose(&stop), feed }, blend);
                 }
+                canon_at = [stop[0], stop[1], stop[2], stop[5]];
             }
             "DWELL" => push(&mut motions, MotionKind::Dwell { seconds: values[0] }, None),
             "START_SPINDLE_CLOCKWISE" => push(&mut motions, MotionKind::Pick, None),
@@ -383,6 +396,15 @@ pub fn parse(canon: &str) -> Vec<Motion> {
         }
     }
     motions
+}
+
+/// rs274's canon when an offset (mm, degrees) changes from `old` to `new`: the same point,
+/// in the new coordinates (`canon_at` in program units: `factor` mm each).
+fn shift_canon(canon_at: &mut [f64; 4], old: [f64; 4], new: [f64; 4], factor: f64) {
+    for axis in 0..4 {
+        let unit = if axis == 3 { 1.0 } else { factor };
+        canon_at[axis] += (old[axis] - new[axis]) / unit;
+    }
 }
 
 /// Whether `motion` stands for one of rs274's `NURBS_FEED`s (see [`parse`]).

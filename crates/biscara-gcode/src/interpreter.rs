@@ -1512,7 +1512,7 @@ impl<R: BufRead> Interpreter<R> {
             let start = self.comp_start().unwrap_or(self.state.current);
             let length = straight_length(start, end);
             let rate = (length * f.value).max(0.1);
-            Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
+            self.set_inverse_time_rate(rate)
         } else {
             if self.state.feed_rate == 0.0 {
                 let code = self.block.g[1].map_or_else(
@@ -1533,6 +1533,15 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.move_to(end, Some(feed));
         Ok(())
+    }
+
+    /// The feed of a move under G93 at `rate` (program units per minute: its length times F),
+    /// which becomes the feed rate in force (`#<_feed>`, what M70 saves), as rs274's
+    /// `inverse_time_rate_straight` and `inverse_time_rate_arc` make it.
+    fn set_inverse_time_rate(&mut self, rate: f64) -> Feed {
+        self.state.feed_rate = rate;
+        self.state.feed_mm = rate * self.state.factor();
+        Feed { mm_per_min: self.state.feed_mm, inverse_time: true }
     }
 
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
@@ -1725,7 +1734,7 @@ impl<R: BufRead> Interpreter<R> {
                 [e1, e2, end[normal]],
             );
             let rate = (length * f).max(0.1);
-            Feed { mm_per_min: rate * self.state.factor(), inverse_time: true }
+            self.set_inverse_time_rate(rate)
         } else {
             Feed { mm_per_min: self.state.feed_mm, inverse_time: false }
         };

@@ -57,11 +57,15 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.feed_rate == 0.0 {
             return Err(self.fault_at(at.0, at.1, "Cannot probe with zero feed rate"));
         }
-        let start = self.state.current;
         let end = self.find_ends(false);
+        // rs274's canon backs off toward where it last moved: tool length offsets set since
+        // then moved the interpreter's current point, not the canon's.
+        let current = self.state.current;
+        let start: [f64; 4] =
+            std::array::from_fn(|axis| current[axis] - self.state.tool_shift[axis]);
         // G38.2 and G38.4 fail when the probe cannot move; G38.3 and G38.5 just report.
         let must_move = matches!(code, 382 | 384);
-        if must_move && start == end {
+        if must_move && current == end {
             return Err(self.fault_at(at.0, at.1, "Start point too close to probe point"));
         }
         self.summary.count_probe(&g_name(code));
