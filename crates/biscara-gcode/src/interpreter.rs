@@ -559,7 +559,8 @@ impl<R: BufRead> Interpreter<R> {
             let raw_len = self.lines.line.len();
             let result = {
                 let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state)
+                        .mach3(self.dialect == Dialect::Mach3);
                 reader.read_block(&mut self.block)
             };
             result.map_err(|fault| self.error(fault))?;

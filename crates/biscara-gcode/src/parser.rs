@@ -302,6 +302,9 @@ pub(crate) struct Reader<'a> {
     /// holding 0, as soon as it reads its assignment, so that it reads as 0 later on the line.
     created: [(u8, u8); 64],
     created_count: usize,
+    /// Mach3's codes LinuxCNC lacks are read too: G31 (its straight probe) and the probe log
+    /// macros M40 and M41 (as user M codes).
+    mach3: bool,
 }
 
 impl<'a> Reader<'a> {
@@ -320,6 +323,7 @@ impl<'a> Reader<'a> {
             pos: 0,
             created: [(0, 0); 64],
             created_count: 0,
+            mach3: false,
         }
     }
 
@@ -499,6 +503,12 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
+    /// Reads Mach3's G31, M40 and M41 too (`on`), which LinuxCNC does not know.
+    pub(crate) fn mach3(mut self, on: bool) -> Reader<'a> {
+        self.mach3 = on;
+        self
+    }
+
     fn read_g(&mut self, block: &mut Block, start: usize) -> Result<(), Fault> {
         let value = self.read_real_value()? * 10.0;
         let end = self.pos;
@@ -515,7 +525,8 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, "Negative g code used"));
         }
         let code = code as u16;
-        let Some((group, support)) = g_group(code) else {
+        let mach3 = (self.mach3 && code == 310).then_some((1, Support::Yes));
+        let Some((group, support)) = g_group(code).or(mach3) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
         block.unsupported |= support != Support::Yes;
@@ -543,7 +554,8 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
         }
         let code = value as u16;
-        let Some((group, support)) = m_group(code) else {
+        let mach3 = (self.mach3 && matches!(code, 40 | 41)).then_some((10, Support::Yes));
+        let Some((group, support)) = m_group(code).or(mach3) else {
             return Err(self.syntax(start, end, format!("Unknown m code used: M{value}")));
         };
         block.unsupported |= support != Support::Yes;

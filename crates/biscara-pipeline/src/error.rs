@@ -150,6 +150,8 @@ pub enum Note {
     Probes {
         /// The program's name.
         file: String,
+        /// The dialect the program was read in: LinuxCNC's stops 0.254 mm back, as rs274 does.
+        dialect: Dialect,
         /// Each probe code and how many probe moves use it.
         codes: BTreeMap<String, usize>,
     },
@@ -263,11 +265,18 @@ impl fmt::Display for Note {
                  here as LinuxCNC reads them, so the program runs here but not on that machine: {}",
                 Counted(codes)
             ),
-            Note::Probes { file, codes } => write!(
+            Note::Probes { file, dialect: Dialect::Linuxcnc, codes } => write!(
                 f,
                 "{file}: probe moves run as LinuxCNC's rs274 simulates them, with no probe to \
                  trip: each goes to its end point and stops 0.254 mm back, and #5061–#5063 read \
                  the end point with #5070 = 0 (not tripped): {}",
+                Counted(codes)
+            ),
+            Note::Probes { file, dialect, codes } => write!(
+                f,
+                "{file}: probe moves run with no probe to trip: each goes to its end point, \
+                 which the next line reads as the probed point ({dialect}: #5061–#5063 with \
+                 #5070 = 0, and #2000–#2002 after Mach3's G31): {}",
                 Counted(codes)
             ),
             Note::ToolsWithoutTable { file } => write!(

@@ -221,7 +221,8 @@ impl<R: BufRead> GcodeMotions<R> {
             self.notes.say(Note::Codes { file: self.file.clone(), codes: summary.codes.clone() });
         }
         if !summary.probes.is_empty() {
-            self.notes.say(Note::Probes { file: self.file.clone(), codes: summary.probes.clone() });
+            let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
+            self.notes.say(Note::Probes { file, dialect, codes: summary.probes.clone() });
         }
         if !summary.unknown.is_empty() {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());

@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{Interpreter, round_to_int};
+use crate::dialect::Dialect;
 use crate::error::GcodeError;
 use crate::lexer::Fault;
 use crate::parser::Reader;
@@ -874,6 +875,15 @@ impl<R: BufRead> Interpreter<R> {
         if let Some(skipping) = &self.control.skipping_o
             && **skipping != *block.name
         {
+            // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
+            // posts call O2 from O3, defined after it): one passed while reading on to another
+            // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
+            if self.dialect == Dialect::Mach3
+                && block.kind == OType::Fanuc
+                && self.label_of(&block.name).is_none()
+            {
+                self.save_offset(block)?;
+            }
             return Ok(());
         }
         if self.control.skipping_to_sub.is_some()

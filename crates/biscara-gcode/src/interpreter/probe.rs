@@ -3,10 +3,12 @@
 //!
 //! A virtual robot has no probe input, so no probe ever trips:
 //! - the probe move runs at the feed in force, straight to its end point;
-//! - the robot then stops 0.254 mm (0.01 inch) back from that point along the move, as rs274
-//!   does; this is a second, short straight move here, because motions must be continuous;
+//! - in LinuxCNC's dialect the robot then stops 0.254 mm (0.01 inch) back from that point along
+//!   the move, as rs274 does; this is a second, short straight move here, because motions must
+//!   be continuous (Grbl and Mach3 stay at the end point);
 //! - the next line reads the end point in #5061–#5063 (#5066 for C) and 0 ("not tripped") in
-//!   #5070.
+//!   #5070; Mach3's G31 (its straight probe, which goes on without an error when nothing
+//!   trips, as G38.3 does) also in #2000–#2002 (#2005 for C), where Mach3 puts it.
 //!
 //! Before the moves comes an event with the code (`G38.2`), so that a time series shows where
 //! the robot probes, and the program's notes count the probe moves.
@@ -16,7 +18,7 @@ use std::io::BufRead;
 use biscara_motion::{CodeName, Feed, MotionKind};
 
 use super::Interpreter;
-use crate::dialect::g_name;
+use crate::dialect::{Dialect, g_name};
 use crate::lexer::Fault;
 use crate::params::axis_slot;
 use crate::parser::Code;
@@ -25,17 +27,21 @@ use crate::parser::Code;
 const PROBED_POINT: usize = 5061;
 /// Whether the probe tripped: 1, or 0 (always here: nothing to touch).
 const PROBE_TRIPPED: usize = 5070;
+/// First of the parameters where Mach3 puts the probed point (x y z a b c).
+const MACH3_PROBED_POINT: usize = 2000;
 /// How far rs274 stops back from a probe's end point, millimetres (0.01 inch).
 const BACKOFF_MM: f64 = 0.254;
 
-/// Whether G code `code` (ten times the number) is a probe move.
+/// Whether G code `code` (ten times the number) is a probe move: G38.2–G38.5, or Mach3's G31
+/// (which the block reader takes only in the Mach3 dialect).
 pub(super) fn is_probe(code: u16) -> bool {
-    matches!(code, 382..=385)
+    matches!(code, 382..=385 | 310)
 }
 
 impl<R: BufRead> Interpreter<R> {
     /// G38.2 (`code` 382: toward the work, error on no contact), G38.3 (383: no error), G38.4
-    /// (384: away from the work, error on no loss of contact) and G38.5 (385: no error).
+    /// (384: away from the work, error on no loss of contact), G38.5 (385: no error) and
+    /// Mach3's G31 (310: toward the work, no error).
     pub(super) fn probe(&mut self, code: u16) -> Result<(), Fault> {
         let at = self.block.g[1].map_or_else(
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
@@ -76,10 +82,13 @@ impl<R: BufRead> Interpreter<R> {
         self.move_to(end, Some(feed));
         for (axis, &value) in end.iter().enumerate() {
             self.state.params.set(PROBED_POINT + axis_slot(axis), value);
+            if code == 310 {
+                self.state.params.set(MACH3_PROBED_POINT + axis_slot(axis), value);
+            }
         }
         self.state.params.set(PROBE_TRIPPED, 0.0);
         let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
-        if distance != 0.0 {
+        if distance != 0.0 && self.dialect == Dialect::Linuxcnc {
             let backoff = BACKOFF_MM / self.state.factor();
             let mut stop = end;
             for axis in 0..3 {

@@ -481,3 +481,26 @@ fn grbl_programs_count_what_grbl_itself_refuses() {
     assert!(interpreter.by_ref().all(|result| result.is_ok()));
     assert!(interpreter.summary().refused_by_firmware.is_empty());
 }
+
+#[test]
+fn mach3_probes_with_g31_logs_with_m40_m41_and_finds_o_labels_anywhere() {
+    // pcb2gcode's Mach3 autoleveller: G31 probes (no probe trips: to the end point, no
+    // backoff), the result in #2002 as well as #5063; M40/M41 open and close Mach3's probe log.
+    let program = "G21 G90 F100\nG0 X10 Y20 Z5\nM40\nG31 Z-2 F50\nG1 X[#2000 + 1] Y#2001 Z#2002\n\
+                   M41\nG1 Z#5063\nM30\n";
+    let motions = read(program, Dialect::Mach3);
+    assert_eq!(codes(&motions), ["M40", "G31", "M41"]);
+    let moved = ends(&motions);
+    assert_eq!(moved[1], [10.0, 20.0, -2.0, 0.0], "{moved:?}");
+    assert_eq!(moved[2], [11.0, 20.0, -2.0, 0.0], "no backoff: {moved:?}");
+    assert_eq!(moved[3], [11.0, 20.0, -2.0, 0.0], "{moved:?}");
+    // LinuxCNC knows neither.
+    assert!(refused(program, Dialect::Linuxcnc).to_string().contains("Unknown m code used: M40"));
+    let g31 = "G21 G90 F100\nG31 Z-2\nM2\n";
+    assert!(refused(g31, Dialect::Linuxcnc).to_string().contains("Unknown g code used"));
+    // O3 calls O2, whose label was passed while reading on to O3: Mach3 finds it (rs274 reads
+    // on from the call and refuses: "EOF in file … seeking o-word").
+    let subs = "G21 G90 F100\nM98 P3\nM30\nO2\nG1 X#1\nM99\nO3\n#1 = 7\nM98 P2\nM99\n";
+    assert_eq!(ends(&read(subs, Dialect::Mach3)), [[7.0, 400.0, 100.0, 0.0]]);
+    assert!(refused(subs, Dialect::Linuxcnc).to_string().contains("seeking o-word: o<2>"));
+}
