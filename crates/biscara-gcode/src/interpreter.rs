@@ -1077,7 +1077,10 @@ impl<R: BufRead> Interpreter<R> {
                         "Line with G10 does not have L0, L1, L10, L11, L2, or L20",
                     ));
                 };
+                // (Grbl takes no P as P0: see `set_coordinate_data`.)
+                let grbl_p0 = p.is_none() && self.dialect == Dialect::Grbl;
                 if matches!(l, 2 | 20)
+                    && !grbl_p0
                     && !p.is_some_and(|p| (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0)
                 {
                     return Err(
@@ -1319,6 +1322,9 @@ impl<R: BufRead> Interpreter<R> {
         }
         let system = match self.block.word(b'p') {
             Some(p) if (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0 => p.value as usize,
+            // Grbl 1.1 wants P or L (`gc_execute_line`: "P/L word missing"), and its P defaults
+            // to 0: the system in force (an OpenBuilds plasma post's `G10 L20 Z-2`).
+            None if self.dialect == Dialect::Grbl => 0,
             _ => {
                 return Err(self
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));

@@ -272,13 +272,19 @@ impl fmt::Display for Note {
                  the end point with #5070 = 0 (not tripped): {}",
                 Counted(codes)
             ),
-            Note::Probes { file, dialect, codes } => write!(
-                f,
-                "{file}: probe moves run with no probe to trip: each goes to its end point, \
-                 which the next line reads as the probed point ({dialect}: #5061–#5063 with \
-                 #5070 = 0, and #2000–#2002 after Mach3's G31): {}",
-                Counted(codes)
-            ),
+            Note::Probes { file, dialect, codes } => {
+                let parameters = if *dialect == Dialect::Mach3 {
+                    "#2000–#2002 as in Mach3, and #5061–#5063 as in Mach4"
+                } else {
+                    "#5061–#5063, as LinuxCNC names them"
+                };
+                write!(
+                    f,
+                    "{file}: probe moves run with no probe to trip: each goes to its end point, \
+                     which the next line reads as the probed point ({parameters}): {}",
+                    Counted(codes)
+                )
+            }
             Note::ToolsWithoutTable { file } => write!(
                 f,
                 "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \

@@ -504,3 +504,15 @@ fn mach3_probes_with_g31_logs_with_m40_m41_and_finds_o_labels_anywhere() {
     assert_eq!(ends(&read(subs, Dialect::Mach3)), [[7.0, 400.0, 100.0, 0.0]]);
     assert!(refused(subs, Dialect::Linuxcnc).to_string().contains("seeking o-word: o<2>"));
 }
+
+#[test]
+fn grbl_takes_g10_l2_and_l20_without_p_for_the_system_in_force() {
+    // Grbl 1.1 wants P or L, and its P defaults to 0 (an OpenBuilds plasma post after probing).
+    let program = "G21 G90\nG0 X10 Y20 Z30\nG10 L20 Z-2\nG0 Z0\nG10 L2 X1\nG0 X0\n";
+    let moved = ends(&read(program, Dialect::Grbl));
+    assert_eq!(moved[1], [10.0, 20.0, 32.0, 0.0], "{moved:?}");
+    assert_eq!(moved[2], [1.0, 20.0, 32.0, 0.0], "{moved:?}");
+    let linuxcnc = format!("{program}M2\n");
+    let err = refused(&linuxcnc, Dialect::Linuxcnc).to_string();
+    assert!(err.contains("P value out of range (0-9) with G10 L20"), "{err}");
+}
