@@ -547,7 +547,9 @@ impl<R: BufRead> Interpreter<R> {
             if self.block_delete && self.compact.bytes()[0] == b'/' {
                 continue;
             }
-            if (self.control.engaged() || control::may_control(self.compact.bytes()))
+            let bytes = self.compact.bytes();
+            let g65 = self.dialect == Dialect::Mach3 && control::may_call_g65(bytes);
+            if (self.control.engaged() || control::may_control(bytes) || g65)
                 && self.control_line()?
             {
                 // (A line skipped inside a false `if` is no O-word of its own.)

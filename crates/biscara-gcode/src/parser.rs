@@ -525,8 +525,8 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, "Negative g code used"));
         }
         let code = code as u16;
-        let mach3 = (self.mach3 && code == 310).then_some((1, Support::Yes));
-        let Some((group, support)) = g_group(code).or(mach3) else {
+        let mach3 = || (self.mach3 && code == 310).then_some((1, Support::Yes));
+        let Some((group, support)) = g_group(code).or_else(mach3) else {
             return Err(self.syntax(start, end, "Unknown g code used"));
         };
         block.unsupported |= support != Support::Yes;
@@ -554,8 +554,8 @@ impl<'a> Reader<'a> {
             return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
         }
         let code = value as u16;
-        let mach3 = (self.mach3 && matches!(code, 40 | 41)).then_some((10, Support::Yes));
-        let Some((group, support)) = m_group(code).or(mach3) else {
+        let mach3 = || (self.mach3 && matches!(code, 40 | 41)).then_some((10, Support::Yes));
+        let Some((group, support)) = m_group(code).or_else(mach3) else {
             return Err(self.syntax(start, end, format!("Unknown m code used: M{value}")));
         };
         block.unsupported |= support != Support::Yes;

@@ -107,6 +107,9 @@ enum CallType {
     Oword,
     /// `M98 P…`.
     M98,
+    /// Mach4's `G65 P… A… B…` (Fanuc's macro call): an `M98` call whose letters become the
+    /// subprogram's own #1… (A #1, B #2, C #3, I #4, J #5, K #6, D #7, …, Z #26).
+    G65,
 }
 
 /// Where a label was seen (LinuxCNC's `offset_map` entry).
@@ -289,6 +292,47 @@ pub(super) fn may_control(bytes: &[u8]) -> bool {
     }
 }
 
+/// Whether a line's first item is G65 (`g65`, `g065`, not `g65.1`): Mach4's macro call, looked
+/// for only in the Mach3 dialect.
+pub(super) fn may_call_g65(bytes: &[u8]) -> bool {
+    let at = first_item(bytes);
+    let Some(item) = bytes.get(at..).filter(|item| item.first() == Some(&b'g')) else {
+        return false;
+    };
+    let digits = item[1..].iter().take_while(|b| b.is_ascii_digit()).count();
+    let number = &item[1..1 + digits];
+    let number = &number[number.iter().take_while(|&&b| b == b'0').count()..];
+    number == b"65" && item.get(1 + digits) != Some(&b'.')
+}
+
+/// Fanuc's argument specification I: the local parameter a G65 letter sets.
+fn g65_argument(letter: u8) -> Option<usize> {
+    Some(match letter {
+        b'a' => 1,
+        b'b' => 2,
+        b'c' => 3,
+        b'i' => 4,
+        b'j' => 5,
+        b'k' => 6,
+        b'd' => 7,
+        b'e' => 8,
+        b'f' => 9,
+        b'h' => 11,
+        b'm' => 13,
+        b'q' => 17,
+        b'r' => 18,
+        b's' => 19,
+        b't' => 20,
+        b'u' => 21,
+        b'v' => 22,
+        b'w' => 23,
+        b'x' => 24,
+        b'y' => 25,
+        b'z' => 26,
+        _ => return None,
+    })
+}
+
 /// Where the first item of a line starts (after `/` and the N number).
 fn first_item(bytes: &[u8]) -> usize {
     let mut at = usize::from(bytes.first() == Some(&b'/'));
@@ -354,8 +398,12 @@ impl<R: BufRead> Interpreter<R> {
             None
         };
         let skipping = self.control.engaged();
+        let g65 = lead == Some(b'g');
+        if g65 && (self.dialect != Dialect::Mach3 || skipping) {
+            return Ok(skipping);
+        }
         match (lead, m_number) {
-            (Some(b'o'), _) | (_, Some(98)) => {}
+            (Some(b'o' | b'g'), _) | (_, Some(98)) => {}
             (_, Some(99)) if self.control.level() > 0 => {}
             (_, Some(99)) if !skipping => {
                 // M99 in the main program: the standalone rs274 ends the program there, as M2
@@ -369,7 +417,8 @@ impl<R: BufRead> Interpreter<R> {
             }
             _ => return Ok(skipping),
         }
-        let Some(block) = self.read_o(at, m_number)? else { return Ok(true) };
+        let block = if g65 { Some(self.read_g65(at)?) } else { self.read_o(at, m_number)? };
+        let Some(block) = block else { return Ok(true) };
         self.convert_control(&block)?;
         if !self.lines.can_jump() && self.control.file.is_none() {
             self.update_recording();
@@ -604,6 +653,60 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         Ok(Some(block))
+    }
+
+    /// Mach4's `G65 P… L… A… …` at compact index `at`: a call of subprogram P (L times) with
+    /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
+    fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
+        let mut block = OBlock {
+            kind: OType::M98,
+            name: Rc::from(""),
+            call_type: CallType::G65,
+            params: [0.0; SUB_PARAMS],
+            l: None,
+        };
+        let digits =
+            self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        let mut reader =
+            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        reader.set_position(at + 1 + digits);
+        let mut program = None;
+        loop {
+            let pos = reader.position();
+            let Some(&letter) = self.compact.bytes().get(pos) else { break };
+            if letter == b';' {
+                break;
+            }
+            reader.set_position(pos + 1);
+            let value = reader.read_real_value()?;
+            match letter {
+                b'p' => program = Some(value),
+                b'l' => block.l = Some(value),
+                _ => match g65_argument(letter) {
+                    Some(index) => block.params[index - 1] = value,
+                    None => {
+                        let (first, last) = self.span(pos, pos + 1);
+                        return Err(Fault::syntax(
+                            first,
+                            last,
+                            format!(
+                                "{} is not an argument of G65 (A–K, M, Q–Z; P the subprogram, L \
+                                 the repeats)",
+                                char::from(letter).to_ascii_uppercase()
+                            ),
+                        ));
+                    }
+                },
+            }
+        }
+        let Some(program) = program else {
+            return Err(self.line_fault("G65 with no P word: which subprogram to call"));
+        };
+        if program.fract() != 0.0 || program < 0.0 {
+            return Err(self.line_fault(format!("G65 P{program}: not a subprogram number")));
+        }
+        block.name = Rc::from(format!("{}", program as i64));
+        Ok(block)
     }
 
     /// A `[ … ]` expression at compact index `pos` (moved past it).
@@ -898,7 +1001,7 @@ impl<R: BufRead> Interpreter<R> {
             OType::Sub | OType::Fanuc => {
                 let call_type = self.control.frames[level].call_type;
                 if block.kind == OType::Fanuc
-                    && !matches!(call_type, CallType::M98 | CallType::None)
+                    && !matches!(call_type, CallType::M98 | CallType::G65 | CallType::None)
                 {
                     return Err(
                         self.line_fault("Fanuc 'O....' subroutine must be called with 'M98'")
@@ -935,7 +1038,7 @@ impl<R: BufRead> Interpreter<R> {
                     )));
                 }
                 let call_type = self.control.frames[level].call_type;
-                if call_type == CallType::M98 && block.kind != OType::M99 {
+                if matches!(call_type, CallType::M98 | CallType::G65) && block.kind != OType::M99 {
                     return Err(
                         self.line_fault("Fanuc 'O....' subroutine definition must end with 'M99'")
                     );

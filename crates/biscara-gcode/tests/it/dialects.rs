@@ -516,3 +516,30 @@ fn grbl_takes_g10_l2_and_l20_without_p_for_the_system_in_force() {
     let err = refused(&linuxcnc, Dialect::Linuxcnc).to_string();
     assert!(err.contains("P value out of range (0-9) with G10 L20"), "{err}");
 }
+
+#[test]
+fn mach4_g65_calls_a_subprogram_with_its_letters_as_local_parameters() {
+    // pcb2gcode's Mach4 autoleveller: `G65 P1 A… B… C…` runs O1 with #1 #2 #3 its own; the
+    // caller's #1 comes back after the M99; L repeats.
+    let program = "G21 G90 F100\n#1 = 5\nG65 P1 A10 B20 C-1\nG1 X#1\nG65 P2 L3 X1\nM30\n\
+                   O1\nG1 X#1 Y#2 Z#3\nM99\nO2\nG91 G1 X#24\nG90\nM99\n";
+    let moved = ends(&read(program, Dialect::Mach3));
+    assert_eq!(
+        moved,
+        [
+            [10.0, 20.0, -1.0, 0.0],
+            [5.0, 20.0, -1.0, 0.0],
+            [6.0, 20.0, -1.0, 0.0],
+            [7.0, 20.0, -1.0, 0.0],
+            [8.0, 20.0, -1.0, 0.0]
+        ]
+    );
+    let bad = "G21 F100\nG65 P1 N2\nM30\nO1\nM99\n";
+    let err = refused(bad, Dialect::Mach3).to_string();
+    assert!(err.contains("2:8: N is not an argument of G65"), "{err}");
+    let err = refused("G21\nG65 A1\nM30\n", Dialect::Mach3).to_string();
+    assert!(err.contains("G65 with no P word"), "{err}");
+    // LinuxCNC has no G65.
+    let err = refused("G21\nG65 P1\nM2\n", Dialect::Linuxcnc).to_string();
+    assert!(err.contains("Unknown g code used"), "{err}");
+}
