@@ -690,7 +690,7 @@ impl<R: BufRead> Interpreter<R> {
                             first,
                             last,
                             format!(
-                                "{} is not an argument of G65 (A–K, M, Q–Z; P the subprogram, L \
+                                "{} is not an argument of G65 (A–F, H–K, M, Q–Z; P the subprogram, L \
                                  the repeats)",
                                 char::from(letter).to_ascii_uppercase()
                             ),
