@@ -734,6 +734,9 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
             5 if !fraction && !has_words(&raw[end..]) => {
                 Prelude::Event { name: code_name(letter, number), known: true }
             }
+            // G38.2–G38.5 (a build with G38_PROBE_TARGET): probe moves, as in the other
+            // dialects (no probe trips; Marlin has no parameters to read the point from).
+            38 if fraction => Prelude::Block,
             5 | 6 | 12 | 38 | 42 | 61 => Prelude::Refuse {
                 start,
                 end,

@@ -543,3 +543,11 @@ fn mach4_g65_calls_a_subprogram_with_its_letters_as_local_parameters() {
     let err = refused("G21\nG65 P1\nM2\n", Dialect::Linuxcnc).to_string();
     assert!(err.contains("Unknown g code used"), "{err}");
 }
+
+#[test]
+fn marlin_probes_with_g38_as_a_build_with_g38_probe_target_does() {
+    let program = "G21 G90\nG1 X10 Y20 Z5 F600\nG38.2 Z-3 F100\nG1 Z5\n";
+    let motions = read(program, Dialect::Marlin);
+    assert_eq!(codes(&motions), ["G38.2"]);
+    assert_eq!(ends(&motions)[1], [10.0, 20.0, -3.0, 0.0], "no backoff outside LinuxCNC's");
+}
