@@ -678,6 +678,10 @@ impl<R: BufRead> Interpreter<R> {
                 break;
             }
             reader.set_position(pos + 1);
+            if letter == b'(' {
+                // Where a comment stood.
+                continue;
+            }
             let value = reader.read_real_value()?;
             match letter {
                 b'p' => program = Some(value),

@@ -521,7 +521,7 @@ fn grbl_takes_g10_l2_and_l20_without_p_for_the_system_in_force() {
 fn mach4_g65_calls_a_subprogram_with_its_letters_as_local_parameters() {
     // pcb2gcode's Mach4 autoleveller: `G65 P1 A… B… C…` runs O1 with #1 #2 #3 its own; the
     // caller's #1 comes back after the M99; L repeats.
-    let program = "G21 G90 F100\n#1 = 5\nG65 P1 A10 B20 C-1\nG1 X#1\nG65 P2 L3 X1\nM30\n\
+    let program = "G21 G90 F100\n#1 = 5\nG65 P1 A10 (ten) B20 C-1\nG1 X#1\nG65 P2 L3 X1\nM30\n\
                    O1\nG1 X#1 Y#2 Z#3\nM99\nO2\nG91 G1 X#24\nG90\nM99\n";
     let moved = ends(&read(program, Dialect::Mach3));
     assert_eq!(
