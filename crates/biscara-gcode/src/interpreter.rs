@@ -1062,6 +1062,21 @@ impl<R: BufRead> Interpreter<R> {
             .min_by_key(|word| word.at)
     }
 
+    /// Where an error of the block's motion points: its G code, or else its first axis word
+    /// (a modal motion), or else the line's start.
+    fn motion_span(&self) -> (usize, usize) {
+        self.block.g[1].map_or_else(
+            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
+            |code| (code.at, code.end),
+        )
+    }
+
+    /// An error of the block's motion, at [`Interpreter::motion_span`].
+    fn motion_fault(&self, message: impl Into<String>) -> Fault {
+        let (start, end) = self.motion_span();
+        self.fault_at(start, end, message)
+    }
+
     /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
     fn check_group_zero(&self) -> Result<(), Fault> {
         let Some(zero) = self.block.g[0] else { return Ok(()) };
@@ -1524,13 +1539,7 @@ impl<R: BufRead> Interpreter<R> {
             self.set_inverse_time_rate(rate)
         } else {
             if self.state.feed_rate == 0.0 {
-                let code = self.block.g[1].map_or_else(
-                    || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
-                    |code| (code.at, code.end),
-                );
-                return Err(self.fault_at(
-                    code.0,
-                    code.1,
+                return Err(self.motion_fault(
                     "Cannot do g1 with zero feed rate: program a feed rate with an F word (mm/min, \
                      or in/min under G20) before or on this line",
                 ));
@@ -1556,11 +1565,6 @@ impl<R: BufRead> Interpreter<R> {
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
     fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
         self.comp_arc_allowed()?;
-        let code_at = self.block.g[1].map_or_else(
-            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
-            |code| (code.at, code.end),
-        );
-        let fail = |this: &Self, message: String| this.fault_at(code_at.0, code_at.1, message);
         let word = |letter: u8| self.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
         // Grbl reads the K word of an XY-plane arc and ignores it.
@@ -1569,25 +1573,22 @@ impl<R: BufRead> Interpreter<R> {
         }
         let ijk = i.is_some() || j.is_some() || k.is_some();
         if r.is_none() && !ijk {
-            return Err(fail(
-                self,
+            return Err(self.motion_fault(
                 "R i j k words all missing for arc: give the centre with I J K (offsets from the \
-                 start) or the radius with R"
-                    .into(),
+                 start) or the radius with R",
             ));
         }
         if r.is_some() && ijk {
-            return Err(fail(self, "Mixed radius ijk format for arc".into()));
+            return Err(self.motion_fault("Mixed radius ijk format for arc"));
         }
         let f = self.block.word(b'f');
         if self.state.inverse_time {
             if f.is_none() {
-                return Err(fail(self, "F word missing with inverse time arc move".into()));
+                return Err(self.motion_fault("F word missing with inverse time arc move"));
             }
         } else if self.state.feed_rate == 0.0 {
-            return Err(fail(
-                self,
-                "Cannot make arc with zero feed rate: program a feed rate with an F word".into(),
+            return Err(self.motion_fault(
+                "Cannot make arc with zero feed rate: program a feed rate with an F word",
             ));
         }
         let plane = self.state.plane;
@@ -1609,13 +1610,10 @@ impl<R: BufRead> Interpreter<R> {
                 match offsets[axis] {
                     Some(word) => *value = word.value,
                     None if self.state.ijk_absolute => {
-                        return Err(fail(
-                            self,
-                            format!(
-                                "{} word missing in absolute center arc",
-                                char::from(letters[axis]).to_ascii_uppercase()
-                            ),
-                        ));
+                        return Err(self.motion_fault(format!(
+                            "{} word missing in absolute center arc",
+                            char::from(letters[axis]).to_ascii_uppercase()
+                        )));
                     }
                     None => *value = 0.0,
                 }
@@ -1628,7 +1626,7 @@ impl<R: BufRead> Interpreter<R> {
                     Plane::Xz => "X and z words missing for arc in xz plane",
                     Plane::Yz => "Y and z words missing for arc in yz plane",
                 };
-                return Err(fail(self, message.into()));
+                return Err(self.motion_fault(message));
             }
         }
         let turns = match self.block.word(b'p') {
@@ -1658,7 +1656,7 @@ impl<R: BufRead> Interpreter<R> {
         ];
         let (center1, center2) = if let Some(r) = r {
             if e1 == c1 && e2 == c2 {
-                return Err(fail(self, "Current point same as end point of arc".into()));
+                return Err(self.motion_fault("Current point same as end point of arc"));
             }
             let radius = r.value;
             let abs_radius = radius.abs();
@@ -1666,14 +1664,11 @@ impl<R: BufRead> Interpreter<R> {
             let mid2 = (e2 + c2) / 2.0;
             let mut half_length = (mid1 - e1).hypot(mid2 - e2);
             if half_length - abs_radius > radius_tolerance {
-                return Err(fail(
-                    self,
-                    format!(
-                        "Arc radius too small to reach end point: R{abs_radius} cannot span the \
+                return Err(self.motion_fault(format!(
+                    "Arc radius too small to reach end point: R{abs_radius} cannot span the \
                          {:.4} between start and end",
-                        2.0 * half_length
-                    ),
-                ));
+                    2.0 * half_length
+                )));
             }
             if half_length / abs_radius > 1.0 - TINY {
                 half_length = abs_radius;
@@ -1704,7 +1699,7 @@ impl<R: BufRead> Interpreter<R> {
                 )
             };
             if radius < radius_tolerance || radius2 < radius_tolerance {
-                return Err(fail(self, format!("Zero-radius arc: {}", describe())));
+                return Err(self.motion_fault(format!("Zero-radius arc: {}", describe())));
             }
             let abs_err = (radius - radius2).abs();
             let rel_err = abs_err / radius.max(radius2);
@@ -1716,20 +1711,17 @@ impl<R: BufRead> Interpreter<R> {
             // LinuxCNC's test: beyond the tolerance and 0.1 %, or beyond 100 tolerances.
             if (abs_err > spiral && rel_err > SPIRAL_RELATIVE_TOLERANCE) || abs_err > 100.0 * spiral
             {
-                return Err(fail(
-                    self,
-                    format!(
-                        "Radius to end of arc differs from radius to start: {} abs_err={} \
+                return Err(self.motion_fault(format!(
+                    "Radius to end of arc differs from radius to start: {} abs_err={} \
                          rel_err={:.4}% (LinuxCNC allows {:.4} {unit}, or 0.1% up to {:.4} \
                          {unit})",
-                        describe(),
-                        format_g4(abs_err),
-                        rel_err * 100.0,
-                        spiral,
-                        100.0 * spiral,
-                        unit = if inch { "in" } else { "mm" },
-                    ),
-                ));
+                    describe(),
+                    format_g4(abs_err),
+                    rel_err * 100.0,
+                    spiral,
+                    100.0 * spiral,
+                    unit = if inch { "in" } else { "mm" },
+                )));
             }
             (center1, center2)
         };
@@ -1756,7 +1748,7 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.rotation != 0.0 && plane != Plane::Xy {
             let arc = ([current, end], [center1, center2]);
             let moved = self.tilted_arc(arc.0, arc.1, clockwise, turns, feed);
-            return moved.map_err(|message| fail(self, message));
+            return moved.map_err(|message| self.motion_fault(message));
         }
         let mut center_position = self.state.current;
         center_position[first] = center1;

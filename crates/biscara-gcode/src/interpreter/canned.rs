@@ -63,15 +63,6 @@ pub(super) fn is_cycle(motion: u16) -> bool {
 }
 
 impl<R: BufRead> Interpreter<R> {
-    /// Where a cycle's error points: its G code, or its first axis word.
-    fn cycle_fault(&self, message: impl Into<String>) -> Fault {
-        let (start, end) = self.block.g[1].map_or_else(
-            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
-            |code| (code.at, code.end),
-        );
-        self.fault_at(start, end, message)
-    }
-
     /// A point of the cycle: `aa`, `bb`, `cc` in the plane's axes, the others unchanged.
     fn cycle_point(&self, axes: [usize; 3], aa: f64, bb: f64, cc: f64) -> [f64; 4] {
         let mut point = self.state.current;
@@ -99,20 +90,20 @@ impl<R: BufRead> Interpreter<R> {
     /// error ends the program, so it need not be restored on one).
     pub(super) fn canned_cycle(&mut self, motion: u16, same: bool) -> Result<(), Fault> {
         if self.state.feed_rate == 0.0 {
-            return Err(self.cycle_fault("Cannot feed with zero feed rate"));
+            return Err(self.motion_fault("Cannot feed with zero feed rate"));
         }
         if self.state.comp.on() {
-            return Err(self.cycle_fault("Cannot use canned cycles with cutter compensation on"));
+            return Err(self.motion_fault("Cannot use canned cycles with cutter compensation on"));
         }
         if self.state.inverse_time {
-            return Err(self.cycle_fault("Cannot use inverse time feed with canned cycles"));
+            return Err(self.motion_fault("Cannot use inverse time feed with canned cycles"));
         }
         let letters = self.block.letters;
         let word = |letter: u8| letters[usize::from(letter - b'a')].map(|word| word.value);
         let r_word = match word(b'r') {
             Some(r) => r,
             None if same => self.state.cycle.r,
-            None => return Err(self.cycle_fault("R clearance plane unspecified in cycle")),
+            None => return Err(self.motion_fault("R clearance plane unspecified in cycle")),
         };
         let repeats = match self.block.word(b'l') {
             None => 1,
@@ -134,7 +125,7 @@ impl<R: BufRead> Interpreter<R> {
             Some(value) => value,
             None if same => self.state.cycle.bottom,
             None => {
-                return Err(self.cycle_fault(format!(
+                return Err(self.motion_fault(format!(
                     "{} value unspecified in {plane_name} plane canned cycle",
                     normal_name.to_ascii_uppercase()
                 )));
@@ -154,8 +145,9 @@ impl<R: BufRead> Interpreter<R> {
             (aa, bb, r_word, bottom_word, [0.0, 0.0])
         };
         if r < cc {
-            return Err(self
-                .cycle_fault(format!("R less than {normal_name} in cycle in {plane_name} plane")));
+            return Err(self.motion_fault(format!(
+                "R less than {normal_name} in cycle in {plane_name} plane"
+            )));
         }
         if old_cc < r {
             let (a, b) = (current[axes[0]], current[axes[1]]);
@@ -180,7 +172,7 @@ impl<R: BufRead> Interpreter<R> {
                 _ if same => cycle.p,
                 _ => {
                     return Err(self
-                        .cycle_fault(format!("Dwell time p word missing with g{}", motion / 10)));
+                        .motion_fault(format!("Dwell time p word missing with g{}", motion / 10)));
                 }
             },
             _ => cycle.p,
@@ -189,7 +181,7 @@ impl<R: BufRead> Interpreter<R> {
             730 | 830 => match word(b'q') {
                 Some(q) if q != -1.0 => q,
                 _ if same => cycle.q,
-                _ => return Err(self.cycle_fault(missing('Q'))),
+                _ => return Err(self.motion_fault(missing('Q'))),
             },
             _ => cycle.q,
         };
@@ -201,7 +193,7 @@ impl<R: BufRead> Interpreter<R> {
                     None if same => {}
                     None => {
                         let name = char::from(letter).to_ascii_uppercase();
-                        return Err(self.cycle_fault(missing(name)));
+                        return Err(self.motion_fault(missing(name)));
                     }
                 }
             }
@@ -245,7 +237,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 730 | 830 => {
                     if q <= 0.0 {
-                        return Err(self.cycle_fault("Negative or zero q value used"));
+                        return Err(self.motion_fault("Negative or zero q value used"));
                     }
                     let mut depth = r - q;
                     while depth > cc {
@@ -268,7 +260,7 @@ impl<R: BufRead> Interpreter<R> {
                         _ => Some("Spindle not turning in G84"),
                     };
                     if let Some(message) = message {
-                        return Err(self.cycle_fault(message));
+                        return Err(self.motion_fault(message));
                     }
                     // rs274's argument order in the YZ and XZ planes, as it is.
                     let point = |depth: f64| match plane {
@@ -294,7 +286,7 @@ impl<R: BufRead> Interpreter<R> {
                 860 | 870 | 880 => {
                     if !matches!(spindle, 3 | 4) {
                         return Err(
-                            self.cycle_fault(format!("Spindle not turning in g{}", motion / 10))
+                            self.motion_fault(format!("Spindle not turning in g{}", motion / 10))
                         );
                     }
                     match motion {

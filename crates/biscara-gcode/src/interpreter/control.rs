@@ -274,6 +274,13 @@ struct OBlock {
     l: Option<f64>,
 }
 
+impl OBlock {
+    /// A block of `kind` called as `call_type`, with no name, parameters or L word yet.
+    fn new(kind: OType, call_type: CallType) -> OBlock {
+        OBlock { kind, name: Rc::from(""), call_type, params: [0.0; SUB_PARAMS], l: None }
+    }
+}
+
 /// Whether a line's significant characters may be an O-word line, `M98` or `M99`: the only
 /// look at an ordinary line.
 #[inline]
@@ -471,13 +478,7 @@ impl<R: BufRead> Interpreter<R> {
     fn read_o(&mut self, at: usize, m_number: Option<i64>) -> Result<Option<OBlock>, Fault> {
         let raw_len = self.lines.line.len();
         let level = self.control.level();
-        let mut block = OBlock {
-            kind: OType::None,
-            name: Rc::from(""),
-            call_type: CallType::None,
-            params: [0.0; SUB_PARAMS],
-            l: None,
-        };
+        let mut block = OBlock::new(OType::None, CallType::None);
         let mut pos;
         let bare: String;
         if m_number == Some(98) {
@@ -658,13 +659,7 @@ impl<R: BufRead> Interpreter<R> {
     /// Mach4's `G65 P… L… A… …` at compact index `at`: a call of subprogram P (L times) with
     /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
     fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
-        let mut block = OBlock {
-            kind: OType::M98,
-            name: Rc::from(""),
-            call_type: CallType::G65,
-            params: [0.0; SUB_PARAMS],
-            l: None,
-        };
+        let mut block = OBlock::new(OType::M98, CallType::G65);
         let digits =
             self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
         let mut reader =

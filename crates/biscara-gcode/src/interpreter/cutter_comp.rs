@@ -204,15 +204,6 @@ pub(super) struct CompArc {
 }
 
 impl<R: BufRead> Interpreter<R> {
-    /// The span of the block's motion code (or first axis word) for an error.
-    fn comp_fault(&self, message: impl Into<String>) -> Fault {
-        let (start, end) = self.block.g[1].map_or_else(
-            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
-            |code| (code.at, code.end),
-        );
-        self.fault_at(start, end, message)
-    }
-
     /// Refuses a code that LinuxCNC refuses while compensation is on.
     pub(super) fn refuse_with_comp(&self, at: (usize, usize), message: &str) -> Result<(), Fault> {
         if self.state.comp.on() { Err(self.fault_at(at.0, at.1, message)) } else { Ok(()) }
@@ -497,7 +488,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         if let Some(message) = problem {
-            return Err(self.comp_fault(message));
+            return Err(self.motion_fault(message));
         }
         for held in &mut self.state.comp.queue {
             if let Held::Move(held) = held {
@@ -527,7 +518,7 @@ impl<R: BufRead> Interpreter<R> {
         g53: bool,
     ) -> Result<(), Fault> {
         if g53 {
-            return Err(self.comp_fault("Cannot use g53 with cutter radius comp"));
+            return Err(self.motion_fault("Cannot use g53 with cutter radius comp"));
         }
         let [_, _, normal] = self.state.plane.axes();
         let side = self.state.comp.side.unwrap_or(Side::Left);
@@ -538,7 +529,7 @@ impl<R: BufRead> Interpreter<R> {
         let p = self.plane_point(end);
         let tool_end = if self.state.comp.first_move {
             if distance(p, c) <= radius {
-                return Err(self.comp_fault(
+                return Err(self.motion_fault(
                     "Length of cutter compensation entry move is not greater than the tool radius",
                 ));
             }
@@ -633,7 +624,7 @@ impl<R: BufRead> Interpreter<R> {
                     // line → line: back along the held move until the tool touches both.
                     let half_corner = (beta + PI) / 2.0;
                     if half_corner == 0.0 {
-                        return Err(self.comp_fault(
+                        return Err(self.motion_fault(
                             "Zero degree inside corner is invalid for cutter compensation",
                         ));
                     }
@@ -653,7 +644,7 @@ impl<R: BufRead> Interpreter<R> {
                     let d = programmed_radius * (theta - phi).cos();
                     let l = if tool_inside { d - radius } else { d + radius } / old_radius;
                     if !(-1.0..=1.0).contains(&l) {
-                        return Err(self.comp_fault(
+                        return Err(self.motion_fault(
                             "Arc to straight motion makes a corner the compensated tool can't \
                              fit in without gouging",
                         ));
@@ -721,7 +712,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         let c = self.plane_point(self.state.current);
         if distance(self.plane_point(end), c) <= comp.radius {
-            return Err(self.comp_fault(
+            return Err(self.motion_fault(
                 "Radius of cutter compensation entry arc is not greater than the tool radius",
             ));
         }
@@ -731,7 +722,7 @@ impl<R: BufRead> Interpreter<R> {
             && r.abs() <= comp.radius
             && inside(side, turn)
         {
-            return Err(self.comp_fault("Tool radius not less than arc radius with comp"));
+            return Err(self.motion_fault("Tool radius not less than arc radius with comp"));
         }
         Ok(())
     }
@@ -739,7 +730,7 @@ impl<R: BufRead> Interpreter<R> {
     /// The move after G40 must be straight.
     pub(super) fn comp_arc_allowed(&self) -> Result<(), Fault> {
         if self.state.comp.arc_not_allowed {
-            return Err(self.comp_fault(
+            return Err(self.motion_fault(
                 "The move just after exiting cutter compensation mode must be straight, not an arc",
             ));
         }
@@ -765,7 +756,7 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.comp.first_move {
             // The entry arc: tangent to the tool where it is, through the offset end.
             if inside(side, turn) && distance(center, c) <= radius {
-                return Err(self.comp_fault("Tool radius not less than arc radius with comp"));
+                return Err(self.motion_fault("Tool radius not less than arc radius with comp"));
             }
             let gamma =
                 if inside(side, turn) { direction(p, center) } else { direction(center, p) };
@@ -776,7 +767,7 @@ impl<R: BufRead> Interpreter<R> {
             let to_center = direction(tool, center);
             let a_angle = direction(tool, c) - to_center;
             if a_angle.cos().abs() < TOLERANCE_EQUAL {
-                return Err(self.comp_fault("Tool radius not less than arc radius with comp"));
+                return Err(self.motion_fault("Tool radius not less than arc radius with comp"));
             }
             let new_center = polar(tool, half / a_angle.cos(), to_center);
             let spiral = if self.state.metric {
@@ -785,7 +776,7 @@ impl<R: BufRead> Interpreter<R> {
                 super::CENTER_ARC_RADIUS_TOLERANCE_INCH
             };
             if (distance(new_center, tool) - distance(new_center, c)).abs() > spiral {
-                return Err(self.comp_fault("Bug in tool radius comp"));
+                return Err(self.motion_fault("Bug in tool radius comp"));
             }
             let sweep = find_turn(c, new_center, turn, tool);
             self.enqueue(
@@ -811,7 +802,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let gamma = if inside(side, turn) {
             if arc_radius <= radius {
-                return Err(self.comp_fault("Tool radius not less than arc radius with comp"));
+                return Err(self.motion_fault("Tool radius not less than arc radius with comp"));
             }
             direction(p, center)
         } else {
@@ -836,7 +827,7 @@ impl<R: BufRead> Interpreter<R> {
                     };
                     let l = toward / from_center;
                     if !(-1.0..=1.0).contains(&l) {
-                        return Err(self.comp_fault(
+                        return Err(self.motion_fault(
                             "Arc move in concave corner cannot be reached by the tool without \
                              gouging",
                         ));
@@ -857,14 +848,14 @@ impl<R: BufRead> Interpreter<R> {
                         if inside(side, turn) { arc_radius - radius } else { arc_radius + radius };
                     let centers = distance(old_center, center);
                     if old_radius == 0.0 || centers == 0.0 {
-                        return Err(self.comp_fault(
+                        return Err(self.motion_fault(
                             "Arc to arc motion is invalid because the arcs have the same center",
                         ));
                     }
                     let a = (old_radius * old_radius + centers * centers - new_radius * new_radius)
                         / (2.0 * old_radius * centers);
                     if !(-1.0..=1.0).contains(&a) {
-                        return Err(self.comp_fault(
+                        return Err(self.motion_fault(
                             "Arc to arc motion makes a corner the compensated tool can't fit in \
                              without gouging",
                         ));

@@ -21,7 +21,6 @@ use super::Interpreter;
 use crate::dialect::{Dialect, g_name};
 use crate::lexer::Fault;
 use crate::params::axis_slot;
-use crate::parser::Code;
 
 /// First of the parameters that receive the probed point (x y z a b c u v w follow).
 const PROBED_POINT: usize = 5061;
@@ -43,25 +42,23 @@ impl<R: BufRead> Interpreter<R> {
     /// (384: away from the work, error on no loss of contact), G38.5 (385: no error) and
     /// Mach3's G31 (310: toward the work, no error).
     pub(super) fn probe(&mut self, code: u16) -> Result<(), Fault> {
-        let at = self.block.g[1].map_or_else(
-            || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
-            |code: Code| (code.at, code.end),
-        );
+        let name = g_name(code);
         if self.state.comp.on() {
-            return Err(self.fault_at(at.0, at.1, "Cannot probe with cutter radius comp on"));
+            return Err(self.motion_fault("Cannot probe with cutter radius comp on"));
         }
         if self.state.inverse_time {
             // rs274 probes at the last F read, whatever it meant; LinuxCNC's motion controller
             // takes no inverse-time feed for a probe.
+            let (start, end) = self.motion_span();
             return Err(Fault::not_supported(
-                at.0,
-                at.1,
-                g_name(code),
+                start,
+                end,
+                name,
                 "probing in inverse time mode, G93: program G94 and a feed rate",
             ));
         }
         if self.state.feed_rate == 0.0 {
-            return Err(self.fault_at(at.0, at.1, "Cannot probe with zero feed rate"));
+            return Err(self.motion_fault("Cannot probe with zero feed rate"));
         }
         let end = self.find_ends(false);
         // rs274's canon backs off toward where it last moved: tool length offsets set since
@@ -72,10 +69,10 @@ impl<R: BufRead> Interpreter<R> {
         // G38.2 and G38.4 fail when the probe cannot move; G38.3 and G38.5 just report.
         let must_move = matches!(code, 382 | 384);
         if must_move && current == end {
-            return Err(self.fault_at(at.0, at.1, "Start point too close to probe point"));
+            return Err(self.motion_fault("Start point too close to probe point"));
         }
-        self.summary.count_probe(&g_name(code));
-        if let Some(name) = CodeName::new(&g_name(code)) {
+        self.summary.count_probe(&name);
+        if let Some(name) = CodeName::new(&name) {
             self.emit(MotionKind::Code { code: name });
         }
         let feed = Feed { mm_per_min: self.state.feed_mm, inverse_time: false };
