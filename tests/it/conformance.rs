@@ -469,20 +469,9 @@ fn linuxcnc_interp_corpus_matches_or_is_refused() {
     let mut differ = Vec::new();
     let mut matched = Vec::new();
     let mut refused = Vec::new();
-    let mut python = Vec::new();
     for program in &programs {
         let name = program.strip_prefix(&root).unwrap_or(program).display().to_string();
-        // A test whose INI loads Python plug-ins (subroutines and remaps written in Python)
-        // runs with them in rs274; interpret has none (SPEC §4.2), so it must refuse.
-        let ini = program.parent().map(|folder| folder.join("test.ini"));
-        let ini = ini.and_then(|ini| std::fs::read_to_string(ini).ok()).unwrap_or_default();
-        if ini.lines().any(|line| line.trim().eq_ignore_ascii_case("[PYTHON]")) {
-            match ours(program) {
-                Err(_) => python.push(name),
-                Ok(_) => differ.push(format!("{name}: needs Python plug-ins, and we accept it")),
-            }
-            continue;
-        }
+        // (A test whose INI file loads Python plug-ins runs them in both.)
         match check(program, &dir) {
             Ok(verdict) => {
                 counts[verdict as usize] += 1;
@@ -498,16 +487,13 @@ fn linuxcnc_interp_corpus_matches_or_is_refused() {
     #[allow(clippy::print_stderr)]
     {
         eprintln!(
-            "LinuxCNC interpreter tests: {} programs: {}, {} need LinuxCNC's Python plug-ins \
-             and are refused, {} differ",
+            "LinuxCNC interpreter tests: {} programs: {}, {} differ",
             programs.len(),
             verdict_counts(&counts),
-            python.len(),
             differ.len()
         );
         eprintln!("matching: {}", matched.join(", "));
         eprintln!("refused: {}", refused.join(", "));
-        eprintln!("Python plug-ins: {}", python.join(", "));
     }
     assert!(programs.len() >= 50, "only {} programs in {}", programs.len(), root.display());
     assert!(differ.is_empty(), "{} programs differ:\n{}", differ.len(), differ.join("\n"));

@@ -12,7 +12,7 @@
 
 use std::fmt;
 use std::io::BufRead;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The longest line read, bytes.
 const MAX_LINE: usize = 64 * 1024;
@@ -25,6 +25,9 @@ const MAX_FILE: usize = 4 * 1024 * 1024;
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct IniFile {
     lines: Vec<String>,
+    /// The folder the file is in, when it was read from one: relative paths in it (the
+    /// `[PYTHON]` section's) start there.
+    folder: Option<PathBuf>,
 }
 
 /// An INI file that cannot be read: where and why.
@@ -59,7 +62,22 @@ impl IniFile {
             line: 0,
             message: format!("cannot read the INI file: {err}"),
         })?;
-        IniFile::parse(std::io::BufReader::new(file), &name)
+        let folder = path.parent().map(|folder| {
+            if folder.as_os_str().is_empty() { PathBuf::from(".") } else { folder.to_path_buf() }
+        });
+        Ok(IniFile { folder, ..IniFile::parse(std::io::BufReader::new(file), &name)? })
+    }
+
+    /// The same file, its relative paths taken from `folder`.
+    #[must_use]
+    pub fn with_folder(self, folder: PathBuf) -> IniFile {
+        IniFile { folder: Some(folder), ..self }
+    }
+
+    /// The folder relative paths in the file start from: the file's own when it was read with
+    /// [`IniFile::read`]; `None` for one parsed from a reader.
+    pub fn folder(&self) -> Option<&Path> {
+        self.folder.as_deref()
     }
 
     /// Reads an INI file from `reader`; `name` names it in errors. Lines must be UTF-8 text of
@@ -105,7 +123,7 @@ impl IniFile {
                 ends
             });
         }
-        Ok(IniFile { lines })
+        Ok(IniFile { lines, folder: None })
     }
 
     /// The index of the first line that starts (after blanks) with `[section]`.
@@ -116,22 +134,40 @@ impl IniFile {
 
     /// The value of `name` in `[section]`, as LinuxCNC's `IniFile::Find` finds it.
     pub fn find(&self, section: &str, name: &str) -> Option<&str> {
-        let start = self.section_start(section)?;
-        for line in &self.lines[start + 1..] {
-            let text = line.trim_start_matches([' ', '\t', '\r']);
-            if text.starts_with('[') {
-                return None;
-            }
-            if let Some(rest) = text.strip_prefix(name)
-                && rest.starts_with([' ', '\t', '\r', '='])
-            {
+        self.values(section, name).next().flatten()
+    }
+
+    /// Every value of `name` in `[section]`, in order (LinuxCNC's `Find(name, section, n)` for
+    /// n = 1, 2, …, which stops at the first without a value).
+    pub fn find_all(&self, section: &str, name: &str) -> Vec<&str> {
+        self.values(section, name).map_while(|value| value).collect()
+    }
+
+    /// The lines of `name` in the first `[section]`: `Some(value)`, or `None` for a line
+    /// without one.
+    fn values<'a, 'n>(
+        &'a self,
+        section: &str,
+        name: &'n str,
+    ) -> impl Iterator<Item = Option<&'a str>> + use<'a, 'n> {
+        let lines = match self.section_start(section) {
+            Some(start) => &self.lines[start + 1..],
+            None => &[],
+        };
+        lines
+            .iter()
+            .map(|line| line.trim_start_matches([' ', '\t', '\r']))
+            .take_while(|text| !text.starts_with('['))
+            .filter_map(move |text| {
+                let rest = text.strip_prefix(name)?;
+                if !rest.starts_with([' ', '\t', '\r', '=']) {
+                    return None;
+                }
                 // The value: after the first `=`, blanks around it removed (none: no value).
-                let (_, value) = rest.split_once('=')?;
-                let value = value.trim_matches([' ', '\t', '\r']);
-                return (!value.is_empty()).then_some(value);
-            }
-        }
-        None
+                let value =
+                    rest.split_once('=').map(|(_, value)| value.trim_matches([' ', '\t', '\r']));
+                Some(value.filter(|value| !value.is_empty()))
+            })
     }
 
     /// Whether the file has a line starting with `[section]`.

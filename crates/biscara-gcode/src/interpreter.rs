@@ -40,6 +40,8 @@ mod modal_state;
 mod polar;
 /// Probing, G38.2–G38.5.
 mod probe;
+/// A program's Python: LinuxCNC's Python plug-ins (`[PYTHON]`), `;py,` lines, `(py,…)`.
+mod python;
 /// G10 L2 R: coordinate systems rotated about Z.
 mod rotation;
 /// G5 and G5.1 splines, run as straight moves.
@@ -179,6 +181,8 @@ pub struct Interpreter<R> {
     zeroed_at_start: [bool; 4],
     /// O-word control flow.
     control: Box<control::Control>,
+    /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
+    python: Option<Box<python::Python>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -442,9 +446,12 @@ impl<R: BufRead> Interpreter<R> {
             pending_extrude: None,
             moved: false,
             zeroed_at_start: [false; 4],
-            control: Box::new(control::Control::new(
-                config.ini.as_ref().is_some_and(|ini| ini.has_section("PYTHON")),
-            )),
+            control: Box::default(),
+            python: config
+                .ini
+                .as_deref()
+                .and_then(crate::python_plugin::PluginSetup::from_ini)
+                .map(|setup| Box::new(python::Python::new(setup))),
         }
         .with_line_limit()
     }
@@ -478,6 +485,12 @@ impl<R: BufRead> Interpreter<R> {
         }
         if self.infer_tool {
             self.infer_tool()?;
+        }
+        if self.python_paused() {
+            self.resume_python().map_err(|fault| self.error(fault))?;
+            if !self.queue.is_empty() {
+                return Ok(());
+            }
         }
         loop {
             let more = self
@@ -556,6 +569,23 @@ impl<R: BufRead> Interpreter<R> {
                 if self.dialect == Dialect::Grbl && control::may_control(self.compact.bytes()) {
                     self.summary.count_refused("O-words");
                 }
+                if !self.queue.is_empty() {
+                    // A Python subroutine's move.
+                    return Ok(());
+                }
+                continue;
+            }
+            if self.compact.bytes()[0] == b';'
+                && self.dialect == Dialect::Linuxcnc
+                && self.lines.line.starts_with(b";py,")
+            {
+                // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
+                let code = self.lines.line[4..].to_vec();
+                self.python_comment(python::PythonComment::Run, &code)
+                    .map_err(|fault| self.error(fault))?;
+                if !self.queue.is_empty() {
+                    return Ok(());
+                }
                 continue;
             }
             let raw_len = self.lines.line.len();
@@ -582,13 +612,32 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
-    /// LinuxCNC's `(ABORT, text)`: the line's last comment, when it reads `abort,` (spaces
-    /// before it allowed, any case), stops the program with its text as the message, `#n` and
-    /// `#<name>` in it replaced by their values (`######` when undefined).
-    fn abort_comment(&self) -> Result<(), Fault> {
-        if self.dialect != Dialect::Linuxcnc {
+    /// The line's last comment, as LinuxCNC executes it first (`convert_comment`): `abort,`
+    /// ([`Interpreter::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
+    /// end before the rest of the line.
+    fn convert_comment(&mut self) -> Result<(), Fault> {
+        if self.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
+        let line = &self.lines.line;
+        let text_start = |open: usize| {
+            open + 1 + line[open + 1..].iter().take_while(|b| b.is_ascii_whitespace()).count()
+        };
+        if let Some((open, close)) = self.last_comment()
+            && let Some((action, code)) = python::PythonComment::of(&line[text_start(open)..close])
+        {
+            let code = code.to_vec();
+            self.python_comment(action, &code)?;
+            while self.python_paused() {
+                self.resume_python()?;
+            }
+            return Ok(());
+        }
+        self.abort_comment()
+    }
+
+    /// The byte range `(open, close)` of the line's last `( … )` comment before any `;`.
+    fn last_comment(&self) -> Option<(usize, usize)> {
         let line = &self.lines.line;
         let mut last = None;
         let mut at = 0;
@@ -602,7 +651,15 @@ impl<R: BufRead> Interpreter<R> {
             last = Some((open, close));
             at = close + 1;
         }
-        let Some((open, close)) = last else { return Ok(()) };
+        last
+    }
+
+    /// LinuxCNC's `(ABORT, text)`: the line's last comment, when it reads `abort,` (spaces
+    /// before it allowed, any case), stops the program with its text as the message, `#n` and
+    /// `#<name>` in it replaced by their values (`######` when undefined).
+    fn abort_comment(&self) -> Result<(), Fault> {
+        let line = &self.lines.line;
+        let Some((open, close)) = self.last_comment() else { return Ok(()) };
         let text = &line[open + 1..close];
         let text = &text[text.iter().take_while(|b| b.is_ascii_whitespace()).count()..];
         if !text.get(..6).is_some_and(|head| head.eq_ignore_ascii_case(b"abort,")) {
@@ -697,7 +754,7 @@ impl<R: BufRead> Interpreter<R> {
     fn execute(&mut self) -> Result<(), Fault> {
         let block = &self.block;
         if block.empty {
-            return self.abort_comment();
+            return self.convert_comment();
         }
         self.check_support()?;
         if self.block.extra.is_some() {
@@ -786,7 +843,7 @@ impl<R: BufRead> Interpreter<R> {
             let (start, end, value) = self.block.named[index];
             self.state.params.set_named(&self.compact.bytes()[start..end], value);
         }
-        self.abort_comment()?;
+        self.convert_comment()?;
 
         // 3. feed mode
         if let Some(code) = self.block.g[5] {

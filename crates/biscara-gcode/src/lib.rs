@@ -87,6 +87,7 @@ mod interpreter;
 mod lexer;
 mod params;
 mod parser;
+mod python_plugin;
 mod tool;
 mod tool_table;
 

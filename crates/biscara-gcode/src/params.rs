@@ -67,6 +67,18 @@ impl Params {
         }
     }
 
+    /// The named parameters set, sorted: the global ones (`_…`) or the local ones.
+    pub(crate) fn names(&self, global: bool) -> Vec<String> {
+        let mut names: Vec<String> = self
+            .named
+            .keys()
+            .filter(|name| (name.first() == Some(&b'_')) == global)
+            .map(|name| String::from_utf8_lossy(name).into_owned())
+            .collect();
+        names.sort_unstable();
+        names
+    }
+
     /// Takes out the local named parameters (names not starting with `_`): a subroutine call
     /// hides its caller's locals, as LinuxCNC's call frames do.
     pub(crate) fn take_locals(&mut self) -> HashMap<Vec<u8>, f64> {

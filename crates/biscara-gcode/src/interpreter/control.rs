@@ -194,9 +194,6 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
-    /// Whether the INI file loads LinuxCNC's Python plug-ins (a `[PYTHON]` section), whose
-    /// subroutines and remaps interpret cannot run: said when a subroutine is not found.
-    python_plugins: bool,
     /// The loops of the main program being run (for an input read only forwards, whose lines
     /// are kept while a loop runs).
     open_loops: Vec<Rc<str>>,
@@ -224,7 +221,6 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
-            python_plugins: false,
             open_loops: Vec::new(),
             recording: None,
             forward: false,
@@ -233,19 +229,13 @@ impl Default for Control {
 }
 
 impl Control {
-    /// The state before the first line; `python_plugins`: whether the INI file loads LinuxCNC's
-    /// Python plug-ins.
-    pub(super) fn new(python_plugins: bool) -> Control {
-        Control { python_plugins, ..Control::default() }
-    }
-
     /// Whether lines are being skipped (then every line goes through the control flow).
     pub(super) fn engaged(&self) -> bool {
         self.skipping_o.is_some() || self.skipping_to_sub.is_some()
     }
 
     /// The name LinuxCNC gives the file being read, in messages.
-    fn file_name(&self) -> String {
+    pub(super) fn file_name(&self) -> String {
         match (&self.file, &self.program) {
             (Some(file), _) => file.display().to_string(),
             (None, Some(program)) => program.display().to_string(),
@@ -265,11 +255,13 @@ impl Control {
 
 /// One O-word line, read.
 #[derive(Debug)]
-struct OBlock {
+pub(super) struct OBlock {
     kind: OType,
     name: Rc<str>,
     call_type: CallType,
     params: [f64; SUB_PARAMS],
+    /// How many of `params` a `call` gave.
+    count: usize,
     /// `M98`'s L word.
     l: Option<f64>,
 }
@@ -277,7 +269,7 @@ struct OBlock {
 impl OBlock {
     /// A block of `kind` called as `call_type`, with no name, parameters or L word yet.
     fn new(kind: OType, call_type: CallType) -> OBlock {
-        OBlock { kind, name: Rc::from(""), call_type, params: [0.0; SUB_PARAMS], l: None }
+        OBlock { kind, name: Rc::from(""), call_type, params: [0.0; SUB_PARAMS], count: 0, l: None }
     }
 }
 
@@ -364,17 +356,11 @@ impl<R: BufRead> Interpreter<R> {
     /// The end of the input while a subroutine was being looked for.
     pub(super) fn control_end(&self) -> Option<GcodeError> {
         let name = self.control.skipping_to_sub.as_ref()?;
-        let mut message = format!(
+        let message = format!(
             "EOF in file:{} seeking o-word: o<{name}> from line: {}",
             self.control.file_name(),
             self.control.skipping_start
         );
-        if self.control.python_plugins {
-            message.push_str(
-                " (the INI file loads LinuxCNC's Python plug-ins, [PYTHON], which may define it: \
-                 interpret cannot run them)",
-            );
-        }
         Some(self.error(self.line_fault(message)))
     }
 
@@ -469,7 +455,7 @@ impl<R: BufRead> Interpreter<R> {
         String::from_utf8_lossy(self.lines.line.trim_ascii_end()).into_owned()
     }
 
-    fn line_fault(&self, message: impl Into<String>) -> Fault {
+    pub(super) fn line_fault(&self, message: impl Into<String>) -> Fault {
         Fault::invalid(0, self.lines.line.len().max(1), message)
     }
 
@@ -615,6 +601,7 @@ impl<R: BufRead> Interpreter<R> {
                         _ => break,
                     }
                 }
+                block.count = count;
             }
             OType::M98 => block.call_type = CallType::M98,
             OType::While | OType::Repeat | OType::If | OType::ElseIf => {
@@ -859,7 +846,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// A new call level (`enter_context`).
-    fn enter_context(&mut self, block: &OBlock) -> Result<(), Fault> {
+    pub(super) fn enter_context(&mut self, block: &OBlock) -> Result<(), Fault> {
         if self.control.frames.len() >= SUB_LEVELS {
             return Err(self.line_fault("Too many subroutine levels"));
         }
@@ -875,7 +862,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// Back to the caller's level (`leave_context`).
-    fn leave_context(&mut self) -> Result<(), Fault> {
+    pub(super) fn leave_context(&mut self) -> Result<(), Fault> {
         // M73: the modal state saved at this level comes back as the subroutine returns.
         self.restore_on_return()?;
         if self.control.frames.len() > 1 {
@@ -1049,6 +1036,11 @@ impl<R: BufRead> Interpreter<R> {
                     ));
                 }
                 self.execute_return(block, call_type)?;
+            }
+            OType::Call if self.python_callable(&block.name)? => {
+                // LinuxCNC asks its Python plug-ins first.
+                self.enter_context(block)?;
+                self.python_call(block.name.clone(), &block.params[..block.count])?;
             }
             OType::Call | OType::M98 => {
                 self.enter_context(block)?;

@@ -5,6 +5,7 @@ mod features;
 mod memory;
 mod no_panic;
 mod owords;
+mod python;
 mod splines;
 mod strategies;
 mod streaming;

@@ -160,7 +160,9 @@ fn mach3_program_numbers_are_still_program_numbers() {
 
 /// Runs `motions`, checking that resident memory stays flat; returns how many there were. Call
 /// it from a test that runs [`in_a_process_of_its_own`].
-fn count_in_flat_memory(motions: impl Iterator<Item = Result<Motion, GcodeError>>) -> usize {
+pub(crate) fn count_in_flat_memory(
+    motions: impl Iterator<Item = Result<Motion, GcodeError>>,
+) -> usize {
     let start = resident_kib();
     let mut peak = start.unwrap_or(0);
     let mut count = 0usize;
@@ -226,23 +228,4 @@ fn a_million_line_program_with_subroutines_streams_from_a_file() {
     );
     assert_eq!(count, LINES + 1);
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
-fn a_subroutine_not_found_says_when_the_ini_file_loads_python_plug_ins() {
-    // LinuxCNC's interpreter tests `pymove` and `python-self` call subroutines written in
-    // Python, which their INI file's [PYTHON] section loads: interpret cannot run them.
-    let program = "G0 X1\no<canonmove> call [1]\nM2\n";
-    let refusal = |ini: &str| {
-        let ini = biscara_gcode::IniFile::parse(ini.as_bytes(), "test.ini").expect("an INI file");
-        let config = Config { ini: Some(std::sync::Arc::new(ini)), ..Config::default() };
-        let result: Result<Vec<Motion>, GcodeError> =
-            interpret(program.as_bytes(), &config).collect();
-        result.expect_err("no such subroutine").to_string()
-    };
-    let with_python = refusal("[PYTHON]\nTOPLEVEL = python/toplevel.py\n");
-    assert!(with_python.contains("seeking o-word: o<canonmove> from line: 2"), "{with_python}");
-    assert!(with_python.contains("Python plug-ins"), "{with_python}");
-    let without = refusal("[RS274NGC]\nINI_VARS = 1\n");
-    assert!(!without.contains("Python"), "{without}");
 }
