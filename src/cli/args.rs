@@ -148,9 +148,15 @@ pub(crate) struct GcodeFilesArgs {
     )]
     pub(crate) tool_table: Option<PathBuf>,
     /// LinuxCNC's INI file of the machine: G-code reads its values as `#<_ini[SECTION]NAME>`
-    /// (LinuxCNC's INI_VARS; read-only). Without it, such names are global names like any
-    /// other, as in LinuxCNC without an INI file. Nothing else of the INI file is used.
-    #[arg(long, value_name = "FILE", help = "LinuxCNC INI file for #<_ini[SECTION]NAME> values")]
+    /// (LinuxCNC's INI_VARS; read-only), and its `[PYTHON]` section loads LinuxCNC's Python
+    /// plug-ins (Python O-word subroutines, `;py,` lines), run with `python3`. Without it, such
+    /// names are global names like any other, as in LinuxCNC without an INI file, and a
+    /// program's Python is refused. Nothing else of the INI file is used.
+    #[arg(
+        long,
+        value_name = "FILE",
+        help = "LinuxCNC INI file: #<_ini[SECTION]NAME> values, [PYTHON] plug-ins"
+    )]
     pub(crate) ini: Option<PathBuf>,
 }
 

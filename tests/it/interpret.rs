@@ -276,3 +276,70 @@ fn a_probing_program_runs_with_a_note_on_how_probing_is_simulated() {
     // The joints follow it like any move.
     biscara(&dir, &["joints", "probe.ngc", "-o", "probe.csv"]).success();
 }
+
+#[test]
+fn python_plug_ins_run_with_an_ini_file_and_their_errors_fail_cleanly() {
+    let python3 = std::process::Command::new("python3").arg("--version").output();
+    if !python3.is_ok_and(|out| out.status.success()) {
+        let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+        assert!(!ci, "python3 is missing, and CI=true requires it");
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!("SKIPPED: Python plug-ins: python3 not found");
+        }
+        return;
+    }
+    let dir = temp_dir("interpret-python");
+    std::fs::create_dir_all(dir.join("config")).expect("config folder");
+    // The INI file's relative paths start from its own folder.
+    let ini = "[PYTHON]\nPATH_PREPEND = .\nTOPLEVEL = toplevel.py\n";
+    std::fs::write(dir.join("config/machine.ini"), ini).expect("write the INI file");
+    std::fs::write(dir.join("config/toplevel.py"), "import oword\n").expect("write TOPLEVEL");
+    let oword = "import emccanon\n\ndef corner(self, x):\n    emccanon.STRAIGHT_TRAVERSE(\
+                 1, x, 300, 50, 0, 0, 0, 0, 0, 0)\n    return x * 2.0\n\ndef boom(self):\n    \
+                 return 1 / 0\n";
+    std::fs::write(dir.join("config/oword.py"), oword).expect("write oword.py");
+    std::fs::write(dir.join("main.ngc"), "G21 G90\no<corner> call [10]\nG0 X#<_value>\nM2\n")
+        .expect("write the program");
+    let run = biscara(&dir, &["interpret", "main.ngc", "--ini", "config/machine.ini"]);
+    let ends: Vec<&str> = run.success().stdout.lines().take(2).collect();
+    assert_eq!(
+        ends,
+        [
+            r#"{"line":2,"kind":"rapid","end":[10.0,300.0,50.0,0.0]}"#,
+            r#"{"line":3,"kind":"rapid","end":[20.0,460.798724079689,100.0,0.0]}"#
+        ]
+    );
+    // An exception in Python: the line that called it, exit 1, no output file.
+    std::fs::write(dir.join("boom.ngc"), "G21 G90\nG0 X1\no<boom> call\nM2\n")
+        .expect("write the program");
+    let args = ["interpret", "boom.ngc", "--ini", "config/machine.ini", "-o", "boom.jsonl"];
+    let run = biscara(&dir, &args);
+    assert_eq!(run.code, 1, "{run}");
+    assert!(
+        run.stderr.starts_with(
+            "biscara: error: boom.ngc:3:1: Python subroutine o<boom> failed: ZeroDivisionError: \
+             division by zero (at oword.py:8, in boom)\n"
+        ),
+        "{run}"
+    );
+    assert!(!dir.join("boom.jsonl").exists(), "a partial output file");
+    // Without python3 on the PATH: said so, at the first line that needs it.
+    let empty = dir.join("no-python");
+    std::fs::create_dir_all(&empty).expect("an empty folder");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(["interpret", "main.ngc", "--ini", "config/machine.ini"])
+        .current_dir(&dir)
+        .env("PATH", &empty)
+        .output()
+        .expect("run biscara");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.starts_with(
+            "biscara: error: main.ngc:2:1: the INI file's Python plug-ins ([PYTHON]) cannot be \
+             loaded: cannot run python3 for them"
+        ),
+        "{stderr}"
+    );
+}

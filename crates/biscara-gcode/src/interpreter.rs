@@ -98,8 +98,10 @@ pub struct Config {
     /// whether the program used them).
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
     /// LinuxCNC's INI file (`--ini`): the values of `#<_ini[SECTION]NAME>` (its INI_VARS
-    /// feature), read-only. `None`: such names are global names like any other, as in LinuxCNC
-    /// without an INI file.
+    /// feature), read-only, and the Python plug-ins its `[PYTHON]` section loads (a program's
+    /// Python runs only with them; read the file with [`IniFile::read`] so that their relative
+    /// paths start from its folder). `None`: such names are global names like any other, as in
+    /// LinuxCNC without an INI file.
     pub ini: Option<std::sync::Arc<IniFile>>,
 }
 

@@ -37,6 +37,11 @@
 //! - M6 emits `gripper_off`: LinuxCNC stops the spindle before a tool change.
 //! - The tool table is in millimetres, and 5401–5410 hold millimetres (rs274's hold inches);
 //!   a tool table line LinuxCNC would skip is an error.
+//! - A program's Python (`;py,` lines, `(py,…)` comments, Python O-word subroutines) runs only
+//!   with an INI file whose `[PYTHON]` section loads LinuxCNC's Python plug-ins
+//!   ([`Config::ini`]), in a `python3` child process with stand-ins for LinuxCNC's `interpreter`
+//!   and `emccanon` modules (a subset: parameters, a few attributes, straight moves and dwells);
+//!   without one it is refused (the standalone `rs274` runs `;py,` lines always).
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
