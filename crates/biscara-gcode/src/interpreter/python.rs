@@ -101,8 +101,7 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(false);
         }
         let callable = self.plugin()?.callable(name);
-        callable
-            .map_err(|message| self.line_fault(format!("the Python plug-ins failed: {message}")))
+        callable.map_err(|message| self.plugin_failed(&message))
     }
 
     /// Calls the Python subroutine `name` with `arguments`, its call level entered.
@@ -146,11 +145,16 @@ impl<R: BufRead> Interpreter<R> {
 
     /// A request was sent (`sent`): its messages are answered.
     fn send_python(&mut self, sent: Result<(), String>, running: Running) -> Result<(), Fault> {
-        sent.map_err(|message| self.line_fault(format!("the Python plug-ins failed: {message}")))?;
+        sent.map_err(|message| self.plugin_failed(&message))?;
         if let Some(python) = self.python.as_mut() {
             python.running = Some(running);
         }
         self.resume_python()
+    }
+
+    /// The error for a broken conversation with `python3` (it ended, or sent nonsense).
+    fn plugin_failed(&self, message: &str) -> Fault {
+        self.line_fault(format!("the Python plug-ins failed: {message}"))
     }
 
     /// The plug-ins, started (and `TOPLEVEL` run) at the first use.
@@ -177,10 +181,8 @@ impl<R: BufRead> Interpreter<R> {
                 python.running = None;
             }
         }
-        match self.python.as_mut().and_then(|python| python.plugin.as_mut()) {
-            Some(plugin) => Ok(plugin),
-            None => Err(Fault::invalid(0, 1, "no Python plug-ins")),
-        }
+        let missing = self.line_fault("no Python plug-ins");
+        self.python.as_mut().and_then(|python| python.plugin.as_mut()).ok_or(missing)
     }
 
     /// Answers the running request's messages until it ends or a move of it is queued.
@@ -193,9 +195,7 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(Progress::Done(Outcome::None));
             };
             let message = plugin.next_message();
-            let message = message.map_err(|message| {
-                self.line_fault(format!("the Python plug-ins failed: {message}"))
-            })?;
+            let message = message.map_err(|message| self.plugin_failed(&message))?;
             let answer = match message {
                 Message::Done(outcome) => return Ok(Progress::Done(outcome)),
                 Message::Raised(message) => return Ok(Progress::Raised(message)),
@@ -203,17 +203,7 @@ impl<R: BufRead> Interpreter<R> {
                 Message::SetParam(key, value) => self.python_set_param(key, value),
                 Message::Names { locals } => Answer::Names(self.state.params.names(!locals)),
                 Message::Attribute(name) => self.python_attribute(&name),
-                Message::SetAttribute(name, value) => match name.as_str() {
-                    "return_value" => {
-                        self.state.owords.value = value;
-                        Answer::Ok
-                    }
-                    "value_returned" => {
-                        self.state.owords.returned = value != 0.0;
-                        Answer::Ok
-                    }
-                    _ => Answer::Error(format!("can't set attribute {name}")),
-                },
+                Message::SetAttribute(name, value) => self.python_set_attribute(&name, value),
                 Message::Canon { name, values } => match self.python_canon(&name, &values) {
                     Ok(()) => Answer::Ok,
                     Err(message) => Answer::Error(message),
@@ -224,9 +214,7 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(Progress::Done(Outcome::None));
             };
             let answered = plugin.answer(answer);
-            answered.map_err(|message| {
-                self.line_fault(format!("the Python plug-ins failed: {message}"))
-            })?;
+            answered.map_err(|message| self.plugin_failed(&message))?;
             if !self.queue.is_empty() {
                 return Ok(Progress::Paused);
             }
@@ -360,6 +348,16 @@ impl<R: BufRead> Interpreter<R> {
             "filename" => return Answer::Text(self.control.file_name()),
             _ => return Answer::Error(format!("no attribute {name}")),
         })
+    }
+
+    /// `self.NAME = value` for the attributes Python may set.
+    fn python_set_attribute(&mut self, name: &str, value: f64) -> Answer {
+        match name {
+            "return_value" => self.state.owords.value = value,
+            "value_returned" => self.state.owords.returned = value != 0.0,
+            _ => return Answer::Error(format!("can't set attribute {name}")),
+        }
+        Answer::Ok
     }
 
     /// An `emccanon` call that moves. Its position is in the program's units and coordinate

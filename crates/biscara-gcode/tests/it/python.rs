@@ -165,3 +165,26 @@ fn a_python_subroutines_moves_stream_in_flat_memory() {
     assert_eq!(count, 200_001);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn pyrun_runs_a_file_and_pyreload_runs_toplevel_again() {
+    if !python3_available("pyrun_runs_a_file_and_pyreload_runs_toplevel_again") {
+        return;
+    }
+    let toplevel = "import oword\nloads = globals().get('loads', 0) + 1\n";
+    let extra = "import interpreter\ninterpreter.this.params['_from_file'] = 3.5\n";
+    let dir = folder_with(
+        "pyrun",
+        &[("test.ini", INI), ("toplevel.py", toplevel), ("oword.py", OWORD), ("extra.py", extra)],
+    );
+    let program = format!(
+        "(pyrun,{})\nG0 X#<_from_file>\n(PyReload)\n;py,import interpreter\n\
+         ;py,interpreter.this.params['_loads'] = loads\nG0 Y#<_loads>\nM2\n",
+        dir.join("extra.py").display()
+    );
+    let motions: Vec<Motion> = interpret(program.as_bytes(), &config_with_ini(&dir, "test.ini"))
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|err| panic!("{err}"));
+    assert_eq!(ends(&motions), [[3.5, 0.0, 0.0, 0.0], [3.5, 2.0, 0.0, 0.0]]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
