@@ -14,6 +14,8 @@
 //!   before it run backwards), and the fillet's centre lies `R − r` (inside an arc's circle,
 //!   when the arc bends towards the fillet) or `R + r` (outside) from each arc's centre.
 
+use crate::blender::MAX_TURN_DEG;
+
 /// The largest fillet radius tried, mm: a nearly tangent corner would otherwise get a fillet
 /// so large that its points lose precision (its centre kilometres away). Corners that turn by
 /// less than 2e-8 rad are then exact stops (their fillets would trim less than `MIN_TRIM_MM`).
@@ -173,13 +175,17 @@ fn fit_at(corner: [f64; 2], a: Leg, b: Leg, side: f64, tolerance: f64, r: f64) -
 /// The sweep (radians, positive when the fillet turns to `side`) of the fillet of radius `r`
 /// about `center` from `ends[0]` to `ends[1]`; `None` when an end is off its circle. Where a
 /// line is nearly tangent to an arc and the fillet nearly its circle, the centre is
-/// ill-conditioned: a fillet whose ends are not on it (to [`FIT_MM`]) is none.
+/// ill-conditioned: a fillet whose ends are not on it (to [`FIT_MM`]) is none. A fillet that
+/// would turn by more than [`MAX_TURN_DEG`] is none too: where arcs bend towards each other
+/// their fillet turns by more than the corner does, up to a reversal (two arcs meeting almost
+/// head-on), which stays an exact stop as a straight corner that sharp does.
 fn fillet_sweep(center: [f64; 2], r: f64, ends: [[f64; 2]; 2], side: f64) -> Option<f64> {
     let [ra, rb] = ends.map(|end| sub(end, center));
     if (norm(ra) - r).abs() > FIT_MM || (norm(rb) - r).abs() > FIT_MM {
         return None;
     }
-    Some(side * angle(ra, rb))
+    let sweep = side * angle(ra, rb);
+    (sweep.abs() <= MAX_TURN_DEG.to_radians()).then_some(sweep)
 }
 
 /// How far `corner` is from the fillet of radius `r` about `center` from `ends[0]` sweeping

@@ -52,8 +52,10 @@
 //!   centre (inside an arc's circle where it bends towards the inside of the corner, outside it
 //!   where it bends away).
 //!
-//! The rules of straight corners hold: [`MAX_TURN_DEG`], [`MIN_TRIM_MM`], C turning on either
-//! move, P0 or no P; a fillet's radius is at most 10 m. A corner stays an exact stop where an
+//! The rules of straight corners hold: [`MAX_TURN_DEG`] (for the fillet's own turn too, which
+//! exceeds the corner's where the arcs bend towards each other: two arcs meeting almost head-on
+//! stay an exact stop), [`MIN_TRIM_MM`], C turning on either move, P0 or no P; a fillet's radius
+//! is at most 10 m. A corner stays an exact stop where an
 //! arc is a helix, a line leaves the arc's plane, two arcs lie in different planes or one of
 //! them is a spiral, or no fillet fits (an arc that joins nothing passes unchanged, timed alone
 //! as under exact stop). So a profile of lines and arcs — tangent (a rounded rectangle, cutter

@@ -536,3 +536,39 @@ fn a_line_meeting_a_spiral_gets_a_fillet_touching_it() {
     let Geometry::Arc(trimmed) = got[2].geometry else { panic!("{:?}", got[2]) };
     assert!(trimmed.planar_arc().expect("an arc").center == path[1].planar_arc().unwrap().center);
 }
+
+#[test]
+fn arcs_meeting_almost_head_on_get_no_fillet_turning_more_than_max_turn() {
+    // Found by `biscara-joints`' random line-and-arc profiles: a 10 mm arc meets a 0.27 mm one
+    // that leaves almost back along it. The corner turns by less than 179°, but the arcs bend
+    // towards each other, so the fillet between them turns by nearly 180° — where its sweep's
+    // sign is rounding (a fillet of −π, run backwards, that the planner could not time).
+    let start = [-0.5612621765331802, 338.67592880479896, 50.0, 0.0];
+    let big = MotionKind::Arc {
+        end: [-16.384842660851945, 325.9537539020059, 50.0, 0.0],
+        center: [-7.753613430981999, 331.4200178807983],
+        plane: Plane::Xy,
+        clockwise: false,
+        turns: 1,
+        feed: FEED,
+    };
+    let small = MotionKind::Arc {
+        end: [-16.792286464034948, 325.6323076223935, 50.0, 0.0],
+        center: [-16.634861150176746, 325.85171322013076],
+        plane: Plane::Xy,
+        clockwise: false,
+        turns: 1,
+        feed: FEED,
+    };
+    let motions =
+        [with_tolerance(Motion::new(1, big), 0.05), with_tolerance(Motion::new(2, small), 0.05)];
+    let path = programmed(&motions, start);
+    let got = blend(&motions, start);
+    check_path(&got, &path, 0.05).expect("a valid path");
+    for piece in &got {
+        if let Geometry::Fillet { sweep, .. } = piece.geometry {
+            assert!(sweep.abs() <= biscara_blend::MAX_TURN_DEG.to_radians(), "{piece:?}");
+            assert!(sweep > 0.0, "the corner turns left, its fillet too: {piece:?}");
+        }
+    }
+}
