@@ -621,12 +621,8 @@ impl<R: BufRead> Interpreter<R> {
         if self.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
-        let line = &self.lines.line;
-        let text_start = |open: usize| {
-            open + 1 + line[open + 1..].iter().take_while(|b| b.is_ascii_whitespace()).count()
-        };
-        if let Some((open, close)) = self.last_comment()
-            && let Some((action, code)) = python::PythonComment::of(&line[text_start(open)..close])
+        if let Some((_, text, close)) = self.last_comment()
+            && let Some((action, code)) = python::PythonComment::of(&self.lines.line[text..close])
         {
             let code = code.to_vec();
             self.python_comment(action, &code)?;
@@ -638,8 +634,9 @@ impl<R: BufRead> Interpreter<R> {
         self.abort_comment()
     }
 
-    /// The byte range `(open, close)` of the line's last `( … )` comment before any `;`.
-    fn last_comment(&self) -> Option<(usize, usize)> {
+    /// Where the line's last `( … )` comment before any `;` is: its `(`, its text (after the
+    /// blanks that follow the `(`) and its `)`.
+    fn last_comment(&self) -> Option<(usize, usize, usize)> {
         let line = &self.lines.line;
         let mut last = None;
         let mut at = 0;
@@ -653,7 +650,9 @@ impl<R: BufRead> Interpreter<R> {
             last = Some((open, close));
             at = close + 1;
         }
-        last
+        let (open, close) = last?;
+        let blanks = line[open + 1..close].iter().take_while(|b| b.is_ascii_whitespace()).count();
+        Some((open, open + 1 + blanks, close))
     }
 
     /// LinuxCNC's `(ABORT, text)`: the line's last comment, when it reads `abort,` (spaces
@@ -661,9 +660,8 @@ impl<R: BufRead> Interpreter<R> {
     /// `#<name>` in it replaced by their values (`######` when undefined).
     fn abort_comment(&self) -> Result<(), Fault> {
         let line = &self.lines.line;
-        let Some((open, close)) = self.last_comment() else { return Ok(()) };
-        let text = &line[open + 1..close];
-        let text = &text[text.iter().take_while(|b| b.is_ascii_whitespace()).count()..];
+        let Some((open, text, close)) = self.last_comment() else { return Ok(()) };
+        let text = &line[text..close];
         if !text.get(..6).is_some_and(|head| head.eq_ignore_ascii_case(b"abort,")) {
             return Ok(());
         }
