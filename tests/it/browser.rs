@@ -19,7 +19,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::util::{biscara, temp_dir};
+use crate::util::{biscara, skip_or_fail, temp_dir};
 
 const WIDTH: u32 = 1400;
 const HEIGHT: u32 = 860;
@@ -112,12 +112,7 @@ fn colour_centroid(image: &(u32, u32, Vec<[u8; 3]>), colour: [u8; 3]) -> ([f64; 
 fn chromium_or_skip() -> Option<PathBuf> {
     let binary = chromium();
     if binary.is_none() {
-        let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
-        assert!(!in_ci, "chromium is missing, and CI=true requires it (apt-get install chromium)");
-        #[allow(clippy::print_stderr)]
-        {
-            eprintln!("SKIPPED: browser test: chromium not found (apt-get install chromium)");
-        }
+        skip_or_fail("browser test", "chromium", " (apt-get install chromium)");
     }
     binary
 }
@@ -172,15 +167,7 @@ fn the_laser_view_shows_the_burnt_trace_growing() {
 
 #[test]
 fn the_demo_view_renders_in_chromium_and_the_robot_moves() {
-    let Some(binary) = chromium() else {
-        let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
-        assert!(!in_ci, "chromium is missing, and CI=true requires it (apt-get install chromium)");
-        #[allow(clippy::print_stderr)]
-        {
-            eprintln!("SKIPPED: browser test: chromium not found (apt-get install chromium)");
-        }
-        return;
-    };
+    let Some(binary) = chromium_or_skip() else { return };
     let dir = temp_dir("browser");
     biscara(&dir, &["demo", "out"]).success();
     let page = dir.join("out/view.html").canonicalize().expect("view.html");

@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::motion::{Motion, MotionKind, read_jsonl};
 
-use crate::util::{biscara, repo_root, temp_dir};
+use crate::util::{biscara, repo_root, skip_or_fail, temp_dir};
 
 /// What a program must do.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,12 +98,7 @@ pub(crate) fn realworld() -> Option<PathBuf> {
             return Some(folder);
         }
     }
-    let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
-    assert!(!in_ci, "../shared/realworld is missing, and CI=true requires it");
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!("SKIPPED: real-world programs: ../shared/realworld not found beside the clone");
-    }
+    skip_or_fail("real-world programs", "../shared/realworld", " (beside the clone)");
     None
 }
 

@@ -204,15 +204,11 @@ fn check_with_rs274(program: &Path, cl: &str) -> bool {
 }
 
 fn skip_or_fail() {
-    let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
-    assert!(!in_ci, "rs274 (Debian package linuxcnc-uspace) is missing, and CI=true requires it");
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!(
-            "SKIPPED: LinuxCNC acceptance: rs274 not found (apt-get install \
-             --no-install-recommends linuxcnc-uspace)"
-        );
-    }
+    crate::util::skip_or_fail(
+        "LinuxCNC acceptance",
+        "rs274",
+        " (apt-get install --no-install-recommends linuxcnc-uspace)",
+    );
 }
 
 #[test]

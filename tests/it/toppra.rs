@@ -36,12 +36,7 @@ fn toppra_available() -> bool {
 }
 
 fn skip_or_fail(what: &str) {
-    let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
-    assert!(!in_ci, "{what} is missing, and CI=true requires it (pip install toppra)");
-    #[allow(clippy::print_stderr)]
-    {
-        eprintln!("SKIPPED: toppra comparison: {what} not found (pip install toppra)");
-    }
+    crate::util::skip_or_fail("toppra comparison", what, " (pip install toppra)");
 }
 
 /// The duration of a joint CSV: its last row's time.

@@ -4,6 +4,19 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+/// What a test does when the tool it checks against (`missing`, an external oracle such as
+/// chromium or rs274) is absent: under `CI=true` it fails, since a skip there would hide a gap;
+/// elsewhere it prints why `checks` were skipped, with `hint` (how to install it, in brackets),
+/// and the caller returns.
+pub fn skip_or_fail(checks: &str, missing: &str, hint: &str) {
+    let in_ci = std::env::var("CI").is_ok_and(|value| value == "true");
+    assert!(!in_ci, "{missing} is missing, and CI=true requires it{hint}");
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("SKIPPED: {checks}: {missing} not found{hint}");
+    }
+}
+
 /// The repository root (where `data/` and `tests/golden/` live).
 pub fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -544,24 +544,30 @@ fn arcs_meeting_almost_head_on_get_no_fillet_turning_more_than_max_turn() {
     // towards each other, so the fillet between them turns by nearly 180° — where its sweep's
     // sign is rounding (a fillet of −π, run backwards, that the planner could not time).
     let start = [-0.5612621765331802, 338.67592880479896, 50.0, 0.0];
-    let big = MotionKind::Arc {
-        end: [-16.384842660851945, 325.9537539020059, 50.0, 0.0],
-        center: [-7.753613430981999, 331.4200178807983],
-        plane: Plane::Xy,
-        clockwise: false,
-        turns: 1,
-        feed: FEED,
+    let counter_clockwise = |line: usize, end: [f64; 2], center: [f64; 2]| {
+        let end = [end[0], end[1], 50.0, 0.0];
+        let kind = MotionKind::Arc {
+            end,
+            center,
+            plane: Plane::Xy,
+            clockwise: false,
+            turns: 1,
+            feed: FEED,
+        };
+        with_tolerance(Motion::new(line, kind), 0.05)
     };
-    let small = MotionKind::Arc {
-        end: [-16.792286464034948, 325.6323076223935, 50.0, 0.0],
-        center: [-16.634861150176746, 325.85171322013076],
-        plane: Plane::Xy,
-        clockwise: false,
-        turns: 1,
-        feed: FEED,
-    };
-    let motions =
-        [with_tolerance(Motion::new(1, big), 0.05), with_tolerance(Motion::new(2, small), 0.05)];
+    let motions = [
+        counter_clockwise(
+            1,
+            [-16.384842660851945, 325.9537539020059],
+            [-7.753613430981999, 331.4200178807983],
+        ),
+        counter_clockwise(
+            2,
+            [-16.792286464034948, 325.6323076223935],
+            [-16.634861150176746, 325.85171322013076],
+        ),
+    ];
     let path = programmed(&motions, start);
     let got = blend(&motions, start);
     check_path(&got, &path, 0.05).expect("a valid path");
