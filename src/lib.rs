@@ -35,6 +35,7 @@ pub use biscara_gcode as gcode;
 pub use biscara_interpolate as interpolate;
 pub use biscara_joints as joints;
 pub use biscara_kinematics as kinematics;
+pub use biscara_linuxcnc as linuxcnc;
 pub use biscara_motion as motion;
 pub use biscara_pipeline as pipeline;
 pub use biscara_pnp as pnp;

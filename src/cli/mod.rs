@@ -10,6 +10,7 @@ mod files;
 mod generate;
 mod interpret;
 mod kinematics;
+mod linuxcnc;
 mod mjcf;
 mod plot;
 mod post;
@@ -58,6 +59,7 @@ enum Command {
     Check(check::CheckArgs),
     Workspace(workspace::WorkspaceArgs),
     Plot(plot::PlotArgs),
+    Linuxcnc(linuxcnc::LinuxcncArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
@@ -105,6 +107,7 @@ fn dispatch(robot: &RobotModel, command: Command) -> anyhow::Result<()> {
         Command::Check(args) => check::check(robot, &args),
         Command::Workspace(args) => workspace::workspace(robot, &args),
         Command::Plot(args) => plot::plot(robot, &args),
+        Command::Linuxcnc(args) => linuxcnc::linuxcnc(robot, &args),
     }
 }
 

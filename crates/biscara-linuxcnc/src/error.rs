@@ -1,0 +1,85 @@
+//! What can go wrong between this project and LinuxCNC.
+
+use std::path::{Path, PathBuf};
+
+use biscara_robot::VirtualRobotError;
+
+use crate::limits::LimitsError;
+
+/// A LinuxCNC configuration that cannot be written, or a run that cannot be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LinuxcncError {
+    /// Occurs when the robot's workspace has no rectangle to derive the limits on.
+    #[error(transparent)]
+    Workspace(#[from] VirtualRobotError),
+    /// Occurs when the axis limits cannot be derived.
+    #[error(transparent)]
+    Limits(#[from] LimitsError),
+    /// Occurs when the configuration is asked for an extruder, which LinuxCNC does not drive
+    /// (its E words are no axis of this robot).
+    #[error(
+        "LinuxCNC has no extruder axis: a configuration is written for a gripper, laser, \
+         spindle or pen"
+    )]
+    Extruder,
+    /// Occurs when a program LinuxCNC needs is not installed.
+    #[error(
+        "LinuxCNC is not installed ({program} not found): apt-get install \
+         --no-install-recommends linuxcnc-uspace linuxcnc-uspace-dev"
+    )]
+    NotInstalled {
+        /// The program not found.
+        program: &'static str,
+    },
+    /// Occurs when the kinematics component must be installed and this process is not root.
+    #[error(
+        "the kinematics component must be installed into LinuxCNC's module folder, which needs \
+         root: run `sudo halcompile --install {}` once", component.display()
+    )]
+    NeedsRoot {
+        /// The component's source.
+        component: PathBuf,
+    },
+    /// Occurs when the kinematics component cannot be built or installed, or a configuration
+    /// folder was not written by this project.
+    #[error("{message}")]
+    Component {
+        /// What went wrong.
+        message: String,
+    },
+    /// Occurs when another LinuxCNC is running (LinuxCNC runs one instance per machine).
+    #[error("another LinuxCNC is running on this machine (/tmp/linuxcnc.lock exists)")]
+    Busy,
+    /// Occurs when a file or folder cannot be read or written, or a program cannot be started.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file, folder or program.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// Occurs when LinuxCNC ends without a result (it did not start, or did not finish in time).
+    #[error("LinuxCNC {why}; its log:\n{log}")]
+    Failed {
+        /// What happened.
+        why: String,
+        /// LinuxCNC's output.
+        log: String,
+    },
+    /// Occurs when the recorder's file holds a line that is not a sample, or lost samples.
+    #[error("the recording's line {line}: {message}")]
+    Recording {
+        /// 1-based line of the recorder's file.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+impl LinuxcncError {
+    /// An I/O error on `path`.
+    pub(crate) fn io(path: &Path, source: std::io::Error) -> LinuxcncError {
+        LinuxcncError::Io { path: path.to_owned(), source }
+    }
+}

@@ -1,0 +1,280 @@
+//! What LinuxCNC's joints did: the recorder's lines read back, and their summary.
+
+use biscara_joints::{JointSample, central_differences};
+use biscara_kinematics::{Joint, Joints, Robot};
+
+use crate::LinuxcncError;
+
+/// The servo period of the configuration, seconds: one recorded sample each.
+pub const SERVO_PERIOD: f64 = 0.001;
+
+/// The recorder's scale: positions are recorded times this, for halsampler's six decimals.
+const RECORD_SCALE: f64 = 1000.0;
+
+/// One servo cycle as recorded: LinuxCNC's units (degrees and mm), its joint order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RecordedSample {
+    /// The sampler's sample number (consecutive unless samples were lost).
+    pub number: u64,
+    /// Joint positions θ1, θ2 (degrees), d4 (mm), θ3 (degrees): LinuxCNC's joints 0–3.
+    pub joints: [f64; 4],
+    /// The commanded axis positions X, Y, Z (mm) and C (degrees).
+    pub axes: [f64; 4],
+    /// Whether the stream path was playing.
+    pub streaming: bool,
+}
+
+impl RecordedSample {
+    /// The joints in this project's order and units: θ1, θ2, θ3 (radians), d4 (mm).
+    pub fn joints(&self) -> Joints {
+        let [theta1, theta2, d4, theta3] = self.joints;
+        Joints::from_degrees(theta1, theta2, theta3, d4)
+    }
+}
+
+/// Reads one line of `halsampler -t` for the configuration's recorder: the sample number,
+/// eight floats (θ1 θ2 d4 θ3 X Y Z C, times 1000) and the stream flag.
+pub fn parse_recorded_line(line: &str) -> Result<RecordedSample, String> {
+    let fields: Vec<&str> = line.split_whitespace().collect();
+    if fields.len() != 10 {
+        return Err(format!("expected 10 fields, found {}", fields.len()));
+    }
+    let number =
+        fields[0].parse::<u64>().map_err(|_| format!("bad sample number {:?}", fields[0]))?;
+    let mut values = [0.0; 8];
+    for (value, field) in values.iter_mut().zip(&fields[1..9]) {
+        let parsed = field.parse::<f64>().map_err(|_| format!("bad number {field:?}"))?;
+        if !parsed.is_finite() {
+            return Err(format!("not a finite number: {field:?}"));
+        }
+        *value = parsed / RECORD_SCALE;
+    }
+    let streaming = match fields[9] {
+        "0" => false,
+        "1" => true,
+        other => return Err(format!("bad stream flag {other:?}")),
+    };
+    Ok(RecordedSample {
+        number,
+        joints: [values[0], values[1], values[2], values[3]],
+        axes: [values[4], values[5], values[6], values[7]],
+        streaming,
+    })
+}
+
+/// Where a recording starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RecordingStart {
+    /// At the first sample the stream path played (`t = 0` is the stream's first sample).
+    Stream,
+    /// At the last sample before the joints first move (LinuxCNC takes some cycles between
+    /// the start of a program and its first motion).
+    FirstMotion,
+}
+
+/// What a recording held.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordingSummary {
+    /// Samples written.
+    pub samples: usize,
+    /// Time of the last sample, s.
+    pub duration: f64,
+    /// Samples the stream path played.
+    pub streamed: usize,
+    /// Peak joint velocity and acceleration against the limits.
+    pub peaks: [JointPeaks; 4],
+}
+
+/// Reads the recorder's lines (`halsampler -t`) and hands every sample from `start` on to
+/// `each` as a joint sample (t from 0, one servo period apart; velocity and acceleration by
+/// central differences, as `biscara joints` computes them, zero at both ends) with the recorded
+/// sample; streaming, three samples at a time. Fails on a malformed line or a gap in the sample
+/// numbers (a lost sample).
+pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
+    reader: R,
+    start: RecordingStart,
+    robot: &Robot,
+    mut each: impl FnMut(&JointSample, &RecordedSample) -> Result<(), E>,
+) -> Result<RecordingSummary, E> {
+    let mut window: Vec<(RecordedSample, [f64; 4])> = Vec::with_capacity(3);
+    let mut peaks = Peaks::new(robot);
+    let mut summary =
+        RecordingSummary { samples: 0, duration: 0.0, streamed: 0, peaks: peaks.get() };
+    let mut last_number: Option<u64> = None;
+    let mut started = false;
+    let mut emit = |before: Option<&(RecordedSample, [f64; 4])>,
+                    middle: &(RecordedSample, [f64; 4]),
+                    after: Option<&(RecordedSample, [f64; 4])>,
+                    summary: &mut RecordingSummary|
+     -> Result<(), E> {
+        let t = summary.samples as f64 * SERVO_PERIOD;
+        let (velocity, acceleration) = match (before, after) {
+            (Some(before), Some(after)) => central_differences(
+                (t - SERVO_PERIOD, &before.1),
+                (t, &middle.1),
+                (t + SERVO_PERIOD, &after.1),
+            ),
+            _ => ([0.0; 4], [0.0; 4]),
+        };
+        let q = middle.1;
+        let sample = JointSample {
+            t,
+            line: 0,
+            pose: middle.0.axes,
+            joints: Joints { theta1: q[0], theta2: q[1], theta3: q[2], d4: q[3] },
+            velocity,
+            acceleration,
+            gripper: false,
+        };
+        peaks.push(&sample);
+        summary.samples += 1;
+        summary.duration = t;
+        summary.streamed += usize::from(middle.0.streaming);
+        each(&sample, &middle.0)
+    };
+    for (index, line) in reader.lines().enumerate() {
+        let line_number = index + 1;
+        let line = line.map_err(|err| LinuxcncError::Recording {
+            line: line_number,
+            message: err.to_string(),
+        })?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let sample = parse_recorded_line(&line)
+            .map_err(|message| LinuxcncError::Recording { line: line_number, message })?;
+        if let Some(last) = last_number
+            && sample.number != last + 1
+        {
+            return Err(LinuxcncError::Recording {
+                line: line_number,
+                message: format!(
+                    "samples {} to {} were lost (the recorder's FIFO overran)",
+                    last + 1,
+                    sample.number.saturating_sub(1)
+                ),
+            }
+            .into());
+        }
+        last_number = Some(sample.number);
+        let entry = (sample, sample.joints().to_array());
+        if !started {
+            match start {
+                RecordingStart::Stream if !sample.streaming => continue,
+                RecordingStart::FirstMotion => {
+                    // Keep only the last sample of the still lead-in.
+                    if let Some(first) = window.first()
+                        && first.1 == entry.1
+                    {
+                        window[0] = entry;
+                        continue;
+                    }
+                    if window.is_empty() {
+                        window.push(entry);
+                        continue;
+                    }
+                }
+                RecordingStart::Stream => {}
+            }
+            started = true;
+        }
+        window.push(entry);
+        match window.len() {
+            2 => emit(None, &window[0], None, &mut summary)?,
+            3 => {
+                emit(Some(&window[0]), &window[1], Some(&window[2]), &mut summary)?;
+                window.remove(0);
+            }
+            _ => {}
+        }
+    }
+    match window.len() {
+        1 if !started || summary.samples == 0 => emit(None, &window[0], None, &mut summary)?,
+        2 => emit(None, &window[1], None, &mut summary)?,
+        _ => {}
+    }
+    summary.peaks = peaks.get();
+    Ok(summary)
+}
+
+/// Running peaks of every joint.
+struct Peaks {
+    velocity: [f64; 4],
+    acceleration: [f64; 4],
+    velocity_limits: [f64; 4],
+    acceleration_limits: [f64; 4],
+}
+
+impl Peaks {
+    fn new(robot: &Robot) -> Peaks {
+        Peaks {
+            velocity: [0.0; 4],
+            acceleration: [0.0; 4],
+            velocity_limits: robot.joint_max_velocity.to_array(),
+            acceleration_limits: robot.joint_max_acceleration.to_array(),
+        }
+    }
+
+    fn push(&mut self, sample: &JointSample) {
+        for index in 0..4 {
+            self.velocity[index] = self.velocity[index].max(sample.velocity[index].abs());
+            self.acceleration[index] =
+                self.acceleration[index].max(sample.acceleration[index].abs());
+        }
+    }
+
+    fn get(&self) -> [JointPeaks; 4] {
+        Joint::ALL.map(|joint| {
+            let index = joint as usize;
+            let unit = if joint.is_revolute() { 180.0 / std::f64::consts::PI } else { 1.0 };
+            JointPeaks {
+                joint,
+                velocity: self.velocity[index] * unit,
+                velocity_limit: self.velocity_limits[index],
+                acceleration: self.acceleration[index] * unit,
+                acceleration_limit: self.acceleration_limits[index],
+            }
+        })
+    }
+}
+
+/// Peak speed and acceleration of each joint against its limits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointPeaks {
+    /// The joint.
+    pub joint: Joint,
+    /// Largest |velocity|: degrees/s or mm/s.
+    pub velocity: f64,
+    /// The joint's velocity limit, same unit.
+    pub velocity_limit: f64,
+    /// Largest |acceleration|: degrees/s² or mm/s².
+    pub acceleration: f64,
+    /// The joint's acceleration limit, same unit.
+    pub acceleration_limit: f64,
+}
+
+impl JointPeaks {
+    /// The peak velocity as a fraction of the limit (1 = at the limit).
+    pub fn velocity_ratio(&self) -> f64 {
+        self.velocity / self.velocity_limit
+    }
+
+    /// The peak acceleration as a fraction of the limit.
+    pub fn acceleration_ratio(&self) -> f64 {
+        self.acceleration / self.acceleration_limit
+    }
+}
+
+/// Writes one line of a stream file for the configuration's stream path: θ1 θ2 d4 θ3 in
+/// LinuxCNC's joint order and units (degrees, mm), each number exact (the shortest decimal that
+/// reads back as the same `f64`).
+pub fn write_stream_sample(out: &mut impl std::io::Write, joints: &Joints) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{} {} {} {}",
+        joints.theta1.to_degrees(),
+        joints.theta2.to_degrees(),
+        joints.d4,
+        joints.theta3.to_degrees()
+    )
+}
