@@ -9,6 +9,7 @@ mod dialects;
 mod golden;
 mod interpret;
 mod linuxcnc;
+mod linuxcnc_run;
 mod motion_cli;
 mod mujoco;
 mod optimal_profile;

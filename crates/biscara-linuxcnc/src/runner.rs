@@ -297,12 +297,32 @@ fn is_linuxcnc_key(key: u32) -> bool {
     (1001..=1010).contains(&key) || key == 100 || key >> 24 == u32::from(b'H')
 }
 
-/// Kills what is left of a LinuxCNC: its process group, then `halrun -U`, and removes the lock.
+/// Whether a process of process group `group` is still running (`/proc/PID/stat`'s fifth field).
+fn group_alive(group: u32) -> bool {
+    let Ok(entries) = fs::read_dir("/proc") else { return false };
+    entries.flatten().any(|entry| {
+        let Ok(stat) = fs::read_to_string(entry.path().join("stat")) else { return false };
+        // "PID (COMMAND) STATE PPID PGRP …": the command may hold spaces and parentheses.
+        let Some(rest) = stat.rfind(')').map(|end| &stat[end + 1..]) else { return false };
+        rest.split_whitespace().nth(2).and_then(|pgrp| pgrp.parse::<u32>().ok()) == Some(group)
+    })
+}
+
+/// Kills what is left of a LinuxCNC: its process group (LinuxCNC's script, started in a group
+/// of its own, and everything it started), then `halrun -U`, and removes the lock file.
 fn clean_up(child: &mut Child) {
     let group = child.id();
-    let _ =
-        Command::new("kill").args(["-KILL", &format!("-{group}")]).stderr(Stdio::null()).status();
+    if child.try_wait().ok().flatten().is_none() {
+        let _ = child.kill();
+    }
     let _ = child.wait();
+    if group_alive(group) {
+        // `--`: a negative number after it is a process group, never an option.
+        let _ = Command::new("kill")
+            .args(["-s", "KILL", "--", &format!("-{group}")])
+            .stderr(Stdio::null())
+            .status();
+    }
     if !leftover_processes().is_empty() || Path::new(LOCK_FILE).exists() {
         let _ = Command::new("halrun")
             .arg("-U")
