@@ -133,8 +133,9 @@ struct ConfigArgs {
 /// one written for the robot in force), homes it, runs PROGRAM and records every servo cycle
 /// (1 ms). Writes the joint CSV with the columns and units of `biscara joints`
 /// (`t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm`; t = 0 at the last cycle before the first
-/// motion), so `biscara diff` and `biscara check --from`… read it, and prints a summary on
-/// stderr: the duration and each joint's peak speed and acceleration against its limits.
+/// motion), which `biscara diff` and `biscara view` read; --path also writes LinuxCNC's
+/// commanded poses as a path CSV, which `biscara check` reads. Prints a summary on stderr: the
+/// duration and each joint's peak speed and acceleration against its limits.
 ///
 /// With --stream, LinuxCNC's planner is not used: `biscara joints PROGRAM` (the time-optimal
 /// profile by default) is played sample for sample through the stream path (streamer → limit3 →
@@ -282,6 +283,9 @@ fn write_stream(model: &RobotModel, args: &RunArgs, path: &Path) -> anyhow::Resu
 fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
         anyhow::bail!("--timeout must be a positive number of seconds (got {})", args.timeout);
+    }
+    for program in std::iter::once(&args.program).chain(&args.then) {
+        fs::File::open(program).with_context(|| display_path(program))?;
     }
     runner::check_installed()?;
     let work = TempFolder::new("biscara-linuxcnc-run")?;

@@ -158,3 +158,193 @@ fn linuxcnc_kinematics_equal_ik_and_fk_on_two_robots() {
     check_parity(&dir, None);
     check_parity(&dir, Some(&repo_root().join("data/robots/asymmetric.json")));
 }
+
+/// The stream path plays `biscara joints`' trajectory sample for sample; LinuxCNC's G-code then
+/// continues from where the stream ended, starting from LinuxCNC's forward kinematics of the
+/// last streamed joints.
+#[test]
+fn the_stream_replays_joints_and_gcode_continues_after_it() {
+    let Some(_lock) = linuxcnc_or_skip("LinuxCNC stream path") else { return };
+    let dir = temp_dir("linuxcnc-stream");
+    std::fs::write(dir.join("job.ngc"), PARITY_PROGRAM).expect("write program");
+    std::fs::write(dir.join("then.ngc"), "G91 G1 Z-10 F600\nG90\nM2\n").expect("write program");
+    let deg = ["--angle-unit", "deg", "--precision", "10"];
+    biscara(&dir, &[&["joints", "job.ngc", "-o", "traj.csv"][..], &deg].concat()).success();
+    let run = run_linuxcnc(
+        &dir,
+        &[
+            &["linuxcnc", "run", "job.ngc", "--stream", "--then", "then.ngc", "-o", "run.csv"][..],
+            &["--path", "path.csv"],
+            &deg,
+        ]
+        .concat(),
+    );
+    run.success().stderr_has("LinuxCNC streamed job.ngc");
+    let (_, expected) = read_csv(&dir.join("traj.csv"));
+    let (_, actual) = read_csv(&dir.join("run.csv"));
+    let (_, path) = read_csv(&dir.join("path.csv"));
+    assert!(actual.len() > expected.len(), "the G-code after the stream was recorded too");
+    for (want, got) in expected.iter().zip(&actual) {
+        assert!((want[0] - got[0]).abs() < 1e-9, "time {want:?} against {got:?}");
+        for j in 1..5 {
+            assert!((want[j] - got[j]).abs() < 1e-6, "sample at t = {}: {want:?} against {got:?}", want[0]);
+        }
+    }
+    // After the stream, LinuxCNC's position is its forward kinematics of the last streamed
+    // joints: this project's FK to 1e-6 mm.
+    let last = &expected[expected.len() - 1];
+    let fk = RobotModel::default()
+        .kinematics()
+        .forward(&Joints::from_degrees(last[1], last[2], last[3], last[4]))
+        .expect("FK");
+    let after = &path[expected.len() + 5];
+    let want = [fk.pose.x, fk.pose.y, fk.pose.z, fk.pose.phi.to_degrees()];
+    for (got, want) in after[1..].iter().zip(want) {
+        assert!((got - want).abs() < 1e-6, "LinuxCNC's pose after the stream {after:?}, FK {want:?}");
+    }
+    // Then the G-code: 10 mm down from there, d4 10 mm longer.
+    let end = &actual[actual.len() - 1];
+    assert!((end[4] - (last[4] + 10.0)).abs() < 1e-6, "{end:?} after {last:?}");
+    for j in 1..4 {
+        assert!((end[j] - last[j]).abs() < 1e-6, "only Z moved: {end:?} after {last:?}");
+    }
+}
+
+/// LinuxCNC's refusals are errors: exit 1, LinuxCNC's message with the program's line, no
+/// output file, nothing of LinuxCNC left.
+#[test]
+fn linuxcnc_refusals_are_errors_with_the_line() {
+    let Some(_lock) = linuxcnc_or_skip("LinuxCNC refusals") else { return };
+    let dir = temp_dir("linuxcnc-refusals");
+    // θ1 would be −140.4° at (300, 100): beyond its limit of −135°.
+    std::fs::write(dir.join("limit.ngc"), "G21 G90\nG0 X0 Y300 Z50\nG0 X300 Y100\nM2\n")
+        .expect("write");
+    let run = run_linuxcnc(&dir, &["linuxcnc", "run", "limit.ngc", "-o", "run.csv"]);
+    run.expect_code(1).stderr_has("limit.ngc:3: LinuxCNC: ").stderr_has("joint 0");
+    assert!(!dir.join("run.csv").exists());
+    // (420, 100) is 49.5 mm beyond chain 2's reach: the inverse kinematics fail.
+    std::fs::write(dir.join("reach.ngc"), "G21 G90\nG0 X0 Y300 Z50\nG1 X420 Y100 F3000\nM2\n")
+        .expect("write");
+    let run = run_linuxcnc(&dir, &["linuxcnc", "run", "reach.ngc", "-o", "run.csv"]);
+    run.expect_code(1).stderr_has("reach.ngc:3: LinuxCNC: ");
+    assert!(!dir.join("run.csv").exists());
+}
+
+/// LinuxCNC's own planner, on the axis limits derived from the joint limits, stays within every
+/// joint's velocity and acceleration limit on the data programs (it does not with the robot's
+/// Cartesian limits as they are: the README's table).
+#[test]
+fn linuxcncs_planner_on_the_derived_limits_stays_within_every_joint_limit() {
+    let Some(_lock) = linuxcnc_or_skip("LinuxCNC planner on the derived limits") else { return };
+    let dir = temp_dir("linuxcnc-derived");
+    let robot = RobotModel::default();
+    let velocity = robot.robot().joint_max_velocity.to_array();
+    let acceleration = robot.robot().joint_max_acceleration.to_array();
+    let mut programs: Vec<_> = std::fs::read_dir(repo_root().join("data/programs"))
+        .expect("data/programs")
+        .map(|entry| entry.expect("entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "ngc"))
+        .collect();
+    programs.sort();
+    assert!(programs.len() >= 5, "{programs:?}");
+    for program in programs {
+        let program = program.display().to_string();
+        let run = run_linuxcnc(
+            &dir,
+            &[
+                "linuxcnc", "run", &program, "--derivatives", "--angle-unit", "deg", "--precision",
+                "9", "-o", "run.csv",
+            ],
+        );
+        run.success();
+        let (header, rows) = read_csv(&dir.join("run.csv"));
+        assert_eq!(header.len(), 13, "{header:?}");
+        assert!(rows.len() > 1000, "{program}: {} samples", rows.len());
+        // Columns: t, 4 positions, 4 velocities, 4 accelerations (θ1 θ2 θ3 d4).
+        for j in 0..4 {
+            let peak = |column: usize| rows.iter().map(|row| row[column].abs()).fold(0.0, f64::max);
+            let (v, a) = (peak(5 + j), peak(9 + j));
+            assert!(v <= velocity[j], "{program}: joint {j} at {v} of {}\n{run}", velocity[j]);
+            assert!(a <= acceleration[j], "{program}: joint {j} at {a}/s² of {}\n{run}", acceleration[j]);
+        }
+    }
+}
+
+/// `biscara linuxcnc config` writes a whole configuration with the robot file's numbers, and
+/// refuses what it cannot configure; needs no LinuxCNC.
+#[test]
+fn config_writes_the_robots_configuration() {
+    let dir = temp_dir("linuxcnc-config");
+    let robot = repo_root().join("data/robots/asymmetric.json");
+    let robot = robot.display().to_string();
+    biscara(&dir, &["--robot", &robot, "linuxcnc", "config", "-o", "cfg"])
+        .success()
+        .stderr_has("halcompile --install");
+    let read = |name: &str| std::fs::read_to_string(dir.join("cfg").join(name)).expect(name);
+    let ini = read("biscara.ini");
+    for line in ["KINEMATICS = biscarakins", "JOINTS = 4", "COORDINATES = X Y Z C", "SERVO_PERIOD = 1000000"] {
+        assert!(ini.contains(line), "{line}\n{ini}");
+    }
+    // The asymmetric robot's joint limits and geometry.
+    assert!(ini.contains("MIN_LIMIT = -270") && ini.contains("MAX_LIMIT = 150\n"), "{ini}");
+    let hal = read("biscara.hal");
+    for line in ["setp biscarakins.l1 180\n", "setp biscarakins.b2x -90\n", "setp biscarakins.lp 150\n"] {
+        assert!(hal.contains(line), "{line}\n{hal}");
+    }
+    for name in ["biscarakins.comp", "biscara.hal", "sim.hal", "hardware.hal", "biscara_run.py", "README.md"] {
+        let text = read(name);
+        assert!(!text.contains("@NAME@") && !text.contains("@L1@"), "{name} has a placeholder");
+    }
+    use std::os::unix::fs::PermissionsExt as _;
+    let mode = std::fs::metadata(dir.join("cfg/biscara_run.py")).expect("runner").permissions().mode();
+    assert!(mode & 0o111 != 0, "the headless display is executable");
+    // The robot's Cartesian limits as they are, on request.
+    biscara(&dir, &["linuxcnc", "config", "--limits", "cartesian", "--tool", "laser", "-o", "cart"])
+        .success();
+    let ini = std::fs::read_to_string(dir.join("cart/biscara.ini")).expect("ini");
+    assert!(ini.contains("[AXIS_X]\nMAX_VELOCITY = 500\nMAX_ACCELERATION = 5000\n"), "{ini}");
+    let hal = std::fs::read_to_string(dir.join("cart/biscara.hal")).expect("hal");
+    assert!(hal.contains("net laser-power spindle.0.speed-out"), "{hal}");
+}
+
+/// The default robot's INI and HAL, pinned: a change to them is reviewed like code.
+#[test]
+fn the_default_configuration_is_pinned() {
+    let dir = temp_dir("linuxcnc-config-golden");
+    biscara(&dir, &["linuxcnc", "config", "-o", "cfg"]).success();
+    for name in ["biscara.ini", "biscara.hal", "sim.hal", "hardware.hal"] {
+        let text = std::fs::read_to_string(dir.join("cfg").join(name)).expect(name);
+        crate::golden::check_golden(&format!("linuxcnc/{name}"), &text);
+    }
+    for command in [&["linuxcnc", "--help"][..], &["linuxcnc", "config", "--help"], &["linuxcnc", "run", "--help"]] {
+        let run = biscara(&dir, command);
+        run.success();
+        assert!(run.stdout.contains("Example:"), "{run}");
+        crate::golden::check_golden(&format!("help/{}.txt", command[..command.len() - 1].join("-")), &run.stdout);
+    }
+}
+
+/// Bad input to `biscara linuxcnc`: a clear error, exit 1 (2 for wrong usage), no output file.
+#[test]
+fn linuxcnc_bad_input_is_refused() {
+    let dir = temp_dir("linuxcnc-bad");
+    std::fs::write(dir.join("job.ngc"), "G0 X0 Y300\nM2\n").expect("write");
+    std::fs::write(dir.join("extruder.json"), r#"{"tool": {"kind": "extruder"}}"#).expect("write");
+    biscara(&dir, &["linuxcnc", "config", "--tool", "extruder", "-o", "cfg"]).expect_code(2);
+    biscara(&dir, &["linuxcnc", "config"]).expect_code(2);
+    biscara(&dir, &["--robot", "extruder.json", "linuxcnc", "config", "-o", "cfg"])
+        .expect_code(1)
+        .stderr_has("no extruder");
+    assert!(!dir.join("cfg").exists());
+    biscara(&dir, &["linuxcnc", "run", "job.ngc", "--then", "job.ngc"]).expect_code(2);
+    for args in [
+        &["linuxcnc", "run", "missing.ngc", "-o", "run.csv"][..],
+        &["linuxcnc", "run", "job.ngc", "--config", "no-such-folder", "-o", "run.csv"],
+        &["linuxcnc", "run", "job.ngc", "--timeout", "0", "-o", "run.csv"],
+    ] {
+        let run = biscara(&dir, args);
+        run.expect_code(1);
+        assert!(!run.stderr.contains("panicked"), "{run}");
+        assert!(!dir.join("run.csv").exists(), "{run}");
+    }
+}

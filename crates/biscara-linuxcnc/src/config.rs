@@ -214,8 +214,10 @@ fn limits_comment(robot: &Robot, limits: &AxisLimits, source: AxisLimitSource) -
          # for every direction of motion. Largest on the rectangle: theta1 G = {g1:.4} deg/mm,\n\
          # S = {s1:.5} deg/mm^2; theta2 G = {g2:.4} deg/mm, S = {s2:.5} deg/mm^2; chain 1's distal\n\
          # link (theta3 = C - its turn) G = {g3:.4} deg/mm, S = {s3:.5} deg/mm^2.\n\
-         # V = {v:.3} mm/s, bound by {vb}; A = {a:.3} mm/s^2, bound by {ab}\n\
-         # (the velocity term S V^2 may take at most half of a joint's acceleration limit).\n\
+         # V = {v:.3} mm/s, bound by {vb};\n\
+         # A = {a:.3} mm/s^2, bound by {ab}\n\
+         # (the velocity term S V^2 may take at most half of a joint's acceleration limit;\n\
+         # V and A are 97 % of these bounds, for what lies between the grid points).\n\
          # C: what theta3's limits ({w3} deg/s, {al3} deg/s^2) leave after the distal link's turn.\n\
          # Z: d4's limits. Cost: at the rectangle's centre theta1's and theta2's velocity limits\n\
          # alone would allow {centre:.1} mm/s along X; LinuxCNC's planner here moves at most\n\

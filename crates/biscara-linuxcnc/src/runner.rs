@@ -159,6 +159,10 @@ pub fn ensure_component(config: &Path) -> Result<ComponentStatus, LinuxcncError>
     if !is_root() {
         return Err(LinuxcncError::NeedsRoot { component: source_path });
     }
+    // `halcompile --install` overwrites the module in place: never under a running LinuxCNC.
+    if Path::new(LOCK_FILE).exists() {
+        return Err(LinuxcncError::Busy);
+    }
     let build = tempfolder("biscara-halcompile")?;
     let copy = build.join(format!("{COMPONENT_NAME}.comp"));
     fs::write(&copy, &source).map_err(|err| LinuxcncError::io(&copy, err))?;

@@ -278,3 +278,109 @@ pub fn write_stream_sample(out: &mut impl std::io::Write, joints: &Joints) -> st
         joints.theta3.to_degrees()
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(number: u64, joints: [f64; 4], streaming: bool) -> String {
+        let scaled = joints.map(|value| format!("{:.6}", value * RECORD_SCALE));
+        format!(
+            "{number} {} 0.000000 460798.724080 100000.000000 0.000000 {}\n",
+            scaled.join(" "),
+            u8::from(streaming)
+        )
+    }
+
+    fn read(text: &str, start: RecordingStart) -> Result<(RecordingSummary, Vec<JointSample>), LinuxcncError> {
+        let mut samples = Vec::new();
+        let summary = read_recording(text.as_bytes(), start, &Robot::default(), |sample, _| {
+            samples.push(*sample);
+            Ok::<(), LinuxcncError>(())
+        })?;
+        Ok((summary, samples))
+    }
+
+    #[test]
+    fn a_recorded_line_reads_back_in_linuxcncs_units_and_order() {
+        let sample = parse_recorded_line("7 -19767.034576 19767.034576 17843.444434 -17563.853064 \
+                                          0.000000 406328.615948 82081.825250 0.000000 1")
+            .unwrap();
+        assert_eq!(sample.number, 7);
+        assert!((sample.joints[2] - 17.843444434).abs() < 1e-12);
+        assert!((sample.axes[1] - 406.328615948).abs() < 1e-12);
+        assert!(sample.streaming);
+        let joints = sample.joints();
+        assert!((joints.d4 - 17.843444434).abs() < 1e-12, "d4 is LinuxCNC's joint 2");
+        assert!((joints.theta3.to_degrees() + 17.563853064).abs() < 1e-9, "θ3 is its joint 3");
+    }
+
+    #[test]
+    fn malformed_lines_and_lost_samples_are_errors_naming_the_line() {
+        for (text, expected) in [
+            ("1 2 3\n", "line 1: expected 10 fields"),
+            ("1 a 0 0 0 0 0 0 0 0\n", "line 1: bad number"),
+            ("1 nan 0 0 0 0 0 0 0 0\n", "line 1: not a finite number"),
+            ("1 0 0 0 0 0 0 0 0 2\n", "line 1: bad stream flag"),
+            ("x 0 0 0 0 0 0 0 0 0\n", "line 1: bad sample number"),
+        ] {
+            let err = read(text, RecordingStart::FirstMotion).unwrap_err().to_string();
+            assert!(err.contains(expected), "{text:?}: {err}");
+        }
+        let text = [line(1, [0.0; 4], false), line(2, [1.0; 4], false), line(5, [2.0; 4], false)]
+            .concat();
+        let err = read(&text, RecordingStart::FirstMotion).unwrap_err().to_string();
+        assert!(err.contains("line 3: samples 3 to 4 were lost"), "{err}");
+    }
+
+    #[test]
+    fn a_program_recording_starts_at_the_last_still_sample_with_differences() {
+        let mut text = String::new();
+        for number in 0..5 {
+            text += &line(number, [0.0; 4], false);
+        }
+        // θ1 = t² (degrees, t in cycles) from cycle 5 on.
+        for number in 5..10 {
+            let t = (number - 4) as f64;
+            text += &line(number, [t * t, 0.0, 0.0, 0.0], false);
+        }
+        let (summary, samples) = read(&text, RecordingStart::FirstMotion).unwrap();
+        assert_eq!(samples.len(), 6, "the last still sample and the five moving ones");
+        assert_eq!(summary.samples, 6);
+        assert!((summary.duration - 0.005).abs() < 1e-12);
+        assert_eq!(samples[0].joints.theta1, 0.0);
+        assert_eq!(samples[0].velocity, [0.0; 4], "no difference at the ends");
+        // q = t² degrees per cycle²: 2 degrees per cycle² = 2e6 degrees/s².
+        let acceleration = samples[2].acceleration[0].to_degrees();
+        assert!((acceleration - 2e6).abs() < 1e-3, "{acceleration}");
+        assert!((summary.peaks[0].acceleration - 2e6).abs() < 1e-3);
+        assert_eq!(summary.peaks[0].acceleration_limit, 7200.0);
+    }
+
+    #[test]
+    fn a_stream_recording_starts_at_the_first_streamed_sample() {
+        let text = [
+            line(1, [5.0; 4], false),
+            line(2, [0.0; 4], true),
+            line(3, [0.1; 4], true),
+            line(4, [0.2; 4], false),
+        ]
+        .concat();
+        let (summary, samples) = read(&text, RecordingStart::Stream).unwrap();
+        assert_eq!(samples.len(), 3);
+        assert_eq!(summary.streamed, 2);
+        assert_eq!(samples[0].joints.d4, 0.0);
+    }
+
+    #[test]
+    fn a_stream_line_is_linuxcncs_order_and_degrees() {
+        let mut out = Vec::new();
+        write_stream_sample(&mut out, &Joints::from_degrees(10.0, -20.0, 30.0, 40.5)).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let values: Vec<f64> = text.split_whitespace().map(|v| v.parse().unwrap()).collect();
+        assert_eq!(values.len(), 4);
+        assert!((values[0] - 10.0).abs() < 1e-12 && (values[1] + 20.0).abs() < 1e-12);
+        assert_eq!(values[2], 40.5, "d4 third");
+        assert!((values[3] - 30.0).abs() < 1e-12, "θ3 last");
+    }
+}

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""The README's comparison of LinuxCNC's planner with this project's time-optimal trajectory.
+
+For each robot file and data program: LinuxCNC's own planner with the robot file's Cartesian
+limits as they are (`--limits cartesian`), with the axis limits derived from the joint limits
+(`--limits derived`, the default), and `biscara joints` (time-optimal profile) played through
+the stream path (`--stream`). Prints a Markdown table: each run's duration and its largest
+joint velocity and acceleration as a share of the joint's limit (over theta1, theta2, theta3, d4).
+
+Usage: scripts/linuxcnc-comparison.py [BISCARA] > table.md   (needs LinuxCNC; runs serially,
+in real time: about 20 minutes for the full table)
+"""
+
+import re
+import subprocess
+import sys
+import tempfile
+
+BISCARA = sys.argv[1] if len(sys.argv) > 1 else "target/release/biscara"
+CASES = [
+    ("default.json", "arcs_and_offsets.ngc"),
+    ("default.json", "pick_place_inch.ngc"),
+    ("default.json", "pen_plot.ngc"),
+    ("default.json", "laser_engraving.ngc"),
+    ("default.json", "engraving_arcs.ngc"),
+    ("weak-motors.json", "arcs_and_offsets.ngc"),
+    ("weak-motors.json", "pick_place_inch.ngc"),
+    ("asymmetric.json", "arcs_and_offsets.ngc"),
+    ("asymmetric.json", "pick_place_inch.ngc"),
+]
+MODES = [
+    ("LinuxCNC, Cartesian limits", ["--limits", "cartesian"]),
+    ("LinuxCNC, derived limits", ["--limits", "derived"]),
+    ("optimal profile, streamed", ["--stream"]),
+]
+PEAK = re.compile(r"(\w+): peak [\d.]+ \S+ of [\d.]+ \((\d+) %\), [\d.]+ \S+ of [\d.]+ \((\d+) %\)")
+DURATION = re.compile(r"LinuxCNC \w+ \S+: ([\d.]+) s")
+
+
+def run(robot, program, extra):
+    with tempfile.TemporaryDirectory() as folder:
+        command = [BISCARA, "--robot", f"data/robots/{robot}", "linuxcnc", "run",
+                   f"data/programs/{program}", "-o", f"{folder}/run.csv", *extra]
+        done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        return "failed: " + done.stderr.strip().splitlines()[-1]
+    duration = float(DURATION.search(done.stderr).group(1))
+    peaks = PEAK.findall(done.stderr)
+    velocity = max(int(v) for _, v, _ in peaks)
+    acceleration = max(int(a) for _, _, a in peaks)
+    return f"{duration:.2f} s, {velocity} % / {acceleration} %"
+
+
+def main():
+    print("| robot | program | " + " | ".join(name for name, _ in MODES) + " |")
+    print("| --- | --- | " + " | ".join("---" for _ in MODES) + " |")
+    for robot, program in CASES:
+        cells = [run(robot, program, extra) for _, extra in MODES]
+        print(f"| {robot} | {program} | " + " | ".join(cells) + " |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
