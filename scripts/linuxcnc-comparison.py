@@ -17,12 +17,15 @@ import sys
 import tempfile
 
 BISCARA = sys.argv[1] if len(sys.argv) > 1 else "target/release/biscara"
-CASES = [
-    ("default.json", "arcs_and_offsets.ngc"),
-    ("default.json", "pick_place_inch.ngc"),
-    ("default.json", "pen_plot.ngc"),
-    ("default.json", "laser_engraving.ngc"),
-    ("default.json", "engraving_arcs.ngc"),
+# (robot file, program, extra arguments: the placement each program's header asks for)
+PLACED = {
+    "arcs_and_offsets.ngc": [],
+    "pick_place_inch.ngc": [],
+    "pen_plot.ngc": ["--origin", "-30,280,10,0", "--tool", "pen"],
+    "laser_engraving.ngc": ["--origin", "-30,250,0,0", "--tool", "laser"],
+    "engraving_arcs.ngc": ["--origin", "-75,300,20,0", "--tool", "spindle"],
+}
+CASES = [("default.json", program) for program in PLACED] + [
     ("weak-motors.json", "arcs_and_offsets.ngc"),
     ("weak-motors.json", "pick_place_inch.ngc"),
     ("asymmetric.json", "arcs_and_offsets.ngc"),
@@ -40,7 +43,8 @@ DURATION = re.compile(r"LinuxCNC \w+ \S+: ([\d.]+) s")
 def run(robot, program, extra):
     with tempfile.TemporaryDirectory() as folder:
         command = [BISCARA, "--robot", f"data/robots/{robot}", "linuxcnc", "run",
-                   f"data/programs/{program}", "-o", f"{folder}/run.csv", *extra]
+                   f"data/programs/{program}", "-o", f"{folder}/run.csv", *PLACED[program],
+                   *extra]
         done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
         return "failed: " + done.stderr.strip().splitlines()[-1]

@@ -20,9 +20,8 @@ static LINUXCNC: Mutex<()> = Mutex::new(());
 /// The lock when LinuxCNC is installed, else `None` after saying why (a failure under CI).
 fn linuxcnc_or_skip(checks: &str) -> Option<MutexGuard<'static, ()>> {
     let installed = ["linuxcnc", "halcompile"].iter().all(|program| {
-        std::env::var_os("PATH").is_some_and(|path| {
-            std::env::split_paths(&path).any(|dir| dir.join(program).is_file())
-        })
+        std::env::var_os("PATH")
+            .is_some_and(|path| std::env::split_paths(&path).any(|dir| dir.join(program).is_file()))
     });
     if !installed {
         skip_or_fail(
@@ -95,8 +94,19 @@ fn check_parity(dir: &Path, robot_file: Option<&Path>) {
     std::fs::write(dir.join("parity.ngc"), PARITY_PROGRAM).expect("write program");
     args.extend(
         [
-            "linuxcnc", "run", "parity.ngc", "--limits", "cartesian", "--angle-unit", "deg",
-            "--precision", "10", "-o", "run.csv", "--path", "path.csv",
+            "linuxcnc",
+            "run",
+            "parity.ngc",
+            "--limits",
+            "cartesian",
+            "--angle-unit",
+            "deg",
+            "--precision",
+            "10",
+            "-o",
+            "run.csv",
+            "--path",
+            "path.csv",
         ]
         .map(str::to_owned),
     );
@@ -187,7 +197,11 @@ fn the_stream_replays_joints_and_gcode_continues_after_it() {
     for (want, got) in expected.iter().zip(&actual) {
         assert!((want[0] - got[0]).abs() < 1e-9, "time {want:?} against {got:?}");
         for j in 1..5 {
-            assert!((want[j] - got[j]).abs() < 1e-6, "sample at t = {}: {want:?} against {got:?}", want[0]);
+            assert!(
+                (want[j] - got[j]).abs() < 1e-6,
+                "sample at t = {}: {want:?} against {got:?}",
+                want[0]
+            );
         }
     }
     // After the stream, LinuxCNC's position is its forward kinematics of the last streamed
@@ -200,7 +214,10 @@ fn the_stream_replays_joints_and_gcode_continues_after_it() {
     let after = &path[expected.len() + 5];
     let want = [fk.pose.x, fk.pose.y, fk.pose.z, fk.pose.phi.to_degrees()];
     for (got, want) in after[1..].iter().zip(want) {
-        assert!((got - want).abs() < 1e-6, "LinuxCNC's pose after the stream {after:?}, FK {want:?}");
+        assert!(
+            (got - want).abs() < 1e-6,
+            "LinuxCNC's pose after the stream {after:?}, FK {want:?}"
+        );
     }
     // Then the G-code: 10 mm down from there, d4 10 mm longer.
     let end = &actual[actual.len() - 1];
@@ -240,21 +257,42 @@ fn linuxcncs_planner_on_the_derived_limits_stays_within_every_joint_limit() {
     let robot = RobotModel::default();
     let velocity = robot.robot().joint_max_velocity.to_array();
     let acceleration = robot.robot().joint_max_acceleration.to_array();
-    let mut programs: Vec<_> = std::fs::read_dir(repo_root().join("data/programs"))
+    // Every G-code program of data/ in LinuxCNC's dialect, placed as its header says.
+    let programs = [
+        ("arcs_and_offsets.ngc", None),
+        ("pick_place_inch.ngc", None),
+        ("pen_plot.ngc", Some("-30,280,10,0")),
+        ("laser_engraving.ngc", Some("-30,250,0,0")),
+        ("engraving_arcs.ngc", Some("-75,300,20,0")),
+    ];
+    let listed = std::fs::read_dir(repo_root().join("data/programs"))
         .expect("data/programs")
-        .map(|entry| entry.expect("entry").path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "ngc"))
-        .collect();
-    programs.sort();
-    assert!(programs.len() >= 5, "{programs:?}");
-    for program in programs {
-        let program = program.display().to_string();
+        .filter(|entry| {
+            entry.as_ref().expect("entry").path().extension().is_some_and(|e| e == "ngc")
+        })
+        .count();
+    assert_eq!(listed, programs.len(), "a data program is missing here");
+    for (name, origin) in programs {
+        let program = repo_root().join("data/programs").join(name).display().to_string();
+        let origin = origin.map(|origin| ["--origin", origin]);
         let run = run_linuxcnc(
             &dir,
             &[
-                "linuxcnc", "run", &program, "--derivatives", "--angle-unit", "deg", "--precision",
-                "9", "-o", "run.csv",
-            ],
+                &[
+                    "linuxcnc",
+                    "run",
+                    &program,
+                    "--derivatives",
+                    "--angle-unit",
+                    "deg",
+                    "--precision",
+                    "9",
+                    "-o",
+                    "run.csv",
+                ][..],
+                origin.as_ref().map_or(&[][..], |origin| &origin[..]),
+            ]
+            .concat(),
         );
         run.success();
         let (header, rows) = read_csv(&dir.join("run.csv"));
@@ -265,7 +303,11 @@ fn linuxcncs_planner_on_the_derived_limits_stays_within_every_joint_limit() {
             let peak = |column: usize| rows.iter().map(|row| row[column].abs()).fold(0.0, f64::max);
             let (v, a) = (peak(5 + j), peak(9 + j));
             assert!(v <= velocity[j], "{program}: joint {j} at {v} of {}\n{run}", velocity[j]);
-            assert!(a <= acceleration[j], "{program}: joint {j} at {a}/s² of {}\n{run}", acceleration[j]);
+            assert!(
+                a <= acceleration[j],
+                "{program}: joint {j} at {a}/s² of {}\n{run}",
+                acceleration[j]
+            );
         }
     }
 }
@@ -282,25 +324,43 @@ fn config_writes_the_robots_configuration() {
         .stderr_has("halcompile --install");
     let read = |name: &str| std::fs::read_to_string(dir.join("cfg").join(name)).expect(name);
     let ini = read("biscara.ini");
-    for line in ["KINEMATICS = biscarakins", "JOINTS = 4", "COORDINATES = X Y Z C", "SERVO_PERIOD = 1000000"] {
+    for line in [
+        "KINEMATICS = biscarakins",
+        "JOINTS = 4",
+        "COORDINATES = X Y Z C",
+        "SERVO_PERIOD = 1000000",
+    ] {
         assert!(ini.contains(line), "{line}\n{ini}");
     }
     // The asymmetric robot's joint limits and geometry.
     assert!(ini.contains("MIN_LIMIT = -270") && ini.contains("MAX_LIMIT = 150\n"), "{ini}");
     let hal = read("biscara.hal");
-    for line in ["setp biscarakins.l1 180\n", "setp biscarakins.b2x -90\n", "setp biscarakins.lp 150\n"] {
+    for line in
+        ["setp biscarakins.l1 180\n", "setp biscarakins.b2x -90\n", "setp biscarakins.lp 150\n"]
+    {
         assert!(hal.contains(line), "{line}\n{hal}");
     }
-    for name in ["biscarakins.comp", "biscara.hal", "sim.hal", "hardware.hal", "biscara_run.py", "README.md"] {
+    for name in [
+        "biscarakins.comp",
+        "biscara.hal",
+        "sim.hal",
+        "hardware.hal",
+        "biscara_run.py",
+        "README.md",
+    ] {
         let text = read(name);
         assert!(!text.contains("@NAME@") && !text.contains("@L1@"), "{name} has a placeholder");
     }
     use std::os::unix::fs::PermissionsExt as _;
-    let mode = std::fs::metadata(dir.join("cfg/biscara_run.py")).expect("runner").permissions().mode();
+    let mode =
+        std::fs::metadata(dir.join("cfg/biscara_run.py")).expect("runner").permissions().mode();
     assert!(mode & 0o111 != 0, "the headless display is executable");
     // The robot's Cartesian limits as they are, on request.
-    biscara(&dir, &["linuxcnc", "config", "--limits", "cartesian", "--tool", "laser", "-o", "cart"])
-        .success();
+    biscara(
+        &dir,
+        &["linuxcnc", "config", "--limits", "cartesian", "--tool", "laser", "-o", "cart"],
+    )
+    .success();
     let ini = std::fs::read_to_string(dir.join("cart/biscara.ini")).expect("ini");
     assert!(ini.contains("[AXIS_X]\nMAX_VELOCITY = 500\nMAX_ACCELERATION = 5000\n"), "{ini}");
     let hal = std::fs::read_to_string(dir.join("cart/biscara.hal")).expect("hal");
@@ -316,11 +376,18 @@ fn the_default_configuration_is_pinned() {
         let text = std::fs::read_to_string(dir.join("cfg").join(name)).expect(name);
         crate::golden::check_golden(&format!("linuxcnc/{name}"), &text);
     }
-    for command in [&["linuxcnc", "--help"][..], &["linuxcnc", "config", "--help"], &["linuxcnc", "run", "--help"]] {
+    for command in [
+        &["linuxcnc", "--help"][..],
+        &["linuxcnc", "config", "--help"],
+        &["linuxcnc", "run", "--help"],
+    ] {
         let run = biscara(&dir, command);
         run.success();
         assert!(run.stdout.contains("Example:"), "{run}");
-        crate::golden::check_golden(&format!("help/{}.txt", command[..command.len() - 1].join("-")), &run.stdout);
+        crate::golden::check_golden(
+            &format!("help/{}.txt", command[..command.len() - 1].join("-")),
+            &run.stdout,
+        );
     }
 }
 

@@ -180,11 +180,26 @@ pub fn configuration(
             file("hardware.hal", HARDWARE_HAL, false),
             file(RUNNER_FILE, RUNNER, true),
             ConfigFile { name: "biscara.tbl", contents: String::new(), executable: false },
-            ConfigFile { name: "biscara.var", contents: String::new(), executable: false },
+            ConfigFile { name: "biscara.var", contents: parameters(model), executable: false },
             file("README.md", README, false),
         ],
         limits,
     })
+}
+
+/// The parameter file: G28's and G30's positions (parameters 5161–5169 and 5181–5189, in
+/// machine coordinates) at the robot's home pose, so that G28 and G30 go home as they do in
+/// `biscara interpret`; G54 in force (5220).
+fn parameters(model: &RobotModel) -> String {
+    let [x, y, z, c] = model.home_position();
+    let mut text = String::new();
+    for start in [5161, 5181] {
+        for (offset, value) in [x, y, z, 0.0, 0.0, c, 0.0, 0.0, 0.0].into_iter().enumerate() {
+            text += &format!("{} {}\n", start + offset, number(value));
+        }
+    }
+    text += "5220 1\n";
+    text
 }
 
 /// The INI's comment block on where the axis limits come from.

@@ -285,7 +285,8 @@ mod tests {
 
     #[test]
     fn box_maximum_is_the_largest_form_on_the_box() {
-        for (xx, xy, yy) in [(1.0, 0.3, -2.0), (0.5, -0.9, 0.2), (-1.0, 0.0, -1.0), (2.0, 2.0, 2.0)] {
+        for (xx, xy, yy) in [(1.0, 0.3, -2.0), (0.5, -0.9, 0.2), (-1.0, 0.0, -1.0), (2.0, 2.0, 2.0)]
+        {
             let mut brute = 0.0_f64;
             for i in 0..=200 {
                 for j in 0..=200 {

@@ -292,7 +292,10 @@ mod tests {
         )
     }
 
-    fn read(text: &str, start: RecordingStart) -> Result<(RecordingSummary, Vec<JointSample>), LinuxcncError> {
+    fn read(
+        text: &str,
+        start: RecordingStart,
+    ) -> Result<(RecordingSummary, Vec<JointSample>), LinuxcncError> {
         let mut samples = Vec::new();
         let summary = read_recording(text.as_bytes(), start, &Robot::default(), |sample, _| {
             samples.push(*sample);
@@ -303,9 +306,11 @@ mod tests {
 
     #[test]
     fn a_recorded_line_reads_back_in_linuxcncs_units_and_order() {
-        let sample = parse_recorded_line("7 -19767.034576 19767.034576 17843.444434 -17563.853064 \
-                                          0.000000 406328.615948 82081.825250 0.000000 1")
-            .unwrap();
+        let sample = parse_recorded_line(
+            "7 -19767.034576 19767.034576 17843.444434 -17563.853064 \
+                                          0.000000 406328.615948 82081.825250 0.000000 1",
+        )
+        .unwrap();
         assert_eq!(sample.number, 7);
         assert!((sample.joints[2] - 17.843444434).abs() < 1e-12);
         assert!((sample.axes[1] - 406.328615948).abs() < 1e-12);
@@ -327,8 +332,8 @@ mod tests {
             let err = read(text, RecordingStart::FirstMotion).unwrap_err().to_string();
             assert!(err.contains(expected), "{text:?}: {err}");
         }
-        let text = [line(1, [0.0; 4], false), line(2, [1.0; 4], false), line(5, [2.0; 4], false)]
-            .concat();
+        let text =
+            [line(1, [0.0; 4], false), line(2, [1.0; 4], false), line(5, [2.0; 4], false)].concat();
         let err = read(&text, RecordingStart::FirstMotion).unwrap_err().to_string();
         assert!(err.contains("line 3: samples 3 to 4 were lost"), "{err}");
     }
