@@ -5,9 +5,11 @@ For each robot file and data program: LinuxCNC's own planner with the robot file
 limits as they are (`--limits cartesian`), with the axis limits derived from the joint limits
 (`--limits derived`, the default), and `biscara joints` (time-optimal profile) played through
 the stream path (`--stream`). Prints a Markdown table: each run's duration and its largest
-joint velocity and acceleration as a share of the joint's limit (over theta1, theta2, theta3, d4).
+joint velocity and acceleration as a share of the joint's limit (the joint named), over theta1,
+theta2, theta3 and d4.
 
-Usage: scripts/linuxcnc-comparison.py [BISCARA] > table.md   (needs LinuxCNC; runs serially,
+Usage: scripts/linuxcnc-comparison.py [BISCARA [ONLY]] > table.md (ONLY: rows whose robot or program
+contains it)   (needs LinuxCNC; runs serially,
 in real time: about 20 minutes for the full table)
 """
 
@@ -36,7 +38,8 @@ MODES = [
     ("LinuxCNC, derived limits", ["--limits", "derived"]),
     ("optimal profile, streamed", ["--stream"]),
 ]
-PEAK = re.compile(r"(\w+): peak [\d.]+ \S+ of [\d.]+ \((\d+) %\), [\d.]+ \S+ of [\d.]+ \((\d+) %\)")
+PEAK = re.compile(r"(\w+): peak ([\d.]+) \S+ of ([\d.]+) \(\d+ %\), ([\d.]+) \S+ of ([\d.]+)")
+NAMES = {"theta1": "θ1", "theta2": "θ2", "theta3": "θ3", "d4": "d4"}
 DURATION = re.compile(r"LinuxCNC \w+ \S+: ([\d.]+) s")
 
 
@@ -49,16 +52,21 @@ def run(robot, program, extra):
     if done.returncode != 0:
         return "failed: " + done.stderr.strip().splitlines()[-1]
     duration = float(DURATION.search(done.stderr).group(1))
-    peaks = PEAK.findall(done.stderr)
-    velocity = max(int(v) for _, v, _ in peaks)
-    acceleration = max(int(a) for _, _, a in peaks)
-    return f"{duration:.2f} s, {velocity} % / {acceleration} %"
+    peaks = [(NAMES[joint], 100 * float(v) / float(vl), 100 * float(a) / float(al))
+             for joint, v, vl, a, al in PEAK.findall(done.stderr)]
+    velocity = max(peaks, key=lambda peak: peak[1])
+    acceleration = max(peaks, key=lambda peak: peak[2])
+    return (f"{duration:.2f} s, {velocity[0]} {velocity[1]:.1f} % / "
+            f"{acceleration[0]} {acceleration[2]:.1f} %")
 
 
 def main():
     print("| robot | program | " + " | ".join(name for name, _ in MODES) + " |")
     print("| --- | --- | " + " | ".join("---" for _ in MODES) + " |")
+    only = sys.argv[2] if len(sys.argv) > 2 else None
     for robot, program in CASES:
+        if only and only not in f"{robot} {program}":
+            continue
         cells = [run(robot, program, extra) for _, extra in MODES]
         print(f"| {robot} | {program} | " + " | ".join(cells) + " |", flush=True)
 

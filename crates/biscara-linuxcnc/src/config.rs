@@ -179,12 +179,19 @@ pub fn configuration(
             file("sim.hal", SIM_HAL, false),
             file("hardware.hal", HARDWARE_HAL, false),
             file(RUNNER_FILE, RUNNER, true),
-            ConfigFile { name: "biscara.tbl", contents: String::new(), executable: false },
+            ConfigFile { name: "biscara.tbl", contents: tool_table(), executable: false },
             ConfigFile { name: "biscara.var", contents: parameters(model), executable: false },
             file("README.md", README, false),
         ],
         limits,
     })
+}
+
+/// The tool table: tools 1 to 99 in pockets 1 to 99, of zero length and diameter (what
+/// `biscara interpret` assumes without a tool table), so that a program's `T1 M6` runs; replace
+/// it with the real tools' lengths for G43.
+fn tool_table() -> String {
+    (1..=99).map(|tool| format!("T{tool} P{tool} Z0 D0 ;tool {tool}\n")).collect()
 }
 
 /// The parameter file: G28's and G30's positions (parameters 5161–5169 and 5181–5189, in

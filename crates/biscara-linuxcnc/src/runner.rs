@@ -362,11 +362,15 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
         .stderr(log_err)
         // The script copies its logs into $HOME on an error: keep them in the run folder.
         .env("HOME", &folder)
-        .env("RTAPI_UID", std::env::var("RTAPI_UID").unwrap_or_else(|_| "65534".to_owned()))
-        .env("RTAPI_FIFO_PATH", folder.join("fifo").join("fifo"))
         .env("BISCARA_SAMPLES", run.samples())
         .env("BISCARA_RESULT", folder.join("result.json"))
         .env("BISCARA_TIMEOUT", format!("{}", request.timeout));
+    if is_root() {
+        // As root, LinuxCNC's non-realtime threads run as RTAPI_UID (any user: `nobody` unless
+        // the caller says), which must be able to write its FIFO (a folder open to all).
+        let uid = std::env::var("RTAPI_UID").unwrap_or_else(|_| "65534".to_owned());
+        command.env("RTAPI_UID", uid).env("RTAPI_FIFO_PATH", folder.join("fifo").join("fifo"));
+    }
     if let Some(program) = &request.program {
         let program = fs::canonicalize(program).map_err(|err| LinuxcncError::io(program, err))?;
         command.env("BISCARA_PROGRAM", program);
