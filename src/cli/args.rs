@@ -103,14 +103,14 @@ pub(crate) struct PlacementArgs {
 #[derive(Debug, Args)]
 pub(crate) struct DialectArgs {
     /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
-    /// (Marlin and RepRap printer firmware), `mach3`, or `auto` to decide from the program (the
-    /// choice and its reason are noted on stderr).
+    /// (Marlin and RepRap printer firmware), `mach3`, `fanuc` (Fanuc and Haas controls), or
+    /// `auto` to decide from the program (the choice and its reason are noted on stderr).
     #[arg(
         long,
         value_name = "DIALECT",
         default_value = "auto",
         value_parser = parse_dialect,
-        help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
+        help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
     /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,

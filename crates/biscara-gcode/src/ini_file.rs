@@ -170,6 +170,24 @@ impl IniFile {
             })
     }
 
+    /// The folders where file subroutines are looked for, as LinuxCNC reads them: `[RS274NGC]
+    /// SUBROUTINE_PATH`, then `USER_M_PATH` (each a `:`-separated list), a relative folder
+    /// taken from the INI file's own folder ([`folder`](Self::folder)), the working directory
+    /// when it has none.
+    pub fn subroutine_dirs(&self) -> Vec<PathBuf> {
+        ["SUBROUTINE_PATH", "USER_M_PATH"]
+            .into_iter()
+            .filter_map(|name| self.find("RS274NGC", name))
+            .flat_map(|list| list.split(':'))
+            .map(str::trim)
+            .filter(|dir| !dir.is_empty())
+            .map(|dir| match &self.folder {
+                Some(folder) if Path::new(dir).is_relative() => folder.join(dir),
+                _ => PathBuf::from(dir),
+            })
+            .collect()
+    }
+
     /// Whether the file has a line starting with `[section]`.
     pub fn has_section(&self, section: &str) -> bool {
         self.section_start(section).is_some()
@@ -287,6 +305,20 @@ mod tests {
         let file = ini("[EMC]\n  [PYTHON] ; plug-ins\nPATH_PREPEND = python\n");
         assert!(file.has_section("PYTHON") && file.has_section("EMC"));
         assert!(!file.has_section("python") && !file.has_section("PATH_PREPEND"));
+    }
+
+    /// LinuxCNC's own interpreter tests name their subroutine folders in the INI file
+    /// (`SUBROUTINE_PATH = .:subs`): they are read relative to the INI file's folder.
+    #[test]
+    fn subroutine_folders_start_from_the_ini_files_folder() {
+        let file = ini("[RS274NGC]\nSUBROUTINE_PATH = .:subs: /abs\nUSER_M_PATH = mcodes\n");
+        assert_eq!(file.subroutine_dirs(), ["." , "subs", "/abs", "mcodes"].map(PathBuf::from));
+        let placed = file.with_folder(PathBuf::from("/machine"));
+        assert_eq!(
+            placed.subroutine_dirs(),
+            ["/machine/.", "/machine/subs", "/abs", "/machine/mcodes"].map(PathBuf::from)
+        );
+        assert!(ini("[VARS]\nX = 1\n").subroutine_dirs().is_empty());
     }
 
     #[test]

@@ -30,6 +30,8 @@ mod canned;
 mod control;
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
+/// The Fanuc/Haas dialect: Macro B control flow, M97, machine M-codes, look-ahead codes.
+mod fanuc;
 /// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
 mod hooks;
 /// M19, M48–M53, M62–M68 and the `$` word.
@@ -97,6 +99,10 @@ pub struct Config {
     /// every tool has zero length and diameter ([`Interpreter::tools_without_table`] says
     /// whether the program used them).
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
+    /// How many times the program may jump back (a loop's turn, a subroutine call, a `GOTO`)
+    /// without a motion in between before it is stopped as an endless loop
+    /// ([`MAX_IDLE_JUMPS`](crate::MAX_IDLE_JUMPS) by default).
+    pub max_idle_jumps: u64,
     /// LinuxCNC's INI file (`--ini`): the values of `#<_ini[SECTION]NAME>` (its INI_VARS
     /// feature), read-only, and the Python plug-ins its `[PYTHON]` section loads (a program's
     /// Python runs only with them; read the file with [`IniFile::read`] so that their relative
@@ -117,6 +123,7 @@ impl Default for Config {
             infer_tool: false,
             blend: None,
             tool_table: None,
+            max_idle_jumps: crate::MAX_IDLE_JUMPS,
             ini: None,
         }
     }
@@ -183,6 +190,8 @@ pub struct Interpreter<R> {
     zeroed_at_start: [bool; 4],
     /// O-word control flow.
     control: Box<control::Control>,
+    /// The Fanuc dialect's control flow (GOTO, WHILE … DO, M97).
+    fanuc: fanuc::Fanuc,
     /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
     python: Option<Box<python::Python>>,
 }
@@ -448,7 +457,11 @@ impl<R: BufRead> Interpreter<R> {
             pending_extrude: None,
             moved: false,
             zeroed_at_start: [false; 4],
-            control: Box::default(),
+            control: Box::new(control::Control::new(
+                config.ini.as_deref().map(IniFile::subroutine_dirs).unwrap_or_default(),
+                config.max_idle_jumps,
+            )),
+            fanuc: fanuc::Fanuc::default(),
             python: config
                 .ini
                 .as_deref()
@@ -503,10 +516,16 @@ impl<R: BufRead> Interpreter<R> {
                 if let Some(err) = self.control_end() {
                     return Err(err);
                 }
+                if let Some((target, line)) = self.fanuc.seeking {
+                    return Err(GcodeError::NoBlockNumber { line, target });
+                }
                 if self.dialect != Dialect::Linuxcnc {
                     self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
                 }
                 return self.end_of_input();
+            }
+            if self.provisional && self.lines.line.len() > MAX_LINE {
+                self.long_line_decides();
             }
             if self.lines.too_long {
                 let max = self.lines.max;
@@ -516,6 +535,9 @@ impl<R: BufRead> Interpreter<R> {
                 });
             }
             let trimmed = self.lines.line.trim_ascii();
+            if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
+                continue;
+            }
             if self.percent == Percent::Unknown {
                 if trimmed.first() == Some(&b'%') {
                     self.percent = Percent::Open;
@@ -542,13 +564,16 @@ impl<R: BufRead> Interpreter<R> {
                 continue;
             }
             let inner = match self.dialect {
-                Dialect::Mach3 | Dialect::Marlin => InnerParen::Opens,
+                Dialect::Mach3 | Dialect::Marlin | Dialect::Fanuc => InnerParen::Opens,
                 Dialect::Grbl => InnerParen::Ignored,
                 _ => InnerParen::Refused,
             };
             if let Err(fault) = compact(&self.lines.line, &mut self.compact, inner) {
                 // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
                 // characters until ')' or EOL"): closed there, the line is read.
+                if self.fanuc_seeking() {
+                    continue;
+                }
                 if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
                     return Err(self.error(fault));
                 }
@@ -562,8 +587,18 @@ impl<R: BufRead> Interpreter<R> {
             if self.block_delete && self.compact.bytes()[0] == b'/' {
                 continue;
             }
+            if self.dialect == Dialect::Fanuc
+                && let fanuc::FanucLine::Done =
+                    self.fanuc_line().map_err(|fault| self.error(fault))?
+            {
+                if !self.queue.is_empty() {
+                    return Ok(());
+                }
+                continue;
+            }
             let bytes = self.compact.bytes();
-            let g65 = self.dialect == Dialect::Mach3 && control::may_call_g65(bytes);
+            let g65 = matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
+                && control::may_call_g65(bytes);
             if (self.control.engaged() || control::may_control(bytes) || g65)
                 && self.control_line()?
             {
@@ -740,6 +775,14 @@ impl<R: BufRead> Interpreter<R> {
         }
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
+        // A move somewhere else or a wait ends a run of jumps without motion.
+        let end = kind.end();
+        if (end.is_some() && end != self.control.last_end)
+            || matches!(kind, MotionKind::Dwell { seconds } if seconds > 0.0)
+        {
+            self.control.idle_jumps = 0;
+            self.control.last_end = end.or(self.control.last_end);
+        }
         let blend = kind.end().and(self.state.blend);
         let naive_cam = self.naive_cam(&kind, blend);
         let motion = Motion { line: self.state.line, kind, extrude, blend, naive_cam };

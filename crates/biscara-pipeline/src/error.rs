@@ -145,6 +145,17 @@ pub enum Note {
         /// Each code or feature and how many lines use it.
         codes: BTreeMap<String, usize>,
     },
+    /// The program uses what LinuxCNC refuses and its firmware runs (Mach3's bare axis words
+    /// after G80, its G53 without a move), read as that firmware runs it; one note with the
+    /// counts.
+    Adapted {
+        /// The program's name.
+        file: String,
+        /// The dialect the program was read in.
+        dialect: Dialect,
+        /// Each reading and how many lines use it.
+        codes: BTreeMap<String, usize>,
+    },
     /// The program probes (G38.2–G38.5): run as LinuxCNC's `rs274` simulates probing, with no
     /// probe that trips; one note with the counts.
     Probes {
@@ -263,6 +274,11 @@ impl fmt::Display for Note {
                 f,
                 "{file}: {dialect} itself refuses these (its error 20, unsupported command); read \
                  here as LinuxCNC reads them, so the program runs here but not on that machine: {}",
+                Counted(codes)
+            ),
+            Note::Adapted { file, dialect, codes } => write!(
+                f,
+                "{file}: read as {dialect} runs them (LinuxCNC would refuse them): {}",
                 Counted(codes)
             ),
             Note::Probes { file, dialect: Dialect::Linuxcnc, codes } => write!(

@@ -228,6 +228,11 @@ impl<R: BufRead> GcodeMotions<R> {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
             self.notes.say(Note::UnknownCodes { file, dialect, codes: summary.unknown.clone() });
         }
+        if !summary.adapted.is_empty() {
+            let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
+            let codes = summary.adapted.clone();
+            self.notes.say(Note::Adapted { file, dialect, codes });
+        }
         if !summary.refused_by_firmware.is_empty() {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
             let codes = summary.refused_by_firmware.clone();

@@ -194,11 +194,18 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// The INI file's `[RS274NGC] SUBROUTINE_PATH` and `USER_M_PATH` folders, after `dirs`.
+    ini_dirs: Vec<PathBuf>,
     /// The loops of the main program being run (for an input read only forwards, whose lines
     /// are kept while a loop runs).
     open_loops: Vec<Rc<str>>,
     /// Whether the lines of an input read only forwards are being kept (`Some(true)`: for good).
     recording: Option<bool>,
+    /// Jumps back since the last motion, and how many are allowed.
+    pub(super) idle_jumps: u64,
+    max_idle_jumps: u64,
+    /// The end point of the last motion (a move to where the robot is is no motion).
+    pub(super) last_end: Option<[f64; 4]>,
     /// A call in the main program reads on to find its subroutine: the lines from the call on
     /// are kept (an input read only forwards), to come back to.
     forward: bool,
@@ -221,14 +228,24 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            ini_dirs: Vec::new(),
             open_loops: Vec::new(),
             recording: None,
+            idle_jumps: 0,
+            max_idle_jumps: crate::MAX_IDLE_JUMPS,
+            last_end: None,
             forward: false,
         }
     }
 }
 
 impl Control {
+    /// The state before the first line, with the INI file's subroutine folders `ini_dirs` and
+    /// `max_idle_jumps` jumps back allowed without a motion.
+    pub(super) fn new(ini_dirs: Vec<PathBuf>, max_idle_jumps: u64) -> Control {
+        Control { ini_dirs, max_idle_jumps, ..Control::default() }
+    }
+
     /// Whether lines are being skipped (then every line goes through the control flow).
     pub(super) fn engaged(&self) -> bool {
         self.skipping_o.is_some() || self.skipping_to_sub.is_some()
@@ -333,7 +350,7 @@ fn g65_argument(letter: u8) -> Option<usize> {
 }
 
 /// Where the first item of a line starts (after `/` and the N number).
-fn first_item(bytes: &[u8]) -> usize {
+pub(super) fn first_item(bytes: &[u8]) -> usize {
     let mut at = usize::from(bytes.first() == Some(&b'/'));
     if bytes.get(at) == Some(&b'n') {
         at += 1;
@@ -392,7 +409,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (self.dialect != Dialect::Mach3 || skipping) {
+        if g65 && (!matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -781,8 +798,23 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// One more jump back (a loop's turn, a call) since the last motion: an error once there
+    /// have been more than [`Config::max_idle_jumps`](crate::Config::max_idle_jumps), naming
+    /// `loop_line`, the line jumped to — an endless loop that never moves would run forever.
+    pub(super) fn count_jump(&mut self, loop_line: usize) -> Result<(), Fault> {
+        self.control.idle_jumps += 1;
+        if self.control.idle_jumps > self.control.max_idle_jumps {
+            return Err(self.line_fault(format!(
+                "the loop at line {loop_line} has jumped back {} times without a motion: an \
+                 endless loop (the bound is configurable)",
+                self.control.max_idle_jumps
+            )));
+        }
+        Ok(())
+    }
+
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
-    fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
+    pub(super) fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
         if let Err(err) = self.lines.seek(offset) {
             let message = if self.control.file.is_none() && !self.lines.can_jump() {
                 format!(
@@ -804,6 +836,7 @@ impl<R: BufRead> Interpreter<R> {
     /// `NAME.ngc` if there is one (`control_back_to`).
     fn back_to(&mut self, name: &Rc<str>) -> Result<(), Fault> {
         if let Some(label) = self.label_of(name).cloned() {
+            self.count_jump(label.line)?;
             self.switch_to(label.file)?;
             return self.go_to(label.offset, label.line - 1);
         }
@@ -823,7 +856,8 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder.
+    /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder, else in one the INI
+    /// file names.
     fn find_file(&self, name: &str) -> Result<Option<PathBuf>, Fault> {
         if name.contains('/') || name.contains("..") || name.contains('\\') {
             return Err(self.line_fault(format!(
@@ -841,6 +875,7 @@ impl<R: BufRead> Interpreter<R> {
         Ok(beside
             .into_iter()
             .chain(self.control.dirs.iter().map(PathBuf::as_path))
+            .chain(self.control.ini_dirs.iter().map(PathBuf::as_path))
             .map(|dir| dir.join(&file))
             .find(|path| path.is_file()))
     }
@@ -967,7 +1002,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if self.dialect == Dialect::Mach3
+            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {

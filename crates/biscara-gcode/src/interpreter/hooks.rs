@@ -126,9 +126,34 @@ impl<R: BufRead> Interpreter<R> {
                 self.detection = Some(detection);
                 self.apply_dialect();
             }
-            None => self.provisional = true,
+            None => {
+                self.provisional = true;
+                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
+                self.lines.max = MAX_LONG_LINE;
+            }
         }
         Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
+    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer (a long
+    /// command is refused either way). Every line before read the same in both.
+    #[cold]
+    pub(super) fn long_line_decides(&mut self) {
+        self.provisional = false;
+        self.dialect = Dialect::Grbl;
+        self.detection = Some(Detection {
+            dialect: Dialect::Grbl,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
+                 LinuxCNC's {MAX_LINE} characters, which Grbl reads, dropping its comment",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
     }
 
     /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
@@ -231,6 +256,9 @@ impl<R: BufRead> Interpreter<R> {
     /// A dialect's changes to the block just read; `Ok(true)` when the block is done with.
     pub(super) fn adapt_block(&mut self) -> Result<bool, Fault> {
         if self.dialect != Dialect::Marlin {
+            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) {
+                self.adapt_fanuc_block();
+            }
             return Ok(false);
         }
         // One command per line: later G and M words are the command's parameters.
