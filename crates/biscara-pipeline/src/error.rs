@@ -306,6 +306,16 @@ impl fmt::Display for Note {
                 "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
                  given: every tool has zero length and diameter"
             ),
+            Note::SlowedDown { file, slow } if slow.cause == biscara_interpolate::PLANNER_FALLBACK => {
+                write!(
+                    f,
+                    "{file}:{}: the time-optimal planner found no timing along this move (its \
+                     bounds admit no motion somewhere on it): timed instead with the trapezoid \
+                     profile at {:.1}% of the programmed speed, within the joints' speed limits",
+                    slow.line,
+                    100.0 * slow.factor
+                )
+            }
             Note::SlowedDown { file, slow } => write!(
                 f,
                 "{file}:{}: slowed to {:.1}% of the programmed speed ({} limit)",

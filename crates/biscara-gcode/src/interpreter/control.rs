@@ -806,7 +806,7 @@ impl<R: BufRead> Interpreter<R> {
         if self.control.idle_jumps > self.control.max_idle_jumps {
             return Err(self.line_fault(format!(
                 "the loop at line {loop_line} has jumped back {} times without a motion: an \
-                 endless loop (the bound is configurable)",
+                 endless loop? (that many jumps back without a motion are allowed)",
                 self.control.max_idle_jumps
             )));
         }
