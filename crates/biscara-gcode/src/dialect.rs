@@ -220,10 +220,7 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         if machine_m.is_none() && has_machine_m(&code) {
             machine_m = Some(located("a machine M-code only Fanuc and Haas controls have"));
         }
-        if long_comment.is_none()
-            && raw.len() > crate::lexer::MAX_LINE
-            && code.iter().filter(|b| !b.is_ascii_whitespace()).count() <= crate::lexer::MAX_LINE
-        {
+        if long_comment.is_none() && long_only_in_comment(raw) {
             long_comment = Some((line, raw.len()));
         }
         if content.is_none() || other.is_none() {
@@ -292,6 +289,23 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         }
         (content, _) => content,
     }
+}
+
+/// Whether a line is longer than LinuxCNC's limit only by its comment: text, with at most that
+/// many characters outside comments (and not counting blanks), which Grbl, Marlin and Mach3
+/// read and LinuxCNC refuses.
+pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
+    if raw.len() <= crate::lexer::MAX_LINE {
+        return false;
+    }
+    let text = std::str::from_utf8(raw)
+        .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t' || c == '\r'));
+    if !text {
+        return false;
+    }
+    let (code, comment) = split_comment(&raw.to_ascii_lowercase());
+    !comment.is_empty()
+        && code.iter().filter(|b| !b.is_ascii_whitespace()).count() <= crate::lexer::MAX_LINE
 }
 
 /// The evidence an `O0001` line gives (Mach3's, and Fanuc's).

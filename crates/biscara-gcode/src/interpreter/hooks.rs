@@ -146,7 +146,8 @@ impl<R: BufRead> Interpreter<R> {
             dialect: Dialect::Grbl,
             reason: format!(
                 "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
-                 LinuxCNC's {MAX_LINE} characters, which Grbl reads, dropping its comment",
+                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
+                 its line buffer",
                 LOOKAHEAD_BYTES / 1024,
                 self.lines.number
             ),
