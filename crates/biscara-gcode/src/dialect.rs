@@ -323,9 +323,11 @@ fn fanuc_evidence(code: &[u8]) -> Option<&'static str> {
         &squeezed[at..]
     };
     let keyword = |word: &[u8]| {
-        first.starts_with(word) && first.get(word.len()).is_some_and(|b| *b == b'[' || b.is_ascii_digit())
+        first.starts_with(word)
+            && first.get(word.len()).is_some_and(|b| *b == b'[' || b.is_ascii_digit())
     };
-    if keyword(b"if") || keyword(b"while") || keyword(b"goto") || keyword(b"end") || keyword(b"do") {
+    if keyword(b"if") || keyword(b"while") || keyword(b"goto") || keyword(b"end") || keyword(b"do")
+    {
         return Some("Macro B control flow (IF, WHILE … DO, GOTO, END)");
     }
     for (at, &byte) in squeezed.iter().enumerate() {

@@ -457,10 +457,7 @@ impl<R: BufRead> Interpreter<R> {
             pending_extrude: None,
             moved: false,
             zeroed_at_start: [false; 4],
-            control: Box::new(control::Control::new(
-                config.ini.as_deref().map(IniFile::subroutine_dirs).unwrap_or_default(),
-                config.max_idle_jumps,
-            )),
+            control: Box::new(control::Control::new(config.ini.as_deref(), config.max_idle_jumps)),
             fanuc: fanuc::Fanuc::default(),
             python: config
                 .ini
@@ -974,8 +971,23 @@ impl<R: BufRead> Interpreter<R> {
             self.overrides()?;
         }
         // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
+        // With an INI file that says where the programs are, one that is not there is
+        // LinuxCNC's unknown M code.
         if let Some(code) = self.block.m[10] {
-            self.record(&format!("M{}", code.code), true);
+            let name = format!("M{}", code.code);
+            if let Some(dirs) = self.control.user_m_dirs()
+                && (100..200).contains(&code.code)
+                && !dirs.iter().any(|dir| dir.join(&name).is_file())
+            {
+                return Err(self.code_fault(
+                    code,
+                    format!(
+                        "Unknown M code used: {name} (no program {name} in the INI file's \
+                         USER_M_PATH or PROGRAM_PREFIX)"
+                    ),
+                ));
+            }
+            self.record(&name, true);
         }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)

@@ -306,7 +306,9 @@ impl fmt::Display for Note {
                 "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
                  given: every tool has zero length and diameter"
             ),
-            Note::SlowedDown { file, slow } if slow.cause == biscara_interpolate::PLANNER_FALLBACK => {
+            Note::SlowedDown { file, slow }
+                if slow.cause == biscara_interpolate::PLANNER_FALLBACK =>
+            {
                 write!(
                     f,
                     "{file}:{}: the time-optimal planner found no timing along this move (its \

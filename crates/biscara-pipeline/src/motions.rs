@@ -174,7 +174,9 @@ impl<R: BufRead> GcodeMotions<R> {
         let mut snippet = err.location().map(|location| location.snippet());
         if err.to_string().contains("jumps back without a motion are allowed") {
             snippet = snippet.map(|snippet| {
-                format!("{snippet}\n(--max-idle-jumps N allows more, for a loop that computes long)")
+                format!(
+                    "{snippet}\n(--max-idle-jumps N allows more, for a loop that computes long)"
+                )
             });
         }
         if let Some(detection) =

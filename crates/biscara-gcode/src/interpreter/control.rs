@@ -194,8 +194,11 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
-    /// The INI file's `[RS274NGC] SUBROUTINE_PATH` and `USER_M_PATH` folders, after `dirs`.
+    /// The INI file's `[RS274NGC] SUBROUTINE_PATH` folders, after `dirs`.
     ini_dirs: Vec<PathBuf>,
+    /// Where the user M-codes' programs are (`USER_M_PATH`, `PROGRAM_PREFIX`), when the INI
+    /// file says.
+    user_m_dirs: Option<Vec<PathBuf>>,
     /// The loops of the main program being run (for an input read only forwards, whose lines
     /// are kept while a loop runs).
     open_loops: Vec<Rc<str>>,
@@ -229,6 +232,7 @@ impl Default for Control {
             program: None,
             dirs: Vec::new(),
             ini_dirs: Vec::new(),
+            user_m_dirs: None,
             open_loops: Vec::new(),
             recording: None,
             idle_jumps: 0,
@@ -240,10 +244,20 @@ impl Default for Control {
 }
 
 impl Control {
-    /// The state before the first line, with the INI file's subroutine folders `ini_dirs` and
+    /// Where the user M-codes' programs are, when the INI file says.
+    pub(super) fn user_m_dirs(&self) -> Option<&[PathBuf]> {
+        self.user_m_dirs.as_deref()
+    }
+
+    /// The state before the first line, with the folders the INI file `ini` names and
     /// `max_idle_jumps` jumps back allowed without a motion.
-    pub(super) fn new(ini_dirs: Vec<PathBuf>, max_idle_jumps: u64) -> Control {
-        Control { ini_dirs, max_idle_jumps, ..Control::default() }
+    pub(super) fn new(ini: Option<&crate::IniFile>, max_idle_jumps: u64) -> Control {
+        Control {
+            ini_dirs: ini.map(crate::IniFile::subroutine_dirs).unwrap_or_default(),
+            user_m_dirs: ini.and_then(crate::IniFile::user_m_dirs),
+            max_idle_jumps,
+            ..Control::default()
+        }
     }
 
     /// Whether lines are being skipped (then every line goes through the control flow).

@@ -287,12 +287,16 @@ impl<R: BufRead> Interpreter<R> {
         let open = at + 5;
         let close = closing_bracket(bytes, open)
             .ok_or_else(|| self.fault_at(open, bytes.len(), "WHILE's [condition] is not closed"))?;
-        let Some((number, end)) =
-            bytes.get(close + 1..).filter(|rest| rest.starts_with(b"do")).and_then(|_| {
-                integer_at(bytes, close + 3)
-            })
+        let Some((number, end)) = bytes
+            .get(close + 1..)
+            .filter(|rest| rest.starts_with(b"do"))
+            .and_then(|_| integer_at(bytes, close + 3))
         else {
-            return Err(self.fault_at(at, bytes.len(), "WHILE [condition] must be followed by DO n"));
+            return Err(self.fault_at(
+                at,
+                bytes.len(),
+                "WHILE [condition] must be followed by DO n",
+            ));
         };
         let condition = bytes[open..=close].to_vec();
         self.fanuc_loop_start(at, end, number, condition)
@@ -324,7 +328,11 @@ impl<R: BufRead> Interpreter<R> {
         let (number, end) = integer_at(bytes, at + 3).unwrap_or((0, bytes.len()));
         let Some(&(_, line)) = self.fanuc.loops.iter().rev().find(|(other, _)| *other == number)
         else {
-            return Err(self.fault_at(at, end, format!("END {number} with no DO {number} before it")));
+            return Err(self.fault_at(
+                at,
+                end,
+                format!("END {number} with no DO {number} before it"),
+            ));
         };
         let text = format!("o<fanuc_do{number}_line{line}>endwhile").into_bytes();
         if !self.compact.replace(at..end, &text) {
@@ -360,7 +368,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         if operator {
             // Within the line's length (a longer one is refused by the block reader as is).
-            if self.compact.replace(end..end, b"]") && !self.compact.replace(equals + 1..equals + 1, b"[")
+            if self.compact.replace(end..end, b"]")
+                && !self.compact.replace(equals + 1..equals + 1, b"[")
             {
                 self.compact.remove(end..end + 1);
             }
@@ -406,9 +415,8 @@ impl<R: BufRead> Interpreter<R> {
     /// `M97 P n [L k]`: runs the same program's block `N n` to its M99, `k` times.
     fn fanuc_m97(&mut self, at: usize) -> Result<FanucLine, Fault> {
         let bytes = self.compact.bytes();
-        let word = |letter: u8| {
-            bytes[at + 3..].iter().position(|&b| b == letter).map(|i| at + 3 + i + 1)
-        };
+        let word =
+            |letter: u8| bytes[at + 3..].iter().position(|&b| b == letter).map(|i| at + 3 + i + 1);
         let (p, l) = (word(b'p'), word(b'l'));
         let Some(p) = p else {
             return Err(self.fault_at(at, at + 3, "M97 needs P, the block number to call"));

@@ -5,8 +5,8 @@ use std::convert::Infallible;
 
 use approx::assert_relative_eq;
 use biscara_interpolate::{
-    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, JointBound,
-    NoSpeedLimit, PLANNER_FALLBACK, Profile, RateLimit, Segment, SlowDown, SpeedLimit,
+    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, JointBound, NoSpeedLimit,
+    PLANNER_FALLBACK, Profile, RateLimit, Segment, SlowDown, SpeedLimit,
 };
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use proptest::prelude::*;
