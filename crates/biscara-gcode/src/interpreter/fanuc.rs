@@ -521,10 +521,11 @@ impl<R: BufRead> Interpreter<R> {
             self.block.letters[letter(b'p')] = seconds;
         }
         let cycle = self.block.g[1].map(|code| code.code).or(self.state.motion);
-        if cycle.is_some_and(repeats_in_k) && self.block.letters[letter(b'l')].is_none() {
-            if let Some(k) = self.block.letters[letter(b'k')].take() {
-                self.block.letters[letter(b'l')] = Some(k);
-            }
+        if cycle.is_some_and(repeats_in_k)
+            && self.block.letters[letter(b'l')].is_none()
+            && let Some(k) = self.block.letters[letter(b'k')].take()
+        {
+            self.block.letters[letter(b'l')] = Some(k);
         }
     }
 }

@@ -151,7 +151,7 @@ fn endless_loops_without_motion_stop_at_the_bound() {
     // A loop that moves streams: 1000 moves are read, and more would follow.
     let moving = "G21\no1 while [1]\nG0 X0\nG0 X1\no1 endwhile\nM2\n";
     let moves = interpret_seekable(Cursor::new(moving), &bounded).take(1000);
-    assert!(moves.map(|m| m.expect("a move")).count() == 1000);
+    assert_eq!(moves.filter(Result::is_ok).count(), 1000);
     // A Fanuc GOTO loop.
     let fanuc = Config { max_idle_jumps: 50, ..config(Dialect::Fanuc) };
     let err = refused("G21\nN10 #1=#1+1\nGOTO 10\nM30\n", &fanuc);
@@ -168,7 +168,7 @@ fn a_utf8_byte_order_mark_is_skipped() {
     let auto = Config { dialect: Dialect::Auto, ..config(Dialect::Auto) };
     let marlin = "\u{feff};FLAVOR:Marlin\nG1 X1 E1 F100\n";
     let mut interpreter = interpret(marlin.as_bytes(), &auto);
-    assert!((&mut interpreter).all(|r| r.is_ok()));
+    assert!(interpreter.all(|r| r.is_ok()));
     assert_eq!(interpreter.detection().map(|d| d.dialect), Some(Dialect::Marlin));
 }
 
@@ -186,7 +186,7 @@ fn a_line_long_only_in_its_comment_says_grbl() {
     assert!(detection.reason.contains("only in its comment"), "{}", detection.reason);
     let far = format!("{}; {}\nG0 X2\n", "G0 X1\n".repeat(12_000), "c".repeat(300));
     let mut interpreter = interpret(far.as_bytes(), &auto);
-    assert!((&mut interpreter).all(|r| r.is_ok()));
+    assert!(interpreter.all(|r| r.is_ok()));
     assert_eq!(interpreter.detection().map(|d| d.dialect), Some(Dialect::Grbl));
     // A long command is refused as before.
     let long = format!("G21\nG0 X{}\nM2\n", "1".repeat(300));
