@@ -778,13 +778,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
         self.moved = true;
-        // A move somewhere else or a wait ends a run of jumps without motion.
-        let end = kind.end();
-        if (end.is_some() && end != self.control.last_end)
-            || matches!(kind, MotionKind::Dwell { seconds } if seconds > 0.0)
-        {
-            self.control.idle_jumps = 0;
-            self.control.last_end = end.or(self.control.last_end);
+        if self.control.idle_jumps != 0 {
+            self.moved_since_jump(&kind);
         }
         let blend = kind.end().and(self.state.blend);
         let naive_cam = self.naive_cam(&kind, blend);

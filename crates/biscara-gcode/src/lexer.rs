@@ -366,6 +366,16 @@ impl<R: BufRead> LineReader<R> {
         }
     }
 
+    /// A UTF-8 byte-order mark (Estlcam writes one) at the start of the first line is no
+    /// character of the program.
+    #[cold]
+    #[inline(never)]
+    fn skip_byte_order_mark(&mut self) {
+        if self.line.starts_with(UTF8_BOM) {
+            self.line.drain(..UTF8_BOM.len());
+        }
+    }
+
     /// The byte offset of the line after the current one.
     pub(crate) fn next_offset(&self) -> u64 {
         self.next
@@ -417,9 +427,8 @@ impl<R: BufRead> LineReader<R> {
         }
         match read {
             Some(too_long) => {
-                // A UTF-8 byte-order mark (Estlcam writes one) is no character of the program.
-                if self.start == 0 && self.line.starts_with(UTF8_BOM) {
-                    self.line.drain(..UTF8_BOM.len());
+                if self.start == 0 {
+                    self.skip_byte_order_mark();
                 }
                 self.number += 1;
                 self.too_long = too_long;

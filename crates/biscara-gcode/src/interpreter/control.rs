@@ -827,6 +827,22 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
+    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
+    /// without loops pays one test a motion; the first move after a jump may compare with an
+    /// older end point, and then there was a motion since.)
+    #[cold]
+    pub(super) fn moved_since_jump(&mut self, kind: &biscara_motion::MotionKind) {
+        let end = kind.end();
+        let waits = matches!(*kind, biscara_motion::MotionKind::Dwell { seconds } if seconds > 0.0);
+        if (end.is_some() && end != self.control.last_end) || waits {
+            self.control.idle_jumps = 0;
+        }
+        if end.is_some() {
+            self.control.last_end = end;
+        }
+    }
+
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
     pub(super) fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
         if let Err(err) = self.lines.seek(offset) {
