@@ -522,13 +522,7 @@ impl<R: BufRead> Interpreter<R> {
                 return self.end_of_input();
             }
             if self.provisional && self.lines.line.len() > MAX_LINE {
-                if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
-                    return Err(GcodeError::LineTooLong {
-                        at: self.location(MAX_LINE, MAX_LINE + 1),
-                        max: MAX_LINE,
-                    });
-                }
-                self.long_line_decides();
+                self.long_line_decides()?;
             }
             if self.lines.too_long {
                 let max = self.lines.max;

@@ -136,10 +136,18 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
-    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer (a long
-    /// command is refused either way). Every line before read the same in both.
+    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
+    /// long only in its comment decides Grbl (every line before read the same in both); a long
+    /// command is refused as LinuxCNC refuses it.
     #[cold]
-    pub(super) fn long_line_decides(&mut self) {
+    #[inline(never)]
+    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
+        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
+            return Err(GcodeError::LineTooLong {
+                at: self.location(MAX_LINE, MAX_LINE + 1),
+                max: MAX_LINE,
+            });
+        }
         self.provisional = false;
         self.dialect = Dialect::Grbl;
         self.detection = Some(Detection {
@@ -155,6 +163,7 @@ impl<R: BufRead> Interpreter<R> {
             makerbot: false,
         });
         self.apply_dialect();
+        Ok(())
     }
 
     /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
