@@ -1,10 +1,14 @@
 //! Dialect detection and each dialect's reader on arbitrary bytes: the first byte chooses the
-//! dialect (auto, linuxcnc, grbl, marlin, mach3), the rest is the program. Detection must agree
-//! with the interpreter's `auto` choice when it decides from the look-ahead, and no reader may
-//! panic, hang or emit a number that is not finite.
+//! dialect (auto, linuxcnc, grbl, marlin, mach3, fanuc), the rest is the program, read from an
+//! input it can jump in (Fanuc's GOTO and M97, O-word loops). Detection must agree with the
+//! interpreter's `auto` choice when it decides from the look-ahead, and no reader may panic,
+//! hang (a loop without motion stops at its bound; one that moves is read for 100 000 motions)
+//! or emit a number that is not finite.
 #![no_main]
 
-use biscara::gcode::{Config, Dialect, Tool, detect_dialect, interpret};
+use std::io::Cursor;
+
+use biscara::gcode::{Config, Dialect, Tool, detect_dialect, interpret_seekable};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -16,9 +20,15 @@ fuzz_target!(|data: &[u8]| {
     if let Some(detection) = &detected {
         assert_ne!(detection.dialect, Dialect::Auto);
     }
-    let config = Config { home: [0.0, 460.0, 100.0, 0.0], dialect, tool, ..Config::default() };
-    let mut interpreter = interpret(program, &config);
-    for motion in &mut interpreter {
+    let config = Config {
+        home: [0.0, 460.0, 100.0, 0.0],
+        dialect,
+        tool,
+        max_idle_jumps: 1000,
+        ..Config::default()
+    };
+    let mut interpreter = interpret_seekable(Cursor::new(program), &config);
+    for motion in (&mut interpreter).take(100_000) {
         let Ok(motion) = motion else { break };
         if let Some(end) = motion.kind.end() {
             assert!(end.iter().all(|value| value.is_finite()));

@@ -103,14 +103,14 @@ pub(crate) struct PlacementArgs {
 #[derive(Debug, Args)]
 pub(crate) struct DialectArgs {
     /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
-    /// (Marlin and RepRap printer firmware), `mach3`, or `auto` to decide from the program (the
-    /// choice and its reason are noted on stderr).
+    /// (Marlin and RepRap printer firmware), `mach3`, `fanuc` (Fanuc and Haas controls), or
+    /// `auto` to decide from the program (the choice and its reason are noted on stderr).
     #[arg(
         long,
         value_name = "DIALECT",
         default_value = "auto",
         value_parser = parse_dialect,
-        help = "auto, linuxcnc, grbl, marlin or mach3 (auto: decided from the program)"
+        help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
     /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,
@@ -158,10 +158,56 @@ pub(crate) struct GcodeFilesArgs {
         help = "LinuxCNC INI file: #<_ini[SECTION]NAME> values, [PYTHON] plug-ins"
     )]
     pub(crate) ini: Option<PathBuf>,
+    /// How many times a program may jump back (an O-word loop's turn, a subroutine call, a
+    /// Fanuc GOTO) without a motion in between before it is stopped as an endless loop, with
+    /// an error naming the loop's line.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "100000",
+        help = "Jumps back without a motion before a loop is an endless one (error)"
+    )]
+    pub(crate) max_idle_jumps: u64,
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
     text.parse::<Dialect>().map_err(|err| err.to_string())
+}
+
+/// The bound on robot time of the commands that need the whole program (check, plot, view).
+#[derive(Debug, Args)]
+pub(crate) struct TimeLimitArgs {
+    /// Stop with an error once the program has run this long in robot time (seconds; 48 h by
+    /// default): this command needs the whole program, and a program that loops forever while
+    /// moving never ends (`interpret` and `joints` stream such a program as long as it is read).
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value = "172800",
+        value_parser = parse_time_limit,
+        help = "Most robot time to sample, s (default 48 h): an endless program stops here"
+    )]
+    pub(crate) time_limit: f64,
+}
+
+impl TimeLimitArgs {
+    /// An error once `t` (s) is past the limit, naming the program `name` and the sample's
+    /// `line`.
+    pub(crate) fn check(&self, name: &str, t: f64, line: usize) -> anyhow::Result<()> {
+        if t > self.time_limit {
+            anyhow::bail!(
+                "{name}:{line}: the program has run {} s of robot time, past --time-limit: an \
+                 endless loop that moves? This command needs the whole program (interpret and \
+                 joints stream it)",
+                self.time_limit
+            );
+        }
+        Ok(())
+    }
+}
+
+fn parse_time_limit(text: &str) -> Result<f64, String> {
+    number_in(text, 0.0..=1e9, "the time limit", "[0, 1e9] s")
 }
 
 /// Options shared by the commands that sample a program in time.
@@ -217,6 +263,7 @@ pub(crate) fn placed_reading(
         subroutine_path: files.subroutine_path.clone(),
         tool_table: files.tool_table.as_deref().map(ToolTable::read).transpose()?.map(Arc::new),
         ini: files.ini.as_deref().map(IniFile::read).transpose()?.map(Arc::new),
+        max_idle_jumps: files.max_idle_jumps,
         ..SamplingConfig::default()
     })
 }

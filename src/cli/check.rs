@@ -7,7 +7,7 @@ use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Checker;
 use clap::Args;
 
-use super::args::{ProgramArgs, SamplingArgs};
+use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::NoteReporter;
 use super::files::{load_scene, write_output};
 
@@ -48,6 +48,8 @@ pub(crate) struct CheckArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    time_limit: TimeLimitArgs,
 }
 
 pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> {
@@ -60,6 +62,7 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let tool = samples.tool();
     for sample in samples {
         let (sample, state) = sample?;
+        args.time_limit.check(source.name(), sample.t, sample.line)?;
         checker.push(&sample);
         if let Some((subject, detail, severity)) = state.problem(tool) {
             checker.push_tool_problem(&sample, subject, detail, severity);

@@ -10,7 +10,7 @@ use biscara::view::{
 };
 use clap::Args;
 
-use super::args::{ProgramArgs, SamplingArgs};
+use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{format_of, load_scene, write_output};
 
@@ -54,6 +54,8 @@ pub(crate) struct PlotArgs {
     step: f64,
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    time_limit: TimeLimitArgs,
 }
 
 fn parse_time(text: &str) -> Result<f64, String> {
@@ -81,6 +83,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let mut process = ProcessStrokes::default();
     for sample in samples {
         let (sample, state) = sample?;
+        args.time_limit.check(source.name(), sample.t, sample.line)?;
         trace.push(&sample);
         let point = [sample.pose[0], sample.pose[1]];
         process.push(point, sample.line, state.strength(tool, max_power));

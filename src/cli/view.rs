@@ -117,6 +117,12 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let max_power = model.robot().tool.max_power;
     for sample in samples {
         let (sample, state) = sample?;
+        // Past the trajectory's end nothing is shown: a program that runs longer (one that
+        // loops forever while moving) is sampled no further, and the warning below says so.
+        if sample.t > duration + 1.0 {
+            end = sample.t;
+            break;
+        }
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
         if tool != Tool::Gripper {
             let strength = state.strength(tool, max_power);

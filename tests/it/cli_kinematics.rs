@@ -26,6 +26,29 @@ fn ik_then_fk_gives_the_pose_back() {
     }
 }
 
+/// `fk` prints c wrapped into (−180°, 180°], as `ik` reads it: `fk(ik(p))` is p for a c given
+/// outside that range too (it printed −320.107 for a pose `ik` was given as 39.893).
+#[test]
+fn fk_prints_c_wrapped_as_ik_reads_it() {
+    let dir = temp_dir("fk-wrap");
+    for (given, printed) in [(39.893, 39.893), (-320.107, 39.893), (200.0, -160.0), (-180.0, 180.0)]
+    {
+        let c = format!("{given}");
+        let ik = biscara(&dir, &["ik", "100", "300", "10", &c]);
+        ik.success();
+        let mut args = vec!["fk".to_owned()];
+        args.extend(numbers(&ik.stdout).iter().map(|value| format!("{value}")));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let fk = biscara(&dir, &args);
+        fk.success();
+        let pose = numbers(&fk.stdout);
+        assert!((pose[3] - printed).abs() < 1e-5, "c {given}: {fk}");
+        let json = biscara(&dir, &[&["fk", "--json"][..], &args[1..]].concat());
+        let value: serde_json::Value = serde_json::from_str(&json.stdout).expect("JSON");
+        assert!((value["c"].as_f64().unwrap_or(f64::NAN) - printed).abs() < 1e-5, "{json}");
+    }
+}
+
 #[test]
 fn negative_numbers_are_values_not_flags() {
     let dir = temp_dir("negative");

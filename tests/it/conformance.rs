@@ -2,165 +2,23 @@
 //! compared motion by motion — kind, end point, feed, arc centre, plane, direction and turns,
 //! dwell — to rs274's printed precision (4 decimals of the program's unit).
 //!
-//! (a) `tests/conformance/*.ngc`: a small program per feature. `error_*` programs must be
-//!     refused by both, with LinuxCNC's message contained in ours unless the program's first
-//!     line reads `; message differs: WHY`; `unsupported_*` must be refused by us as "not
-//!     supported yet"; `axis_*` (A B U V W words) must be refused by us.
+//! (a) `crates/biscara-gcode/tests/conformance/*.ngc`: a small program per feature, judged by
+//!     its name (`record::judge_case`), and rs274's result re-recorded beside it (`NAME.rs274`,
+//!     which biscara-gcode's own tests compare with on every run, without rs274): a stale
+//!     record is rewritten, and fails the test under CI=true.
 //! (b) every `*.ngc` under `data/`.
 //! (c) LinuxCNC's own example programs (from the linuxcnc packages): counted as matching,
 //!     refused as not supported, refused by rs274 itself, or differing; none may differ.
 
-use std::fs::File;
-use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use biscara::gcode::{Config, GcodeError, IniFile, Interpreter, interpret_seekable};
-use biscara::motion::{Motion, MotionKind};
+use biscara::gcode::GcodeError;
 
-use crate::rs274::{self, Outcome};
+use crate::record::{
+    self, CASES, Outcome, compare, ours, ours_with_partial, user_m_code, uses_inches, without_codes,
+};
+use crate::rs274;
 use crate::util::{repo_root, temp_dir};
-
-/// The configuration rs274 is matched with: the defaults but rs274's path control mode (G64 with
-/// no tolerance, where `interpret` starts in exact stop), and the program's own tool table
-/// (`NAME.tbl`) and INI file (`NAME.ini`) when it has them.
-fn config(path: &Path) -> Config {
-    let ini = rs274::own_ini(path).map(|ini| IniFile::read(&ini).expect("read the INI file"));
-    Config {
-        tool_table: rs274::own_table(path).map(std::sync::Arc::new),
-        ini: ini.map(std::sync::Arc::new),
-        blend: Some(0.0),
-        ..Config::default()
-    }
-}
-
-/// The interpreter on the file `path`, started like rs274 (at 0,0,0,0 with G28/G30 at 0), with
-/// file subroutines beside it (rs274 runs in the program's folder and finds them there).
-fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
-    let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    interpret_seekable(BufReader::new(file), &config(path))
-        .with_subroutines(Some(path.to_path_buf()), Vec::new())
-}
-
-/// Our motions for `path`.
-fn ours(path: &Path) -> Result<Vec<Motion>, GcodeError> {
-    interpreter(path).collect()
-}
-
-/// Our motions for `path` before the first error, and the outcome.
-fn ours_with_partial(path: &Path) -> (Vec<Motion>, Result<Vec<Motion>, GcodeError>) {
-    let mut motions = Vec::new();
-    for result in interpreter(path) {
-        match result {
-            Ok(motion) => motions.push(motion),
-            Err(err) => return (motions, Err(err)),
-        }
-    }
-    (motions.clone(), Ok(motions))
-}
-
-/// Our motions without the events of codes rs274 has no motion for (M19, M62–M68, M100–M199):
-/// its canon prints them as calls the comparison does not read.
-fn without_codes(ours: &[Motion]) -> Vec<Motion> {
-    ours.iter().filter(|m| !matches!(m.kind, MotionKind::Code { .. })).copied().collect()
-}
-
-/// The first difference between our motions and rs274's, if any.
-fn compare(ours: &[Motion], theirs: &[Motion], inches: bool) -> Result<(), String> {
-    let ours = &without_codes(ours)[..];
-    let unit = if inches { 25.4 } else { 1.0 };
-    // Each printed number is rounded to 1e-4 of the unit (±5e-5), and an absolute position
-    // sums up to four: the position and the G92 offset, both turned by a rotation (±7.1e-5
-    // each), the origin and the tool offset (±5e-5 each): at most 2.42e-4.
-    let length_tolerance = 2.45e-4 * unit + 1e-9;
-    let close = |a: f64, b: f64, tolerance: f64| (a - b).abs() <= tolerance + 1e-12 * b.abs();
-    let close_all = |a: &[f64], b: &[f64], tolerance: f64| {
-        a.iter().zip(b).all(|(x, y)| close(*x, *y, tolerance))
-    };
-    let end_ok = |a: [f64; 4], b: [f64; 4]| {
-        close_all(&a[..3], &b[..3], length_tolerance) && close(a[3], b[3], 1.5e-4)
-    };
-    // A straight move to where the tool already is moves nothing, and rs274 makes some that we
-    // do not: it holds lengths in inches, so a Z it computes as 2 + 12.74 − 12.74 can come out
-    // a hair below a canned cycle's R plane of 2, and it rapids "up" to it. Both sides drop them.
-    let moving = |motions: &[Motion]| -> Vec<Motion> {
-        let mut at: Option<[f64; 4]> = None;
-        let mut kept = Vec::with_capacity(motions.len());
-        for motion in motions {
-            let end = motion.kind.end();
-            let straight =
-                matches!(motion.kind, MotionKind::Rapid { .. } | MotionKind::Linear { .. });
-            if straight
-                && let (Some(from), Some(to)) = (at, end)
-                && end_ok(from, to)
-            {
-                continue;
-            }
-            at = end.or(at);
-            kept.push(*motion);
-        }
-        kept
-    };
-    let (ours, theirs) = (&moving(ours)[..], &moving(theirs)[..]);
-    for (index, (our, their)) in ours.iter().zip(theirs).enumerate() {
-        let differ = || {
-            Err(format!(
-                "motion {} (our line {}) differs:\n  ours:  {:?} blend {:?}\n  rs274: {:?} blend {:?}",
-                index + 1,
-                our.line,
-                our.kind,
-                our.blend,
-                their.kind,
-                their.blend
-            ))
-        };
-        let feed_ok = |a: f64, b: f64| close(a, b, 0.6e-4 * unit + 1e-9 * b.abs());
-        let same = match (our.kind, their.kind) {
-            (MotionKind::Rapid { end: a }, MotionKind::Rapid { end: b }) => end_ok(a, b),
-            (MotionKind::Linear { end: a, feed: f }, MotionKind::Linear { end: b, feed: g }) => {
-                end_ok(a, b) && feed_ok(f.mm_per_min, g.mm_per_min)
-            }
-            (
-                MotionKind::Arc { end: a, center: c, plane: p, clockwise: w, turns: t, feed: f },
-                MotionKind::Arc { end: b, center: d, plane: q, clockwise: x, turns: u, feed: g },
-            ) => {
-                end_ok(a, b)
-                    && close_all(&c, &d, length_tolerance)
-                    && p == q
-                    && w == x
-                    && t == u
-                    && feed_ok(f.mm_per_min, g.mm_per_min)
-            }
-            (MotionKind::Dwell { seconds: a }, MotionKind::Dwell { seconds: b }) => {
-                close(a, b, 0.6e-4)
-            }
-            (a, b) => a == b,
-        };
-        // rs274 prints the tolerance to 1e-6 of the unit.
-        let blend_ok = match (our.blend, their.blend) {
-            (Some(a), Some(b)) => close(a, b, 0.6e-6 * unit + 1e-12),
-            (a, b) => a == b,
-        };
-        if !same || !blend_ok {
-            return differ();
-        }
-    }
-    if ours.len() != theirs.len() {
-        return Err(format!(
-            "{} motions here, {} from rs274; first extra: {:?}",
-            ours.len(),
-            theirs.len(),
-            ours.get(theirs.len()).map(|m| m.kind).or(theirs.get(ours.len()).map(|m| m.kind))
-        ));
-    }
-    Ok(())
-}
-
-fn uses_inches(path: &Path) -> bool {
-    std::fs::read(path).is_ok_and(|bytes| {
-        let text = String::from_utf8_lossy(&bytes).to_ascii_uppercase();
-        text.contains("G20")
-    })
-}
 
 /// How one program fared.
 #[derive(Debug, PartialEq, Eq, Clone, Copy)]
@@ -176,14 +34,6 @@ pub(crate) enum Verdict {
     UserMCode,
     /// We refuse what this robot cannot do (lathe, spindle-synchronised motion).
     CannotRun,
-}
-
-/// Whether rs274's `message` refuses a user M code (M100–M199) it has no program for.
-fn user_m_code(message: &str) -> bool {
-    message
-        .strip_prefix("Unknown m code used: M")
-        .and_then(|number| number.trim().parse::<u32>().ok())
-        .is_some_and(|number| (100..=199).contains(&number))
 }
 
 /// Whether `err` is one of our deliberate refusals of values LinuxCNC lets through.
@@ -269,61 +119,23 @@ fn hand_written_cases_conform() {
         return;
     }
     let dir = temp_dir("conformance-cases");
-    let mut cases = Vec::new();
-    files_under(&repo_root().join("tests/conformance"), &["ngc"], &mut cases);
-    cases.sort();
-    assert!(cases.len() >= 60, "only {} conformance cases", cases.len());
-    let mut failures = Vec::new();
+    let cases = record::cases(&repo_root().join(CASES));
+    assert!(cases.len() >= 500, "only {} conformance cases", cases.len());
+    let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+    let (mut failures, mut stale) = (Vec::new(), Vec::new());
     for case in &cases {
         let name = case.file_name().and_then(|n| n.to_str()).expect("name").to_owned();
-        let text = std::fs::read_to_string(case).expect("read case");
-        let ours = ours(case);
-        let theirs = rs274::run(case, &dir);
-        let problem = if name.starts_with("error_") {
-            match (&ours, &theirs) {
-                (Err(err), Outcome::Error { message, .. }) => {
-                    let differs =
-                        text.lines().next().is_some_and(|l| l.starts_with("; message differs:"));
-                    if !differs && !err.to_string().contains(message.as_str()) {
-                        Some(format!("messages differ:\n  ours:  {err}\n  rs274: {message}"))
-                    } else {
-                        None
-                    }
-                }
-                (Ok(_), _) => Some("we accept it".to_owned()),
-                (Err(err), Outcome::Motions(_)) => Some(format!("rs274 accepts it; we: {err}")),
-            }
-        } else if name.starts_with("unsupported_") {
-            match ours {
-                Err(GcodeError::NotSupported { .. } | GcodeError::CannotRun { .. }) => None,
-                other => Some(format!("not refused as unsupported: {other:?}")),
-            }
-        } else if name.starts_with("user_m_") {
-            match (&ours, &theirs) {
-                (Ok(motions), Outcome::Error { message, .. }) if user_m_code(message) => motions
-                    .iter()
-                    .any(|m| matches!(m.kind, MotionKind::Code { .. }))
-                    .then_some(())
-                    .map_or(Some("no code event".to_owned()), |()| None),
-                _ => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
-            }
-        } else if name.starts_with("axis_") {
-            match ours {
-                Err(GcodeError::ForeignAxis { .. }) => None,
-                other => Some(format!("A/B/U/V/W not refused: {other:?}")),
-            }
-        } else {
-            match (ours, theirs) {
-                (Ok(ours), Outcome::Motions(theirs)) => {
-                    let ours = without_codes(&ours);
-                    let theirs = rs274::expand_splines(&ours, &theirs);
-                    compare(&ours, &theirs, uses_inches(case)).err()
-                }
-                (ours, theirs) => Some(format!("ours: {ours:?}\nrs274: {theirs:?}")),
-            }
-        };
-        if let Some(problem) = problem {
+        let theirs = record::expand(case, rs274::run(case, &dir), rs274::expand_splines);
+        if let Some(problem) = record::judge_case(case, &theirs) {
             failures.push(format!("{name}: {problem}"));
+        }
+        let text = record::record_text(&theirs);
+        let path = record::record_path(case);
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
+            stale.push(name);
+            if !ci {
+                std::fs::write(&path, text).expect("write the record");
+            }
         }
     }
     assert!(
@@ -333,6 +145,13 @@ fn hand_written_cases_conform() {
         cases.len(),
         failures.join("\n")
     );
+    if !stale.is_empty() {
+        assert!(!ci, "{} recorded rs274 results are stale: {}", stale.len(), stale.join(", "));
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!("re-recorded {} rs274 results: {}", stale.len(), stale.join(", "));
+        }
+    }
 }
 
 #[test]

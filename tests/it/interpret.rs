@@ -231,6 +231,37 @@ fn ini_file_variables_are_read_with_ini_and_joints_takes_it_too() {
     assert!(without.stderr.contains("change.ngc:1:5: Named parameter #<_ini[vars]change_x> not"));
 }
 
+/// `--ini`'s `[RS274NGC] SUBROUTINE_PATH` is read as LinuxCNC reads it, relative to the INI
+/// file's folder (LinuxCNC runs in it): a subroutine calling another there is found (LinuxCNC's
+/// own interpreter tests need it; "EOF … seeking o-word o<caller>" before). `USER_M_PATH` says
+/// where the user M-codes' programs are: one that is not there is LinuxCNC's unknown M code.
+#[test]
+fn ini_subroutine_path_and_user_m_path_start_from_the_ini_files_folder() {
+    let dir = temp_dir("interpret-ini-paths");
+    for folder in ["machine/subs", "machine/mcodes", "job"] {
+        std::fs::create_dir_all(dir.join(folder)).expect("mkdir");
+    }
+    let ini = "[RS274NGC]\nSUBROUTINE_PATH = subs\nUSER_M_PATH = mcodes\n";
+    std::fs::write(dir.join("machine/m.ini"), ini).expect("write the INI file");
+    let caller = "o<caller> sub\nG0 X1 Y400\no<callee> call\no<caller> endsub\nM2\n";
+    std::fs::write(dir.join("machine/subs/caller.ngc"), caller).expect("write");
+    let callee = "o<callee> sub\nG1 X3 F100\no<callee> endsub\nM2\n";
+    std::fs::write(dir.join("machine/subs/callee.ngc"), callee).expect("write");
+    std::fs::write(dir.join("machine/mcodes/M101"), "#!/bin/sh\n").expect("write");
+    std::fs::write(dir.join("job/main.ngc"), "G21\no<caller> call\nM101\nM2\n").expect("write");
+    let run = biscara(&dir, &["interpret", "job/main.ngc", "--ini", "machine/m.ini"]);
+    let lines: Vec<&str> = run.success().stdout.lines().collect();
+    assert_eq!(lines.len(), 4, "{run}");
+    assert!(lines[1].contains(r#""end":[3.0,400.0,100.0,0.0]"#), "{run}");
+    let without = biscara(&dir, &["interpret", "job/main.ngc"]);
+    without.expect_code(1);
+    assert!(without.stderr.contains("seeking o-word: o<caller>"), "{without}");
+    std::fs::write(dir.join("job/m102.ngc"), "G21\nM102\nM2\n").expect("write");
+    let unknown = biscara(&dir, &["interpret", "job/m102.ngc", "--ini", "machine/m.ini"]);
+    unknown.expect_code(1);
+    assert!(unknown.stderr.contains("m102.ngc:2:1: Unknown M code used: M102"), "{unknown}");
+}
+
 #[test]
 fn an_error_in_a_file_subroutine_names_that_file_and_its_line() {
     let dir = temp_dir("interpret-sub-error");

@@ -14,6 +14,9 @@ mod motion_cli;
 mod mujoco;
 mod optimal_profile;
 mod programming;
+/// The recorded rs274 results of the conformance programs, shared with biscara-gcode's tests.
+#[path = "../../crates/biscara-gcode/tests/it/rs274_record.rs"]
+mod record;
 mod robustness;
 mod rs274;
 mod tool;

@@ -127,3 +127,30 @@ fn an_output_that_is_not_a_regular_file_is_written_in_place() {
     let written = reader.join().expect("reader");
     assert_eq!(written.lines().count(), 3, "{written}");
 }
+
+/// No input makes a command hang: a program that loops forever while moving stops `check` and
+/// `plot` (which need the whole program) at --time-limit, and `--fit` at its bound of motions
+/// in `interpret`; one that loops without moving stops at its bound of jumps everywhere.
+#[test]
+fn endless_programs_stop_with_an_error_naming_where() {
+    let dir = temp_dir("endless");
+    let moving = "G21 G90\nG0 X0 Y400\no1 while [1]\nG1 X10 F6000\nG1 X0\no1 endwhile\nM2\n";
+    std::fs::write(dir.join("moving.ngc"), moving).expect("write");
+    for command in [
+        &["check", "--time-limit", "2", "moving.ngc"][..],
+        &["plot", "--time-limit", "2", "moving.ngc", "-o", "moving.svg"],
+    ] {
+        let run = crate::util::biscara(&dir, command);
+        run.expect_code(1);
+        assert!(run.stderr.contains("past --time-limit: an endless loop that moves?"), "{run}");
+        assert!(run.stderr.contains("moving.ngc:"), "{run}");
+    }
+    assert!(!dir.join("moving.svg").exists());
+    let idle = "G21\no1 while [1]\n#1 = [#1 + 1]\no1 endwhile\nM2\n";
+    std::fs::write(dir.join("idle.ngc"), idle).expect("write");
+    for command in ["interpret", "joints", "check"] {
+        let run = crate::util::biscara(&dir, &[command, "--max-idle-jumps", "1000", "idle.ngc"]);
+        run.expect_code(1);
+        assert!(run.stderr.contains("idle.ngc:4:1: the loop at line 2 has jumped back"), "{run}");
+    }
+}

@@ -15,7 +15,6 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
 
-use biscara::gcode::ToolTable;
 use biscara::motion::{Feed, Motion, MotionKind, Plane};
 
 /// Where `rs274` is looked for.
@@ -37,26 +36,8 @@ pub fn available(test: &str) -> bool {
 }
 
 /// What rs274 made of a program.
-#[derive(Debug)]
-pub enum Outcome {
-    /// The motions, absolute mm and degrees (line numbers are 0: rs274 does not print them).
-    Motions(Vec<Motion>),
-    /// rs274 refused the program: its message (first line of the error) and the motions it
-    /// made before.
-    Error {
-        /// The message.
-        message: String,
-        /// The motions before the error.
-        #[allow(dead_code)]
-        before: Vec<Motion>,
-    },
-}
+pub use crate::record::{Outcome, own_ini, own_table};
 
-/// Runs rs274 on `program` in `dir`.
-///
-/// rs274 creates, truncates and maps `$HOME/.tool.mmap`, so runs sharing a HOME can kill each
-/// other with SIGBUS: each run gets `dir` as its HOME, runs from this module take a lock, and a
-/// run killed by a signal anyway is retried.
 pub fn run(program: &Path, dir: &Path) -> Outcome {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
@@ -177,23 +158,6 @@ fn bounded(mut child: std::process::Child, output: &Path) -> Option<std::process
     };
     let stderr = reader.join().unwrap_or_default();
     Some(std::process::Output { status, stdout: Vec::new(), stderr })
-}
-
-/// The tool table beside `program` (`NAME.tbl` for `NAME.ngc`, else the `test.tbl` of its
-/// folder, as LinuxCNC's interpreter tests have it), read as `interpret` reads it.
-pub fn own_table(program: &Path) -> Option<ToolTable> {
-    let own = program.with_extension("tbl");
-    let folder = program.parent().map(|folder| folder.join("test.tbl"));
-    let path = std::iter::once(own).chain(folder).find(|path| path.exists())?;
-    Some(ToolTable::read(&path).expect("read the program's tool table"))
-}
-
-/// The INI file rs274 is given (`-i`) for `program`: `NAME.ini` beside `NAME.ngc`, else the
-/// `test.ini` of its folder, as LinuxCNC's interpreter tests have it.
-pub fn own_ini(program: &Path) -> Option<std::path::PathBuf> {
-    let own = program.with_extension("ini");
-    let folder = program.parent().map(|folder| folder.join("test.ini"));
-    std::iter::once(own).chain(folder).find(|path| path.exists())
 }
 
 /// The arguments of `NAME(a, b, …)` as numbers (non-numbers skipped).

@@ -25,12 +25,21 @@ pub enum Dialect {
     Marlin,
     /// Mach3 (Fanuc-style posts: `O0001` program numbers, nested comments).
     Mach3,
+    /// Fanuc and Haas controls (industrial posts): O-number programs, machine M-codes,
+    /// look-ahead codes, G04 P in milliseconds, M97 local subprograms, K repeats, Macro B.
+    Fanuc,
 }
 
 impl Dialect {
     /// Every dialect, `auto` first, as the command line lists them.
-    pub const ALL: [Dialect; 5] =
-        [Dialect::Auto, Dialect::Linuxcnc, Dialect::Grbl, Dialect::Marlin, Dialect::Mach3];
+    pub const ALL: [Dialect; 6] = [
+        Dialect::Auto,
+        Dialect::Linuxcnc,
+        Dialect::Grbl,
+        Dialect::Marlin,
+        Dialect::Mach3,
+        Dialect::Fanuc,
+    ];
 
     /// The dialect's name on the command line (`linuxcnc`, `grbl`, …).
     pub fn name(self) -> &'static str {
@@ -40,6 +49,7 @@ impl Dialect {
             Dialect::Grbl => "grbl",
             Dialect::Marlin => "marlin",
             Dialect::Mach3 => "mach3",
+            Dialect::Fanuc => "fanuc",
         }
     }
 }
@@ -52,7 +62,7 @@ impl fmt::Display for Dialect {
 
 /// A dialect name that is not one of [`Dialect::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, mach3")]
+#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, mach3, fanuc")]
 pub struct UnknownDialect(pub String);
 
 impl FromStr for Dialect {
@@ -96,6 +106,9 @@ pub struct Summary {
     /// Probe moves (G38.2–G38.5), with their counts: run as LinuxCNC's `rs274` simulates them,
     /// with no probe that trips.
     pub probes: BTreeMap<String, usize>,
+    /// What LinuxCNC refuses and the dialect's firmware runs, read as that firmware runs it
+    /// (Mach3's bare axis words after G80, its G53 without a move), with their counts.
+    pub adapted: BTreeMap<String, usize>,
 }
 
 impl Summary {
@@ -105,6 +118,12 @@ impl Summary {
             && self.unknown.is_empty()
             && self.refused_by_firmware.is_empty()
             && self.probes.is_empty()
+            && self.adapted.is_empty()
+    }
+
+    /// Counts one use of `what`, read as the dialect's firmware runs it.
+    pub(crate) fn count_adapted(&mut self, what: &str) {
+        bump(&mut self.adapted, what);
     }
 
     /// Counts one probe move `code` (`G38.2`).
@@ -146,6 +165,7 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// → LinuxCNC). Only complete lines are looked at (all of them when `complete` says the text is
 /// the whole program). `None` when nothing decides.
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
+    let text = text.strip_prefix(crate::lexer::UTF8_BOM).unwrap_or(text);
     let end = if complete {
         text.len()
     } else {
@@ -158,6 +178,8 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     let mut other: Option<Detection> = None;
     let mut modal: Option<(usize, String)> = None;
     let mut plane_xy = true;
+    let (mut fanuc, mut machine_m): (Option<Detection>, Option<Detection>) = (None, None);
+    let mut long_comment: Option<(usize, usize)> = None;
     for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
         let line = index + 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
@@ -181,6 +203,26 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         if modal.is_none() && continues_motion(&code) {
             modal = Some((line, shorten(&String::from_utf8_lossy(raw.trim_ascii()))));
         }
+        let located = |why: &str| Detection {
+            dialect: Dialect::Fanuc,
+            reason: format!(
+                "line {line}: {why}: `{}`",
+                shorten(&String::from_utf8_lossy(raw.trim_ascii()))
+            ),
+            line: Some(line),
+            makerbot: false,
+        };
+        if fanuc.is_none()
+            && let Some(why) = fanuc_evidence(&code)
+        {
+            fanuc = Some(located(why));
+        }
+        if machine_m.is_none() && has_machine_m(&code) {
+            machine_m = Some(located("a machine M-code only Fanuc and Haas controls have"));
+        }
+        if long_comment.is_none() && long_only_in_comment(raw) {
+            long_comment = Some((line, raw.len()));
+        }
         if content.is_none() || other.is_none() {
             let found = evidence(raw, &code, &mut plane_xy).map(|(dialect, why)| Detection {
                 dialect,
@@ -202,6 +244,33 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
             }
         }
     }
+    // Fanuc's and Haas's own codes (look-ahead, M97, Macro B) outweigh an `O` program number
+    // (Mach3's too) and numbered parameters (LinuxCNC's too).
+    if let Some(found) = fanuc {
+        return Some(found);
+    }
+    // A machine M-code no other dialect has (Haas's M31 chip conveyor) says Fanuc where
+    // nothing else does, or where only an `O` program number does.
+    let only_program_number =
+        content.as_ref().is_some_and(|found| found.reason.contains(PROGRAM_NUMBER));
+    if let Some(found) = machine_m.filter(|_| content.is_none() || only_program_number) {
+        return Some(found);
+    }
+    // A line longer than LinuxCNC's limit only in its comment: Grbl drops comments before its
+    // line buffer (and Marlin, Mach3 read such lines too), LinuxCNC refuses the line.
+    if let (None, Some((line, length))) = (&content, long_comment) {
+        return Some(Detection {
+            dialect: Dialect::Grbl,
+            reason: format!(
+                "line {line} is {length} characters long, longer than LinuxCNC's {} only in its \
+                 comment, which Grbl drops before its line buffer (nothing else tells the \
+                 dialects apart)",
+                crate::lexer::MAX_LINE
+            ),
+            line: Some(line),
+            makerbot: false,
+        });
+    }
     // A printer M-code (M400, M851 …) in a program whose motions go on without G words is a
     // CNC post's controller code, not Marlin's (Marlin would skip those lines): the other
     // evidence decides, else LinuxCNC's language, which says what it does not know.
@@ -220,6 +289,80 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         }
         (content, _) => content,
     }
+}
+
+/// Whether a line is longer than LinuxCNC's limit only by its comment: text, with at most that
+/// many characters outside comments (and not counting blanks), which Grbl, Marlin and Mach3
+/// read and LinuxCNC refuses.
+pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
+    if raw.len() <= crate::lexer::MAX_LINE {
+        return false;
+    }
+    let text = std::str::from_utf8(raw)
+        .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t' || c == '\r'));
+    if !text {
+        return false;
+    }
+    let (code, comment) = split_comment(&raw.to_ascii_lowercase());
+    !comment.is_empty()
+        && code.iter().filter(|b| !b.is_ascii_whitespace()).count() <= crate::lexer::MAX_LINE
+}
+
+/// The evidence an `O0001` line gives (Mach3's, and Fanuc's).
+const PROGRAM_NUMBER: &str = "an `O` program number";
+
+/// What only Fanuc and Haas controls read, on a line (lower case, outside comments): their
+/// look-ahead and smoothing codes, Haas's M97, Macro B's control flow.
+fn fanuc_evidence(code: &[u8]) -> Option<&'static str> {
+    let squeezed: Vec<u8> = code.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
+    let first = {
+        let mut at = 0;
+        if squeezed.first() == Some(&b'n') {
+            at = 1 + squeezed[1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        }
+        &squeezed[at..]
+    };
+    let keyword = |word: &[u8]| {
+        first.starts_with(word)
+            && first.get(word.len()).is_some_and(|b| *b == b'[' || b.is_ascii_digit())
+    };
+    if keyword(b"if") || keyword(b"while") || keyword(b"goto") || keyword(b"end") || keyword(b"do")
+    {
+        return Some("Macro B control flow (IF, WHILE … DO, GOTO, END)");
+    }
+    for (at, &byte) in squeezed.iter().enumerate() {
+        if at > 0 && squeezed[at - 1].is_ascii_alphabetic() {
+            continue;
+        }
+        match (byte, number_after(&squeezed, at)) {
+            (b'g', Some(187)) => return Some("Haas's G187 (smoothness)"),
+            (b'g', Some(103)) => return Some("Haas's G103 (look-ahead)"),
+            (b'g', Some(8)) if contains(&squeezed, "p") && !contains(&squeezed, "g8.") => {
+                return Some("Fanuc's G08 P (advanced preview control)");
+            }
+            (b'g', Some(5)) if contains(&squeezed, "g5.1q") || contains(&squeezed, "g05.1q") => {
+                return Some("Fanuc's G05.1 Q (AI contour control)");
+            }
+            (b'm', Some(97)) => return Some("Haas's M97 (local subprogram)"),
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Whether a line (lower case, outside comments) has an M-code that only Fanuc and Haas
+/// controls have among the dialects (none of LinuxCNC's, Mach3's or a printer's).
+fn has_machine_m(code: &[u8]) -> bool {
+    let squeezed: Vec<u8> = code.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
+    squeezed.iter().enumerate().any(|(at, &byte)| {
+        byte == b'm'
+            && (at == 0 || !squeezed[at - 1].is_ascii_alphabetic())
+            && number_after(&squeezed, at).is_some_and(|number| {
+                (10..100).contains(&number)
+                    && !matches!(number, 10 | 11 | 19 | 30 | 40 | 41 | 47..=53 | 60..=73 | 98 | 99)
+                    && !printer_m_code(number)
+            })
+    })
 }
 
 /// The evidence a printer firmware M-code gives (for Marlin).
@@ -267,6 +410,14 @@ const GENERATORS: &[(&str, Dialect, &str)] = &[
     ("laserweb", Dialect::Grbl, "LaserWeb"),
     ("grbl", Dialect::Grbl, "Grbl"),
     ("bcnc", Dialect::Grbl, "bCNC"),
+    ("mr beam", Dialect::Grbl, "Mr Beam (Grbl)"),
+    ("mrbeam", Dialect::Grbl, "Mr Beam (Grbl)"),
+    ("carbide create", Dialect::Grbl, "Carbide Create (Grbl)"),
+    ("inkburn", Dialect::Grbl, "InkBurn (Grbl)"),
+    ("klipper", Dialect::Marlin, "Klipper"),
+    ("lulzbot", Dialect::Marlin, "LulzBot's Cura"),
+    ("haas", Dialect::Fanuc, "Haas"),
+    ("fanuc", Dialect::Fanuc, "Fanuc"),
     ("mach3", Dialect::Mach3, "Mach3"),
     ("mach4", Dialect::Mach3, "Mach4"),
     ("linuxcnc", Dialect::Linuxcnc, "LinuxCNC"),
@@ -377,7 +528,7 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
     let squeezed: Vec<u8> = trimmed.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
     if squeezed.first() == Some(&b'o') {
         if squeezed.len() > 1 && squeezed[1..].iter().all(u8::is_ascii_digit) {
-            return Some((Dialect::Mach3, "an `O` program number"));
+            return Some((Dialect::Mach3, PROGRAM_NUMBER));
         }
         return Some((Dialect::Linuxcnc, "a LinuxCNC O-word"));
     }
@@ -572,7 +723,7 @@ pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
     match dialect {
         Dialect::Grbl => grbl_prelude(raw),
         Dialect::Marlin => marlin_prelude(raw),
-        Dialect::Auto | Dialect::Linuxcnc | Dialect::Mach3 => Prelude::Block,
+        Dialect::Auto | Dialect::Linuxcnc | Dialect::Mach3 | Dialect::Fanuc => Prelude::Block,
     }
 }
 
@@ -816,7 +967,7 @@ mod tests {
             assert_eq!(dialect.name().parse::<Dialect>(), Ok(dialect));
         }
         assert_eq!("MARLIN".parse::<Dialect>(), Ok(Dialect::Marlin));
-        assert!("fanuc".parse::<Dialect>().unwrap_err().to_string().contains("fanuc"));
+        assert!("haas".parse::<Dialect>().unwrap_err().to_string().contains("haas"));
     }
 
     #[test]

@@ -123,6 +123,15 @@ pub enum GcodeError {
         /// The last line of the file (1 for an empty file).
         line: usize,
     },
+    /// Occurs when a Fanuc `GOTO n` or `M97 P n` names a block number no line of the program
+    /// has.
+    #[error("{line}:1: no block N{target} in the program to go to")]
+    NoBlockNumber {
+        /// The line of the `GOTO` or `M97`.
+        line: usize,
+        /// The block number.
+        target: u32,
+    },
     /// Occurs when a file that starts with `%` ends before the closing `%`.
     #[error(
         "{line}:1: File ended with no percent sign: a program that starts with % must end with a % line"
@@ -143,6 +152,7 @@ impl GcodeError {
         match self {
             GcodeError::Read { line, .. }
             | GcodeError::NoProgramEnd { line }
+            | GcodeError::NoBlockNumber { line, .. }
             | GcodeError::NoClosingPercent { line } => *line,
             GcodeError::LineTooLong { at, .. }
             | GcodeError::Syntax { at, .. }

@@ -170,6 +170,38 @@ impl IniFile {
             })
     }
 
+    /// The folders where file subroutines are looked for, as LinuxCNC reads them: `[RS274NGC]
+    /// SUBROUTINE_PATH`, a `:`-separated list, a relative folder taken from the INI file's own
+    /// folder ([`folder`](Self::folder); LinuxCNC runs in it), the working directory when it
+    /// has none.
+    pub fn subroutine_dirs(&self) -> Vec<PathBuf> {
+        self.dirs("RS274NGC", "SUBROUTINE_PATH")
+    }
+
+    /// The folders where LinuxCNC finds the programs of the user M-codes M100–M199 (a file
+    /// named `M100` … `M199`): `[RS274NGC] USER_M_PATH`, then `[DISPLAY] PROGRAM_PREFIX`,
+    /// relative ones from the INI file's folder; `None` when the file names neither (the
+    /// machine's programs are then unknown).
+    pub fn user_m_dirs(&self) -> Option<Vec<PathBuf>> {
+        let mut dirs = self.dirs("RS274NGC", "USER_M_PATH");
+        dirs.extend(self.dirs("DISPLAY", "PROGRAM_PREFIX"));
+        (!dirs.is_empty()).then_some(dirs)
+    }
+
+    /// The `:`-separated folders of `[section] name`.
+    fn dirs(&self, section: &str, name: &str) -> Vec<PathBuf> {
+        self.find(section, name)
+            .into_iter()
+            .flat_map(|list| list.split(':'))
+            .map(str::trim)
+            .filter(|dir| !dir.is_empty())
+            .map(|dir| match &self.folder {
+                Some(folder) if Path::new(dir).is_relative() => folder.join(dir),
+                _ => PathBuf::from(dir),
+            })
+            .collect()
+    }
+
     /// Whether the file has a line starting with `[section]`.
     pub fn has_section(&self, section: &str) -> bool {
         self.section_start(section).is_some()
@@ -287,6 +319,26 @@ mod tests {
         let file = ini("[EMC]\n  [PYTHON] ; plug-ins\nPATH_PREPEND = python\n");
         assert!(file.has_section("PYTHON") && file.has_section("EMC"));
         assert!(!file.has_section("python") && !file.has_section("PATH_PREPEND"));
+    }
+
+    /// LinuxCNC's own interpreter tests name their subroutine folders in the INI file
+    /// (`SUBROUTINE_PATH = .:subs`): they are read relative to the INI file's folder, and so are
+    /// the folders of the user M-codes' programs.
+    #[test]
+    fn folders_start_from_the_ini_files_folder() {
+        let text = "[RS274NGC]\nSUBROUTINE_PATH = .:subs: /abs\nUSER_M_PATH = mcodes\n\
+                    [DISPLAY]\nPROGRAM_PREFIX = /programs\n";
+        let file = ini(text);
+        assert_eq!(file.subroutine_dirs(), [".", "subs", "/abs"].map(PathBuf::from));
+        let placed = file.with_folder(PathBuf::from("/machine"));
+        assert_eq!(
+            placed.subroutine_dirs(),
+            ["/machine/.", "/machine/subs", "/abs"].map(PathBuf::from)
+        );
+        let user = placed.user_m_dirs().expect("named");
+        assert_eq!(user, ["/machine/mcodes", "/programs"].map(PathBuf::from));
+        assert!(ini("[VARS]\nX = 1\n").subroutine_dirs().is_empty());
+        assert_eq!(ini("[VARS]\nX = 1\n").user_m_dirs(), None);
     }
 
     #[test]

@@ -12,6 +12,8 @@ use std::path::Path;
 
 /// LinuxCNC refuses lines longer than this ("Command too long").
 pub(crate) const MAX_LINE: usize = 252;
+/// The UTF-8 byte-order mark, skipped at the start of a file.
+pub(crate) const UTF8_BOM: &[u8] = b"\xef\xbb\xbf";
 
 /// Where a problem is (byte offsets into the raw line) and what it is.
 #[derive(Debug, Clone, PartialEq)]
@@ -364,6 +366,21 @@ impl<R: BufRead> LineReader<R> {
         }
     }
 
+    /// A UTF-8 byte-order mark (Estlcam writes one) at the start of the first line is no
+    /// character of the program.
+    #[cold]
+    #[inline(never)]
+    fn skip_byte_order_mark(&mut self) {
+        if self.line.starts_with(UTF8_BOM) {
+            self.line.drain(..UTF8_BOM.len());
+        }
+    }
+
+    /// The byte offset of the line after the current one.
+    pub(crate) fn next_offset(&self) -> u64 {
+        self.next
+    }
+
     /// Reads the next line; `Ok(false)` at the end of the input.
     pub(crate) fn next_line(&mut self) -> io::Result<bool> {
         self.too_long = false;
@@ -410,6 +427,9 @@ impl<R: BufRead> LineReader<R> {
         }
         match read {
             Some(too_long) => {
+                if self.start == 0 {
+                    self.skip_byte_order_mark();
+                }
                 self.number += 1;
                 self.too_long = too_long;
                 Ok(true)
@@ -539,6 +559,33 @@ impl Compact {
             self.columns[*len] = column.min(usize::from(u16::MAX)) as u16;
             *len += 1;
         }
+    }
+
+    /// Takes compact indices `range` out of the line (a dialect's word read before the block
+    /// reader), the columns of the rest kept.
+    pub(crate) fn remove(&mut self, range: std::ops::Range<usize>) {
+        let (start, end) = (range.start.min(self.len), range.end.min(self.len));
+        self.bytes.copy_within(end..self.len, start);
+        self.columns.copy_within(end..self.len, start);
+        self.len -= end - start;
+    }
+
+    /// Replaces compact indices `range` by `text` (a dialect's line rewritten in LinuxCNC's
+    /// words), each new byte at the column of the range's start; `false` (nothing changed) when
+    /// the line would get too long.
+    pub(crate) fn replace(&mut self, range: std::ops::Range<usize>, text: &[u8]) -> bool {
+        let (start, end) = (range.start.min(self.len), range.end.min(self.len));
+        let len = self.len - (end - start) + text.len();
+        if len > MAX_LINE {
+            return false;
+        }
+        let column = if self.len == 0 { 0 } else { self.columns[start.min(self.len - 1)] };
+        self.bytes.copy_within(end..self.len, start + text.len());
+        self.columns.copy_within(end..self.len, start + text.len());
+        self.bytes[start..start + text.len()].copy_from_slice(text);
+        self.columns[start..start + text.len()].fill(column);
+        self.len = len;
+        true
     }
 
     /// The raw offset of compact index `index` (the line's end for `index >= len`).

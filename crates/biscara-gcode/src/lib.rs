@@ -105,3 +105,8 @@ pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
 pub use lexer::{Forward, Seekable};
 pub use tool::{Tool, ToolInference, infer_tool};
 pub use tool_table::{ToolEntry, ToolTable, ToolTableError};
+
+/// How many times a program may jump back (a loop's turn, a subroutine call, a Fanuc `GOTO`)
+/// with no motion in between before it is stopped as an endless loop, by default
+/// ([`Config::max_idle_jumps`]): a loop that computes without moving may turn this often.
+pub const MAX_IDLE_JUMPS: u64 = 100_000;

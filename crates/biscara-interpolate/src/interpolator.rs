@@ -2,7 +2,7 @@
 
 use biscara_blend::{Blended, Blender, NaiveCam, Piece};
 use biscara_motion::{Motion, MotionKind, Position};
-use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal, TimingError};
+use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal};
 
 use crate::chain::{Chain, ChainBounds};
 use crate::{Profile, Segment, Timing};
@@ -425,10 +425,6 @@ where
             message: "the move is too slow to count in time steps".to_owned(),
         };
         if self.config.profile == Profile::Optimal {
-            let failed = |err: TimingError| InterpolateError::Motion {
-                line,
-                message: format!("cannot time the move: {err}"),
-            };
             let grid = optimal_grid(length, segment.turning(), rate, acceleration, false)
                 .ok_or_else(too_long)?;
             let mut slowest = cause.map(|cause| RateLimit { rate, cause });
@@ -439,7 +435,9 @@ where
                 acceleration,
                 slowest: &mut slowest,
             };
-            self.planner.plan(&mut bounds, grid, WINDOW).map_err(failed)?;
+            if self.planner.plan(&mut bounds, grid, WINDOW).is_err() {
+                return self.fallback(line, segment, rate, acceleration, programmed);
+            }
             // Slower than the Cartesian trapezoid: a joint bound binds, and the switches need
             // not fall on the grid's points.
             let cartesian = if rate * rate >= acceleration {
@@ -450,7 +448,16 @@ where
             if self.planner.duration().is_some_and(|duration| duration > cartesian * (1.0 + 1e-9)) {
                 let refined = optimal_grid(length, segment.turning(), rate, acceleration, true)
                     .ok_or_else(too_long)?;
-                self.planner.plan(&mut bounds, refined, WINDOW).map_err(failed)?;
+                let mut bounds = MoveBounds {
+                    segment,
+                    limit: &mut self.limit,
+                    rate,
+                    acceleration,
+                    slowest: &mut slowest,
+                };
+                if self.planner.plan(&mut bounds, refined, WINDOW).is_err() {
+                    return self.fallback(line, segment, rate, acceleration, programmed);
+                }
             }
             let mut optimal = OptimalSchedule {
                 steps: u64::MAX,
@@ -483,6 +490,42 @@ where
         Ok(Some(Schedule::Closed(timing)))
     }
 }
+
+impl<I, E, L, F> Interpolator<I, L, F>
+where
+    I: Iterator<Item = Result<Motion, E>>,
+    L: SpeedLimit,
+    F: FnMut(&SlowDown),
+{
+    /// A move the time-optimal planner cannot time (its bounds admit no motion somewhere along
+    /// it): timed instead with the trapezoid profile at the rate the joints' speed
+    /// limit allows ([`SpeedLimit::max_rate`], below the Cartesian `rate`), which is feasible
+    /// and slower, with a note ([`PLANNER_FALLBACK`]) — never an error.
+    #[cold]
+    fn fallback(
+        &mut self,
+        line: usize,
+        segment: &Segment,
+        rate: f64,
+        acceleration: f64,
+        programmed: f64,
+    ) -> Result<Option<Schedule>, InterpolateError<E>> {
+        let rate = self.limit.max_rate(segment).map_or(rate, |limit| limit.rate.min(rate));
+        (self.on_slow)(&SlowDown { line, cause: PLANNER_FALLBACK, factor: rate / programmed });
+        let timing = Timing::new(Profile::Trapezoid, rate, acceleration, self.config.dt);
+        if timing.duration() / self.config.dt > 1e15 || !timing.duration().is_finite() {
+            return Err(InterpolateError::Motion {
+                line,
+                message: "the move is too slow to count in time steps".to_owned(),
+            });
+        }
+        Ok(Some(Schedule::Closed(timing)))
+    }
+}
+
+/// The [`SlowDown::cause`] of a move the time-optimal planner could not time, timed with the
+/// trapezoid profile at the joints' speed limit instead.
+pub const PLANNER_FALLBACK: &str = "time-optimal planner";
 
 /// The optimal profile's grid along a move of `length` mm turning by `turning` degrees, with the
 /// Cartesian bounds `rate` (ds/dt) and `acceleration` (d²s/dt²); `None` when it would be too

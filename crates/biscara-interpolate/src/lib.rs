@@ -52,6 +52,6 @@ pub use biscara_motion::Segment;
 pub use csv::{PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, read_path_csv};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,
-    JointBound, MAX_JOINTS, NoSpeedLimit, RateLimit, SlowDown, SpeedLimit,
+    JointBound, MAX_JOINTS, NoSpeedLimit, PLANNER_FALLBACK, RateLimit, SlowDown, SpeedLimit,
 };
 pub use profile::{Profile, Timing};

@@ -70,14 +70,22 @@ impl IkSolution {
 }
 
 impl FkSolution {
-    /// `x y z c` in millimetres and degrees, six decimals.
-    pub fn to_text(&self) -> String {
-        joined(self.pose.to_degrees())
+    /// The pose in millimetres and degrees with c wrapped into (−180°, 180°], as `ik` reads its
+    /// input: `fk` of `ik`'s joints prints the pose `ik` was given.
+    fn printed_pose(&self) -> [f64; 4] {
+        let [x, y, z, _] = self.pose.to_degrees();
+        [x, y, z, crate::kinematics::wrap_angle(self.pose.phi).to_degrees()]
     }
 
-    /// `{"x":…,"y":…,"z":…,"c":…,"elbows":[[x,y],[x,y]],"assembly_mode":…}` (mm, degrees).
+    /// `x y z c` in millimetres and degrees, six decimals; c in (−180°, 180°].
+    pub fn to_text(&self) -> String {
+        joined(self.printed_pose())
+    }
+
+    /// `{"x":…,"y":…,"z":…,"c":…,"elbows":[[x,y],[x,y]],"assembly_mode":…}` (mm, degrees; c in
+    /// (−180°, 180°]).
     pub fn to_json(&self) -> String {
-        let [x, y, z, c] = self.pose.to_degrees().map(clean);
+        let [x, y, z, c] = self.printed_pose().map(clean);
         let elbows = self.configuration.elbows.map(|elbow| [clean(elbow.x), clean(elbow.y)]);
         let assembly_mode = self.configuration.assembly_mode().to_string();
         serde_json::to_string(&FkJson { x, y, z, c, elbows, assembly_mode }).unwrap_or_default()

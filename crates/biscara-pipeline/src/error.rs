@@ -145,6 +145,17 @@ pub enum Note {
         /// Each code or feature and how many lines use it.
         codes: BTreeMap<String, usize>,
     },
+    /// The program uses what LinuxCNC refuses and its firmware runs (Mach3's bare axis words
+    /// after G80, its G53 without a move), read as that firmware runs it; one note with the
+    /// counts.
+    Adapted {
+        /// The program's name.
+        file: String,
+        /// The dialect the program was read in.
+        dialect: Dialect,
+        /// Each reading and how many lines use it.
+        codes: BTreeMap<String, usize>,
+    },
     /// The program probes (G38.2–G38.5): run as LinuxCNC's `rs274` simulates probing, with no
     /// probe that trips; one note with the counts.
     Probes {
@@ -265,6 +276,11 @@ impl fmt::Display for Note {
                  here as LinuxCNC reads them, so the program runs here but not on that machine: {}",
                 Counted(codes)
             ),
+            Note::Adapted { file, dialect, codes } => write!(
+                f,
+                "{file}: read as {dialect} runs them (LinuxCNC would refuse them): {}",
+                Counted(codes)
+            ),
             Note::Probes { file, dialect: Dialect::Linuxcnc, codes } => write!(
                 f,
                 "{file}: probe moves run as LinuxCNC's rs274 simulates them, with no probe to \
@@ -290,6 +306,18 @@ impl fmt::Display for Note {
                 "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
                  given: every tool has zero length and diameter"
             ),
+            Note::SlowedDown { file, slow }
+                if slow.cause == biscara_interpolate::PLANNER_FALLBACK =>
+            {
+                write!(
+                    f,
+                    "{file}:{}: the time-optimal planner found no timing along this move (its \
+                     bounds admit no motion somewhere on it): timed instead with the trapezoid \
+                     profile at {:.1}% of the programmed speed, within the joints' speed limits",
+                    slow.line,
+                    100.0 * slow.factor
+                )
+            }
             Note::SlowedDown { file, slow } => write!(
                 f,
                 "{file}:{}: slowed to {:.1}% of the programmed speed ({} limit)",

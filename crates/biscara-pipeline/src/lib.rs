@@ -50,7 +50,9 @@ pub use biscara_kinematics::RobotModel;
 pub use error::{Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
-pub use pipeline::{JointSamples, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes};
+pub use pipeline::{
+    JointSamples, MAX_FIT_MOTIONS, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes,
+};
 pub use placement::{Placement, place};
 pub use source::{ProgramSource, TextSource};
 pub use tool::{ToolJointSamples, ToolSamples, ToolState};

@@ -61,6 +61,8 @@ pub(crate) struct Reading<'a> {
     pub(crate) ini: Option<&'a Arc<IniFile>>,
     /// The G64 P of a program that never says G61 or G64.
     pub(crate) blend: Option<f64>,
+    /// Jumps back allowed without a motion (endless loops).
+    pub(crate) max_idle_jumps: u64,
 }
 
 impl<'a> Reading<'a> {
@@ -80,6 +82,7 @@ impl<'a> Reading<'a> {
             tool_table: config.tool_table.as_ref(),
             ini: config.ini.as_ref(),
             blend: config.blend,
+            max_idle_jumps: config.max_idle_jumps,
         }
     }
 }
@@ -122,6 +125,7 @@ pub(crate) fn read_motions(
                 tool_table: reading.tool_table.cloned(),
                 ini: reading.ini.cloned(),
                 blend: reading.blend,
+                max_idle_jumps: reading.max_idle_jumps,
                 ..GcodeConfig::default()
             };
             // A file is read with jumps (O-word loops and calls); standard input only forwards.
@@ -168,6 +172,13 @@ impl<R: BufRead> GcodeMotions<R> {
     /// error may be the dialect's, not the program's).
     fn located(&self, err: GcodeError) -> PipelineError {
         let mut snippet = err.location().map(|location| location.snippet());
+        if err.to_string().contains("jumps back without a motion are allowed") {
+            snippet = snippet.map(|snippet| {
+                format!(
+                    "{snippet}\n(--max-idle-jumps N allows more, for a loop that computes long)"
+                )
+            });
+        }
         if let Some(detection) =
             self.interpreter.detection().filter(|d| d.dialect != Dialect::Linuxcnc)
         {
@@ -227,6 +238,11 @@ impl<R: BufRead> GcodeMotions<R> {
         if !summary.unknown.is_empty() {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
             self.notes.say(Note::UnknownCodes { file, dialect, codes: summary.unknown.clone() });
+        }
+        if !summary.adapted.is_empty() {
+            let (file, dialect) = (self.file.clone(), self.interpreter.dialect());
+            let codes = summary.adapted.clone();
+            self.notes.say(Note::Adapted { file, dialect, codes });
         }
         if !summary.refused_by_firmware.is_empty() {
             let (file, dialect) = (self.file.clone(), self.interpreter.dialect());

@@ -53,7 +53,17 @@ pub struct SamplingConfig {
     /// LinuxCNC's INI file for G-code programs (`--ini`): the values of their
     /// `#<_ini[SECTION]NAME>` names; `None`: those are global names like any other.
     pub ini: Option<Arc<IniFile>>,
+    /// The most motions `--fit` reads to find the program's extent ([`MAX_FIT_MOTIONS`] by
+    /// default): a program that loops forever while moving is an error there, not a hang.
+    pub max_fit_motions: u64,
+    /// Jumps back a G-code program may make without a motion before it is stopped as an
+    /// endless loop (`--max-idle-jumps`; [`biscara_gcode::MAX_IDLE_JUMPS`] by default).
+    pub max_idle_jumps: u64,
 }
+
+/// The most motions `--fit` reads to find a program's extent, by default: 100 million (a
+/// program of ten million lines with loops; reading them takes about ten seconds).
+pub const MAX_FIT_MOTIONS: u64 = 100_000_000;
 
 impl Default for SamplingConfig {
     /// The defaults of the command line: 1 ms, the optimal profile, no grip time, no origin, no fit, the
@@ -71,6 +81,8 @@ impl Default for SamplingConfig {
             blend: None,
             tool_table: None,
             ini: None,
+            max_fit_motions: MAX_FIT_MOTIONS,
+            max_idle_jumps: biscara_gcode::MAX_IDLE_JUMPS,
         }
     }
 }

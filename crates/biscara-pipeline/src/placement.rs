@@ -72,8 +72,19 @@ pub fn place(
         NoteSink::silent(),
         Told { zeroed: Some(zeroed.clone()), tool: None },
     )?;
-    for motion in motions {
-        bounds.push(&motion?);
+    for (count, motion) in motions.enumerate() {
+        let motion = motion?;
+        if count as u64 >= config.max_fit_motions {
+            return Err(PipelineError::Unsupported {
+                file: file.to_owned(),
+                message: format!(
+                    "--fit reads the whole program to find its extent, and it goes on past {} \
+                     motions (line {}): an endless loop that moves? Place it with --origin",
+                    config.max_fit_motions, motion.line
+                ),
+            });
+        }
+        bounds.push(&motion);
     }
     let zeroed = zeroed.get();
     let by_start = zeroed[0] || zeroed[1];

@@ -17,6 +17,9 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use super::{Interpreter, round_to_int};
+
+/// Reading O-word lines, M98/M99 and G65 (`read_o`).
+mod read;
 use crate::dialect::Dialect;
 use crate::error::GcodeError;
 use crate::lexer::Fault;
@@ -194,11 +197,21 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// The INI file's `[RS274NGC] SUBROUTINE_PATH` folders, after `dirs`.
+    ini_dirs: Vec<PathBuf>,
+    /// Where the user M-codes' programs are (`USER_M_PATH`, `PROGRAM_PREFIX`), when the INI
+    /// file says.
+    user_m_dirs: Option<Vec<PathBuf>>,
     /// The loops of the main program being run (for an input read only forwards, whose lines
     /// are kept while a loop runs).
     open_loops: Vec<Rc<str>>,
     /// Whether the lines of an input read only forwards are being kept (`Some(true)`: for good).
     recording: Option<bool>,
+    /// Jumps back since the last motion, and how many are allowed.
+    pub(super) idle_jumps: u64,
+    max_idle_jumps: u64,
+    /// The end point of the last motion (a move to where the robot is is no motion).
+    pub(super) last_end: Option<[f64; 4]>,
     /// A call in the main program reads on to find its subroutine: the lines from the call on
     /// are kept (an input read only forwards), to come back to.
     forward: bool,
@@ -221,14 +234,35 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            ini_dirs: Vec::new(),
+            user_m_dirs: None,
             open_loops: Vec::new(),
             recording: None,
+            idle_jumps: 0,
+            max_idle_jumps: crate::MAX_IDLE_JUMPS,
+            last_end: None,
             forward: false,
         }
     }
 }
 
 impl Control {
+    /// Where the user M-codes' programs are, when the INI file says.
+    pub(super) fn user_m_dirs(&self) -> Option<&[PathBuf]> {
+        self.user_m_dirs.as_deref()
+    }
+
+    /// The state before the first line, with the folders the INI file `ini` names and
+    /// `max_idle_jumps` jumps back allowed without a motion.
+    pub(super) fn new(ini: Option<&crate::IniFile>, max_idle_jumps: u64) -> Control {
+        Control {
+            ini_dirs: ini.map(crate::IniFile::subroutine_dirs).unwrap_or_default(),
+            user_m_dirs: ini.and_then(crate::IniFile::user_m_dirs),
+            max_idle_jumps,
+            ..Control::default()
+        }
+    }
+
     /// Whether lines are being skipped (then every line goes through the control flow).
     pub(super) fn engaged(&self) -> bool {
         self.skipping_o.is_some() || self.skipping_to_sub.is_some()
@@ -304,36 +338,8 @@ pub(super) fn may_call_g65(bytes: &[u8]) -> bool {
     number == b"65" && item.get(1 + digits) != Some(&b'.')
 }
 
-/// Fanuc's argument specification I: the local parameter a G65 letter sets.
-fn g65_argument(letter: u8) -> Option<usize> {
-    Some(match letter {
-        b'a' => 1,
-        b'b' => 2,
-        b'c' => 3,
-        b'i' => 4,
-        b'j' => 5,
-        b'k' => 6,
-        b'd' => 7,
-        b'e' => 8,
-        b'f' => 9,
-        b'h' => 11,
-        b'm' => 13,
-        b'q' => 17,
-        b'r' => 18,
-        b's' => 19,
-        b't' => 20,
-        b'u' => 21,
-        b'v' => 22,
-        b'w' => 23,
-        b'x' => 24,
-        b'y' => 25,
-        b'z' => 26,
-        _ => return None,
-    })
-}
-
 /// Where the first item of a line starts (after `/` and the N number).
-fn first_item(bytes: &[u8]) -> usize {
+pub(super) fn first_item(bytes: &[u8]) -> usize {
     let mut at = usize::from(bytes.first() == Some(&b'/'));
     if bytes.get(at) == Some(&b'n') {
         at += 1;
@@ -392,7 +398,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (self.dialect != Dialect::Mach3 || skipping) {
+        if g65 && (!matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -457,252 +463,6 @@ impl<R: BufRead> Interpreter<R> {
 
     pub(super) fn line_fault(&self, message: impl Into<String>) -> Fault {
         Fault::invalid(0, self.lines.line.len().max(1), message)
-    }
-
-    /// Reads an O-word line (`read_o` and the end of `read_items`); `None` when LinuxCNC stops
-    /// reading it (a line skipped over).
-    fn read_o(&mut self, at: usize, m_number: Option<i64>) -> Result<Option<OBlock>, Fault> {
-        let raw_len = self.lines.line.len();
-        let level = self.control.level();
-        let mut block = OBlock::new(OType::None, CallType::None);
-        let mut pos;
-        let bare: String;
-        if m_number == Some(98) {
-            block.kind = OType::M98;
-            // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
-            let m_end = {
-                reader.set_position(at + 1);
-                reader.read_integer_value()?;
-                reader.position()
-            };
-            reader.set_position(m_end);
-            let words = &mut self.block;
-            words.clear();
-            let bytes = self.compact.bytes();
-            while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
-                reader.read_item(words)?;
-            }
-            let Some(p) = words.word(b'p') else {
-                return Err(self.line_fault("Found 'm98' code with no P-word"));
-            };
-            let mut number = p.value.floor();
-            if p.value - number > 0.9999 {
-                number = p.value.ceil();
-            } else if p.value - number > 0.0001 {
-                let (first, last) = self.span(p.at, p.end);
-                return Err(Fault::syntax(first, last, "Non integer value for integer"));
-            }
-            bare = format!("{}", number as i32);
-            block.l = words.word(b'l').map(|word| word.value);
-            pos = bytes.len();
-        } else if m_number == Some(99) {
-            if self.control.defining_sub {
-                return Err(self.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
-            }
-            block.kind = OType::M99;
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
-            reader.set_position(at + 1);
-            reader.read_integer_value()?;
-            pos = reader.position();
-            bare = self.control.frames[level].name.as_deref().unwrap_or("").to_owned();
-        } else {
-            let bytes = self.compact.bytes();
-            pos = at + 1;
-            if bytes.get(pos) == Some(&b'<') {
-                let start = pos + 1;
-                let end = bytes[start..].iter().position(|&b| b == b'>').map(|i| start + i);
-                match end {
-                    Some(end) => {
-                        bare = String::from_utf8_lossy(&bytes[start..end]).into_owned();
-                        pos = end + 1;
-                    }
-                    None => {
-                        // LinuxCNC ignores `read_name`'s error here: the rest is the name.
-                        bare = String::from_utf8_lossy(&bytes[start..]).into_owned();
-                        pos = bytes.len();
-                    }
-                }
-            } else {
-                let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
-                reader.set_position(pos);
-                let number = reader.read_integer_value()?;
-                pos = reader.position();
-                bare = format!("{}", number as i32);
-            }
-            let rest = &bytes[pos..];
-            block.kind = match KEYWORDS.iter().find(|(word, _)| rest.starts_with(word)) {
-                Some(&(word, kind)) => {
-                    pos += word.len();
-                    kind
-                }
-                None if matches!(rest.first(), None | Some(b'(' | b';')) => OType::Fanuc,
-                None => OType::None,
-            };
-        }
-        block.name = match block.kind {
-            OType::Sub
-            | OType::Fanuc
-            | OType::EndSub
-            | OType::Call
-            | OType::M98
-            | OType::Return
-            | OType::M99 => Rc::from(bare),
-            _ => {
-                let scope = if level > 0 {
-                    self.control.frames[level].name.clone()
-                } else if self.control.defining_sub {
-                    self.control.sub_name.clone()
-                } else {
-                    None
-                };
-                Rc::from(format!("{}#{bare}", scope.as_deref().unwrap_or("")))
-            }
-        };
-        let skipping_other =
-            self.control.skipping_o.as_ref().is_some_and(|skipping| **skipping != *block.name);
-        match block.kind {
-            OType::Sub | OType::Fanuc => {
-                if self.control.defining_sub {
-                    return Err(self.line_fault("Nested subroutine definition"));
-                }
-            }
-            OType::EndSub | OType::Return | OType::M99 => {
-                if skipping_other {
-                    return Ok(None);
-                }
-                if block.kind != OType::M99 && self.compact.bytes().get(pos) == Some(&b'[') {
-                    let value = self.expression(&mut pos)?;
-                    self.state.owords.value = value;
-                    self.state.owords.returned = true;
-                } else {
-                    self.state.owords.value = 0.0;
-                    self.state.owords.returned = false;
-                }
-            }
-            _ if self.control.defining_sub => block.kind = OType::None,
-            OType::Call => {
-                if self.control.skipping_o.is_some() {
-                    return Ok(None);
-                }
-                block.call_type = CallType::Oword;
-                let mut count = 0;
-                while let Some(&byte) = self.compact.bytes().get(pos) {
-                    match byte {
-                        b'(' => pos += 1,
-                        b'[' => {
-                            if count >= SUB_PARAMS {
-                                return Err(self.line_fault("Too many subroutine parameters"));
-                            }
-                            block.params[count] = self.expression(&mut pos)?;
-                            count += 1;
-                        }
-                        _ => break,
-                    }
-                }
-                block.count = count;
-            }
-            OType::M98 => block.call_type = CallType::M98,
-            OType::While | OType::Repeat | OType::If | OType::ElseIf => {
-                if skipping_other {
-                    return Ok(None);
-                }
-                if self.compact.bytes().get(pos) != Some(&b'[') {
-                    return Err(self.line_fault(format!(
-                        "Left bracket missing after '{}'",
-                        block.kind.name()
-                    )));
-                }
-                self.control.test_value = self.expression(&mut pos)?;
-            }
-            OType::Do
-            | OType::Else
-            | OType::EndIf
-            | OType::Break
-            | OType::Continue
-            | OType::EndWhile
-            | OType::EndRepeat => {}
-            OType::None => return Err(self.line_fault("Unknown control command in o word")),
-        }
-        if self.control.skipping_o.is_some() {
-            return Ok(Some(block));
-        }
-        // After `if [...]` and the like, nothing but comments.
-        let bytes = self.compact.bytes();
-        while let Some(&byte) = bytes.get(pos) {
-            match byte {
-                b'(' => pos += 1,
-                b';' => break,
-                _ => {
-                    let (first, last) = self.span(pos, bytes.len());
-                    return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
-                }
-            }
-        }
-        Ok(Some(block))
-    }
-
-    /// Mach4's `G65 P… L… A… …` at compact index `at`: a call of subprogram P (L times) with
-    /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
-    fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
-        let mut block = OBlock::new(OType::M98, CallType::G65);
-        let digits =
-            self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
-        reader.set_position(at + 1 + digits);
-        let mut program = None;
-        loop {
-            let pos = reader.position();
-            let Some(&letter) = self.compact.bytes().get(pos) else { break };
-            if letter == b';' {
-                break;
-            }
-            reader.set_position(pos + 1);
-            if letter == b'(' {
-                // Where a comment stood.
-                continue;
-            }
-            let value = reader.read_real_value()?;
-            match letter {
-                b'p' => program = Some(value),
-                b'l' => block.l = Some(value),
-                _ => match g65_argument(letter) {
-                    Some(index) => block.params[index - 1] = value,
-                    None => {
-                        let (first, last) = self.span(pos, pos + 1);
-                        return Err(Fault::syntax(
-                            first,
-                            last,
-                            format!(
-                                "{} is not an argument of G65 (A–F, H–K, M, Q–Z; P the subprogram, L \
-                                 the repeats)",
-                                char::from(letter).to_ascii_uppercase()
-                            ),
-                        ));
-                    }
-                },
-            }
-        }
-        let Some(program) = program else {
-            return Err(self.line_fault("G65 with no P word: which subprogram to call"));
-        };
-        if program.fract() != 0.0 || program < 0.0 {
-            return Err(self.line_fault(format!("G65 P{program}: not a subprogram number")));
-        }
-        block.name = Rc::from(format!("{}", program as i64));
-        Ok(block)
-    }
-
-    /// A `[ … ]` expression at compact index `pos` (moved past it).
-    fn expression(&self, pos: &mut usize) -> Result<f64, Fault> {
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
-        reader.set_position(*pos);
-        let value = reader.read_expression()?;
-        *pos = reader.position();
-        Ok(value)
     }
 
     /// The label of a `repeat` or `while` on `line`: remembered where it is first met; met again
@@ -781,8 +541,39 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// One more jump back (a loop's turn, a call) since the last motion: an error once there
+    /// have been more than [`Config::max_idle_jumps`](crate::Config::max_idle_jumps), naming
+    /// `loop_line`, the line jumped to — an endless loop that never moves would run forever.
+    pub(super) fn count_jump(&mut self, loop_line: usize) -> Result<(), Fault> {
+        self.control.idle_jumps += 1;
+        if self.control.idle_jumps > self.control.max_idle_jumps {
+            return Err(self.line_fault(format!(
+                "the loop at line {loop_line} has jumped back {} times without a motion: an \
+                 endless loop? (that many jumps back without a motion are allowed)",
+                self.control.max_idle_jumps
+            )));
+        }
+        Ok(())
+    }
+
+    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
+    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
+    /// without loops pays one test a motion; the first move after a jump may compare with an
+    /// older end point, and then there was a motion since.)
+    #[cold]
+    pub(super) fn moved_since_jump(&mut self, kind: &biscara_motion::MotionKind) {
+        let end = kind.end();
+        let waits = matches!(*kind, biscara_motion::MotionKind::Dwell { seconds } if seconds > 0.0);
+        if (end.is_some() && end != self.control.last_end) || waits {
+            self.control.idle_jumps = 0;
+        }
+        if end.is_some() {
+            self.control.last_end = end;
+        }
+    }
+
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
-    fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
+    pub(super) fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
         if let Err(err) = self.lines.seek(offset) {
             let message = if self.control.file.is_none() && !self.lines.can_jump() {
                 format!(
@@ -804,6 +595,7 @@ impl<R: BufRead> Interpreter<R> {
     /// `NAME.ngc` if there is one (`control_back_to`).
     fn back_to(&mut self, name: &Rc<str>) -> Result<(), Fault> {
         if let Some(label) = self.label_of(name).cloned() {
+            self.count_jump(label.line)?;
             self.switch_to(label.file)?;
             return self.go_to(label.offset, label.line - 1);
         }
@@ -823,7 +615,8 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
-    /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder.
+    /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder, else in one the INI
+    /// file names.
     fn find_file(&self, name: &str) -> Result<Option<PathBuf>, Fault> {
         if name.contains('/') || name.contains("..") || name.contains('\\') {
             return Err(self.line_fault(format!(
@@ -841,6 +634,7 @@ impl<R: BufRead> Interpreter<R> {
         Ok(beside
             .into_iter()
             .chain(self.control.dirs.iter().map(PathBuf::as_path))
+            .chain(self.control.ini_dirs.iter().map(PathBuf::as_path))
             .map(|dir| dir.join(&file))
             .find(|path| path.is_file()))
     }
@@ -967,7 +761,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if self.dialect == Dialect::Mach3
+            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {

@@ -21,7 +21,8 @@ use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use super::{Interpreter, find_turn};
+use super::Interpreter;
+use super::motion::find_turn;
 use crate::Dialect;
 use crate::lexer::Fault;
 use crate::parser::Word;

@@ -126,8 +126,43 @@ impl<R: BufRead> Interpreter<R> {
                 self.detection = Some(detection);
                 self.apply_dialect();
             }
-            None => self.provisional = true,
+            None => {
+                self.provisional = true;
+                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
+                self.lines.max = MAX_LONG_LINE;
+            }
         }
+        Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
+    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
+    /// long only in its comment decides Grbl (every line before read the same in both); a long
+    /// command is refused as LinuxCNC refuses it.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
+        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
+            return Err(GcodeError::LineTooLong {
+                at: self.location(MAX_LINE, MAX_LINE + 1),
+                max: MAX_LINE,
+            });
+        }
+        self.provisional = false;
+        self.dialect = Dialect::Grbl;
+        self.detection = Some(Detection {
+            dialect: Dialect::Grbl,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
+                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
+                 its line buffer",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
         Ok(())
     }
 
@@ -231,6 +266,9 @@ impl<R: BufRead> Interpreter<R> {
     /// A dialect's changes to the block just read; `Ok(true)` when the block is done with.
     pub(super) fn adapt_block(&mut self) -> Result<bool, Fault> {
         if self.dialect != Dialect::Marlin {
+            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) {
+                self.adapt_fanuc_block();
+            }
             return Ok(false);
         }
         // One command per line: later G and M words are the command's parameters.

@@ -16,8 +16,9 @@ use std::io::BufRead;
 
 use biscara_motion::Feed;
 
+use super::motion::find_turn;
 use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
-use super::{Interpreter, State, find_turn};
+use super::{Interpreter, State};
 use crate::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.

@@ -279,7 +279,7 @@ fn dialect_names_round_trip() {
     for dialect in Dialect::ALL {
         assert_eq!(dialect.to_string().parse::<Dialect>(), Ok(dialect));
     }
-    assert!("fanuc".parse::<Dialect>().is_err());
+    assert!("haas".parse::<Dialect>().is_err());
 }
 
 /// Mach3's G41/G42 P (the radius, instead of the tool table's): the same moves as LinuxCNC's

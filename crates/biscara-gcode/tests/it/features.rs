@@ -1,6 +1,6 @@
 //! Features through the library: the home pose, the origin, G28, units, errors and their
-//! locations. (Conformance with LinuxCNC itself is tested against `rs274` in the `biscara`
-//! package's tests, on `tests/conformance/`.)
+//! locations. (Conformance with LinuxCNC itself: `conformance.rs`, on `tests/conformance/`,
+//! against rs274's recorded results.)
 
 use biscara_gcode::{Config, GcodeError, interpret};
 use biscara_motion::{Feed, MotionKind, Plane};

@@ -1,11 +1,14 @@
 //! Integration tests of the G-code interpreter: one test binary, one module per feature.
 
+mod conformance;
 mod dialects;
+mod fanuc;
 mod features;
 mod memory;
 mod no_panic;
 mod owords;
 mod python;
+mod rs274_record;
 mod splines;
 mod strategies;
 mod streaming;

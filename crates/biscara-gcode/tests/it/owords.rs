@@ -1,8 +1,8 @@
 //! O-word control flow through the library: the same motions from a file (jumps by byte offset)
 //! and from an input read only forwards (lines kept), file subroutines, the bound on what an
 //! input read only forwards keeps, and flat memory for long loops and long programs. (Each
-//! feature and error is compared with LinuxCNC's `rs274` in the `biscara` package's
-//! `tests/conformance/oword_*.ngc` and `error_oword_*.ngc`.)
+//! feature and error is compared with LinuxCNC's `rs274` in `tests/conformance/oword_*.ngc`
+//! and `error_oword_*.ngc`, `conformance.rs`.)
 
 use std::fs::File;
 use std::io::{BufReader, Cursor, Write};

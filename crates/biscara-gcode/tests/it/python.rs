@@ -1,7 +1,7 @@
 //! LinuxCNC's Python plug-ins through the library: O-word subroutines written in Python,
 //! `;py,` lines and `(py,…)` comments with an INI file's `[PYTHON]` section, refused without
 //! one; Python's moves streamed in flat memory. (Each feature is compared with LinuxCNC's
-//! `rs274` in the `biscara` package's `tests/conformance/python_*.ngc`.)
+//! `rs274` in `tests/conformance/python_*.ngc`, `conformance.rs`.)
 //!
 //! These tests need `python3`: without it they are skipped, saying so, except under `CI=true`,
 //! where they fail.

@@ -5,8 +5,8 @@ use std::convert::Infallible;
 
 use approx::assert_relative_eq;
 use biscara_interpolate::{
-    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, NoSpeedLimit, Profile,
-    RateLimit, Segment, SlowDown, SpeedLimit,
+    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, JointBound, NoSpeedLimit,
+    PLANNER_FALLBACK, Profile, RateLimit, Segment, SlowDown, SpeedLimit,
 };
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use proptest::prelude::*;
@@ -221,6 +221,54 @@ fn a_speed_limit_slows_a_move_and_is_reported() {
     assert_eq!(slow.len(), 1);
     assert_eq!((slow[0].line, slow[0].cause), (3, "theta2"));
     assert!(samples.last().expect("samples").t >= 2.0);
+}
+
+/// A move along which the bounds admit no motion for the time-optimal planner (a joint whose
+/// rate along the path is so large in the middle of the move that the largest ṡ² rounds to
+/// zero, "the bounds allow no motion along the path" — what a GRBL-Plotter program met with
+/// `check --fit`) is timed with the trapezoid at the joints' speed limit instead, with a note,
+/// never an error; the end point is still hit.
+#[test]
+fn a_move_the_optimal_planner_cannot_time_falls_back_to_a_slower_trapezoid() {
+    struct Wall([JointBound; 1]);
+    impl SpeedLimit for Wall {
+        fn max_rate(&mut self, _segment: &Segment) -> Option<RateLimit> {
+            Some(RateLimit { rate: 0.25, cause: "theta1" })
+        }
+        fn joint_bounds(&self) -> &[JointBound] {
+            &self.0
+        }
+        fn joint_derivatives(
+            &mut self,
+            _segment: &Segment,
+            s: f64,
+            first: &mut [f64],
+            second: &mut [f64],
+        ) -> bool {
+            first[0] = if (0.4..0.7).contains(&s) { 1e200 } else { 1.0 };
+            second[0] = 0.0;
+            true
+        }
+    }
+    let bound = JointBound { name: "theta1", max_velocity: 1.0, max_acceleration: 10.0 };
+    let end = [10.0, 400.0, 50.0, 0.0];
+    let motions = [linear(7, end, 1200.0)];
+    let mut slow = Vec::new();
+    let samples: Vec<_> = Interpolator::new(
+        motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+        config(Profile::Optimal, 0.01),
+        Wall([bound]),
+        |s: &SlowDown| slow.push(*s),
+    )
+    .collect::<Result<_, _>>()
+    .expect("timed, not an error");
+    assert_eq!(slow.len(), 1, "{slow:?}");
+    assert_eq!((slow[0].line, slow[0].cause), (7, PLANNER_FALLBACK));
+    assert_relative_eq!(slow[0].factor, 0.25 / 2.0);
+    let last = samples.last().expect("samples");
+    assert_eq!(last.pose, end);
+    // At a quarter of the move per second: at least 4 s.
+    assert!(last.t >= 4.0, "{}", last.t);
 }
 
 #[test]

@@ -340,3 +340,15 @@ fn every_real_program_is_placed_in_the_rectangle_or_says_why_not() {
     assert!(printers >= 9, "{printers} printer programs");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `--fit` reads the whole program: one that loops forever while moving stops at a bound of
+/// motions with an error that says so, instead of reading on forever.
+#[test]
+fn fit_stops_an_endless_program_at_its_bound() {
+    let program = "G21 G90\no1 while [1]\nG0 X0 Y0\nG0 X10 Y10\no1 endwhile\nM2\n";
+    let model = RobotModel::default();
+    let config = SamplingConfig { fit: true, max_fit_motions: 1000, ..SamplingConfig::default() };
+    let (motions, _) = run(&model, config, &TextSource::new("endless.ngc", program));
+    let message = motions.expect_err("endless").to_string();
+    assert!(message.contains("past 1000 motions") && message.contains("endless"), "{message}");
+}

@@ -1,0 +1,287 @@
+//! Reading an O-word line, `M98`/`M99` or Mach4's `G65` into an [`OBlock`] (LinuxCNC's
+//! `read_o` and the end of `read_items`).
+
+use std::io::BufRead;
+use std::rc::Rc;
+
+use super::*;
+
+impl<R: BufRead> Interpreter<R> {
+    /// Reads an O-word line (`read_o` and the end of `read_items`); `None` when LinuxCNC stops
+    /// reading it (a line skipped over).
+    pub(super) fn read_o(
+        &mut self,
+        at: usize,
+        m_number: Option<i64>,
+    ) -> Result<Option<OBlock>, Fault> {
+        let raw_len = self.lines.line.len();
+        let level = self.control.level();
+        let mut block = OBlock::new(OType::None, CallType::None);
+        let mut pos;
+        let bare: String;
+        if m_number == Some(98) {
+            block.kind = OType::M98;
+            // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
+            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            let m_end = {
+                reader.set_position(at + 1);
+                reader.read_integer_value()?;
+                reader.position()
+            };
+            reader.set_position(m_end);
+            let words = &mut self.block;
+            words.clear();
+            let bytes = self.compact.bytes();
+            while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
+                reader.read_item(words)?;
+            }
+            let Some(p) = words.word(b'p') else {
+                return Err(self.line_fault("Found 'm98' code with no P-word"));
+            };
+            let mut number = p.value.floor();
+            if p.value - number > 0.9999 {
+                number = p.value.ceil();
+            } else if p.value - number > 0.0001 {
+                let (first, last) = self.span(p.at, p.end);
+                return Err(Fault::syntax(first, last, "Non integer value for integer"));
+            }
+            bare = format!("{}", number as i32);
+            block.l = words.word(b'l').map(|word| word.value);
+            pos = bytes.len();
+        } else if m_number == Some(99) {
+            if self.control.defining_sub {
+                return Err(self.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
+            }
+            block.kind = OType::M99;
+            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            reader.set_position(at + 1);
+            reader.read_integer_value()?;
+            pos = reader.position();
+            bare = self.control.frames[level].name.as_deref().unwrap_or("").to_owned();
+        } else {
+            let bytes = self.compact.bytes();
+            pos = at + 1;
+            if bytes.get(pos) == Some(&b'<') {
+                let start = pos + 1;
+                let end = bytes[start..].iter().position(|&b| b == b'>').map(|i| start + i);
+                match end {
+                    Some(end) => {
+                        bare = String::from_utf8_lossy(&bytes[start..end]).into_owned();
+                        pos = end + 1;
+                    }
+                    None => {
+                        // LinuxCNC ignores `read_name`'s error here: the rest is the name.
+                        bare = String::from_utf8_lossy(&bytes[start..]).into_owned();
+                        pos = bytes.len();
+                    }
+                }
+            } else {
+                let mut reader =
+                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+                reader.set_position(pos);
+                let number = reader.read_integer_value()?;
+                pos = reader.position();
+                bare = format!("{}", number as i32);
+            }
+            let rest = &bytes[pos..];
+            block.kind = match KEYWORDS.iter().find(|(word, _)| rest.starts_with(word)) {
+                Some(&(word, kind)) => {
+                    pos += word.len();
+                    kind
+                }
+                None if matches!(rest.first(), None | Some(b'(' | b';')) => OType::Fanuc,
+                None => OType::None,
+            };
+        }
+        block.name = match block.kind {
+            OType::Sub
+            | OType::Fanuc
+            | OType::EndSub
+            | OType::Call
+            | OType::M98
+            | OType::Return
+            | OType::M99 => Rc::from(bare),
+            _ => {
+                let scope = if level > 0 {
+                    self.control.frames[level].name.clone()
+                } else if self.control.defining_sub {
+                    self.control.sub_name.clone()
+                } else {
+                    None
+                };
+                Rc::from(format!("{}#{bare}", scope.as_deref().unwrap_or("")))
+            }
+        };
+        let skipping_other =
+            self.control.skipping_o.as_ref().is_some_and(|skipping| **skipping != *block.name);
+        match block.kind {
+            OType::Sub | OType::Fanuc => {
+                if self.control.defining_sub {
+                    return Err(self.line_fault("Nested subroutine definition"));
+                }
+            }
+            OType::EndSub | OType::Return | OType::M99 => {
+                if skipping_other {
+                    return Ok(None);
+                }
+                if block.kind != OType::M99 && self.compact.bytes().get(pos) == Some(&b'[') {
+                    let value = self.expression(&mut pos)?;
+                    self.state.owords.value = value;
+                    self.state.owords.returned = true;
+                } else {
+                    self.state.owords.value = 0.0;
+                    self.state.owords.returned = false;
+                }
+            }
+            _ if self.control.defining_sub => block.kind = OType::None,
+            OType::Call => {
+                if self.control.skipping_o.is_some() {
+                    return Ok(None);
+                }
+                block.call_type = CallType::Oword;
+                let mut count = 0;
+                while let Some(&byte) = self.compact.bytes().get(pos) {
+                    match byte {
+                        b'(' => pos += 1,
+                        b'[' => {
+                            if count >= SUB_PARAMS {
+                                return Err(self.line_fault("Too many subroutine parameters"));
+                            }
+                            block.params[count] = self.expression(&mut pos)?;
+                            count += 1;
+                        }
+                        _ => break,
+                    }
+                }
+                block.count = count;
+            }
+            OType::M98 => block.call_type = CallType::M98,
+            OType::While | OType::Repeat | OType::If | OType::ElseIf => {
+                if skipping_other {
+                    return Ok(None);
+                }
+                if self.compact.bytes().get(pos) != Some(&b'[') {
+                    return Err(self.line_fault(format!(
+                        "Left bracket missing after '{}'",
+                        block.kind.name()
+                    )));
+                }
+                self.control.test_value = self.expression(&mut pos)?;
+            }
+            OType::Do
+            | OType::Else
+            | OType::EndIf
+            | OType::Break
+            | OType::Continue
+            | OType::EndWhile
+            | OType::EndRepeat => {}
+            OType::None => return Err(self.line_fault("Unknown control command in o word")),
+        }
+        if self.control.skipping_o.is_some() {
+            return Ok(Some(block));
+        }
+        // After `if [...]` and the like, nothing but comments.
+        let bytes = self.compact.bytes();
+        while let Some(&byte) = bytes.get(pos) {
+            match byte {
+                b'(' => pos += 1,
+                b';' => break,
+                _ => {
+                    let (first, last) = self.span(pos, bytes.len());
+                    return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
+                }
+            }
+        }
+        Ok(Some(block))
+    }
+
+    /// Mach4's `G65 P… L… A… …` at compact index `at`: a call of subprogram P (L times) with
+    /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
+    pub(super) fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
+        let mut block = OBlock::new(OType::M98, CallType::G65);
+        let digits =
+            self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        let mut reader =
+            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        reader.set_position(at + 1 + digits);
+        let mut program = None;
+        loop {
+            let pos = reader.position();
+            let Some(&letter) = self.compact.bytes().get(pos) else { break };
+            if letter == b';' {
+                break;
+            }
+            reader.set_position(pos + 1);
+            if letter == b'(' {
+                // Where a comment stood.
+                continue;
+            }
+            let value = reader.read_real_value()?;
+            match letter {
+                b'p' => program = Some(value),
+                b'l' => block.l = Some(value),
+                _ => match g65_argument(letter) {
+                    Some(index) => block.params[index - 1] = value,
+                    None => {
+                        let (first, last) = self.span(pos, pos + 1);
+                        return Err(Fault::syntax(
+                            first,
+                            last,
+                            format!(
+                                "{} is not an argument of G65 (A–F, H–K, M, Q–Z; P the subprogram, L \
+                                 the repeats)",
+                                char::from(letter).to_ascii_uppercase()
+                            ),
+                        ));
+                    }
+                },
+            }
+        }
+        let Some(program) = program else {
+            return Err(self.line_fault("G65 with no P word: which subprogram to call"));
+        };
+        if program.fract() != 0.0 || program < 0.0 {
+            return Err(self.line_fault(format!("G65 P{program}: not a subprogram number")));
+        }
+        block.name = Rc::from(format!("{}", program as i64));
+        Ok(block)
+    }
+
+    /// A `[ … ]` expression at compact index `pos` (moved past it).
+    pub(super) fn expression(&self, pos: &mut usize) -> Result<f64, Fault> {
+        let mut reader =
+            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        reader.set_position(*pos);
+        let value = reader.read_expression()?;
+        *pos = reader.position();
+        Ok(value)
+    }
+}
+
+/// Fanuc's argument specification I: the local parameter a G65 letter sets.
+fn g65_argument(letter: u8) -> Option<usize> {
+    Some(match letter {
+        b'a' => 1,
+        b'b' => 2,
+        b'c' => 3,
+        b'i' => 4,
+        b'j' => 5,
+        b'k' => 6,
+        b'd' => 7,
+        b'e' => 8,
+        b'f' => 9,
+        b'h' => 11,
+        b'm' => 13,
+        b'q' => 17,
+        b'r' => 18,
+        b's' => 19,
+        b't' => 20,
+        b'u' => 21,
+        b'v' => 22,
+        b'w' => 23,
+        b'x' => 24,
+        b'y' => 25,
+        b'z' => 26,
+        _ => return None,
+    })
+}

@@ -1,0 +1,57 @@
+//! Hermetic conformance with LinuxCNC: every program of `tests/conformance/` against the result
+//! LinuxCNC's `rs274` gave for it, recorded beside it (`NAME.rs274`), on every `cargo test` —
+//! rs274 need not be installed. The `biscara` package's conformance test runs rs274 itself and
+//! re-records (a stale record fails it under CI=true).
+
+use std::path::Path;
+
+use crate::rs274_record::{cases, judge_case, read_record, record_path};
+
+#[test]
+fn every_conformance_program_matches_its_recorded_rs274_result() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/conformance");
+    let cases = cases(&dir);
+    let (mut failures, mut missing) = (Vec::new(), Vec::new());
+    for case in &cases {
+        let name = case.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        let Ok(text) = std::fs::read_to_string(record_path(case)) else {
+            missing.push(name.to_owned());
+            continue;
+        };
+        let theirs = read_record(&text).unwrap_or_else(|err| panic!("{name}: {err}"));
+        if let Some(problem) = judge_case(case, &theirs) {
+            failures.push(format!("{name}: {problem}"));
+        }
+    }
+    assert!(missing.is_empty(), "{} programs have no recorded result: {missing:?}", missing.len());
+    assert!(cases.len() >= 500, "only {} recorded programs", cases.len());
+    assert!(
+        failures.is_empty(),
+        "{} of {} programs differ from rs274's recorded result:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
+}
+
+/// The records read back as they were written, and a record that is not one is an error.
+#[test]
+fn records_round_trip() {
+    use crate::rs274_record::{Outcome, record_text};
+    use biscara_motion::{Motion, MotionKind};
+    let motion = |end: [f64; 4]| Motion {
+        line: 0,
+        kind: MotionKind::Rapid { end },
+        extrude: None,
+        blend: None,
+        naive_cam: None,
+    };
+    for outcome in [
+        Outcome::Motions(vec![motion([1.0, 2.5, -3.0, 0.1]), motion([0.0; 4])]),
+        Outcome::Error { message: "Bad number format".to_owned(), before: vec![motion([1.0; 4])] },
+        Outcome::Motions(Vec::new()),
+    ] {
+        assert_eq!(read_record(&record_text(&outcome)), Ok(outcome));
+    }
+    assert!(read_record("G0 X1\n").is_err());
+}
