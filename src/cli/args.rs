@@ -99,7 +99,7 @@ pub(crate) struct PlacementArgs {
     pub(crate) fit: bool,
 }
 
-/// Whose G-code a program is (SPEC §4.3).
+/// Whose G-code a program is.
 #[derive(Debug, Args)]
 pub(crate) struct DialectArgs {
     /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
@@ -113,7 +113,7 @@ pub(crate) struct DialectArgs {
         help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
-    /// What the robot carries (SPEC §1.6), over the robot file's `tool.kind`: what M3, M4, M5,
+    /// What the robot carries, over the robot file's `tool.kind`: what M3, M4, M5,
     /// S and E mean. Without either, the tool is inferred from the program (noted on stderr),
     /// the gripper when nothing tells.
     #[arg(
@@ -130,7 +130,7 @@ fn parse_tool(text: &str) -> Result<Tool, String> {
         .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
-/// The files a G-code program may read besides itself (SPEC §4.2 tier 3).
+/// The files a G-code program may read besides itself.
 #[derive(Debug, Args)]
 pub(crate) struct GcodeFilesArgs {
     /// A folder where file subroutines are looked for: `o<name> call` of a subroutine the
@@ -273,7 +273,7 @@ pub(crate) fn placed_reading(
 pub(crate) struct BlendArgs {
     /// Blend the corners of a program that never says G61 or G64 as if it began with `G64 P`
     /// TOL (mm): consecutive straight moves are joined by arcs within TOL of the corner and
-    /// timed through without stopping (SPEC §6). Off by default (an exact stop at every
+    /// timed through without stopping. Off by default (an exact stop at every
     /// corner); a program's own G61 or G64 always wins.
     #[arg(
         long,

@@ -1,4 +1,4 @@
-//! `biscara check`: a program run on the virtual robot, every problem reported (SPEC §8.1).
+//! `biscara check`: a program run on the virtual robot, every problem reported.
 
 use std::path::PathBuf;
 
@@ -11,7 +11,7 @@ use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::NoteReporter;
 use super::files::{load_scene, write_output};
 
-/// Runs a program on the virtual robot and reports every problem (SPEC §8.1).
+/// Runs a program on the virtual robot and reports every problem.
 ///
 /// The program is interpreted, interpolated and solved by IK sample by sample, and nothing
 /// stops at the first problem: unreachable poses, joint positions outside `joint_limits`, joint
@@ -40,7 +40,7 @@ pub(crate) struct CheckArgs {
     /// Boxes around the robot that no part of it may touch (JSON, millimetres, base frame).
     #[arg(long, value_name = "FILE")]
     scene: Option<PathBuf>,
-    /// Print the report as one JSON object (SPEC §9).
+    /// Print the report as one JSON object.
     #[arg(long)]
     json: bool,
     /// Write the report to FILE instead of standard output.

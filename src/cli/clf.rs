@@ -9,7 +9,7 @@ use clap::Args;
 use super::diag::located;
 use super::files::{open_input, write_output};
 
-/// Turns a pick-and-place points file into an APT-style CL file (SPEC §2, §3).
+/// Turns a pick-and-place points file into an APT-style CL file.
 ///
 /// From home, for each pick/place pair: a rapid above the pick (approach height, with the pick's
 /// rotation), feed down, PICK, dwell, feed up; the same for the place; finally a rapid home, END,
@@ -23,7 +23,7 @@ use super::files::{open_input, write_output};
                        $ biscara --robot my-robot.json clf pallet.txt > pallet.cl"
 )]
 pub(crate) struct ClfArgs {
-    /// The points file (SPEC §2): home, approach, feed, dwell, then pick/place lines; `-` reads
+    /// The points file: home, approach, feed, dwell, then pick/place lines; `-` reads
     /// standard input.
     #[arg(value_name = "POINTS")]
     points: PathBuf,

@@ -13,7 +13,7 @@ use super::run_command;
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
 ///
-/// points (SPEC §2) → CL file → G-code → inter-file → Cartesian path → joint trajectory, each
+/// points → CL file → G-code → inter-file → Cartesian path → joint trajectory, each
 /// stage reading the file the previous one wrote, exactly as the commands `gen`, `interpret`,
 /// `interpolate` and `joints` do. Prints what it wrote and a summary: duration, samples and the
 /// peak speed of every joint.
@@ -28,7 +28,7 @@ pub(crate) struct DemoArgs {
     dir: PathBuf,
 }
 
-/// The bundled job: SPEC §2's example points file (also `data/jobs/pick_place.txt`).
+/// The bundled job: the example points file (also `data/jobs/pick_place.txt`).
 const EXAMPLE_JOB: &str = include_str!("../../data/jobs/pick_place.txt");
 
 pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
@@ -59,7 +59,7 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     run_command(model, ["mjcf", "-o", &file("robot.xml"), "--traj", &traj])?;
     let written = [
         ("robot.json", "the robot in force"),
-        ("job.txt", "the pick-and-place points (SPEC §2)"),
+        ("job.txt", "the pick-and-place points"),
         ("job.cl", "CL file (biscara clf)"),
         ("job.ngc", "G-code for LinuxCNC (biscara post)"),
         ("job.jsonl", "motions, the inter-file (biscara interpret)"),

@@ -25,7 +25,7 @@ use super::files::{open_input, write_output};
                        $ biscara gen data/jobs/pallet_3x3.txt -o pallet.ngc --clf pallet.cl"
 )]
 pub(crate) struct GenArgs {
-    /// The points file (SPEC §2); `-` reads standard input.
+    /// The points file; `-` reads standard input.
     #[arg(value_name = "POINTS")]
     points: PathBuf,
     /// Write the G-code to FILE instead of standard output.

@@ -12,7 +12,7 @@ use super::diag::NoteReporter;
 use super::files::{FileSource, write_output};
 
 /// Interprets a G-code program as LinuxCNC does and writes its motions as the inter-file
-/// (SPEC §4.2, §5): one JSON object per motion or event, absolute positions in the robot's base
+///: one JSON object per motion or event, absolute positions in the robot's base
 /// frame (offsets applied), millimetres and degrees; feeds in mm/min.
 ///
 /// The language is LinuxCNC's RS274/NGC for the axes X Y Z C: G0 G1 G2 G3 (I J K or R, full
@@ -37,7 +37,7 @@ use super::files::{FileSource, write_output};
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
 /// nothing written.
 ///
-/// Programs written for other firmware are read as that firmware reads them (SPEC §4.3, README
+/// Programs written for other firmware are read as that firmware reads them (docs/gcode.md,
 /// "Dialects"): `--dialect auto` (the default) decides from the program's first 64 KiB
 /// (generator comments, E words, printer M-codes, `$` lines, nested comments, `O0001` program
 /// numbers) and says on stderr which dialect it chose and why, and lists the codes with no

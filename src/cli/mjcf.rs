@@ -11,7 +11,7 @@ use clap::Args;
 use super::diag::located;
 use super::files::{display_path, load_scene, open_input, write_output};
 
-/// Writes a MuJoCo model (MJCF) of the robot (SPEC §8.3).
+/// Writes a MuJoCo model (MJCF) of the robot.
 ///
 /// The two chains are bodies with hinge joints, the loop is closed by an equality `connect` at
 /// the platform point, and chain 1's distal link carries the Z slide and the rotary joint. Joints

@@ -1,4 +1,4 @@
-//! `biscara plot`: pictures of a program on the virtual robot (SPEC §8.3).
+//! `biscara plot`: pictures of a program on the virtual robot.
 
 use std::path::PathBuf;
 
@@ -14,7 +14,7 @@ use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{format_of, load_scene, write_output};
 
-/// Draws a program on the virtual robot, in top view or as joint curves (SPEC §8.3).
+/// Draws a program on the virtual robot, in top view or as joint curves.
 ///
 /// The top view shows the workspace (reachable region) with its largest rectangle, the
 /// programmed path, the scene's boxes (--scene) and the robot (links, elbows, base joints and

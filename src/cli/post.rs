@@ -8,7 +8,7 @@ use clap::Args;
 use super::diag::{Level, post_error, report};
 use super::files::{display_path, open_input, write_output};
 
-/// Turns a CL file into G-code that runs unchanged on LinuxCNC (SPEC §3, §4.1).
+/// Turns a CL file into G-code that runs unchanged on LinuxCNC.
 ///
 /// Reads the CL files `biscara clf` writes and those of 3-axis CAM systems: GOTO with 3, 4 or 6
 /// values (the tool axis must be 0,0,1), FEDRAT in MMPM or IPM (either order), UNITS/INCHES

@@ -19,7 +19,7 @@ pub(crate) enum AngleUnitArg {
     Deg,
 }
 
-/// Samples a program at a fixed time step: the Cartesian path (SPEC §6).
+/// Samples a program at a fixed time step: the Cartesian path.
 ///
 /// Writes the CSV `t_s,x_mm,y_mm,z_mm,c_deg` (and `gripper` with --events), first row t = 0 at
 /// the robot's home pose, one row per time step. Every programmed end point is hit exactly: each
@@ -43,7 +43,7 @@ pub(crate) struct InterpolateArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
-    /// Add the tool's column (SPEC §1.6): `gripper` (1 from a pick to the next place),
+    /// Add the tool's column: `gripper` (1 from a pick to the next place),
     /// `laser_power` (the S power while on, 0 off), `spindle_rpm` (negative: M4),
     /// `extruded_mm` (filament fed since the start) or `pen_down` (1 down, 0 up).
     #[arg(
@@ -53,7 +53,7 @@ pub(crate) struct InterpolateArgs {
     events: bool,
 }
 
-/// Joint time series of a program, for a virtual or real robot (SPEC §7).
+/// Joint time series of a program, for a virtual or real robot.
 ///
 /// Every sample is solved by IK in the robot's working and assembly mode; θ3 is continuous. The
 /// CSV is `t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm` (`_deg` with --angle-unit deg), with
@@ -84,7 +84,7 @@ pub(crate) struct JointsArgs {
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
     angle_unit: AngleUnitArg,
-    /// Add the tool's column after the joints, as `interpolate --events` does (SPEC §1.6):
+    /// Add the tool's column after the joints, as `interpolate --events` does:
     /// `gripper`, `laser_power`, `spindle_rpm`, `extruded_mm` or `pen_down`.
     #[arg(
         long,

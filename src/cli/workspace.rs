@@ -1,4 +1,4 @@
-//! `biscara workspace`: the reachable XY region, its area and largest rectangle (SPEC §8.2).
+//! `biscara workspace`: the reachable XY region, its area and largest rectangle.
 
 use std::path::PathBuf;
 
@@ -10,7 +10,7 @@ use clap::Args;
 use super::files::{format_of, write_output};
 
 /// The reachable region of the XY plane and the largest axis-aligned rectangle inside it
-/// (SPEC §8.2, the paper's "reduced workspace", Fig. 5).
+/// (the paper's "reduced workspace", Fig. 5).
 ///
 /// A grid of points at multiples of --step is tested: a point is reachable when IK solves it in
 /// the robot's working mode and assembly mode, θ1 and θ2 lie within their limits, and the pose
@@ -19,7 +19,7 @@ use super::files::{format_of, write_output};
 /// cell. The rectangle is exact on the grid: its corners are grid points, every grid point in it
 /// is reachable, and no larger one exists (maximal-rectangle algorithm).
 ///
-/// Prints text by default, `--json` the object of SPEC §9, `--csv` the grid (`x_mm,y_mm,reachable`);
+/// Prints text by default, `--json` one JSON object, `--csv` the grid (`x_mm,y_mm,reachable`);
 /// `--svg FILE` and `--png FILE` also draw it.
 #[derive(Debug, Args)]
 #[command(

@@ -129,7 +129,7 @@ fn hand_written_cases_conform() {
         if let Some(problem) = record::judge_case(case, &theirs) {
             failures.push(format!("{name}: {problem}"));
         }
-        let text = record::record_text(&theirs);
+        let text = record::record_text(&theirs, &repo_root().join(CASES));
         let path = record::record_path(case);
         if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
             stale.push(name);

@@ -18,7 +18,7 @@ fn every_conformance_program_matches_its_recorded_rs274_result() {
             missing.push(name.to_owned());
             continue;
         };
-        let theirs = read_record(&text).unwrap_or_else(|err| panic!("{name}: {err}"));
+        let theirs = read_record(&text, &dir).unwrap_or_else(|err| panic!("{name}: {err}"));
         if let Some(problem) = judge_case(case, &theirs) {
             failures.push(format!("{name}: {problem}"));
         }
@@ -39,6 +39,7 @@ fn every_conformance_program_matches_its_recorded_rs274_result() {
 fn records_round_trip() {
     use crate::rs274_record::{Outcome, record_text};
     use biscara_motion::{Motion, MotionKind};
+    let dir = Path::new("/some/where/tests/conformance");
     let motion = |end: [f64; 4]| Motion {
         line: 0,
         kind: MotionKind::Rapid { end },
@@ -51,7 +52,13 @@ fn records_round_trip() {
         Outcome::Error { message: "Bad number format".to_owned(), before: vec![motion([1.0; 4])] },
         Outcome::Motions(Vec::new()),
     ] {
-        assert_eq!(read_record(&record_text(&outcome)), Ok(outcome));
+        assert_eq!(read_record(&record_text(&outcome, &dir), &dir), Ok(outcome));
     }
-    assert!(read_record("G0 X1\n").is_err());
+    assert!(read_record("G0 X1\n", &dir).is_err());
+    // A message naming the program's folder is recorded without it, and read back with it.
+    let message = format!("EOF in file:{}/a.ngc seeking o-word", dir.display());
+    let outcome = Outcome::Error { message, before: Vec::new() };
+    let text = record_text(&outcome, &dir);
+    assert!(text.starts_with("# rs274 error: EOF in file:$CONFORMANCE/a.ngc"), "{text}");
+    assert_eq!(read_record(&text, &dir), Ok(outcome));
 }

@@ -276,11 +276,19 @@ pub fn record_path(case: &Path) -> PathBuf {
     case.with_extension("rs274")
 }
 
-/// The record of an outcome: a header line, then the motions as inter-file lines.
-pub fn record_text(outcome: &Outcome) -> String {
+/// What stands in a record for the folder of the conformance programs: rs274's messages name
+/// the program's absolute path, and a record must not depend on where the repository lies.
+const FOLDER: &str = "$CONFORMANCE";
+
+/// The record of an outcome of a program in `dir`: a header line, then the motions as inter-file
+/// lines.
+pub fn record_text(outcome: &Outcome, dir: &Path) -> String {
     let (header, motions) = match outcome {
         Outcome::Motions(motions) => (MOTIONS_HEADER.to_owned(), motions),
-        Outcome::Error { message, before } => (format!("{ERROR_HEADER}{message}"), before),
+        Outcome::Error { message, before } => {
+            let message = message.replace(&dir.display().to_string(), FOLDER);
+            (format!("{ERROR_HEADER}{message}"), before)
+        }
     };
     let mut out = format!("{header}\n").into_bytes();
     // rs274's spline and tilted-arc calls are expanded with our own moves (`expand`) when we
@@ -296,8 +304,8 @@ pub fn record_text(outcome: &Outcome) -> String {
     String::from_utf8(out).expect("inter-file lines are text")
 }
 
-/// A record read back.
-pub fn read_record(text: &str) -> Result<Outcome, String> {
+/// A record of a program in `dir` read back.
+pub fn read_record(text: &str, dir: &Path) -> Result<Outcome, String> {
     let (header, rest) = text.split_once('\n').unwrap_or((text, ""));
     let mut motions = biscara_motion::read_jsonl(rest.as_bytes())
         .collect::<Result<Vec<_>, _>>()
@@ -309,7 +317,8 @@ pub fn read_record(text: &str) -> Result<Outcome, String> {
     if header == MOTIONS_HEADER {
         Ok(Outcome::Motions(motions))
     } else if let Some(message) = header.strip_prefix(ERROR_HEADER) {
-        Ok(Outcome::Error { message: message.to_owned(), before: motions })
+        let message = message.replace(FOLDER, &dir.display().to_string());
+        Ok(Outcome::Error { message, before: motions })
     } else {
         Err(format!("not a record: {header}"))
     }
