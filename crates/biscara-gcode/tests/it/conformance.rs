@@ -52,13 +52,13 @@ fn records_round_trip() {
         Outcome::Error { message: "Bad number format".to_owned(), before: vec![motion([1.0; 4])] },
         Outcome::Motions(Vec::new()),
     ] {
-        assert_eq!(read_record(&record_text(&outcome, &dir), &dir), Ok(outcome));
+        assert_eq!(read_record(&record_text(&outcome, dir), dir), Ok(outcome));
     }
-    assert!(read_record("G0 X1\n", &dir).is_err());
+    assert!(read_record("G0 X1\n", dir).is_err());
     // A message naming the program's folder is recorded without it, and read back with it.
     let message = format!("EOF in file:{}/a.ngc seeking o-word", dir.display());
     let outcome = Outcome::Error { message, before: Vec::new() };
-    let text = record_text(&outcome, &dir);
+    let text = record_text(&outcome, dir);
     assert!(text.starts_with("# rs274 error: EOF in file:$CONFORMANCE/a.ngc"), "{text}");
-    assert_eq!(read_record(&text, &dir), Ok(outcome));
+    assert_eq!(read_record(&text, dir), Ok(outcome));
 }
