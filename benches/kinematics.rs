@@ -13,7 +13,7 @@
 use std::f64::consts::PI;
 use std::hint::black_box;
 
-use biscara::kinematics::{Joints, Kinematics, Pose};
+use biscara::kinematics::{BatchSolution, Dispatch, Joints, Kinematics, Pose};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 const POSES: usize = 1_000_000;
@@ -129,6 +129,20 @@ fn kinematics(c: &mut Criterion) {
             sum
         });
     });
+    // The batch path (IK + assembly, limit and singularity checks, as `inverse_checked`), once
+    // with the CPU detected at run time (x86-64-v3 here) and once forced to the portable build.
+    let mut solved = vec![BatchSolution::default(); POSES];
+    for (name, dispatch) in [
+        ("ik_batch_checked_dispatch", Dispatch::Detect),
+        ("ik_batch_checked_portable", Dispatch::Portable),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                model.inverse_batch_with(dispatch, black_box(&poses), &mut solved);
+                solved.iter().map(|s| s.joints.theta1).sum::<f64>()
+            });
+        });
+    }
     group.bench_function("fk_forward", |b| {
         b.iter(|| {
             let mut sum = 0.0;

@@ -22,6 +22,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod batch;
 mod error;
 mod jacobian;
 mod kinematics;
@@ -34,6 +35,7 @@ mod unwrap;
 
 pub use nalgebra as na;
 
+pub use batch::{BatchSolution, BatchStatus, Dispatch, LANES, atan2 as batch_atan2};
 pub use error::{KinematicsError, Shortfall, SingularityKind};
 pub use jacobian::PlanarJacobian;
 pub use kinematics::{

@@ -90,13 +90,13 @@ impl Workspace {
         let (j0, j1) = (index(-reach, false), index(reach, true));
         let columns = usize::try_from(i1 - i0 + 1).unwrap_or(0);
         let rows = usize::try_from(j1 - j0 + 1).unwrap_or(0);
-        let mut reachable = Vec::with_capacity(columns * rows);
-        for j in 0..rows {
-            let y = (j0 + j as i64) as f64 * step;
-            for i in 0..columns {
-                let x = (i0 + i as i64) as f64 * step;
-                reachable.push(reachable_fast(model, reach, x, y));
-            }
+        // Row by row through the batch solver (vectorised; the same verdicts as `reachable`).
+        let xs: Vec<f64> = (0..columns).map(|i| (i0 + i as i64) as f64 * step).collect();
+        let mut ys = vec![0.0; columns];
+        let mut reachable = vec![false; columns * rows];
+        for (j, row) in reachable.chunks_exact_mut(columns.max(1)).enumerate() {
+            ys.fill((j0 + j as i64) as f64 * step);
+            model.reachable_batch(&xs, &ys, row);
         }
         Ok(Workspace { step, i0, j0, columns, rows, reachable })
     }
@@ -167,13 +167,6 @@ impl Workspace {
         let max = self.point(i + w - 1, j + h - 1);
         Ok(Rectangle { min, max })
     }
-}
-
-/// [`reachable`] with a quick rejection of points no chain reaches.
-fn reachable_fast(model: &Kinematics, reach: f64, x: f64, y: f64) -> bool {
-    let [b1, b2] = model.bases();
-    let far = |b: biscara_kinematics::na::Point2<f64>| (x - b.x).hypot(y - b.y) > reach;
-    !far(b1) && !far(b2) && reachable(model, x, y)
 }
 
 /// The block of `true` cells (`i`, `j`, width, height) maximising `(width − 1)·(height − 1)`,
@@ -260,6 +253,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_grid_agrees_with_the_scalar_test() {
+        let model = Kinematics::default();
+        let workspace = Workspace::compute(&model, 5.0).unwrap();
+        let (columns, rows) = workspace.size();
+        for j in 0..rows {
+            for i in 0..columns {
+                let [x, y] = workspace.point(i, j);
+                assert_eq!(workspace.is_reachable(i, j), reachable(&model, x, y), "({x}, {y})");
+            }
+        }
+        assert!(workspace.count() > 1000);
     }
 
     #[test]

@@ -1,0 +1,255 @@
+//! The design CSV: one row per design, written as the sweep goes, read back for pictures and
+//! merged from shards.
+
+use std::io::{BufRead, Write};
+
+use biscara_robot::Rectangle;
+
+use crate::{Design, DesignError, DesignStatus, Evaluation};
+
+/// The columns every design CSV has, in order (`task_ok` follows when a task is given).
+pub const COLUMNS: [&str; 12] = [
+    "index",
+    "l1",
+    "l2",
+    "base",
+    "area_mm2",
+    "rect_w_mm",
+    "rect_h_mm",
+    "rect_x0_mm",
+    "rect_y0_mm",
+    "gci",
+    "lci_min",
+    "status",
+];
+
+/// The header line (without its newline); `task` adds the `task_ok` column.
+pub fn header(task: bool) -> String {
+    let mut header = COLUMNS.join(",");
+    if task {
+        header.push_str(",task_ok");
+    }
+    header
+}
+
+/// Writes one row (with its newline): lengths as given, the area and rectangle to 0.001 mm,
+/// the indices to 1e-6.
+pub fn write_row(out: &mut dyn Write, evaluation: &Evaluation) -> std::io::Result<()> {
+    let Design { index, l1, l2, base } = evaluation.design;
+    let (w, h, x0, y0) = evaluation
+        .rectangle
+        .map_or((0.0, 0.0, 0.0, 0.0), |r| (r.width(), r.height(), r.min[0], r.min[1]));
+    write!(
+        out,
+        "{index},{l1},{l2},{base},{:.3},{w:.3},{h:.3},{x0:.3},{y0:.3},{:.6},{:.6},{}",
+        evaluation.area_mm2,
+        evaluation.gci,
+        evaluation.lci_min,
+        evaluation.status.as_str()
+    )?;
+    if let Some(ok) = evaluation.task_ok {
+        write!(out, ",{}", u8::from(ok))?;
+    }
+    writeln!(out)
+}
+
+/// Reads one data line of a design CSV (`line` from 1, for errors).
+pub fn parse_row(text: &str, line: usize, task: bool) -> Result<Evaluation, DesignError> {
+    let fail = |message: String| DesignError::Csv { line, message };
+    let fields: Vec<&str> = text.split(',').collect();
+    let expected = COLUMNS.len() + usize::from(task);
+    if fields.len() != expected {
+        return Err(fail(format!("{} fields, the header has {expected}", fields.len())));
+    }
+    let number = |k: usize| -> Result<f64, DesignError> {
+        let value: f64 = fields[k]
+            .trim()
+            .parse()
+            .map_err(|_| fail(format!("{} '{}' is no number", column(k), fields[k])))?;
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(fail(format!("{} '{}' is not finite", column(k), fields[k])))
+        }
+    };
+    let index: u64 = fields[0]
+        .trim()
+        .parse()
+        .map_err(|_| fail(format!("index '{}' is no design number", fields[0])))?;
+    let status = DesignStatus::parse(fields[11].trim())
+        .ok_or_else(|| fail(format!("status '{}' is not ok, empty or invalid", fields[11])))?;
+    let (w, h, x0, y0) = (number(5)?, number(6)?, number(7)?, number(8)?);
+    let task_ok = if task {
+        match fields[12].trim() {
+            "1" => Some(true),
+            "0" => Some(false),
+            other => return Err(fail(format!("task_ok '{other}' is not 0 or 1"))),
+        }
+    } else {
+        None
+    };
+    Ok(Evaluation {
+        design: Design { index, l1: number(1)?, l2: number(2)?, base: number(3)? },
+        status,
+        area_mm2: number(4)?,
+        rectangle: (status == DesignStatus::Ok)
+            .then_some(Rectangle { min: [x0, y0], max: [x0 + w, y0 + h] }),
+        gci: number(9)?,
+        lci_min: number(10)?,
+        task_ok,
+    })
+}
+
+fn column(k: usize) -> &'static str {
+    COLUMNS.get(k).copied().unwrap_or("task_ok")
+}
+
+/// Whether `line` is a design CSV header, and whether it has the task column.
+pub fn read_header(line: &str) -> Option<bool> {
+    if line == header(false) {
+        Some(false)
+    } else if line == header(true) {
+        Some(true)
+    } else {
+        None
+    }
+}
+
+/// The rows of a design CSV, one at a time (the header checked first).
+pub struct RowReader<R> {
+    input: R,
+    line: usize,
+    task: bool,
+    buffer: String,
+}
+
+impl<R: BufRead> RowReader<R> {
+    /// Reads the header of `input`.
+    pub fn new(mut input: R) -> Result<RowReader<R>, DesignError> {
+        let mut buffer = String::new();
+        input.read_line(&mut buffer)?;
+        let task = read_header(buffer.trim_end()).ok_or_else(|| DesignError::Csv {
+            line: 1,
+            message: format!("not a design CSV: the header is not '{}'", header(false)),
+        })?;
+        Ok(RowReader { input, line: 1, task, buffer })
+    }
+
+    /// Whether the rows have the `task_ok` column.
+    pub fn has_task(&self) -> bool {
+        self.task
+    }
+
+    /// The next row and its line, its text kept in [`RowReader::text`].
+    fn next_row(&mut self) -> Option<Result<(usize, Evaluation), DesignError>> {
+        self.buffer.clear();
+        match self.input.read_line(&mut self.buffer) {
+            Ok(0) => None,
+            Ok(_) => {
+                self.line += 1;
+                let text = self.buffer.trim_end_matches(['\n', '\r']);
+                Some(parse_row(text, self.line, self.task).map(|row| (self.line, row)))
+            }
+            Err(err) => Some(Err(err.into())),
+        }
+    }
+
+    /// The text of the row last read, without its newline.
+    pub fn text(&self) -> &str {
+        self.buffer.trim_end_matches(['\n', '\r'])
+    }
+}
+
+impl<R: BufRead> Iterator for RowReader<R> {
+    type Item = Result<Evaluation, DesignError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.next_row().map(|row| row.map(|(_, evaluation)| evaluation))
+    }
+}
+
+/// Joins the CSVs of a sharded sweep into the CSV the whole sweep writes: rows by design index,
+/// streaming (one row per input in memory). Every input needs the same header and rising
+/// indices; a design in two files, or in none below the largest, is an error. Returns how many
+/// rows were written.
+pub fn merge(
+    inputs: Vec<(String, Box<dyn BufRead>)>,
+    out: &mut dyn Write,
+) -> Result<u64, DesignError> {
+    let mut readers = Vec::with_capacity(inputs.len());
+    let mut task = None;
+    for (name, input) in inputs {
+        let reader = RowReader::new(input).map_err(|err| in_file(&name, err))?;
+        if task.is_some_and(|t| t != reader.has_task()) {
+            return Err(DesignError::Merge {
+                file: name,
+                line: 1,
+                message: "its header differs from the first file's (task_ok)".to_owned(),
+            });
+        }
+        task = Some(reader.has_task());
+        readers.push((name, reader));
+    }
+    writeln!(out, "{}", header(task.unwrap_or(false)))?;
+    // The next row of each input: (index, line, text).
+    let mut heads: Vec<Option<(u64, usize, String)>> = Vec::with_capacity(readers.len());
+    for (name, reader) in &mut readers {
+        heads.push(advance(name, reader, None)?);
+    }
+    let mut expected = 0u64;
+    loop {
+        let next = heads
+            .iter()
+            .enumerate()
+            .filter_map(|(k, head)| head.as_ref().map(|(index, ..)| (*index, k)))
+            .min();
+        let Some((index, k)) = next else { break };
+        let (name, reader) = &mut readers[k];
+        let (_, line, text) = heads[k].take().unwrap_or_default();
+        if index < expected {
+            return Err(DesignError::Merge {
+                file: name.clone(),
+                line,
+                message: format!("design {index} is in another file too"),
+            });
+        }
+        if index > expected {
+            return Err(DesignError::Missing { index: expected });
+        }
+        writeln!(out, "{text}")?;
+        expected += 1;
+        heads[k] = advance(name, reader, Some(index))?;
+    }
+    Ok(expected)
+}
+
+fn in_file(name: &str, err: DesignError) -> DesignError {
+    match err {
+        DesignError::Csv { line, message } => {
+            DesignError::Merge { file: name.to_owned(), line, message }
+        }
+        other => other,
+    }
+}
+
+/// The next row of one merge input, checked to rise above `previous`.
+fn advance<R: BufRead>(
+    name: &str,
+    reader: &mut RowReader<R>,
+    previous: Option<u64>,
+) -> Result<Option<(u64, usize, String)>, DesignError> {
+    let Some(row) = reader.next_row() else { return Ok(None) };
+    let (line, row) = row.map_err(|err| in_file(name, err))?;
+    let index = row.design.index;
+    if previous.is_some_and(|p| index <= p) {
+        return Err(DesignError::Merge {
+            file: name.to_owned(),
+            line,
+            message: format!(
+                "design {index} comes after design {}: rows out of order",
+                previous.unwrap_or(0)
+            ),
+        });
+    }
+    Ok(Some((index, line, reader.text().to_owned())))
+}

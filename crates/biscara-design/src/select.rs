@@ -1,0 +1,132 @@
+//! Choosing designs: the best by one objective, and the Pareto front of rectangle area against
+//! GCI.
+
+use std::str::FromStr;
+
+use crate::{DesignStatus, Evaluation};
+
+/// What `--best` maximises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Objective {
+    /// The largest rectangle's area.
+    #[default]
+    Rectangle,
+    /// The GCI over the largest rectangle.
+    Gci,
+    /// The reachable area.
+    Area,
+    /// The worst LCI over the largest rectangle.
+    LciMin,
+}
+
+impl Objective {
+    /// Every objective, as `--objective` spells it.
+    pub const NAMES: [&'static str; 4] = ["rect", "gci", "area", "lci-min"];
+
+    /// The value this objective maximises for `evaluation`.
+    pub fn value(self, evaluation: &Evaluation) -> f64 {
+        match self {
+            Objective::Rectangle => evaluation.rectangle_area(),
+            Objective::Gci => evaluation.gci,
+            Objective::Area => evaluation.area_mm2,
+            Objective::LciMin => evaluation.lci_min,
+        }
+    }
+
+    /// The CSV column this objective reads (`rect` is `rect_w_mm × rect_h_mm`).
+    pub fn name(self) -> &'static str {
+        Objective::NAMES[self as usize]
+    }
+}
+
+impl FromStr for Objective {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Objective, String> {
+        match text {
+            "rect" => Ok(Objective::Rectangle),
+            "gci" => Ok(Objective::Gci),
+            "area" => Ok(Objective::Area),
+            "lci-min" => Ok(Objective::LciMin),
+            _ => Err(format!("expected one of {}", Objective::NAMES.join(", "))),
+        }
+    }
+}
+
+/// Whether a design may be chosen: evaluated with a rectangle, and covering the task if any.
+pub fn eligible(evaluation: &Evaluation) -> bool {
+    evaluation.status == DesignStatus::Ok && evaluation.task_ok != Some(false)
+}
+
+/// The best eligible design seen so far by one objective; ties go to the first seen (in a
+/// sweep, the lowest index).
+#[derive(Debug, Clone)]
+pub struct Best {
+    objective: Objective,
+    best: Option<Evaluation>,
+}
+
+impl Best {
+    /// No design yet.
+    pub fn new(objective: Objective) -> Best {
+        Best { objective, best: None }
+    }
+
+    /// Takes `evaluation` when it is eligible and better than the best so far.
+    pub fn consider(&mut self, evaluation: &Evaluation) {
+        if !eligible(evaluation) {
+            return;
+        }
+        let value = self.objective.value(evaluation);
+        if self.best.is_none_or(|best| value > self.objective.value(&best)) {
+            self.best = Some(*evaluation);
+        }
+    }
+
+    /// The best design, if any was eligible.
+    pub fn get(&self) -> Option<&Evaluation> {
+        self.best.as_ref()
+    }
+}
+
+/// The eligible designs that no other beats in both rectangle area and GCI (at least as good in
+/// both, better in one). Kept as the sweep runs: memory grows with the front, not the sweep.
+#[derive(Debug, Clone, Default)]
+pub struct ParetoFront {
+    front: Vec<Evaluation>,
+}
+
+impl ParetoFront {
+    /// An empty front.
+    pub fn new() -> ParetoFront {
+        ParetoFront::default()
+    }
+
+    /// Adds `evaluation` when eligible and not dominated, dropping what it dominates. Of two
+    /// designs with equal values the first stays.
+    pub fn consider(&mut self, evaluation: &Evaluation) {
+        if !eligible(evaluation) {
+            return;
+        }
+        let key = |e: &Evaluation| (e.rectangle_area(), e.gci);
+        let (area, gci) = key(evaluation);
+        if self.front.iter().any(|e| {
+            let (a, g) = key(e);
+            a >= area && g >= gci
+        }) {
+            return;
+        }
+        self.front.retain(|e| {
+            let (a, g) = key(e);
+            !(area >= a && gci >= g)
+        });
+        self.front.push(*evaluation);
+    }
+
+    /// The front, by rectangle area, largest first (GCI then rises).
+    pub fn designs(&self) -> Vec<Evaluation> {
+        let mut front = self.front.clone();
+        front.sort_by(|a, b| b.rectangle_area().total_cmp(&a.rectangle_area()));
+        front
+    }
+}
