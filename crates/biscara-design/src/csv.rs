@@ -253,3 +253,51 @@ fn advance<R: BufRead>(
     }
     Ok(Some((index, line, reader.text().to_owned())))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn csv(rows: &[u64]) -> String {
+        let mut text = header(false) + "\n";
+        for &index in rows {
+            text.push_str(&format!("{index},1,2,3,4.000,0.000,0.000,0.000,0.000,0.000000,0.000000,empty\n"));
+        }
+        text
+    }
+
+    fn merged(files: &[String]) -> Result<String, DesignError> {
+        let inputs = files
+            .iter()
+            .enumerate()
+            .map(|(k, text)| (format!("part{k}.csv"), Box::new(std::io::Cursor::new(text.clone())) as Box<dyn BufRead>))
+            .collect();
+        let mut out = Vec::new();
+        merge(inputs, &mut out)?;
+        Ok(String::from_utf8(out).unwrap())
+    }
+
+    #[test]
+    fn shards_merge_in_design_order() {
+        let whole = merged(&[csv(&[0, 3, 6]), csv(&[1, 4]), csv(&[2, 5])]).unwrap();
+        assert_eq!(whole, csv(&[0, 1, 2, 3, 4, 5, 6]));
+    }
+
+    #[test]
+    fn merging_finds_missing_repeated_and_broken_rows() {
+        let err = merged(&[csv(&[0, 2]), csv(&[3])]).unwrap_err().to_string();
+        assert_eq!(err, "design 1 is in none of the files: a shard is missing");
+        let err = merged(&[csv(&[0, 1]), csv(&[1])]).unwrap_err().to_string();
+        assert_eq!(err, "part1.csv:2: design 1 is in another file too");
+        let err = merged(&[csv(&[0, 2, 1])]).unwrap_err().to_string();
+        assert!(err.starts_with("part0.csv:4: design 1 comes after design 2"), "{err}");
+        let err = merged(&["l1,l2\n1,2\n".to_owned()]).unwrap_err().to_string();
+        assert!(err.starts_with("part0.csv:1: not a design CSV"), "{err}");
+        let broken = csv(&[0]).replace("4.000", "NaN");
+        let err = merged(&[broken]).unwrap_err().to_string();
+        assert_eq!(err, "part0.csv:2: area_mm2 'NaN' is not finite");
+        let short = header(false) + "\n0,1,2\n";
+        let err = merged(&[short]).unwrap_err().to_string();
+        assert_eq!(err, "part0.csv:2: 3 fields, the header has 12");
+    }
+}

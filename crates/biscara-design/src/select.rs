@@ -130,3 +130,54 @@ impl ParetoFront {
         front
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use biscara_robot::Rectangle;
+
+    use super::*;
+    use crate::Design;
+
+    fn design(index: u64, side: f64, gci: f64) -> Evaluation {
+        Evaluation {
+            design: Design { index, l1: 1.0, l2: 1.0, base: 1.0 },
+            status: DesignStatus::Ok,
+            area_mm2: side * side * 2.0,
+            rectangle: Some(Rectangle { min: [0.0, 0.0], max: [side, side] }),
+            gci,
+            lci_min: gci / 2.0,
+            task_ok: None,
+        }
+    }
+
+    #[test]
+    fn the_best_is_the_first_maximum_of_eligible_designs() {
+        let mut best = Best::new(Objective::Rectangle);
+        let mut refused = design(0, 100.0, 0.9);
+        refused.task_ok = Some(false);
+        for evaluation in [refused, design(1, 10.0, 0.5), design(2, 20.0, 0.1), design(3, 20.0, 0.9)] {
+            best.consider(&evaluation);
+        }
+        assert_eq!(best.get().map(|e| e.design.index), Some(2));
+        let mut best = Best::new(Objective::Gci);
+        best.consider(&design(4, 1.0, 0.3));
+        best.consider(&design(5, 1.0, 0.7));
+        assert_eq!(best.get().map(|e| e.design.index), Some(5));
+    }
+
+    #[test]
+    fn the_front_keeps_only_undominated_designs() {
+        let mut front = ParetoFront::new();
+        for evaluation in [
+            design(0, 10.0, 0.5),
+            design(1, 20.0, 0.4),
+            design(2, 15.0, 0.3), // dominated by 1
+            design(3, 5.0, 0.9),
+            design(4, 10.0, 0.6), // dominates 0
+        ] {
+            front.consider(&evaluation);
+        }
+        let indices: Vec<u64> = front.designs().iter().map(|e| e.design.index).collect();
+        assert_eq!(indices, [1, 4, 3]);
+    }
+}

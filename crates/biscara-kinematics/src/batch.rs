@@ -14,6 +14,8 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, FRAC_PI_8, PI, TAU};
 
+use pulp::{Simd, WithSimd};
+
 use crate::{Joints, Kinematics, Pose};
 
 /// How many poses one block of the batch loops solves together.
@@ -50,7 +52,7 @@ pub struct BatchSolution {
     pub status: BatchStatus,
 }
 
-/// Status codes (carried as f64 inside the loops, an enum would not vectorise).
+/// Status codes (carried as f64 inside the vectors).
 const OK: u8 = 0;
 const NOT_FINITE: u8 = 1;
 const UNREACHABLE: u8 = 2;
@@ -126,76 +128,145 @@ impl Lanes {
         }
     }
 
-    /// One pose, branch-free: the joints and the status code. `full` adds θ3 and d4 to the
-    /// limit test (reachability takes them at the middle of their ranges, where they pass).
+    /// A vector of poses, branch-free: the joints and the status code of each lane. `full` adds
+    /// θ3 and d4 to the limit test (reachability takes them at the middle of their ranges, where
+    /// they pass). Every operation is the scalar path's, in its order (no fused multiply-add).
+    /// No closures: every helper is an `#[inline(always)]` function, so that all of it is
+    /// compiled with the CPU features pulp enables.
     #[inline(always)]
-    fn solve(&self, x: f64, y: f64, z: f64, phi: f64, full: bool) -> ([f64; 4], f64) {
-        let finite = (x - x) + (y - y) + (z - z) + (phi - phi) == 0.0;
-        let chain = |i: usize| {
-            let dx = x - self.bx[i];
-            let a = -y;
-            let b = dx;
-            let reach2 = dx * dx + y * y;
-            let c = (self.l2_l1 - reach2) / self.two_l1;
-            let discriminant = reach2 - c * c;
-            let reaches = (discriminant >= 0.0) & (reach2 != 0.0);
-            let root = self.factor[i] * discriminant.max(0.0).sqrt();
-            let cos_theta = a * c - b * root;
-            let sin_theta = b * c + a * root;
-            let scale = self.l1 / reach2;
-            let elbow = [self.bx[i] - scale * sin_theta, self.by[i] + scale * cos_theta];
-            (atan2(sin_theta, cos_theta), elbow, reaches)
-        };
-        let (theta1, e1, reaches1) = chain(0);
-        let (theta2, e2, reaches2) = chain(1);
-        let z1 = [x - e1[0], y - e1[1]];
-        let z2 = [x - e2[0], y - e2[1]];
-        let a1 = [e1[0] - self.bx[0], e1[1] - self.by[0]];
-        let a2 = [e2[0] - self.bx[1], e2[1] - self.by[1]];
-        let perp = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
-        let assembly_minus = perp(z2, z1) < 0.0;
-        let clear = |a, b| perp(a, b).abs() >= self.margin_tan * dot(a, b).abs();
-        let singular = !(clear(a1, z1) & clear(a2, z2) & clear(z2, z1));
-
-        let psi1 = atan2(z1[1], z1[0]);
-        let difference = psi1 - self.psi1_home;
-        let rotation = select(
-            difference > PI,
-            difference - TAU,
-            select(difference <= -PI, difference + TAU, difference),
+    fn solve<S: Simd>(&self, s: S, pose: [S::f64s; 4], full: bool) -> ([S::f64s; 4], S::f64s) {
+        let [x, y, z, phi] = pose;
+        let zero = s.splat_f64s(0.0);
+        let spread = s.add_f64s(
+            s.add_f64s(s.sub_f64s(x, x), s.sub_f64s(y, y)),
+            s.add_f64s(s.sub_f64s(z, z), s.sub_f64s(phi, phi)),
         );
-        let joints = [
-            fit_into(theta1, self.limits[0]),
-            fit_into(theta2, self.limits[1]),
-            fit_into(phi - rotation, self.limits[2]),
-            self.lp - z,
-        ];
-        let inside = |k: usize| (self.limits[k][0] <= joints[k]) & (joints[k] <= self.limits[k][1]);
-        let mut within = inside(0) & inside(1);
-        if full {
-            within &= inside(2) & inside(3);
-        }
-        // Codes as f64, so that every lane of the loops is one width.
-        let code = select(
-            !finite,
-            f64::from(NOT_FINITE),
-            select(
-                !(reaches1 & reaches2),
-                f64::from(UNREACHABLE),
-                select(
-                    assembly_minus != self.assembly_minus,
-                    f64::from(BEYOND_TYPE2),
-                    select(
-                        !within,
-                        f64::from(JOINT_LIMIT),
-                        select(singular, f64::from(NEAR_SINGULAR), f64::from(OK)),
-                    ),
-                ),
+        let finite = s.equal_f64s(spread, zero);
+        let (theta1, e1, reaches1) = self.chain(s, 0, x, y);
+        let (theta2, e2, reaches2) = self.chain(s, 1, x, y);
+        let z1 = minus(s, [x, y], e1);
+        let z2 = minus(s, [x, y], e2);
+        let a1 = minus(s, e1, [s.splat_f64s(self.bx[0]), s.splat_f64s(self.by[0])]);
+        let a2 = minus(s, e2, [s.splat_f64s(self.bx[1]), s.splat_f64s(self.by[1])]);
+        let assembly_minus = s.less_than_f64s(perp(s, z2, z1), zero);
+        let tan = s.splat_f64s(self.margin_tan);
+        let clear_all = s.and_m64s(
+            s.and_m64s(clear(s, tan, a1, z1), clear(s, tan, a2, z2)),
+            clear(s, tan, z2, z1),
+        );
+
+        let psi1 = atan2_simd(s, z1[1], z1[0]);
+        let difference = s.sub_f64s(psi1, s.splat_f64s(self.psi1_home));
+        let rotation = s.select_f64s(
+            s.greater_than_f64s(difference, s.splat_f64s(PI)),
+            s.sub_f64s(difference, s.splat_f64s(TAU)),
+            s.select_f64s(
+                s.less_than_or_equal_f64s(difference, s.splat_f64s(-PI)),
+                s.add_f64s(difference, s.splat_f64s(TAU)),
+                difference,
             ),
         );
-        (joints, code)
+        let joints = [
+            fit_into(s, theta1, self.limits[0]),
+            fit_into(s, theta2, self.limits[1]),
+            fit_into(s, s.sub_f64s(phi, rotation), self.limits[2]),
+            s.sub_f64s(s.splat_f64s(self.lp), z),
+        ];
+        let mut within =
+            s.and_m64s(inside(s, joints[0], self.limits[0]), inside(s, joints[1], self.limits[1]));
+        if full {
+            within = s.and_m64s(
+                within,
+                s.and_m64s(
+                    inside(s, joints[2], self.limits[2]),
+                    inside(s, joints[3], self.limits[3]),
+                ),
+            );
+        }
+        let wrong_assembly =
+            if self.assembly_minus { s.not_m64s(assembly_minus) } else { assembly_minus };
+        // The first check failed: the checks applied from the last to the first.
+        let mut status = s.select_f64s(clear_all, code(s, OK), code(s, NEAR_SINGULAR));
+        status = s.select_f64s(within, status, code(s, JOINT_LIMIT));
+        status = s.select_f64s(wrong_assembly, code(s, BEYOND_TYPE2), status);
+        status = s.select_f64s(s.and_m64s(reaches1, reaches2), status, code(s, UNREACHABLE));
+        status = s.select_f64s(finite, status, code(s, NOT_FINITE));
+        (joints, status)
     }
+
+    /// Chain `i`'s IK (the scalar `chain_inverse`): θ, the elbow, and whether it reaches.
+    #[inline(always)]
+    fn chain<S: Simd>(
+        &self,
+        s: S,
+        i: usize,
+        x: S::f64s,
+        y: S::f64s,
+    ) -> (S::f64s, [S::f64s; 2], S::m64s) {
+        let zero = s.splat_f64s(0.0);
+        let dx = s.sub_f64s(x, s.splat_f64s(self.bx[i]));
+        let a = s.neg_f64s(y);
+        let b = dx;
+        let reach2 = s.add_f64s(s.mul_f64s(dx, dx), s.mul_f64s(y, y));
+        let c = s.div_f64s(s.sub_f64s(s.splat_f64s(self.l2_l1), reach2), s.splat_f64s(self.two_l1));
+        let discriminant = s.sub_f64s(reach2, s.mul_f64s(c, c));
+        let reaches = s.and_m64s(
+            s.greater_than_or_equal_f64s(discriminant, zero),
+            s.not_m64s(s.equal_f64s(reach2, zero)),
+        );
+        let root =
+            s.mul_f64s(s.splat_f64s(self.factor[i]), s.sqrt_f64s(s.max_f64s(discriminant, zero)));
+        let cos_theta = s.sub_f64s(s.mul_f64s(a, c), s.mul_f64s(b, root));
+        let sin_theta = s.add_f64s(s.mul_f64s(b, c), s.mul_f64s(a, root));
+        let scale = s.div_f64s(s.splat_f64s(self.l1), reach2);
+        let elbow = [
+            s.sub_f64s(s.splat_f64s(self.bx[i]), s.mul_f64s(scale, sin_theta)),
+            s.add_f64s(s.splat_f64s(self.by[i]), s.mul_f64s(scale, cos_theta)),
+        ];
+        (atan2_simd(s, sin_theta, cos_theta), elbow, reaches)
+    }
+}
+
+/// A status code on every lane.
+#[inline(always)]
+fn code<S: Simd>(s: S, code: u8) -> S::f64s {
+    s.splat_f64s(f64::from(code))
+}
+
+/// `a − b` of two vectors of 2-D vectors.
+#[inline(always)]
+fn minus<S: Simd>(s: S, a: [S::f64s; 2], b: [S::f64s; 2]) -> [S::f64s; 2] {
+    [s.sub_f64s(a[0], b[0]), s.sub_f64s(a[1], b[1])]
+}
+
+/// The 2-D cross product `a × b` (nalgebra's `perp`).
+#[inline(always)]
+fn perp<S: Simd>(s: S, a: [S::f64s; 2], b: [S::f64s; 2]) -> S::f64s {
+    s.sub_f64s(s.mul_f64s(a[0], b[1]), s.mul_f64s(a[1], b[0]))
+}
+
+/// The dot product `a · b`.
+#[inline(always)]
+fn dot<S: Simd>(s: S, a: [S::f64s; 2], b: [S::f64s; 2]) -> S::f64s {
+    s.add_f64s(s.mul_f64s(a[0], b[0]), s.mul_f64s(a[1], b[1]))
+}
+
+/// The scalar path's singularity test: |a × b| ≥ tan(margin)·|a · b|.
+#[inline(always)]
+fn clear<S: Simd>(s: S, tan: S::f64s, a: [S::f64s; 2], b: [S::f64s; 2]) -> S::m64s {
+    s.greater_than_or_equal_f64s(
+        s.abs_f64s(perp(s, a, b)),
+        s.mul_f64s(tan, s.abs_f64s(dot(s, a, b))),
+    )
+}
+
+/// `min ≤ value ≤ max` on every lane.
+#[inline(always)]
+fn inside<S: Simd>(s: S, value: S::f64s, [min, max]: [f64; 2]) -> S::m64s {
+    s.and_m64s(
+        s.less_than_or_equal_f64s(s.splat_f64s(min), value),
+        s.less_than_or_equal_f64s(value, s.splat_f64s(max)),
+    )
 }
 
 impl Kinematics {
@@ -220,42 +291,7 @@ impl Kinematics {
         out: &mut [BatchSolution],
     ) {
         assert_eq!(poses.len(), out.len(), "inverse_batch: as many solutions as poses");
-        let lanes = Lanes::new(self);
-        dispatch.arch().dispatch(
-            #[inline(always)]
-            || {
-                let mut poses = poses.chunks_exact(LANES);
-                let mut out = out.chunks_exact_mut(LANES);
-                for (block, solved) in (&mut poses).zip(&mut out) {
-                    let mut x = [0.0; LANES];
-                    let mut y = [0.0; LANES];
-                    let mut z = [0.0; LANES];
-                    let mut phi = [0.0; LANES];
-                    for (k, pose) in block.iter().enumerate() {
-                        (x[k], y[k], z[k], phi[k]) = (pose.x, pose.y, pose.z, pose.phi);
-                    }
-                    let mut q = [[0.0; 4]; LANES];
-                    let mut code = [0.0; LANES];
-                    for k in 0..LANES {
-                        (q[k], code[k]) = lanes.solve(x[k], y[k], z[k], phi[k], true);
-                    }
-                    for (k, solution) in solved.iter_mut().enumerate() {
-                        *solution = BatchSolution {
-                            joints: Joints::new(q[k][0], q[k][1], q[k][2], q[k][3]),
-                            status: status_of(code[k] as u8),
-                        };
-                    }
-                }
-                let rest = poses.remainder().iter().zip(out.into_remainder());
-                for (pose, solution) in rest {
-                    let (q, code) = lanes.solve(pose.x, pose.y, pose.z, pose.phi, true);
-                    *solution = BatchSolution {
-                        joints: Joints::new(q[0], q[1], q[2], q[3]),
-                        status: status_of(code as u8),
-                    };
-                }
-            },
-        );
+        dispatch.arch().dispatch(InverseOp { lanes: Lanes::new(self), poses, out });
     }
 
     /// Whether each platform point `(x[k], y[k])` is reachable as the workspace counts it: IK in
@@ -274,43 +310,106 @@ impl Kinematics {
     /// When `x`, `y` and `out` differ in length.
     pub fn reachable_batch_with(&self, dispatch: Dispatch, x: &[f64], y: &[f64], out: &mut [bool]) {
         assert!(x.len() == out.len() && y.len() == out.len(), "reachable_batch: lengths differ");
-        let lanes = Lanes::new(self);
-        dispatch.arch().dispatch(
-            #[inline(always)]
-            || {
-                let mut xs = x.chunks_exact(LANES);
-                let mut ys = y.chunks_exact(LANES);
-                let mut out = out.chunks_exact_mut(LANES);
-                for ((xb, yb), ob) in (&mut xs).zip(&mut ys).zip(&mut out) {
-                    let mut code = [0.0; LANES];
-                    for k in 0..LANES {
-                        code[k] = lanes.solve(xb[k], yb[k], 0.0, 0.0, false).1;
-                    }
-                    for k in 0..LANES {
-                        ob[k] = code[k] == f64::from(OK);
-                    }
-                }
-                let rest = xs.remainder().iter().zip(ys.remainder()).zip(out.into_remainder());
-                for ((&x, &y), reachable) in rest {
-                    *reachable = lanes.solve(x, y, 0.0, 0.0, false).1 == f64::from(OK);
-                }
-            },
-        );
+        dispatch.arch().dispatch(ReachableOp { lanes: Lanes::new(self), x, y, out });
     }
 }
 
+/// One block of [`LANES`] values of one coordinate, as vectors of `S`.
 #[inline(always)]
-fn select(condition: bool, a: f64, b: f64) -> f64 {
-    if condition { a } else { b }
+fn load<S: Simd>(block: &[f64; LANES]) -> &[S::f64s] {
+    S::as_simd_f64s(block).0
+}
+
+/// [`Kinematics::inverse_batch`] as pulp runs it, with the vector type of the CPU.
+struct InverseOp<'a> {
+    lanes: Lanes,
+    poses: &'a [Pose],
+    out: &'a mut [BatchSolution],
+}
+
+impl WithSimd for InverseOp<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, s: S) {
+        for (poses, out) in self.poses.chunks(LANES).zip(self.out.chunks_mut(LANES)) {
+            // Struct of arrays; a short last block is padded with the origin (and dropped).
+            let mut x = [0.0; LANES];
+            let mut y = [0.0; LANES];
+            let mut z = [0.0; LANES];
+            let mut phi = [0.0; LANES];
+            for (k, pose) in poses.iter().enumerate() {
+                (x[k], y[k], z[k], phi[k]) = (pose.x, pose.y, pose.z, pose.phi);
+            }
+            let mut q = [[0.0; LANES]; 4];
+            let mut status = [0.0; LANES];
+            {
+                let (xv, yv, zv, pv) =
+                    (load::<S>(&x), load::<S>(&y), load::<S>(&z), load::<S>(&phi));
+                let [q0, q1, q2, q3] = &mut q;
+                let (q0, q1) = (S::as_mut_simd_f64s(q0).0, S::as_mut_simd_f64s(q1).0);
+                let (q2, q3) = (S::as_mut_simd_f64s(q2).0, S::as_mut_simd_f64s(q3).0);
+                let codes = S::as_mut_simd_f64s(&mut status).0;
+                for v in 0..codes.len() {
+                    let (joints, code) = self.lanes.solve(s, [xv[v], yv[v], zv[v], pv[v]], true);
+                    (q0[v], q1[v], q2[v], q3[v]) = (joints[0], joints[1], joints[2], joints[3]);
+                    codes[v] = code;
+                }
+            }
+            for (k, solution) in out.iter_mut().enumerate() {
+                *solution = BatchSolution {
+                    joints: Joints::new(q[0][k], q[1][k], q[2][k], q[3][k]),
+                    status: status_of(status[k] as u8),
+                };
+            }
+        }
+    }
+}
+
+/// [`Kinematics::reachable_batch`] as pulp runs it, with the vector type of the CPU.
+struct ReachableOp<'a> {
+    lanes: Lanes,
+    x: &'a [f64],
+    y: &'a [f64],
+    out: &'a mut [bool],
+}
+
+impl WithSimd for ReachableOp<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, s: S) {
+        let blocks = self.x.chunks(LANES).zip(self.y.chunks(LANES)).zip(self.out.chunks_mut(LANES));
+        for ((xs, ys), out) in blocks {
+            let mut x = [0.0; LANES];
+            let mut y = [0.0; LANES];
+            x[..xs.len()].copy_from_slice(xs);
+            y[..ys.len()].copy_from_slice(ys);
+            let mut status = [0.0; LANES];
+            {
+                let (xv, yv) = (load::<S>(&x), load::<S>(&y));
+                let zero = s.splat_f64s(0.0);
+                let codes = S::as_mut_simd_f64s(&mut status).0;
+                for v in 0..codes.len() {
+                    codes[v] = self.lanes.solve(s, [xv[v], yv[v], zero, zero], false).1;
+                }
+            }
+            for (reachable, code) in out.iter_mut().zip(status) {
+                *reachable = code == f64::from(OK);
+            }
+        }
+    }
 }
 
 /// The scalar path's `fit_into`, branch-free: ±2π when only that puts the angle inside.
 #[inline(always)]
-fn fit_into(angle: f64, [min, max]: [f64; 2]) -> f64 {
-    let up = angle + TAU;
-    let down = angle - TAU;
-    let inside = |a: f64| (min <= a) & (a <= max);
-    select((angle < min) & inside(up), up, select((angle > max) & inside(down), down, angle))
+fn fit_into<S: Simd>(s: S, angle: S::f64s, limits: [f64; 2]) -> S::f64s {
+    let (min, max) = (s.splat_f64s(limits[0]), s.splat_f64s(limits[1]));
+    let up = s.add_f64s(angle, s.splat_f64s(TAU));
+    let down = s.sub_f64s(angle, s.splat_f64s(TAU));
+    let raise = s.and_m64s(s.less_than_f64s(angle, min), inside(s, up, limits));
+    let lower = s.and_m64s(s.greater_than_f64s(angle, max), inside(s, down, limits));
+    s.select_f64s(raise, up, s.select_f64s(lower, down, angle))
 }
 
 /// tan(π/16) and tan(3π/16): where the reduction switches centre.
@@ -341,24 +440,39 @@ const ATAN_SERIES: [f64; 11] = [
 /// atan t to t²¹ leaves less than 4e-18. Then the octant: π/2 − r, π − r, the sign of y.
 #[inline(always)]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    let (ax, ay) = (x.abs(), y.abs());
-    let (large, small) = (ax.max(ay), ax.min(ay));
-    let a = select(large == 0.0, 0.0, small / large);
-    let high = a > TAN_3PI_16;
-    let middle = a > TAN_PI_16;
-    let c = select(high, 1.0, select(middle, TAN_PI_8, 0.0));
-    let base = select(high, FRAC_PI_4, select(middle, FRAC_PI_8, 0.0));
-    let t = (a - c) / (1.0 + a * c);
-    let t2 = t * t;
+    atan2_simd(pulp::Scalar, y, x)
+}
+
+/// [`atan2`] on every lane of a vector.
+#[inline(always)]
+fn atan2_simd<S: Simd>(s: S, y: S::f64s, x: S::f64s) -> S::f64s {
+    let (ax, ay) = (s.abs_f64s(x), s.abs_f64s(y));
+    let (large, small) = (s.max_f64s(ax, ay), s.min_f64s(ax, ay));
+    let zero = s.splat_f64s(0.0);
+    let a = s.select_f64s(s.equal_f64s(large, zero), zero, s.div_f64s(small, large));
+    let high = s.greater_than_f64s(a, s.splat_f64s(TAN_3PI_16));
+    let middle = s.greater_than_f64s(a, s.splat_f64s(TAN_PI_16));
+    let c =
+        s.select_f64s(high, s.splat_f64s(1.0), s.select_f64s(middle, s.splat_f64s(TAN_PI_8), zero));
+    let base = s.select_f64s(
+        high,
+        s.splat_f64s(FRAC_PI_4),
+        s.select_f64s(middle, s.splat_f64s(FRAC_PI_8), zero),
+    );
+    let t = s.div_f64s(s.sub_f64s(a, c), s.add_f64s(s.splat_f64s(1.0), s.mul_f64s(a, c)));
+    let t2 = s.mul_f64s(t, t);
     // atan t = t·(1 − t²/3 + t⁴/5 − … + t²⁰/21), by Horner in t².
-    let mut series = ATAN_SERIES[10];
+    let mut series = s.splat_f64s(ATAN_SERIES[10]);
     for k in (0..10).rev() {
-        series = ATAN_SERIES[k] + t2 * series;
+        series = s.add_f64s(s.splat_f64s(ATAN_SERIES[k]), s.mul_f64s(t2, series));
     }
-    let mut r = base + t * series;
-    r = select(ay > ax, FRAC_PI_2 - r, r);
-    r = select(x.is_sign_negative(), PI - r, r);
-    r.copysign(y)
+    let mut r = s.add_f64s(base, s.mul_f64s(t, series));
+    r = s.select_f64s(s.greater_than_f64s(ay, ax), s.sub_f64s(s.splat_f64s(FRAC_PI_2), r), r);
+    // x's sign, −0 included: ±1 with the sign bit of x.
+    let sign_of_x = s.or_f64s(s.splat_f64s(1.0), s.and_f64s(x, s.splat_f64s(-0.0)));
+    r = s.select_f64s(s.less_than_f64s(sign_of_x, zero), s.sub_f64s(s.splat_f64s(PI), r), r);
+    // r ≥ 0 here: copysign(r, y) sets its sign bit from y's.
+    s.or_f64s(r, s.and_f64s(y, s.splat_f64s(-0.0)))
 }
 
 #[cfg(test)]
