@@ -106,6 +106,7 @@ struct SweepArgs {
 /// sweep, rows in design order; a design missing or in two files is an error.
 #[derive(Debug, Args)]
 #[command(
+    about = "Join the CSVs of a sharded sweep into the whole sweep's CSV",
     after_long_help = "Example:\n  $ biscara design merge part1.csv part2.csv part3.csv -o designs.csv"
 )]
 struct MergeArgs {
@@ -120,6 +121,7 @@ struct MergeArgs {
 /// Draws the atlas of a design CSV: one index over l1 × l2, a panel per base distance.
 #[derive(Debug, Args)]
 #[command(
+    about = "Draw a design CSV's atlas: one index over l1 × l2 per base (SVG/PNG)",
     after_long_help = "Example:\n  $ biscara design atlas designs.csv --index gci -o atlas.png"
 )]
 struct AtlasArgs {

@@ -121,9 +121,11 @@ fn a_task_constrains_the_choice_and_the_pareto_front_and_atlas_are_written() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("best.json")).unwrap()).unwrap();
     let chosen = rows
         .iter()
-        .find(|r| Some(number(&r[1])) == robot["links"]["l1"].as_f64()
-            && Some(number(&r[2])) == robot["links"]["l2"].as_f64()
-            && Some(number(&r[3]) / 2.0) == robot["base"]["b1x"].as_f64())
+        .find(|r| {
+            Some(number(&r[1])) == robot["links"]["l1"].as_f64()
+                && Some(number(&r[2])) == robot["links"]["l2"].as_f64()
+                && Some(number(&r[3]) / 2.0) == robot["base"]["b1x"].as_f64()
+        })
         .expect("the chosen design is a row");
     assert_eq!(chosen[12], "1", "the chosen design covers the task");
     // The front: no row beats a front row in both rectangle area and GCI.
@@ -186,7 +188,8 @@ fn bad_design_arguments_are_refused_clearly() {
     biscara(&dir, &["design", "merge", "bad.csv", "-o", "m.csv"])
         .expect_code(1)
         .stderr_has("bad.csv:1: not a design CSV");
-    let header = "index,l1,l2,base,area_mm2,rect_w_mm,rect_h_mm,rect_x0_mm,rect_y0_mm,gci,lci_min,status";
+    let header =
+        "index,l1,l2,base,area_mm2,rect_w_mm,rect_h_mm,rect_x0_mm,rect_y0_mm,gci,lci_min,status";
     std::fs::write(dir.join("nan.csv"), format!("{header}\n0,1,2,3,inf,0,0,0,0,0,0,ok\n")).unwrap();
     biscara(&dir, &["design", "atlas", "nan.csv", "-o", "a.svg"])
         .expect_code(1)
@@ -204,7 +207,9 @@ fn bad_design_arguments_are_refused_clearly() {
 #[test]
 fn design_help_is_pinned() {
     let dir = temp_dir("design-help");
-    for command in [&["design", "--help"][..], &["design", "merge", "--help"], &["design", "atlas", "--help"]] {
+    for command in
+        [&["design", "--help"][..], &["design", "merge", "--help"], &["design", "atlas", "--help"]]
+    {
         let run = biscara(&dir, command);
         run.success();
         assert!(run.stdout.contains("Example:"), "{run}");

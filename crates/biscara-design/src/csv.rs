@@ -261,7 +261,9 @@ mod tests {
     fn csv(rows: &[u64]) -> String {
         let mut text = header(false) + "\n";
         for &index in rows {
-            text.push_str(&format!("{index},1,2,3,4.000,0.000,0.000,0.000,0.000,0.000000,0.000000,empty\n"));
+            text.push_str(&format!(
+                "{index},1,2,3,4.000,0.000,0.000,0.000,0.000,0.000000,0.000000,empty\n"
+            ));
         }
         text
     }
@@ -270,7 +272,12 @@ mod tests {
         let inputs = files
             .iter()
             .enumerate()
-            .map(|(k, text)| (format!("part{k}.csv"), Box::new(std::io::Cursor::new(text.clone())) as Box<dyn BufRead>))
+            .map(|(k, text)| {
+                (
+                    format!("part{k}.csv"),
+                    Box::new(std::io::Cursor::new(text.clone())) as Box<dyn BufRead>,
+                )
+            })
             .collect();
         let mut out = Vec::new();
         merge(inputs, &mut out)?;

@@ -155,7 +155,9 @@ mod tests {
         let mut best = Best::new(Objective::Rectangle);
         let mut refused = design(0, 100.0, 0.9);
         refused.task_ok = Some(false);
-        for evaluation in [refused, design(1, 10.0, 0.5), design(2, 20.0, 0.1), design(3, 20.0, 0.9)] {
+        for evaluation in
+            [refused, design(1, 10.0, 0.5), design(2, 20.0, 0.1), design(3, 20.0, 0.9)]
+        {
             best.consider(&evaluation);
         }
         assert_eq!(best.get().map(|e| e.design.index), Some(2));

@@ -124,7 +124,12 @@ fn random_designs_agree_with_a_brute_force_evaluation() {
                 n += 1.0;
             }
         }
-        assert!((evaluation.gci - sum / n).abs() < 1e-9, "{design:?}: GCI {} vs {}", evaluation.gci, sum / n);
+        assert!(
+            (evaluation.gci - sum / n).abs() < 1e-9,
+            "{design:?}: GCI {} vs {}",
+            evaluation.gci,
+            sum / n
+        );
         assert!((evaluation.lci_min - worst).abs() < 1e-9, "{design:?}: worst LCI");
         let _ = grid.rows;
     }
