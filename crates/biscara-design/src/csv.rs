@@ -246,7 +246,7 @@ fn advance<R: BufRead>(
             file: name.to_owned(),
             line,
             message: format!(
-                "design {index} comes after design {}: rows out of order",
+                "design {index} follows design {}: rows out of order or repeated",
                 previous.unwrap_or(0)
             ),
         });
@@ -296,8 +296,8 @@ mod tests {
         assert_eq!(err, "design 1 is in none of the files: a shard is missing");
         let err = merged(&[csv(&[0, 1]), csv(&[1])]).unwrap_err().to_string();
         assert_eq!(err, "part1.csv:2: design 1 is in another file too");
-        let err = merged(&[csv(&[0, 2, 1])]).unwrap_err().to_string();
-        assert!(err.starts_with("part0.csv:4: design 1 comes after design 2"), "{err}");
+        let err = merged(&[csv(&[0, 1, 1])]).unwrap_err().to_string();
+        assert_eq!(err, "part0.csv:4: design 1 follows design 1: rows out of order or repeated");
         let err = merged(&["l1,l2\n1,2\n".to_owned()]).unwrap_err().to_string();
         assert!(err.starts_with("part0.csv:1: not a design CSV"), "{err}");
         let broken = csv(&[0]).replace("4.000", "NaN");
