@@ -90,13 +90,28 @@ impl Workspace {
         let (j0, j1) = (index(-reach, false), index(reach, true));
         let columns = usize::try_from(i1 - i0 + 1).unwrap_or(0);
         let rows = usize::try_from(j1 - j0 + 1).unwrap_or(0);
-        // Row by row through the batch solver (vectorised; the same verdicts as `reachable`).
+        // Row by row through the batch solver (vectorised; the same verdicts as `reachable`),
+        // over the columns both chains can reach: a point farther than l1 + l2 from a base
+        // joint has no IK solution, so the span where the two discs of that radius overlap,
+        // widened by a step against rounding, holds every reachable point of the row.
         let xs: Vec<f64> = (0..columns).map(|i| (i0 + i as i64) as f64 * step).collect();
         let mut ys = vec![0.0; columns];
         let mut reachable = vec![false; columns * rows];
         for (j, row) in reachable.chunks_exact_mut(columns.max(1)).enumerate() {
-            ys.fill((j0 + j as i64) as f64 * step);
-            model.reachable_batch(&xs, &ys, row);
+            let y = (j0 + j as i64) as f64 * step;
+            let half = (reach * reach - y * y).sqrt();
+            if half.is_nan() {
+                continue;
+            }
+            let low = b1.x.max(b2.x) - half - step;
+            let high = b1.x.min(b2.x) + half + step;
+            let first = xs.partition_point(|&x| x < low);
+            let last = xs.partition_point(|&x| x <= high);
+            if first >= last {
+                continue;
+            }
+            ys[first..last].fill(y);
+            model.reachable_batch(&xs[first..last], &ys[first..last], &mut row[first..last]);
         }
         Ok(Workspace { step, i0, j0, columns, rows, reachable })
     }
