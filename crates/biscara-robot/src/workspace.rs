@@ -176,8 +176,32 @@ impl Workspace {
     /// maximal-rectangle algorithm over row histograms, O(columns·rows)). Ties go to the first
     /// found (lowest top row, then leftmost). Fails when no two-by-two block is reachable.
     pub fn largest_rectangle(&self) -> Result<Rectangle, VirtualRobotError> {
-        let (i, j, w, h) = largest_block(&self.reachable, self.columns, self.rows)
-            .ok_or(VirtualRobotError::EmptyWorkspace { step_mm: self.step })?;
+        let empty = VirtualRobotError::EmptyWorkspace { step_mm: self.step };
+        // Only the rows and columns that hold a reachable point: the same blocks, less to scan.
+        let used_rows: Vec<usize> = (0..self.rows)
+            .filter(|&j| self.reachable[j * self.columns..(j + 1) * self.columns].contains(&true))
+            .collect();
+        let (Some(&top), Some(&bottom)) = (used_rows.first(), used_rows.last()) else {
+            return Err(empty);
+        };
+        let mut left = self.columns;
+        let mut right = 0;
+        for j in top..=bottom {
+            let row = &self.reachable[j * self.columns..(j + 1) * self.columns];
+            if let (Some(first), Some(last)) =
+                (row.iter().position(|&r| r), row.iter().rposition(|&r| r))
+            {
+                left = left.min(first);
+                right = right.max(last);
+            }
+        }
+        let columns = right + 1 - left;
+        let cells: Vec<bool> = (top..=bottom)
+            .flat_map(|j| &self.reachable[j * self.columns + left..=j * self.columns + right])
+            .copied()
+            .collect();
+        let (i, j, w, h) = largest_block(&cells, columns, bottom + 1 - top).ok_or(empty)?;
+        let (i, j) = (i + left, j + top);
         let min = self.point(i, j);
         let max = self.point(i + w - 1, j + h - 1);
         Ok(Rectangle { min, max })
