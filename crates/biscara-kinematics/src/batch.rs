@@ -519,9 +519,11 @@ mod tests {
     }
 
     fn model_in(mode: &str, assembly: &str) -> Kinematics {
-        let mut robot = Robot::default();
-        robot.working_mode = mode.parse::<WorkingMode>().unwrap();
-        robot.assembly_mode = assembly.parse().unwrap();
+        let mut robot = Robot {
+            working_mode: mode.parse::<WorkingMode>().unwrap(),
+            assembly_mode: assembly.parse().unwrap(),
+            ..Robot::default()
+        };
         // Limits that bind somewhere in the sampled region.
         robot.joint_limits.theta1 = [-100.0, 150.0];
         robot.joint_limits.theta3 = [-90.0, 200.0];
