@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use biscara::design::{
-    Best, DesignGrid, Evaluation, Evaluator, Objective, ParamRange, ParetoFront, RowReader, Shard,
-    Sweep, Task, eligible, header, merge, write_row,
+    Best, DesignGrid, Evaluation, Evaluator, Objective, ParamRange, ParetoFront, ProgramTimer,
+    RowReader, Shard, Sweep, Task, eligible, header, merge, write_row,
 };
 use biscara::kinematics::RobotModel;
 use biscara::view::{Atlas, AtlasCell, draw_atlas};
@@ -25,10 +25,10 @@ use super::files::{display_path, format_of, open_input, write_output};
 /// Each range is MIN:MAX:N, N values from MIN to MAX inclusive (mm). Writes one CSV row per
 /// design, as the designs are done (columns index, l1, l2, base, area_mm2, rect_w_mm, rect_h_mm,
 /// rect_x0_mm, rect_y0_mm, gci, lci_min, status: ok, empty (no rectangle) or invalid (the base
-/// wider than two distal links), and task_ok with --task). --best writes the robot file of the
-/// best design (largest rectangle, or --objective), among those covering --task; --pareto the
-/// designs no other beats in both rectangle area and GCI; --atlas a picture of one index over
-/// l1 × l2 for each base.
+/// wider than two distal links), task_ok with --task, time_s with --programs). --best writes the
+/// robot file of the best design (largest rectangle, or --objective), among those covering
+/// --task; --pareto the designs no other beats in both rectangle area and GCI; --atlas a picture
+/// of one index over l1 × l2 for each base.
 ///
 /// The designs run on every core (--threads); --shard K/N evaluates every N-th design from the
 /// K-th, so N jobs of a batch system (a Slurm array, GNU parallel) share a sweep, and `biscara
@@ -80,14 +80,22 @@ struct SweepArgs {
     /// Write the robot file (robot.json) of the best design to FILE.
     #[arg(long, value_name = "FILE")]
     best: Option<PathBuf>,
-    /// What --best and the atlas's ring maximise: the rectangle's area, the GCI, the reachable
-    /// area or the worst LCI.
+    /// What --best and the atlas's ring choose: the largest rectangle, GCI, reachable area or
+    /// worst LCI, or the shortest total time of --programs.
     #[arg(long, value_enum, default_value = "rect")]
     objective: ObjectiveArg,
     /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
     /// reachable. Adds the task_ok column.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = task, allow_hyphen_values = true)]
     task: Option<Task>,
+    /// Time these programs (G-code, inter-file or path CSV) on every design, as `joints` runs
+    /// them (1 ms, the optimal profile, every joint limit), summed: the time_s column (empty
+    /// when a program cannot run on the design).
+    #[arg(long, value_name = "FILE", num_args = 1..)]
+    programs: Vec<PathBuf>,
+    /// Centre each of --programs in each design's workspace rectangle first (as `joints --fit`).
+    #[arg(long, requires = "programs")]
+    fit: bool,
     /// Write the Pareto front (rectangle area against GCI) to FILE, as CSV rows.
     #[arg(long, value_name = "FILE")]
     pareto: Option<PathBuf>,
@@ -147,6 +155,8 @@ enum ObjectiveArg {
     Area,
     /// The worst LCI over the largest rectangle.
     LciMin,
+    /// The total time of --programs, s (shortest best).
+    Time,
 }
 
 impl From<ObjectiveArg> for Objective {
@@ -156,6 +166,7 @@ impl From<ObjectiveArg> for Objective {
             ObjectiveArg::Gci => Objective::Gci,
             ObjectiveArg::Area => Objective::Area,
             ObjectiveArg::LciMin => Objective::LciMin,
+            ObjectiveArg::Time => Objective::Time,
         }
     }
 }
@@ -166,6 +177,7 @@ fn index_name(objective: Objective) -> &'static str {
         Objective::Gci => "GCI",
         Objective::Area => "reachable area, mm²",
         Objective::LciMin => "worst LCI",
+        Objective::Time => "time of the programs, s",
     }
 }
 
@@ -202,17 +214,27 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
         anyhow::bail!("--l1, --l2 and --base are required");
     };
     let grid = DesignGrid::new(l1, l2, base)?;
-    let evaluator = Evaluator::new(model.robot().clone(), args.step, args.task)?;
-    let sweep = Sweep::new(evaluator, grid, args.shard);
     let objective = Objective::from(args.objective);
+    let mut evaluator = Evaluator::new(model.robot().clone(), args.step, args.task)?;
+    if !args.programs.is_empty() {
+        let mut programs = Vec::with_capacity(args.programs.len());
+        for path in &args.programs {
+            programs.push((display_path(path), biscara_files::read_text(path)?));
+        }
+        evaluator = evaluator.with_programs(ProgramTimer::new(programs, args.fit));
+    } else if objective == Objective::Time {
+        anyhow::bail!("--objective time needs --programs");
+    }
+    let columns = evaluator.columns();
+    let sweep = Sweep::new(evaluator, grid, args.shard);
     let mut best = Best::new(objective);
     let mut pareto = ParetoFront::new();
     let mut cells = Vec::new();
     let progress = biscara_files::progress(sweep.count(), "designs");
     write_output(args.output.as_deref(), |out| {
-        writeln!(out, "{}", header(args.task.is_some()))?;
+        writeln!(out, "{}", header(columns))?;
         sweep.run(args.threads, |evaluation| -> anyhow::Result<()> {
-            write_row(out, evaluation)?;
+            write_row(out, columns, evaluation)?;
             best.consider(evaluation);
             pareto.consider(evaluation);
             if args.atlas.is_some() {
@@ -227,9 +249,9 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     summarise(sweep.count(), objective, chosen.as_ref(), &pareto);
     if let Some(path) = &args.pareto {
         write_output(Some(path), |out| {
-            writeln!(out, "{}", header(args.task.is_some()))?;
+            writeln!(out, "{}", header(columns))?;
             for evaluation in pareto.designs() {
-                write_row(out, &evaluation)?;
+                write_row(out, columns, &evaluation)?;
             }
             Ok(())
         })?;
@@ -249,8 +271,9 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.best {
         let Some(chosen) = chosen else {
             anyhow::bail!(
-                "no design has a rectangle{}: {} not written",
+                "no design has a rectangle{}{}: {} not written",
                 if args.task.is_some() { " and covers the task" } else { "" },
+                if objective == Objective::Time { " and runs the programs" } else { "" },
                 display_path(path)
             );
         };
@@ -262,7 +285,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
 
 fn cell(evaluation: &Evaluation, objective: Objective) -> AtlasCell {
     let d = evaluation.design;
-    let value = eligible(evaluation).then(|| objective.value(evaluation));
+    let value = if eligible(evaluation) { objective.value(evaluation) } else { None };
     AtlasCell { l1: d.l1, l2: d.l2, base: d.base, value }
 }
 
@@ -277,7 +300,7 @@ fn summarise(count: u64, objective: Objective, best: Option<&Evaluation>, pareto
         Level::Note,
         format!(
             "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
-             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}); Pareto front of \
+             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}{}); Pareto front of \
              rectangle area and GCI: {} designs",
             objective.name(),
             d.l1,
@@ -285,6 +308,7 @@ fn summarise(count: u64, objective: Objective, best: Option<&Evaluation>, pareto
             d.base,
             best.gci,
             best.lci_min,
+            best.time_s.map(|t| format!(", programs {t:.3} s")).unwrap_or_default(),
             pareto.designs().len()
         ),
     );

@@ -145,6 +145,67 @@ fn a_task_constrains_the_choice_and_the_pareto_front_and_atlas_are_written() {
     assert_eq!(&std::fs::read(dir.join("a.png")).unwrap()[1..4], b"PNG");
 }
 
+#[test]
+fn programs_are_timed_as_joints_runs_them_and_time_picks_the_fastest() {
+    let dir = temp_dir("design-time");
+    let programs = crate::util::repo_root().join("data/programs");
+    let (arcs, pen) = (programs.join("arcs_and_offsets.ngc"), programs.join("pen_plot.ngc"));
+    let (arcs, pen) = (arcs.to_str().unwrap(), pen.to_str().unwrap());
+    let run = biscara(
+        &dir,
+        &[
+            "design",
+            "--l1",
+            "190:230:3",
+            "--l2",
+            "270:270:1",
+            "--base",
+            "150:200:2",
+            "--step",
+            "10",
+            "--programs",
+            arcs,
+            pen,
+            "--fit",
+            "--objective",
+            "time",
+            "--best",
+            "fast.json",
+            "-o",
+            "d.csv",
+        ],
+    );
+    run.success();
+    let text = std::fs::read_to_string(dir.join("d.csv")).unwrap();
+    assert!(text.lines().next().unwrap().ends_with(",status,time_s"), "{text}");
+    let rows = rows(&text);
+    // The built-in robot's row: the sum of the two trajectories' last times.
+    let last_t = |args: &[&str]| {
+        let run = biscara(&dir, args);
+        let last = run.success().stdout.lines().last().unwrap().to_owned();
+        number(last.split(',').next().unwrap())
+    };
+    let expected = last_t(&["joints", arcs]) + last_t(&["joints", "--fit", pen]);
+    let default = rows.iter().find(|r| r[1] == "210" && r[2] == "270" && r[3] == "200").unwrap();
+    assert!((number(&default[12]) - expected).abs() < 5e-4, "{default:?} vs {expected}");
+    // --best is the shortest time.
+    let fastest = rows
+        .iter()
+        .filter(|r| !r[12].is_empty())
+        .min_by(|a, b| number(&a[12]).total_cmp(&number(&b[12])));
+    let fastest = fastest.expect("a design runs the programs");
+    let robot: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("fast.json")).unwrap()).unwrap();
+    assert_eq!(robot["links"]["l1"].as_f64(), Some(number(&fastest[1])));
+    assert_eq!(robot["base"]["b1x"].as_f64(), Some(number(&fastest[3]) / 2.0));
+    // Time needs programs; --fit needs programs.
+    biscara(&dir, &[SWEEP, &["--objective", "time"]].concat())
+        .expect_code(1)
+        .stderr_has("--objective time needs --programs");
+    biscara(&dir, &[SWEEP, &["--fit"]].concat()).expect_code(2);
+    biscara(&dir, &[SWEEP, &["--programs", "missing.ngc"]].concat()).expect_code(1);
+}
+
 fn rows_of(path: &std::path::Path) -> Vec<Vec<String>> {
     rows(&std::fs::read_to_string(path).unwrap())
 }

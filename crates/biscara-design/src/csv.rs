@@ -7,7 +7,8 @@ use biscara_robot::Rectangle;
 
 use crate::{Design, DesignError, DesignStatus, Evaluation};
 
-/// The columns every design CSV has, in order (`task_ok` follows when a task is given).
+/// The columns every design CSV has, in order (`task_ok` follows when a task is given, then
+/// `time_s` when programs are timed).
 pub const COLUMNS: [&str; 12] = [
     "index",
     "l1",
@@ -23,18 +24,40 @@ pub const COLUMNS: [&str; 12] = [
     "status",
 ];
 
-/// The header line (without its newline); `task` adds the `task_ok` column.
-pub fn header(task: bool) -> String {
+/// Which optional columns a design CSV has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Columns {
+    /// `task_ok`: a task rectangle was given.
+    pub task: bool,
+    /// `time_s`: programs were timed.
+    pub time: bool,
+}
+
+impl Columns {
+    fn count(self) -> usize {
+        COLUMNS.len() + usize::from(self.task) + usize::from(self.time)
+    }
+}
+
+/// The header line (without its newline).
+pub fn header(columns: Columns) -> String {
     let mut header = COLUMNS.join(",");
-    if task {
+    if columns.task {
         header.push_str(",task_ok");
+    }
+    if columns.time {
+        header.push_str(",time_s");
     }
     header
 }
 
-/// Writes one row (with its newline): lengths as given, the area and rectangle to 0.001 mm,
-/// the indices to 1e-6.
-pub fn write_row(out: &mut dyn Write, evaluation: &Evaluation) -> std::io::Result<()> {
+/// Writes one row (with its newline) with `columns`: lengths as given, the area and rectangle to
+/// 0.001 mm, the indices to 1e-6, the time to 1 ms (empty when the programs cannot run).
+pub fn write_row(
+    out: &mut dyn Write,
+    columns: Columns,
+    evaluation: &Evaluation,
+) -> std::io::Result<()> {
     let Design { index, l1, l2, base } = evaluation.design;
     let (w, h, x0, y0) = evaluation
         .rectangle
@@ -47,17 +70,23 @@ pub fn write_row(out: &mut dyn Write, evaluation: &Evaluation) -> std::io::Resul
         evaluation.lci_min,
         evaluation.status.as_str()
     )?;
-    if let Some(ok) = evaluation.task_ok {
-        write!(out, ",{}", u8::from(ok))?;
+    if columns.task {
+        write!(out, ",{}", u8::from(evaluation.task_ok == Some(true)))?;
+    }
+    if columns.time {
+        match evaluation.time_s {
+            Some(time) => write!(out, ",{time:.3}")?,
+            None => write!(out, ",")?,
+        }
     }
     writeln!(out)
 }
 
-/// Reads one data line of a design CSV (`line` from 1, for errors).
-pub fn parse_row(text: &str, line: usize, task: bool) -> Result<Evaluation, DesignError> {
+/// Reads one data line of a design CSV with `columns` (`line` from 1, for errors).
+pub fn parse_row(text: &str, line: usize, columns: Columns) -> Result<Evaluation, DesignError> {
     let fail = |message: String| DesignError::Csv { line, message };
     let fields: Vec<&str> = text.split(',').collect();
-    let expected = COLUMNS.len() + usize::from(task);
+    let expected = columns.count();
     if fields.len() != expected {
         return Err(fail(format!("{} fields, the header has {expected}", fields.len())));
     }
@@ -79,12 +108,17 @@ pub fn parse_row(text: &str, line: usize, task: bool) -> Result<Evaluation, Desi
     let status = DesignStatus::parse(fields[11].trim())
         .ok_or_else(|| fail(format!("status '{}' is not ok, empty or invalid", fields[11])))?;
     let (w, h, x0, y0) = (number(5)?, number(6)?, number(7)?, number(8)?);
-    let task_ok = if task {
+    let task_ok = if columns.task {
         match fields[12].trim() {
             "1" => Some(true),
             "0" => Some(false),
             other => return Err(fail(format!("task_ok '{other}' is not 0 or 1"))),
         }
+    } else {
+        None
+    };
+    let time_s = if columns.time && !fields[expected - 1].trim().is_empty() {
+        Some(number(expected - 1)?)
     } else {
         None
     };
@@ -97,29 +131,27 @@ pub fn parse_row(text: &str, line: usize, task: bool) -> Result<Evaluation, Desi
         gci: number(9)?,
         lci_min: number(10)?,
         task_ok,
+        time_s,
     })
 }
 
 fn column(k: usize) -> &'static str {
-    COLUMNS.get(k).copied().unwrap_or("task_ok")
+    COLUMNS.get(k).copied().unwrap_or("time_s")
 }
 
-/// Whether `line` is a design CSV header, and whether it has the task column.
-pub fn read_header(line: &str) -> Option<bool> {
-    if line == header(false) {
-        Some(false)
-    } else if line == header(true) {
-        Some(true)
-    } else {
-        None
-    }
+/// The columns of a design CSV whose header is `line`, if it is one.
+pub fn read_header(line: &str) -> Option<Columns> {
+    [false, true]
+        .into_iter()
+        .flat_map(|task| [false, true].map(|time| Columns { task, time }))
+        .find(|&columns| header(columns) == line)
 }
 
 /// The rows of a design CSV, one at a time (the header checked first).
 pub struct RowReader<R> {
     input: R,
     line: usize,
-    task: bool,
+    columns: Columns,
     buffer: String,
 }
 
@@ -128,16 +160,19 @@ impl<R: BufRead> RowReader<R> {
     pub fn new(mut input: R) -> Result<RowReader<R>, DesignError> {
         let mut buffer = String::new();
         input.read_line(&mut buffer)?;
-        let task = read_header(buffer.trim_end()).ok_or_else(|| DesignError::Csv {
+        let columns = read_header(buffer.trim_end()).ok_or_else(|| DesignError::Csv {
             line: 1,
-            message: format!("not a design CSV: the header is not '{}'", header(false)),
+            message: format!(
+                "not a design CSV: the header is not '{}'",
+                header(Columns::default())
+            ),
         })?;
-        Ok(RowReader { input, line: 1, task, buffer })
+        Ok(RowReader { input, line: 1, columns, buffer })
     }
 
-    /// Whether the rows have the `task_ok` column.
-    pub fn has_task(&self) -> bool {
-        self.task
+    /// The CSV's optional columns.
+    pub fn columns(&self) -> Columns {
+        self.columns
     }
 
     /// The next row and its line, its text kept in [`RowReader::text`].
@@ -148,7 +183,7 @@ impl<R: BufRead> RowReader<R> {
             Ok(_) => {
                 self.line += 1;
                 let text = self.buffer.trim_end_matches(['\n', '\r']);
-                Some(parse_row(text, self.line, self.task).map(|row| (self.line, row)))
+                Some(parse_row(text, self.line, self.columns).map(|row| (self.line, row)))
             }
             Err(err) => Some(Err(err.into())),
         }
@@ -177,20 +212,20 @@ pub fn merge(
     out: &mut dyn Write,
 ) -> Result<u64, DesignError> {
     let mut readers = Vec::with_capacity(inputs.len());
-    let mut task = None;
+    let mut columns = None;
     for (name, input) in inputs {
         let reader = RowReader::new(input).map_err(|err| in_file(&name, err))?;
-        if task.is_some_and(|t| t != reader.has_task()) {
+        if columns.is_some_and(|c| c != reader.columns()) {
             return Err(DesignError::Merge {
                 file: name,
                 line: 1,
-                message: "its header differs from the first file's (task_ok)".to_owned(),
+                message: "its header differs from the first file's".to_owned(),
             });
         }
-        task = Some(reader.has_task());
+        columns = Some(reader.columns());
         readers.push((name, reader));
     }
-    writeln!(out, "{}", header(task.unwrap_or(false)))?;
+    writeln!(out, "{}", header(columns.unwrap_or_default()))?;
     // The next row of each input: (index, line, text).
     let mut heads: Vec<Option<(u64, usize, String)>> = Vec::with_capacity(readers.len());
     for (name, reader) in &mut readers {
@@ -259,7 +294,7 @@ mod tests {
     use super::*;
 
     fn csv(rows: &[u64]) -> String {
-        let mut text = header(false) + "\n";
+        let mut text = header(Columns::default()) + "\n";
         for &index in rows {
             text.push_str(&format!(
                 "{index},1,2,3,4.000,0.000,0.000,0.000,0.000,0.000000,0.000000,empty\n"
@@ -303,7 +338,7 @@ mod tests {
         let broken = csv(&[0]).replace("4.000", "NaN");
         let err = merged(&[broken]).unwrap_err().to_string();
         assert_eq!(err, "part0.csv:2: area_mm2 'NaN' is not finite");
-        let short = header(false) + "\n0,1,2\n";
+        let short = header(Columns::default()) + "\n0,1,2\n";
         let err = merged(&[short]).unwrap_err().to_string();
         assert_eq!(err, "part0.csv:2: 3 fields, the header has 12");
     }

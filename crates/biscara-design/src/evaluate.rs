@@ -4,7 +4,7 @@
 use biscara_kinematics::{Chain, Kinematics, PlanarConfiguration, Robot};
 use biscara_robot::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, VirtualRobotError, Workspace};
 
-use crate::{Design, DesignError, Task};
+use crate::{Columns, Design, DesignError, ProgramTimer, Task};
 
 /// Whether a design could be evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -57,6 +57,9 @@ pub struct Evaluation {
     pub lci_min: f64,
     /// Whether every grid point of the task rectangle is reachable (`None` without a task).
     pub task_ok: Option<bool>,
+    /// The total time of the programs on this design, s (`None` without programs, for a design
+    /// that is not ok, or when a program cannot run on it).
+    pub time_s: Option<f64>,
 }
 
 impl Evaluation {
@@ -72,6 +75,7 @@ pub struct Evaluator {
     robot: Robot,
     step: f64,
     task: Option<Task>,
+    timer: Option<ProgramTimer>,
 }
 
 impl Evaluator {
@@ -86,7 +90,18 @@ impl Evaluator {
             }
             .into());
         }
-        Ok(Evaluator { robot, step, task })
+        Ok(Evaluator { robot, step, task, timer: None })
+    }
+
+    /// Also times `timer`'s programs on every design that is ok.
+    pub fn with_programs(mut self, timer: ProgramTimer) -> Evaluator {
+        self.timer = Some(timer);
+        self
+    }
+
+    /// Which columns this evaluator's rows have.
+    pub fn columns(&self) -> Columns {
+        Columns { task: self.task.is_some(), time: self.timer.is_some() }
     }
 
     /// The grid step, mm.
@@ -119,6 +134,7 @@ impl Evaluator {
             gci: 0.0,
             lci_min: 0.0,
             task_ok: self.task.map(|_| false),
+            time_s: None,
         };
         let Ok(model) = Kinematics::new(&self.robot_of(&design)) else {
             return evaluation;
@@ -133,7 +149,9 @@ impl Evaluator {
             return evaluation;
         };
         let (gci, lci_min) = conditioning(&model, &workspace, &rectangle);
+        let time_s = self.timer.as_ref().and_then(|timer| timer.time(&self.robot_of(&design)));
         Evaluation {
+            time_s,
             status: DesignStatus::Ok,
             rectangle: Some(rectangle),
             gci,

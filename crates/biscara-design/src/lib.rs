@@ -12,7 +12,8 @@
 //! [`Sweep`] evaluates a [`DesignGrid`] on worker threads (rayon) and hands the evaluations
 //! back in order, a block at a time, so memory does not grow with the sweep; a [`Shard`] takes
 //! a deterministic part of the grid and [`merge`] joins the shards' CSVs. [`Best`] and
-//! [`ParetoFront`] choose designs as the rows go by.
+//! [`ParetoFront`] choose designs as the rows go by; a [`ProgramTimer`] adds the time the design
+//! takes to run given programs (the trajectories `biscara joints` computes).
 //!
 //! Sans-IO: rows are written to and read from `impl Write`/`impl BufRead`; nothing here opens a
 //! path.
@@ -34,10 +35,12 @@ mod evaluate;
 mod grid;
 mod select;
 mod sweep;
+mod time;
 
-pub use csv::{COLUMNS, RowReader, header, merge, parse_row, read_header, write_row};
+pub use csv::{COLUMNS, Columns, RowReader, header, merge, parse_row, read_header, write_row};
 pub use error::DesignError;
 pub use evaluate::{DesignStatus, Evaluation, Evaluator, conditioning, covers, lci};
 pub use grid::{Design, DesignGrid, MAX_DESIGNS, ParamRange, Shard, Task};
 pub use select::{Best, Objective, ParetoFront, eligible};
 pub use sweep::Sweep;
+pub use time::ProgramTimer;

@@ -17,20 +17,30 @@ pub enum Objective {
     Area,
     /// The worst LCI over the largest rectangle.
     LciMin,
+    /// The total time of the timed programs, minimised.
+    Time,
 }
 
 impl Objective {
     /// Every objective, as `--objective` spells it.
-    pub const NAMES: [&'static str; 4] = ["rect", "gci", "area", "lci-min"];
+    pub const NAMES: [&'static str; 5] = ["rect", "gci", "area", "lci-min", "time"];
 
-    /// The value this objective maximises for `evaluation`.
-    pub fn value(self, evaluation: &Evaluation) -> f64 {
+    /// The index this objective reads for `evaluation` (the time for [`Objective::Time`]);
+    /// `None` when the design has none (no timed run).
+    pub fn value(self, evaluation: &Evaluation) -> Option<f64> {
         match self {
-            Objective::Rectangle => evaluation.rectangle_area(),
-            Objective::Gci => evaluation.gci,
-            Objective::Area => evaluation.area_mm2,
-            Objective::LciMin => evaluation.lci_min,
+            Objective::Rectangle => Some(evaluation.rectangle_area()),
+            Objective::Gci => Some(evaluation.gci),
+            Objective::Area => Some(evaluation.area_mm2),
+            Objective::LciMin => Some(evaluation.lci_min),
+            Objective::Time => evaluation.time_s,
         }
+    }
+
+    /// The value maximised: [`Objective::value`], negated for the time.
+    fn score(self, evaluation: &Evaluation) -> Option<f64> {
+        let value = self.value(evaluation)?;
+        Some(if self == Objective::Time { -value } else { value })
     }
 
     /// The CSV column this objective reads (`rect` is `rect_w_mm × rect_h_mm`).
@@ -48,6 +58,7 @@ impl FromStr for Objective {
             "gci" => Ok(Objective::Gci),
             "area" => Ok(Objective::Area),
             "lci-min" => Ok(Objective::LciMin),
+            "time" => Ok(Objective::Time),
             _ => Err(format!("expected one of {}", Objective::NAMES.join(", "))),
         }
     }
@@ -58,8 +69,8 @@ pub fn eligible(evaluation: &Evaluation) -> bool {
     evaluation.status == DesignStatus::Ok && evaluation.task_ok != Some(false)
 }
 
-/// The best eligible design seen so far by one objective; ties go to the first seen (in a
-/// sweep, the lowest index).
+/// The best eligible design seen so far by one objective (the largest value, the shortest time);
+/// ties go to the first seen (in a sweep, the lowest index).
 #[derive(Debug, Clone)]
 pub struct Best {
     objective: Objective,
@@ -77,8 +88,9 @@ impl Best {
         if !eligible(evaluation) {
             return;
         }
-        let value = self.objective.value(evaluation);
-        if self.best.is_none_or(|best| value > self.objective.value(&best)) {
+        let Some(score) = self.objective.score(evaluation) else { return };
+        let better = |best: Evaluation| self.objective.score(&best).is_none_or(|b| score > b);
+        if self.best.is_none_or(better) {
             self.best = Some(*evaluation);
         }
     }
@@ -147,6 +159,7 @@ mod tests {
             gci,
             lci_min: gci / 2.0,
             task_ok: None,
+            time_s: Some(10.0 - side),
         }
     }
 
@@ -165,6 +178,13 @@ mod tests {
         best.consider(&design(4, 1.0, 0.3));
         best.consider(&design(5, 1.0, 0.7));
         assert_eq!(best.get().map(|e| e.design.index), Some(5));
+        let mut best = Best::new(Objective::Time);
+        let mut untimed = design(6, 9.5, 0.3);
+        untimed.time_s = None;
+        for evaluation in [design(7, 2.0, 0.3), untimed, design(8, 3.0, 0.3), design(9, 1.0, 0.3)] {
+            best.consider(&evaluation);
+        }
+        assert_eq!(best.get().map(|e| e.design.index), Some(8), "the shortest time");
     }
 
     #[test]
