@@ -14,9 +14,12 @@
 //! scalar path's within 1e-12 rad (tested on grids and random poses in every working and
 //! assembly mode).
 //!
-//! Grid points fall exactly on joint limits (θ2 = −135° at (20, 120) mm for the default bases:
-//! a 45° line from a base joint), so the limit test compares angles as the scalar path does; a
-//! test on directions (no `atan2`) was tried and decided such points differently.
+//! Reachability ([`Kinematics::reachable_batch`]) tests θ1's and θ2's limits on the directions
+//! of the proximal links (a dot product against the limits' arc, no `atan2`), and falls back to
+//! the angles, as the scalar path compares them, for a vector in which a direction lies within
+//! 1e-9 of a limit: grid points fall exactly on limits (θ2 = −135° at (20, 120) mm for the
+//! default bases, a 45° line from a base joint), and there only the same comparison gives the
+//! same verdict.
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
@@ -111,6 +114,50 @@ struct Lanes {
     lp: f64,
     margin_tan: f64,
     psi1_home: f64,
+    /// θ1's and θ2's limits as arcs of directions.
+    arc: [Arc; 2],
+}
+
+/// A joint's limits `[min, max]` as an arc of directions: centre (cos m, sin m) with
+/// m = (min + max)/2, and cos h with h = (max − min)/2. A direction at angle θ is inside when
+/// cos(θ − m) ≥ cos h, which is the scalar test (θ, or θ ± 2π, within the limits) for limits of
+/// less than a turn inside (−3π, 3π]; other limits always take the angles (`exact` false).
+#[derive(Debug, Clone, Copy)]
+struct Arc {
+    centre: [f64; 2],
+    cos_half: f64,
+    exact: bool,
+}
+
+impl Arc {
+    /// How close to the arc's edge, relative to the direction's length, counts as on it: far
+    /// above the rounding of the directions (1e-15), far below any grid's spacing.
+    const NEAR: f64 = 1e-9;
+
+    fn new([min, max]: [f64; 2]) -> Arc {
+        let (middle, half) = (0.5 * (min + max), 0.5 * (max - min));
+        let exact = half < PI && min >= -3.0 * PI && max <= 3.0 * PI;
+        Arc { centre: [middle.cos(), middle.sin()], cos_half: half.cos(), exact }
+    }
+
+    /// Whether `direction` (x, y and its length, as the chains compute it) lies in the arc, and
+    /// whether it lies so close to its edge (or the arc is not exact) that the angle must decide.
+    #[inline(always)]
+    fn test<S: Simd>(&self, s: S, direction: [S::f64s; 3]) -> (S::m64s, S::m64s) {
+        let along = s.add_f64s(
+            s.mul_f64s(direction[0], s.splat_f64s(self.centre[0])),
+            s.mul_f64s(direction[1], s.splat_f64s(self.centre[1])),
+        );
+        // |direction|² = (A² + B²)(C² + A² + B² − C²) = reach2².
+        let length = direction[2];
+        let margin = s.sub_f64s(along, s.mul_f64s(length, s.splat_f64s(self.cos_half)));
+        let near = s.less_than_or_equal_f64s(
+            s.abs_f64s(margin),
+            s.mul_f64s(length, s.splat_f64s(Self::NEAR)),
+        );
+        let near = if self.exact { near } else { s.or_m64s(near, s.not_m64s(near)) };
+        (s.greater_than_or_equal_f64s(margin, s.splat_f64s(0.0)), near)
+    }
 }
 
 impl Lanes {
@@ -131,6 +178,7 @@ impl Lanes {
             lp: model.lp,
             margin_tan: model.singularity_margin_tan,
             psi1_home: model.distal_home[0],
+            arc: [Arc::new(model.limits[0]), Arc::new(model.limits[1])],
         }
     }
 
@@ -147,8 +195,8 @@ impl Lanes {
             s.add_f64s(s.sub_f64s(z, z), s.sub_f64s(phi, phi)),
         );
         let finite = s.equal_f64s(spread, zero);
-        let (theta1, e1, reaches1) = self.chain(s, 0, x, y);
-        let (theta2, e2, reaches2) = self.chain(s, 1, x, y);
+        let (d1, e1, reaches1) = self.chain(s, 0, x, y);
+        let (d2, e2, reaches2) = self.chain(s, 1, x, y);
         let z1 = minus(s, [x, y], e1);
         let z2 = minus(s, [x, y], e2);
         let a1 = minus(s, e1, [s.splat_f64s(self.bx[0]), s.splat_f64s(self.by[0])]);
@@ -160,34 +208,51 @@ impl Lanes {
             clear(s, tan, z2, z1),
         );
 
-        let psi1 = atan2_simd(s, z1[1], z1[0]);
-        let difference = s.sub_f64s(psi1, s.splat_f64s(self.psi1_home));
-        let rotation = s.select_f64s(
-            s.greater_than_f64s(difference, s.splat_f64s(PI)),
-            s.sub_f64s(difference, s.splat_f64s(TAU)),
-            s.select_f64s(
-                s.less_than_or_equal_f64s(difference, s.splat_f64s(-PI)),
-                s.add_f64s(difference, s.splat_f64s(TAU)),
-                difference,
-            ),
-        );
-        let joints = [
-            fit_into(s, theta1, self.limits[0]),
-            fit_into(s, theta2, self.limits[1]),
-            fit_into(s, s.sub_f64s(phi, rotation), self.limits[2]),
-            s.sub_f64s(s.splat_f64s(self.lp), z),
-        ];
-        let mut within =
-            s.and_m64s(inside(s, joints[0], self.limits[0]), inside(s, joints[1], self.limits[1]));
-        if full {
-            within = s.and_m64s(
-                within,
+        let (joints, within) = if full {
+            let psi1 = atan2_simd(s, z1[1], z1[0]);
+            let difference = s.sub_f64s(psi1, s.splat_f64s(self.psi1_home));
+            let rotation = s.select_f64s(
+                s.greater_than_f64s(difference, s.splat_f64s(PI)),
+                s.sub_f64s(difference, s.splat_f64s(TAU)),
+                s.select_f64s(
+                    s.less_than_or_equal_f64s(difference, s.splat_f64s(-PI)),
+                    s.add_f64s(difference, s.splat_f64s(TAU)),
+                    difference,
+                ),
+            );
+            let joints = [
+                fit_into(s, atan2_simd(s, d1[1], d1[0]), self.limits[0]),
+                fit_into(s, atan2_simd(s, d2[1], d2[0]), self.limits[1]),
+                fit_into(s, s.sub_f64s(phi, rotation), self.limits[2]),
+                s.sub_f64s(s.splat_f64s(self.lp), z),
+            ];
+            let within = s.and_m64s(
+                s.and_m64s(
+                    inside(s, joints[0], self.limits[0]),
+                    inside(s, joints[1], self.limits[1]),
+                ),
                 s.and_m64s(
                     inside(s, joints[2], self.limits[2]),
                     inside(s, joints[3], self.limits[3]),
                 ),
             );
-        }
+            (joints, within)
+        } else {
+            // Reachability needs no angle unless a direction lies within rounding of a limit
+            // (grid points do, exactly): θ is in its limits when its direction is in their arc.
+            let (in1, near1) = self.arc[0].test(s, d1);
+            let (in2, near2) = self.arc[1].test(s, d2);
+            let near = s.and_m64s(s.or_m64s(near1, near2), s.and_m64s(reaches1, reaches2));
+            let within = if s.first_true_m64s(near) < S::F64_LANES {
+                // Decide by the angles, as the scalar path does.
+                let theta1 = fit_into(s, atan2_simd(s, d1[1], d1[0]), self.limits[0]);
+                let theta2 = fit_into(s, atan2_simd(s, d2[1], d2[0]), self.limits[1]);
+                s.and_m64s(inside(s, theta1, self.limits[0]), inside(s, theta2, self.limits[1]))
+            } else {
+                s.and_m64s(in1, in2)
+            };
+            ([zero; 4], within)
+        };
         let wrong_assembly =
             if self.assembly_minus { s.not_m64s(assembly_minus) } else { assembly_minus };
         // The first check failed: the checks applied from the last to the first.
@@ -199,7 +264,8 @@ impl Lanes {
         (joints, status)
     }
 
-    /// Chain `i`'s IK (the scalar `chain_inverse`): θ, the elbow, and whether it reaches.
+    /// Chain `i`'s IK (the scalar `chain_inverse`): `(cos θ, sin θ)` times the reach squared and
+    /// the reach squared (the direction's length), the elbow, and whether it reaches.
     #[inline(always)]
     fn chain<S: Simd>(
         &self,
@@ -207,7 +273,7 @@ impl Lanes {
         i: usize,
         x: S::f64s,
         y: S::f64s,
-    ) -> (S::f64s, [S::f64s; 2], S::m64s) {
+    ) -> ([S::f64s; 3], [S::f64s; 2], S::m64s) {
         let zero = s.splat_f64s(0.0);
         let dx = s.sub_f64s(x, s.splat_f64s(self.bx[i]));
         let a = s.neg_f64s(y);
@@ -228,7 +294,7 @@ impl Lanes {
             s.sub_f64s(s.splat_f64s(self.bx[i]), s.mul_f64s(scale, sin_theta)),
             s.add_f64s(s.splat_f64s(self.by[i]), s.mul_f64s(scale, cos_theta)),
         ];
-        (atan2_simd(s, sin_theta, cos_theta), elbow, reaches)
+        ([cos_theta, sin_theta, reach2], elbow, reaches)
     }
 }
 
@@ -594,6 +660,34 @@ mod tests {
         model.inverse_batch(&poses, &mut out);
         let status: Vec<_> = out.iter().map(|s| s.status).collect();
         assert_eq!(status, [BatchStatus::NotFinite, BatchStatus::NotFinite, BatchStatus::Ok]);
+    }
+
+    #[test]
+    fn limits_of_every_shape_agree_with_the_scalar_path() {
+        for (theta1, theta2) in [
+            ([-190.0, 190.0], [-135.0, 135.0]),
+            ([100.0, 300.0], [-300.0, -100.0]),
+            ([-45.0, 45.0], [0.0, 1.0]),
+            ([-540.0, 540.0], [-10.0, 350.0]),
+        ] {
+            let mut robot = Robot::default();
+            robot.joint_limits.theta1 = theta1;
+            robot.joint_limits.theta2 = theta2;
+            let model = Kinematics::new(&robot).unwrap();
+            let poses: Vec<Pose> = (0..101)
+                .flat_map(|i| {
+                    (0..101).map(move |j| {
+                        Pose::new(
+                            -500.0 + 10.0 * f64::from(i),
+                            -500.0 + 10.0 * f64::from(j),
+                            0.0,
+                            0.0,
+                        )
+                    })
+                })
+                .collect();
+            check_against_scalar(&model, &poses);
+        }
     }
 
     proptest! {
