@@ -6,14 +6,20 @@
 //!
 //! Measured 2026-11-22 on the 2-core development machine (Intel Xeon, x86_64, rustc 1.95,
 //! release profile), per pose: reference scalar IK 71.8 ns, `inverse` 79.6 ns (1.11×),
-//! `inverse_checked` 108.4 ns, `forward` 95.2 ns. The README's table quotes these.
+//! `inverse_checked` 108.4 ns, `forward` 95.2 ns.
+//!
+//! Measured 2026-11-26 on the 2-core development machine of that day (AMD EPYC, AVX2 and
+//! AVX-512, shared with other builds), per pose: reference 83.8 ns, `inverse` 77.0 ns,
+//! `inverse_checked` 91.3 ns, the batch path (`inverse_batch`, the same checks) 23.0 ns with
+//! run-time dispatch (x86-64-v3) and 42.2 ns forced portable, `forward` 81.7 ns. The README's
+//! table quotes these.
 
 #![allow(missing_docs)]
 
 use std::f64::consts::PI;
 use std::hint::black_box;
 
-use biscara::kinematics::{Joints, Kinematics, Pose};
+use biscara::kinematics::{BatchSolution, Dispatch, Joints, Kinematics, Pose};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 const POSES: usize = 1_000_000;
@@ -129,6 +135,20 @@ fn kinematics(c: &mut Criterion) {
             sum
         });
     });
+    // The batch path (IK + assembly, limit and singularity checks, as `inverse_checked`), once
+    // with the CPU detected at run time (x86-64-v3 here) and once forced to the portable build.
+    let mut solved = vec![BatchSolution::default(); POSES];
+    for (name, dispatch) in [
+        ("ik_batch_checked_dispatch", Dispatch::Detect),
+        ("ik_batch_checked_portable", Dispatch::Portable),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                model.inverse_batch_with(dispatch, black_box(&poses), &mut solved);
+                solved.iter().map(|s| s.joints.theta1).sum::<f64>()
+            });
+        });
+    }
     group.bench_function("fk_forward", |b| {
         b.iter(|| {
             let mut sum = 0.0;

@@ -18,6 +18,8 @@
 //! - [`gcode`]: LinuxCNC's G-code interpreted into motions (`biscara interpret`).
 //! - [`view`]: the HTML viewer, the MuJoCo model and the SVG/PNG plots of a trajectory
 //!   (`biscara view`, `mjcf`, `plot`).
+//! - [`design`]: robot design sweeps (link lengths, base) against workspace and conditioning
+//!   (`biscara design`).
 //! - [`text`]: the text plumbing the stages share: bounded lines, fixed decimals, numeric CSV.
 //!
 //! ```
@@ -30,6 +32,7 @@
 //! ```
 
 pub use biscara_cl as cl;
+pub use biscara_design as design;
 pub use biscara_diff as diff;
 pub use biscara_gcode as gcode;
 pub use biscara_interpolate as interpolate;

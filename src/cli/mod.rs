@@ -4,6 +4,7 @@ mod args;
 mod check;
 mod clf;
 mod demo;
+mod design;
 mod diag;
 mod diff;
 mod files;
@@ -58,6 +59,7 @@ enum Command {
     View(view::ViewArgs),
     Check(check::CheckArgs),
     Workspace(workspace::WorkspaceArgs),
+    Design(design::DesignArgs),
     Plot(plot::PlotArgs),
     Linuxcnc(linuxcnc::LinuxcncArgs),
 }
@@ -106,6 +108,7 @@ fn dispatch(robot: &RobotModel, command: Command) -> anyhow::Result<()> {
         Command::View(args) => view::view(robot, &args),
         Command::Check(args) => check::check(robot, &args),
         Command::Workspace(args) => workspace::workspace(robot, &args),
+        Command::Design(args) => design::design(robot, &args),
         Command::Plot(args) => plot::plot(robot, &args),
         Command::Linuxcnc(args) => linuxcnc::linuxcnc(robot, &args),
     }

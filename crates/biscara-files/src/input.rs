@@ -38,6 +38,21 @@ pub fn open_file(path: &Path) -> Result<BufReader<ProgressFile>, FileError> {
     Ok(BufReader::with_capacity(1 << 16, ProgressFile(bar.wrap_read(file))))
 }
 
+/// A progress bar on stderr counting `length` items named `unit` (e.g. "designs"), drawn only
+/// when stderr is a terminal; the caller advances it and clears it at the end.
+pub fn progress(length: u64, unit: &str) -> ProgressBar {
+    if !io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let template = format!("{{bar:40}} {{pos}}/{{len}} {unit} {{elapsed}} eta {{eta}}");
+    ProgressBar::with_draw_target(Some(length), ProgressDrawTarget::stderr())
+        .with_style(
+            ProgressStyle::with_template(&template)
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        )
+        .with_finish(ProgressFinish::AndClear)
+}
+
 /// A file whose reads and seeks move its progress bar: what [`open_file`] reads through.
 #[derive(Debug)]
 pub struct ProgressFile(ProgressBarIter<File>);

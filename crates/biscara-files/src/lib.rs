@@ -30,7 +30,8 @@ mod output;
 
 use std::path::{Path, PathBuf};
 
-pub use input::{ProgressFile, open_file, open_input, read_bytes, read_text};
+pub use indicatif::ProgressBar;
+pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
 pub use output::write_output;
 
 /// What went wrong with a file, and which file.

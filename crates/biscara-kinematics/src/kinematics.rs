@@ -141,21 +141,21 @@ pub struct FkSolution {
 /// Solving a pose allocates nothing; the struct is small and `Copy`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kinematics {
-    l1: f64,
-    l2: f64,
-    bases: [na::Point2<f64>; 2],
-    lp: f64,
-    working_mode: WorkingMode,
-    assembly_mode: AssemblyMode,
+    pub(crate) l1: f64,
+    pub(crate) l2: f64,
+    pub(crate) bases: [na::Point2<f64>; 2],
+    pub(crate) lp: f64,
+    pub(crate) working_mode: WorkingMode,
+    pub(crate) assembly_mode: AssemblyMode,
     /// Limits in radians (θ) and millimetres (d4).
-    limits: [[f64; 2]; 4],
+    pub(crate) limits: [[f64; 2]; 4],
     /// Limits in the user's units: degrees (θ) and millimetres (d4).
-    limits_user: [[f64; 2]; 4],
-    singularity_margin: f64,
+    pub(crate) limits_user: [[f64; 2]; 4],
+    pub(crate) singularity_margin: f64,
     /// tan(singularity_margin), for the fast test.
-    singularity_margin_tan: f64,
+    pub(crate) singularity_margin_tan: f64,
     /// ψ1 and ψ2 at the home pose.
-    distal_home: [f64; 2],
+    pub(crate) distal_home: [f64; 2],
 }
 
 impl Kinematics {

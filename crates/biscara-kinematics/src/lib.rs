@@ -4,8 +4,10 @@
 //! This crate reads and validates `robot.json` ([`Robot`]), solves inverse and forward kinematics
 //! in all four working modes and both assembly modes ([`Kinematics`]), computes the planar
 //! Jacobian and the singularity angles, checks joint limits, and keeps θ3 continuous along a
-//! path ([`Theta3Unwrapper`]). Units are millimetres and radians; degrees appear only in
-//! [`Robot`] (the file's units) and in error messages.
+//! path ([`Theta3Unwrapper`]); [`Kinematics::inverse_batch`] and
+//! [`Kinematics::reachable_batch`] solve many poses at once, vectorised for the CPU found at run
+//! time. Units are millimetres and radians; degrees appear only in [`Robot`] (the file's units)
+//! and in error messages.
 //!
 //! It deliberately knows nothing of G-code, files or trajectories: callers hand it one pose or
 //! one joint vector at a time, and solving one allocates nothing.
@@ -22,6 +24,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod batch;
 mod error;
 mod jacobian;
 mod kinematics;
@@ -34,6 +37,7 @@ mod unwrap;
 
 pub use nalgebra as na;
 
+pub use batch::{BatchSolution, BatchStatus, Dispatch, LANES, atan2 as batch_atan2};
 pub use error::{KinematicsError, Shortfall, SingularityKind};
 pub use jacobian::PlanarJacobian;
 pub use kinematics::{

@@ -90,13 +90,28 @@ impl Workspace {
         let (j0, j1) = (index(-reach, false), index(reach, true));
         let columns = usize::try_from(i1 - i0 + 1).unwrap_or(0);
         let rows = usize::try_from(j1 - j0 + 1).unwrap_or(0);
-        let mut reachable = Vec::with_capacity(columns * rows);
-        for j in 0..rows {
+        // Row by row through the batch solver (vectorised; the same verdicts as `reachable`),
+        // over the columns both chains can reach: a point farther than l1 + l2 from a base
+        // joint has no IK solution, so the span where the two discs of that radius overlap,
+        // widened by a step against rounding, holds every reachable point of the row.
+        let xs: Vec<f64> = (0..columns).map(|i| (i0 + i as i64) as f64 * step).collect();
+        let mut ys = vec![0.0; columns];
+        let mut reachable = vec![false; columns * rows];
+        for (j, row) in reachable.chunks_exact_mut(columns.max(1)).enumerate() {
             let y = (j0 + j as i64) as f64 * step;
-            for i in 0..columns {
-                let x = (i0 + i as i64) as f64 * step;
-                reachable.push(reachable_fast(model, reach, x, y));
+            let half = (reach * reach - y * y).sqrt();
+            if half.is_nan() {
+                continue;
             }
+            let low = b1.x.max(b2.x) - half - step;
+            let high = b1.x.min(b2.x) + half + step;
+            let first = xs.partition_point(|&x| x < low);
+            let last = xs.partition_point(|&x| x <= high);
+            if first >= last {
+                continue;
+            }
+            ys[first..last].fill(y);
+            model.reachable_batch(&xs[first..last], &ys[first..last], &mut row[first..last]);
         }
         Ok(Workspace { step, i0, j0, columns, rows, reachable })
     }
@@ -161,19 +176,36 @@ impl Workspace {
     /// maximal-rectangle algorithm over row histograms, O(columns·rows)). Ties go to the first
     /// found (lowest top row, then leftmost). Fails when no two-by-two block is reachable.
     pub fn largest_rectangle(&self) -> Result<Rectangle, VirtualRobotError> {
-        let (i, j, w, h) = largest_block(&self.reachable, self.columns, self.rows)
-            .ok_or(VirtualRobotError::EmptyWorkspace { step_mm: self.step })?;
+        let empty = VirtualRobotError::EmptyWorkspace { step_mm: self.step };
+        // Only the rows and columns that hold a reachable point: the same blocks, less to scan.
+        let used_rows: Vec<usize> = (0..self.rows)
+            .filter(|&j| self.reachable[j * self.columns..(j + 1) * self.columns].contains(&true))
+            .collect();
+        let (Some(&top), Some(&bottom)) = (used_rows.first(), used_rows.last()) else {
+            return Err(empty);
+        };
+        let mut left = self.columns;
+        let mut right = 0;
+        for j in top..=bottom {
+            let row = &self.reachable[j * self.columns..(j + 1) * self.columns];
+            if let (Some(first), Some(last)) =
+                (row.iter().position(|&r| r), row.iter().rposition(|&r| r))
+            {
+                left = left.min(first);
+                right = right.max(last);
+            }
+        }
+        let columns = right + 1 - left;
+        let cells: Vec<bool> = (top..=bottom)
+            .flat_map(|j| &self.reachable[j * self.columns + left..=j * self.columns + right])
+            .copied()
+            .collect();
+        let (i, j, w, h) = largest_block(&cells, columns, bottom + 1 - top).ok_or(empty)?;
+        let (i, j) = (i + left, j + top);
         let min = self.point(i, j);
         let max = self.point(i + w - 1, j + h - 1);
         Ok(Rectangle { min, max })
     }
-}
-
-/// [`reachable`] with a quick rejection of points no chain reaches.
-fn reachable_fast(model: &Kinematics, reach: f64, x: f64, y: f64) -> bool {
-    let [b1, b2] = model.bases();
-    let far = |b: biscara_kinematics::na::Point2<f64>| (x - b.x).hypot(y - b.y) > reach;
-    !far(b1) && !far(b2) && reachable(model, x, y)
 }
 
 /// The block of `true` cells (`i`, `j`, width, height) maximising `(width − 1)·(height − 1)`,
@@ -260,6 +292,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_grid_agrees_with_the_scalar_test() {
+        let model = Kinematics::default();
+        let workspace = Workspace::compute(&model, 5.0).unwrap();
+        let (columns, rows) = workspace.size();
+        for j in 0..rows {
+            for i in 0..columns {
+                let [x, y] = workspace.point(i, j);
+                assert_eq!(workspace.is_reachable(i, j), reachable(&model, x, y), "({x}, {y})");
+            }
+        }
+        assert!(workspace.count() > 1000);
     }
 
     #[test]

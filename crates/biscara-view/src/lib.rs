@@ -31,7 +31,7 @@ pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
 pub use plot::{
-    ImageFormat, JointCurves, ProcessStroke, ProcessStrokes, TopView, draw_joints, draw_top_view,
-    draw_workspace, zoom_region,
+    ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, ProcessStroke, ProcessStrokes,
+    TopView, draw_atlas, draw_joints, draw_top_view, draw_workspace, zoom_region,
 };
 pub use trace::ProgramTrace;

@@ -1,0 +1,353 @@
+//! `biscara design`: sweeps link lengths and base distance, `design merge` joins shards,
+//! `design atlas` draws a sweep.
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use biscara::design::{
+    Best, DesignGrid, Evaluation, Evaluator, Objective, ParamRange, ParetoFront, ProgramTimer,
+    RowReader, Shard, Sweep, Task, eligible, header, merge, write_row,
+};
+use biscara::kinematics::RobotModel;
+use biscara::view::{Atlas, AtlasCell, draw_atlas};
+use clap::{Args, Subcommand, ValueEnum};
+
+use super::diag::{Level, located, report};
+use super::files::{display_path, format_of, open_input, write_output};
+
+/// Sweeps the robot's design: every combination of proximal link l1, distal link l2 and base
+/// distance (the two base joints at ±base/2; everything else from the robot file) is measured as
+/// `biscara workspace` measures the robot: the grid of reachable points (working and assembly
+/// mode, joint limits, singularity margin), its area and the largest axis-aligned rectangle; and
+/// over the rectangle's grid points the local conditioning index LCI = 1/cond(J) of the Jacobian
+/// J = ∂(x, y)/∂(θ1, θ2): its mean, the GCI, and its worst value.
+///
+/// Each range is MIN:MAX:N, N values from MIN to MAX inclusive (mm). Writes one CSV row per
+/// design, as the designs are done (columns index, l1, l2, base, area_mm2, rect_w_mm, rect_h_mm,
+/// rect_x0_mm, rect_y0_mm, gci, lci_min, status: ok, empty (no rectangle) or invalid (the base
+/// wider than two distal links), task_ok with --task, time_s with --programs). --best writes the
+/// robot file of the best design (largest rectangle, or --objective), among those covering
+/// --task; --pareto the designs no other beats in both rectangle area and GCI; --atlas a picture
+/// of one index over l1 × l2 for each base.
+///
+/// The designs run on every core (--threads); --shard K/N evaluates every N-th design from the
+/// K-th, so N jobs of a batch system (a Slurm array, GNU parallel) share a sweep, and `biscara
+/// design merge` joins their CSVs into the CSV one run writes.
+#[derive(Debug, Args)]
+#[command(
+    about = "Sweep link lengths and base distance: workspace, rectangle, GCI per design",
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true,
+    after_long_help = "Example:\n  \
+        $ biscara design --l1 150:270:7 --l2 210:330:7 --base 100:300:5 -o designs.csv \\\n      \
+        --best robot.json --atlas atlas.svg\n  \
+        $ biscara design --l1 150:270:7 --l2 210:330:7 --base 100:300:5 --objective gci \\\n      \
+        --task -150,300,150,450 --best robot.json -o designs.csv\n  \
+        one job of eight (e.g. a Slurm array), then the join:\n  \
+        $ biscara design --l1 150:270:61 --l2 210:330:61 --base 100:300:21 --shard 3/8 -o part3.csv\n  \
+        $ biscara design merge part*.csv -o designs.csv"
+)]
+pub(crate) struct DesignArgs {
+    #[command(subcommand)]
+    command: Option<DesignCommand>,
+    #[command(flatten)]
+    sweep: SweepArgs,
+}
+
+#[derive(Debug, Subcommand)]
+enum DesignCommand {
+    Merge(MergeArgs),
+    Atlas(AtlasArgs),
+}
+
+#[derive(Debug, Args)]
+struct SweepArgs {
+    /// Proximal link lengths, mm: MIN:MAX:N.
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l1)]
+    l1: Option<ParamRange>,
+    /// Distal link lengths, mm: MIN:MAX:N.
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l2)]
+    l2: Option<ParamRange>,
+    /// Distances between the two base joints, mm: MIN:MAX:N.
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_base)]
+    base: Option<ParamRange>,
+    /// Workspace grid step, mm (as `biscara workspace --step`).
+    #[arg(long, value_name = "MM", default_value = "2")]
+    step: f64,
+    /// Write the CSV to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Write the robot file (robot.json) of the best design to FILE.
+    #[arg(long, value_name = "FILE")]
+    best: Option<PathBuf>,
+    /// What --best and the atlas's ring choose: the largest rectangle, GCI, reachable area or
+    /// worst LCI, or the shortest total time of --programs.
+    #[arg(long, value_enum, default_value = "rect")]
+    objective: ObjectiveArg,
+    /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
+    /// reachable. Adds the task_ok column.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = task, allow_hyphen_values = true)]
+    task: Option<Task>,
+    /// Time these programs (G-code, inter-file or path CSV) on every design, as `joints` runs
+    /// them (1 ms, the optimal profile, every joint limit), summed: the time_s column (empty
+    /// when a program cannot run on the design).
+    #[arg(long, value_name = "FILE", num_args = 1..)]
+    programs: Vec<PathBuf>,
+    /// Centre each of --programs in each design's workspace rectangle first (as `joints --fit`).
+    #[arg(long, requires = "programs")]
+    fit: bool,
+    /// Write the Pareto front (rectangle area against GCI) to FILE, as CSV rows.
+    #[arg(long, value_name = "FILE")]
+    pareto: Option<PathBuf>,
+    /// Draw the atlas of the objective's index to FILE (SVG, or PNG by its extension).
+    #[arg(long, value_name = "FILE")]
+    atlas: Option<PathBuf>,
+    /// Worker threads (0: one per core).
+    #[arg(long, value_name = "N", default_value = "0")]
+    threads: usize,
+    /// Evaluate part K of N of the sweep: the designs whose index is K − 1 modulo N.
+    #[arg(long, value_name = "K/N", default_value = "1/1", value_parser = shard)]
+    shard: Shard,
+}
+
+/// Joins the CSVs of a sharded sweep (`biscara design --shard K/N`) into the CSV of the whole
+/// sweep, rows in design order; a design missing or in two files is an error.
+#[derive(Debug, Args)]
+#[command(
+    about = "Join the CSVs of a sharded sweep into the whole sweep's CSV",
+    after_long_help = "Example:\n  $ biscara design merge part1.csv part2.csv part3.csv -o designs.csv"
+)]
+struct MergeArgs {
+    /// The shards' CSVs.
+    #[arg(value_name = "CSV", required = true)]
+    inputs: Vec<PathBuf>,
+    /// Write the joined CSV to FILE instead of standard output.
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+/// Draws the atlas of a design CSV: one index over l1 × l2, a panel per base distance.
+#[derive(Debug, Args)]
+#[command(
+    about = "Draw a design CSV's atlas: one index over l1 × l2 per base (SVG/PNG)",
+    after_long_help = "Example:\n  $ biscara design atlas designs.csv --index gci -o atlas.png"
+)]
+struct AtlasArgs {
+    /// The design CSV (`biscara design -o`, or merged).
+    #[arg(value_name = "CSV")]
+    input: PathBuf,
+    /// The index drawn, and the design ringed (its best).
+    #[arg(long, value_enum, default_value = "gci")]
+    index: ObjectiveArg,
+    /// The picture: SVG, or PNG by its extension.
+    #[arg(short, long, value_name = "FILE", required = true)]
+    output: PathBuf,
+}
+
+/// An objective as named on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum ObjectiveArg {
+    /// The largest rectangle's area, mm².
+    Rect,
+    /// The GCI over the largest rectangle.
+    Gci,
+    /// The reachable area, mm².
+    Area,
+    /// The worst LCI over the largest rectangle.
+    LciMin,
+    /// The total time of --programs, s (shortest best).
+    Time,
+}
+
+impl From<ObjectiveArg> for Objective {
+    fn from(arg: ObjectiveArg) -> Objective {
+        match arg {
+            ObjectiveArg::Rect => Objective::Rectangle,
+            ObjectiveArg::Gci => Objective::Gci,
+            ObjectiveArg::Area => Objective::Area,
+            ObjectiveArg::LciMin => Objective::LciMin,
+            ObjectiveArg::Time => Objective::Time,
+        }
+    }
+}
+
+fn index_name(objective: Objective) -> &'static str {
+    match objective {
+        Objective::Rectangle => "largest rectangle, mm²",
+        Objective::Gci => "GCI",
+        Objective::Area => "reachable area, mm²",
+        Objective::LciMin => "worst LCI",
+        Objective::Time => "time of the programs, s",
+    }
+}
+
+fn range_l1(text: &str) -> Result<ParamRange, String> {
+    ParamRange::parse("--l1", text).map_err(|err| err.to_string())
+}
+
+fn range_l2(text: &str) -> Result<ParamRange, String> {
+    ParamRange::parse("--l2", text).map_err(|err| err.to_string())
+}
+
+fn range_base(text: &str) -> Result<ParamRange, String> {
+    ParamRange::parse("--base", text).map_err(|err| err.to_string())
+}
+
+fn task(text: &str) -> Result<Task, String> {
+    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
+}
+
+fn shard(text: &str) -> Result<Shard, String> {
+    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
+}
+
+pub(crate) fn design(model: &RobotModel, args: &DesignArgs) -> anyhow::Result<()> {
+    match &args.command {
+        Some(DesignCommand::Merge(merge)) => merge_shards(merge),
+        Some(DesignCommand::Atlas(atlas)) => draw(atlas),
+        None => sweep(model, &args.sweep),
+    }
+}
+
+fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
+    let (Some(l1), Some(l2), Some(base)) = (args.l1, args.l2, args.base) else {
+        anyhow::bail!("--l1, --l2 and --base are required");
+    };
+    let grid = DesignGrid::new(l1, l2, base)?;
+    let objective = Objective::from(args.objective);
+    let mut evaluator = Evaluator::new(model.robot().clone(), args.step, args.task)?;
+    if !args.programs.is_empty() {
+        let mut programs = Vec::with_capacity(args.programs.len());
+        for path in &args.programs {
+            programs.push((display_path(path), biscara_files::read_text(path)?));
+        }
+        evaluator = evaluator.with_programs(ProgramTimer::new(programs, args.fit));
+    } else if objective == Objective::Time {
+        anyhow::bail!("--objective time needs --programs");
+    }
+    let columns = evaluator.columns();
+    let sweep = Sweep::new(evaluator, grid, args.shard);
+    let mut best = Best::new(objective);
+    let mut pareto = ParetoFront::new();
+    let mut cells = Vec::new();
+    let progress = biscara_files::progress(sweep.count(), "designs");
+    write_output(args.output.as_deref(), |out| {
+        writeln!(out, "{}", header(columns))?;
+        sweep.run(args.threads, |evaluation| -> anyhow::Result<()> {
+            write_row(out, columns, evaluation)?;
+            best.consider(evaluation);
+            pareto.consider(evaluation);
+            if args.atlas.is_some() {
+                cells.push(cell(evaluation, objective));
+            }
+            progress.inc(1);
+            Ok(())
+        })
+    })?;
+    progress.finish_and_clear();
+    let chosen = best.get().copied();
+    summarise(sweep.count(), objective, chosen.as_ref(), &pareto);
+    if let Some(path) = &args.pareto {
+        write_output(Some(path), |out| {
+            writeln!(out, "{}", header(columns))?;
+            for evaluation in pareto.designs() {
+                write_row(out, columns, &evaluation)?;
+            }
+            Ok(())
+        })?;
+    }
+    if let Some(path) = &args.atlas {
+        let title =
+            format!("Design atlas: {} over l1 × l2, per base distance", index_name(objective));
+        let atlas = Atlas {
+            title: &title,
+            index: index_name(objective),
+            cells: &cells,
+            chosen: chosen.map(|e| [e.design.l1, e.design.l2, e.design.base]),
+        };
+        let bytes = draw_atlas(&atlas, format_of(Some(path)))?;
+        write_output(Some(path), |out| Ok(out.write_all(&bytes)?))?;
+    }
+    if let Some(path) = &args.best {
+        let Some(chosen) = chosen else {
+            anyhow::bail!(
+                "no design has a rectangle{}{}: {} not written",
+                if args.task.is_some() { " and covers the task" } else { "" },
+                if objective == Objective::Time { " and runs the programs" } else { "" },
+                display_path(path)
+            );
+        };
+        let robot = sweep.evaluator().robot_of(&chosen.design);
+        write_output(Some(path), |out| Ok(writeln!(out, "{}", robot.to_json_pretty())?))?;
+    }
+    Ok(())
+}
+
+fn cell(evaluation: &Evaluation, objective: Objective) -> AtlasCell {
+    let d = evaluation.design;
+    let value = if eligible(evaluation) { objective.value(evaluation) } else { None };
+    AtlasCell { l1: d.l1, l2: d.l2, base: d.base, value }
+}
+
+fn summarise(count: u64, objective: Objective, best: Option<&Evaluation>, pareto: &ParetoFront) {
+    let Some(best) = best else {
+        report(Level::Note, format!("{count} designs evaluated; none has a rectangle"));
+        return;
+    };
+    let d = best.design;
+    let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
+    report(
+        Level::Note,
+        format!(
+            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
+             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}{}); Pareto front of \
+             rectangle area and GCI: {} designs",
+            objective.name(),
+            d.l1,
+            d.l2,
+            d.base,
+            best.gci,
+            best.lci_min,
+            best.time_s.map(|t| format!(", programs {t:.3} s")).unwrap_or_default(),
+            pareto.designs().len()
+        ),
+    );
+}
+
+fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
+    let mut inputs = Vec::with_capacity(args.inputs.len());
+    for path in &args.inputs {
+        inputs.push((display_path(path), open_input(path)?));
+    }
+    write_output(args.output.as_deref(), |out| {
+        let rows = merge(inputs, out)?;
+        report(Level::Note, format!("{rows} designs merged"));
+        Ok(())
+    })
+}
+
+fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
+    let objective = Objective::from(args.index);
+    let reader =
+        RowReader::new(open_input(&args.input)?).map_err(|err| located(&args.input, err))?;
+    let mut best = Best::new(objective);
+    let mut cells = Vec::new();
+    for row in reader {
+        let evaluation = row.map_err(|err| located(&args.input, err))?;
+        best.consider(&evaluation);
+        cells.push(cell(&evaluation, objective));
+    }
+    if cells.is_empty() {
+        anyhow::bail!("{}: no designs to draw", display_path(&args.input));
+    }
+    let title = format!("Design atlas: {} over l1 × l2, per base distance", index_name(objective));
+    let atlas = Atlas {
+        title: &title,
+        index: index_name(objective),
+        cells: &cells,
+        chosen: best.get().map(|e| [e.design.l1, e.design.l2, e.design.base]),
+    };
+    let bytes = draw_atlas(&atlas, format_of(Some(&args.output)))
+        .with_context(|| format!("drawing {}", display_path(&args.output)))?;
+    write_output(Some(&args.output), |out| Ok(out.write_all(&bytes)?))
+}
