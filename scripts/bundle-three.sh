@@ -22,7 +22,7 @@ export {
   BufferGeometry, BufferAttribute, Float32BufferAttribute, LineSegments, Line, Points,
   MeshStandardMaterial, MeshBasicMaterial, LineBasicMaterial, PointsMaterial, AmbientLight,
   DirectionalLight, HemisphereLight, GridHelper, AxesHelper, EdgesGeometry, DoubleSide,
-  MathUtils, Box3,
+  MathUtils, Box3, Plane,
 } from 'three';
 export { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 JS
