@@ -19,19 +19,24 @@ use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
 
-/// Writes one self-contained HTML file that animates a joint trajectory (SPEC §8.3).
+/// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
-/// A top view (X–Y) and a side view (Y–Z) of the robot — base, links, elbows, Z column,
-/// gripper — with the tool's trace, the scene's boxes, and with --program the programmed path,
-/// the pick (M3) and place (M4) events and the program line being executed. For a laser, an
-/// extruder, a pen or a spindle (--tool, the robot file, or inferred from the program) it draws
-/// the work done so far apart from travel, also in a third view zoomed on the work: the burnt
-/// trace (darker for more power), the deposited track layer by layer (the current layer
-/// brightest), the pen's strokes, the cuts. Play/pause, speed
-/// and a time slider; the time, joint values, tool pose and program line are shown as it plays.
-/// The file needs no network and no other file: its data and JavaScript are inside. Opening it
-/// as `view.html#t=2.5` shows the robot paused at t = 2.5 s; without `#t=` it plays from the
-/// start. Long trajectories are decimated for display (at most 40 000 frames, every Nth row).
+/// A WebGL scene (three.js, inlined): the base, the proximal and distal links (the passive
+/// joints from forward kinematics), the Z column, the rotary axis and the tool by its kind
+/// (gripper jaws opening and closing, spindle, laser with its beam while on, nozzle, pen), the
+/// work surface, the scene's boxes and the tool's trace. With --program: the programmed path,
+/// the pick (M3) and place (M4) points, the objects (each pick takes the object standing at its
+/// pose, carries it, leaves it at the place), the program line being executed, and for a laser,
+/// an extruder, a pen or a spindle the work done so far (the burnt trace, darker for more
+/// power; the deposited track with a layer slider; the strokes; the cuts). Orbit, pan and zoom
+/// with the mouse; Iso, Top, Front, Side and Work cameras and one following the tool;
+/// play/pause, speed, a time slider reaching every sample, joint curves with the current time.
+/// The file needs no network and no other file. Opening it as `view.html#t=2.5` shows the robot
+/// paused at t = 2.5 s; `view.html#t=2.5&probe` writes `{"t","duration","webgl","tool",
+/// "objects"}` (mm, the tool point taken from the scene) into the element `#biscara-probe`, and
+/// the page's `window.biscara` offers `duration`, `seek(t)`, `toolPosition()`, `objects()`.
+/// Samples are kept as binary (48 bytes each): 1 048 576 of them (17 minutes at 1 ms) make a
+/// page of about 51 MB; longer trajectories keep every 2nd (4th, …) row.
 ///
 /// TRAJ is a joint CSV from `biscara joints` (radians or degrees, with or without derivatives).
 /// The program (G-code, an inter-file or a path CSV, as --from or its extension says) is sampled
@@ -39,7 +44,7 @@ use super::files::{FileSource, display_path, file_name, load_scene, open_input, 
 /// --grip-time TRAJ was made with (a warning says when the durations disagree).
 #[derive(Debug, Args)]
 #[command(
-    about = "Animated HTML view of a joint trajectory (top and side views, no network)",
+    about = "Animated 3D HTML view of a joint trajectory (WebGL, no network)",
     after_long_help = "Example:\n  $ biscara joints job.ngc -o traj.csv\n  \
                        $ biscara view traj.csv --program job.ngc -o view.html\n  \
                        $ firefox 'view.html#t=2.5'"
