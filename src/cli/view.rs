@@ -82,6 +82,9 @@ pub(crate) struct ViewArgs {
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
+    /// A `biscara check --json` report: its problems are marked in the scene and on the timeline.
+    #[arg(long, value_name = "FILE", help = "check --json report whose problems to mark")]
+    check: Option<PathBuf>,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
     from: Option<InputKind>,
@@ -100,6 +103,11 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let Some(duration) = viewer.duration() else {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
     };
+    if let Some(path) = &args.check {
+        for (t, kind, message) in read_check_problems(path)? {
+            viewer.add_problem(t, &kind, &message);
+        }
+    }
     let Some(program) = &args.program else {
         return write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?));
     };
@@ -144,4 +152,33 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         viewer.read_line_texts(source.open()?)?;
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
+}
+
+/// The problems of a `check --json` report: (t_s, kind, message) each.
+fn read_check_problems(path: &std::path::Path) -> anyhow::Result<Vec<(f64, String, String)>> {
+    let name = display_path(path);
+    let bytes = biscara_files::read_bytes(path)?;
+    let report: serde_json::Value = serde_json::from_slice(&bytes).map_err(|err| {
+        anyhow!("{name}:{}:{}: not a check --json report: {err}", err.line(), err.column())
+    })?;
+    let Some(problems) = report.get("problems").and_then(|p| p.as_array()) else {
+        return Err(anyhow!("{name}:1: not a check --json report: no \"problems\" array"));
+    };
+    problems
+        .iter()
+        .enumerate()
+        .map(|(index, problem)| {
+            let field = |key: &str| problem.get(key);
+            let t = field("t_s").and_then(|t| t.as_f64()).filter(|t| t.is_finite());
+            let kind = field("kind").and_then(|k| k.as_str());
+            let message = field("message").and_then(|m| m.as_str()).unwrap_or("");
+            match (t, kind) {
+                (Some(t), Some(kind)) => Ok((t, kind.to_owned(), message.to_owned())),
+                _ => Err(anyhow!(
+                    "{name}: problem {} has no number \"t_s\" or no string \"kind\"",
+                    index + 1
+                )),
+            }
+        })
+        .collect()
 }

@@ -215,3 +215,39 @@ fn view_holds_the_print_track_by_layer_and_the_pen_strokes() {
         assert_eq!(states.len(), 2 * strokes, "{program}: {states:?}");
     }
 }
+
+/// `view --check REPORT` marks a `check --json` report's problems (time, kind, message in the
+/// page's data); a bad report names the file (and line and column for bad JSON), exits 1 and
+/// writes nothing.
+#[test]
+fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
+    let dir = temp_dir("view-check");
+    biscara(&dir, &["demo", "out"]).success();
+    std::fs::write(
+        dir.join("report.json"),
+        r#"{"ok":false,"problems":[{"kind":"collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
+    )
+    .expect("write report");
+    let run = biscara(&dir, &["view", "out/traj.csv", "--check", "report.json"]);
+    run.success();
+    assert!(
+        run.stdout.contains(r#""problems":[[3.2500,"collision","the tool hits pallet"]]"#),
+        "problems"
+    );
+    // The demo's own report is clean: no problem to mark.
+    let clean = biscara(&dir, &["view", "out/traj.csv", "--check", "out/check.json"]);
+    clean.success();
+    assert!(clean.stdout.contains(r#""problems":[]"#));
+    let cases = [
+        ("{\"problems\": [\n  {\"kind\": }]}", "bad.json:2:12: not a check --json report"),
+        ("{\"ok\": true}", "bad.json:1: not a check --json report: no \"problems\" array"),
+        ("{\"problems\":[{\"kind\":\"limit\"}]}", "bad.json: problem 1 has no number \"t_s\""),
+    ];
+    for (text, expected) in cases {
+        std::fs::write(dir.join("bad.json"), text).expect("write bad report");
+        let run =
+            biscara(&dir, &["view", "out/traj.csv", "--check", "bad.json", "-o", "view.html"]);
+        run.expect_code(1).stderr_has(expected);
+        assert!(!dir.join("view.html").exists(), "{expected}: a page was written");
+    }
+}

@@ -238,6 +238,8 @@ pub struct Viewer {
     time_step: Option<f64>,
     previous_t: Option<f64>,
     process: Process,
+    /// `check`'s problems: time, kind, message.
+    problems: Vec<(f64, String, String)>,
 }
 
 impl Viewer {
@@ -258,6 +260,17 @@ impl Viewer {
             line_text: BTreeMap::new(),
             time_step: None,
             previous_t: None,
+            problems: Vec::new(),
+        }
+    }
+
+    /// Adds one of `check`'s problems (SPEC §9's `check --json`): its time (s), kind and
+    /// message. The page marks it in the scene, where the tool is at that time, and on the
+    /// timeline. At most `max_events` are kept.
+    pub fn add_problem(&mut self, t: f64, kind: &str, message: &str) {
+        if self.problems.len() < self.options.max_events {
+            let message: String = message.chars().take(200).collect();
+            self.problems.push((t, kind.to_owned(), message));
         }
     }
 
@@ -464,6 +477,13 @@ impl Viewer {
         );
         json.push_str("],\"work\":[");
         push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
+        json.push_str("],\"problems\":[");
+        for (index, (t, kind, message)) in self.problems.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let _ = write!(json, "[{t:.4},{},{}]", string(kind), string(message));
+        }
         json.push_str("],\"scene\":[");
         for (index, scene_box) in self.scene.boxes.iter().enumerate() {
             if index > 0 {
@@ -571,6 +591,7 @@ mod tests {
             viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
         }
         viewer.set_line_text(7, "G1 Z10 (pick)");
+        viewer.add_problem(1.5, "collision", "the tool hits <pallet>");
         assert_eq!(viewer.referenced_lines(), [7]);
         assert_eq!(viewer.time_step(), Some(0.5));
         let mut page = Vec::new();
@@ -586,6 +607,9 @@ mod tests {
         assert!(frames.starts_with("AAAAAAAAAAA"), "{}", &frames[..20]);
         assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
+        assert!(page.contains(
+            "\"problems\":[[1.5000,\"collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
+        ));
         assert_eq!(page.matches("</script>").count(), 4, "the scene name must not end a script");
         // The only address is the XHTML namespace three.js names (never fetched).
         let addresses = page.replace("http://www.w3.org/1999/xhtml", "");
