@@ -82,6 +82,9 @@ pub(crate) struct ViewArgs {
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
+    /// The size of the objects picked, `WxLxH` in mm (default: from the gripper's size).
+    #[arg(long, value_name = "WxLxH", value_parser = parse_object_size, help = "Size of the objects picked (mm)")]
+    object: Option<[f64; 3]>,
     /// A `biscara check --json` report: its problems are marked in the scene and on the timeline.
     #[arg(long, value_name = "FILE", help = "check --json report whose problems to mark")]
     check: Option<PathBuf>,
@@ -103,6 +106,9 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let Some(duration) = viewer.duration() else {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
     };
+    if let Some(size) = args.object {
+        viewer.set_object_size(size);
+    }
     if let Some(path) = &args.check {
         for (t, kind, message) in read_check_problems(path)? {
             viewer.add_problem(t, &kind, &message);
@@ -181,4 +187,17 @@ fn read_check_problems(path: &std::path::Path) -> anyhow::Result<Vec<(f64, Strin
             }
         })
         .collect()
+}
+
+/// `WxLxH`: three positive sizes in mm, e.g. `30x20x15`.
+fn parse_object_size(text: &str) -> Result<[f64; 3], String> {
+    let sizes: Vec<f64> = text
+        .split(['x', 'X'])
+        .map(|part| part.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{text}` is not WxLxH (three sizes in mm, e.g. 30x20x15)"))?;
+    match sizes[..] {
+        [w, l, h] if [w, l, h].iter().all(|v| v.is_finite() && *v > 0.0) => Ok([w, l, h]),
+        _ => Err(format!("`{text}` is not WxLxH (three positive sizes in mm, e.g. 30x20x15)")),
+    }
 }

@@ -251,3 +251,20 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
         assert!(!dir.join("view.html").exists(), "{expected}: a page was written");
     }
 }
+
+/// `view --object WxLxH` sets the objects' size in the page; a malformed size is wrong usage.
+#[test]
+fn view_takes_the_object_size_and_rejects_malformed_ones() {
+    let dir = temp_dir("view-object");
+    biscara(&dir, &["demo", "out"]).success();
+    let run = biscara(&dir, &["view", "out/traj.csv", "--object", "30x20x15.5"]);
+    run.success();
+    assert!(run.stdout.contains("\"object\":[30,20,15.5]"));
+    let default = biscara(&dir, &["view", "out/traj.csv"]);
+    assert!(default.stdout.contains("\"object\":null"));
+    for bad in ["30x20", "30x20x0", "axbxc", "30x20x15x1", "30x-2x15"] {
+        let run = biscara(&dir, &["view", "out/traj.csv", "--object", bad, "-o", "v.html"]);
+        run.expect_code(2).stderr_has("is not WxLxH");
+        assert!(!dir.join("v.html").exists(), "{bad}");
+    }
+}

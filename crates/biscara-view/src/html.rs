@@ -240,6 +240,8 @@ pub struct Viewer {
     process: Process,
     /// `check`'s problems: time, kind, message.
     problems: Vec<(f64, String, String)>,
+    /// The objects' size (width x, length y, height z; mm), when given.
+    object: Option<[f64; 3]>,
 }
 
 impl Viewer {
@@ -261,7 +263,14 @@ impl Viewer {
             time_step: None,
             previous_t: None,
             problems: Vec::new(),
+            object: None,
         }
+    }
+
+    /// The size of the objects picked (width along x, length along y, height; mm). Without it
+    /// the page uses 1.6 × 1.6 gripper radii by 0.8 gripper lengths.
+    pub fn set_object_size(&mut self, size: [f64; 3]) {
+        self.object = Some(size);
     }
 
     /// Adds one of `check`'s problems (SPEC §9's `check --json`): its time (s), kind and
@@ -484,7 +493,14 @@ impl Viewer {
             }
             let _ = write!(json, "[{t:.4},{},{}]", string(kind), string(message));
         }
-        json.push_str("],\"scene\":[");
+        json.push_str("],\"object\":");
+        match self.object {
+            Some([w, l, h]) => {
+                let _ = write!(json, "[{w},{l},{h}]");
+            }
+            None => json.push_str("null"),
+        }
+        json.push_str(",\"scene\":[");
         for (index, scene_box) in self.scene.boxes.iter().enumerate() {
             if index > 0 {
                 json.push(',');
