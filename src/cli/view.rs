@@ -19,19 +19,24 @@ use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
 
-/// Writes one self-contained HTML file that animates a joint trajectory (SPEC §8.3).
+/// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
-/// A top view (X–Y) and a side view (Y–Z) of the robot — base, links, elbows, Z column,
-/// gripper — with the tool's trace, the scene's boxes, and with --program the programmed path,
-/// the pick (M3) and place (M4) events and the program line being executed. For a laser, an
-/// extruder, a pen or a spindle (--tool, the robot file, or inferred from the program) it draws
-/// the work done so far apart from travel, also in a third view zoomed on the work: the burnt
-/// trace (darker for more power), the deposited track layer by layer (the current layer
-/// brightest), the pen's strokes, the cuts. Play/pause, speed
-/// and a time slider; the time, joint values, tool pose and program line are shown as it plays.
-/// The file needs no network and no other file: its data and JavaScript are inside. Opening it
-/// as `view.html#t=2.5` shows the robot paused at t = 2.5 s; without `#t=` it plays from the
-/// start. Long trajectories are decimated for display (at most 40 000 frames, every Nth row).
+/// A WebGL scene (three.js, inlined): the base, the proximal and distal links (the passive
+/// joints from forward kinematics), the Z column, the rotary axis and the tool by its kind
+/// (gripper jaws opening and closing, spindle, laser with its beam while on, nozzle, pen), the
+/// work surface, the scene's boxes and the tool's trace. With --program: the programmed path,
+/// the pick (M3) and place (M4) points, the objects (each pick takes the object standing at its
+/// pose, carries it, leaves it at the place), the program line being executed, and for a laser,
+/// an extruder, a pen or a spindle the work done so far (the burnt trace, darker for more
+/// power; the deposited track with a layer slider; the strokes; the cuts). Orbit, pan and zoom
+/// with the mouse; Iso, Top, Front, Side and Work cameras and one following the tool;
+/// play/pause, speed, a time slider reaching every sample, joint curves with the current time.
+/// The file needs no network and no other file. Opening it as `view.html#t=2.5` shows the robot
+/// paused at t = 2.5 s; `view.html#t=2.5&probe` writes `{"t","duration","webgl","tool",
+/// "objects"}` (mm, the tool point taken from the scene) into the element `#biscara-probe`, and
+/// the page's `window.biscara` offers `duration`, `seek(t)`, `toolPosition()`, `objects()`.
+/// Samples are kept as binary (48 bytes each): 1 048 576 of them (17 minutes at 1 ms) make a
+/// page of about 51 MB; longer trajectories keep every 2nd (4th, …) row.
 ///
 /// TRAJ is a joint CSV from `biscara joints` (radians or degrees, with or without derivatives).
 /// The program (G-code, an inter-file or a path CSV, as --from or its extension says) is sampled
@@ -39,7 +44,7 @@ use super::files::{FileSource, display_path, file_name, load_scene, open_input, 
 /// --grip-time TRAJ was made with (a warning says when the durations disagree).
 #[derive(Debug, Args)]
 #[command(
-    about = "Animated HTML view of a joint trajectory (top and side views, no network)",
+    about = "Animated 3D HTML view of a joint trajectory (WebGL, no network)",
     after_long_help = "Example:\n  $ biscara joints job.ngc -o traj.csv\n  \
                        $ biscara view traj.csv --program job.ngc -o view.html\n  \
                        $ firefox 'view.html#t=2.5'"
@@ -77,6 +82,12 @@ pub(crate) struct ViewArgs {
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
+    /// The size of the objects picked, `WxLxH` in mm (default: from the gripper's size).
+    #[arg(long, value_name = "WxLxH", value_parser = parse_object_size, help = "Size of the objects picked (mm)")]
+    object: Option<[f64; 3]>,
+    /// A `biscara check --json` report: its problems are marked in the scene and on the timeline.
+    #[arg(long, value_name = "FILE", help = "check --json report whose problems to mark")]
+    check: Option<PathBuf>,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
     from: Option<InputKind>,
@@ -95,6 +106,14 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let Some(duration) = viewer.duration() else {
         return Err(anyhow!("{traj_name}: the trajectory has no rows"));
     };
+    if let Some(size) = args.object {
+        viewer.set_object_size(size);
+    }
+    if let Some(path) = &args.check {
+        for (t, kind, message) in read_check_problems(path)? {
+            viewer.add_problem(t, &kind, &message);
+        }
+    }
     let Some(program) = &args.program else {
         return write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?));
     };
@@ -145,4 +164,46 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         viewer.read_line_texts(source.open()?)?;
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
+}
+
+/// The problems of a `check --json` report: (t_s, kind, message) each.
+fn read_check_problems(path: &std::path::Path) -> anyhow::Result<Vec<(f64, String, String)>> {
+    let name = display_path(path);
+    let bytes = biscara_files::read_bytes(path)?;
+    let report: serde_json::Value = serde_json::from_slice(&bytes).map_err(|err| {
+        anyhow!("{name}:{}:{}: not a check --json report: {err}", err.line(), err.column())
+    })?;
+    let Some(problems) = report.get("problems").and_then(|p| p.as_array()) else {
+        return Err(anyhow!("{name}:1: not a check --json report: no \"problems\" array"));
+    };
+    problems
+        .iter()
+        .enumerate()
+        .map(|(index, problem)| {
+            let field = |key: &str| problem.get(key);
+            let t = field("t_s").and_then(|t| t.as_f64()).filter(|t| t.is_finite());
+            let kind = field("kind").and_then(|k| k.as_str());
+            let message = field("message").and_then(|m| m.as_str()).unwrap_or("");
+            match (t, kind) {
+                (Some(t), Some(kind)) => Ok((t, kind.to_owned(), message.to_owned())),
+                _ => Err(anyhow!(
+                    "{name}: problem {} has no number \"t_s\" or no string \"kind\"",
+                    index + 1
+                )),
+            }
+        })
+        .collect()
+}
+
+/// `WxLxH`: three positive sizes in mm, e.g. `30x20x15`.
+fn parse_object_size(text: &str) -> Result<[f64; 3], String> {
+    let sizes: Vec<f64> = text
+        .split(['x', 'X'])
+        .map(|part| part.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{text}` is not WxLxH (three sizes in mm, e.g. 30x20x15)"))?;
+    match sizes[..] {
+        [w, l, h] if [w, l, h].iter().all(|v| v.is_finite() && *v > 0.0) => Ok([w, l, h]),
+        _ => Err(format!("`{text}` is not WxLxH (three positive sizes in mm, e.g. 30x20x15)")),
+    }
 }

@@ -98,8 +98,14 @@ fn view_writes_one_self_contained_page_with_the_program() {
     run.success();
     let page = &run.stdout;
     assert!(page.starts_with("<!DOCTYPE html>"), "{}", &page[..100.min(page.len())]);
-    // Nothing from the network or other files: no URLs, no src/href attributes.
-    for needle in ["http:", "https:", " src=", " href=", "@import", "url("] {
+    // Nothing from the network or other files: no URLs, no src/href attributes. The one URI
+    // of the page is the XHTML namespace three.js passes to createElementNS (a name, never
+    // fetched).
+    assert_eq!(page.matches("http://www.w3.org/1999/xhtml").count(), 1);
+    let page = &page.replace("http://www.w3.org/1999/xhtml", "");
+    for needle in
+        ["http:", "https:", " src=", " href=", "@import", "url(", "fetch(", "XMLHttpRequest"]
+    {
         assert!(!page.contains(needle), "the page refers to something outside: {needle}");
     }
     assert!(page.contains("\"name\":\"pallet\""), "scene");
@@ -207,5 +213,58 @@ fn view_holds_the_print_track_by_layer_and_the_pen_strokes() {
         let work = page_numbers(page, "work");
         let states: Vec<f64> = work.chunks(2).map(|w| w[1]).collect();
         assert_eq!(states.len(), 2 * strokes, "{program}: {states:?}");
+    }
+}
+
+/// `view --check REPORT` marks a `check --json` report's problems (time, kind, message in the
+/// page's data); a bad report names the file (and line and column for bad JSON), exits 1 and
+/// writes nothing.
+#[test]
+fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
+    let dir = temp_dir("view-check");
+    biscara(&dir, &["demo", "out"]).success();
+    std::fs::write(
+        dir.join("report.json"),
+        r#"{"ok":false,"problems":[{"kind":"collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
+    )
+    .expect("write report");
+    let run = biscara(&dir, &["view", "out/traj.csv", "--check", "report.json"]);
+    run.success();
+    assert!(
+        run.stdout.contains(r#""problems":[[3.2500,"collision","the tool hits pallet"]]"#),
+        "problems"
+    );
+    // The demo's own report is clean: no problem to mark.
+    let clean = biscara(&dir, &["view", "out/traj.csv", "--check", "out/check.json"]);
+    clean.success();
+    assert!(clean.stdout.contains(r#""problems":[]"#));
+    let cases = [
+        ("{\"problems\": [\n  {\"kind\": }]}", "bad.json:2:12: not a check --json report"),
+        ("{\"ok\": true}", "bad.json:1: not a check --json report: no \"problems\" array"),
+        ("{\"problems\":[{\"kind\":\"limit\"}]}", "bad.json: problem 1 has no number \"t_s\""),
+    ];
+    for (text, expected) in cases {
+        std::fs::write(dir.join("bad.json"), text).expect("write bad report");
+        let run =
+            biscara(&dir, &["view", "out/traj.csv", "--check", "bad.json", "-o", "view.html"]);
+        run.expect_code(1).stderr_has(expected);
+        assert!(!dir.join("view.html").exists(), "{expected}: a page was written");
+    }
+}
+
+/// `view --object WxLxH` sets the objects' size in the page; a malformed size is wrong usage.
+#[test]
+fn view_takes_the_object_size_and_rejects_malformed_ones() {
+    let dir = temp_dir("view-object");
+    biscara(&dir, &["demo", "out"]).success();
+    let run = biscara(&dir, &["view", "out/traj.csv", "--object", "30x20x15.5"]);
+    run.success();
+    assert!(run.stdout.contains("\"object\":[30,20,15.5]"));
+    let default = biscara(&dir, &["view", "out/traj.csv"]);
+    assert!(default.stdout.contains("\"object\":null"));
+    for bad in ["30x20", "30x20x0", "axbxc", "30x20x15x1", "30x-2x15"] {
+        let run = biscara(&dir, &["view", "out/traj.csv", "--object", bad, "-o", "v.html"]);
+        run.expect_code(2).stderr_has("is not WxLxH");
+        assert!(!dir.join("v.html").exists(), "{bad}");
     }
 }

@@ -10,16 +10,26 @@ use biscara_kinematics::{Kinematics, Robot, RobotModel};
 
 use crate::{Scene, ViewError};
 
-/// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data.
+/// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data,
+/// `/*BISCARA_FRAMES*/` by the frames (base64 of little-endian `f32`s) and `/*BISCARA_THREE*/`
+/// by the three.js bundle.
 const TEMPLATE: &str = include_str!("viewer.html");
 const DATA_MARKER: &str = "/*BISCARA_DATA*/";
+const FRAMES_MARKER: &str = "/*BISCARA_FRAMES*/";
+const THREE_MARKER: &str = "/*BISCARA_THREE*/";
+/// three.js (and its OrbitControls), minified by `scripts/bundle-three.sh` (MIT licence beside it).
+const THREE: &str = include_str!("../assets/three.min.js");
+/// Numbers per frame: t (s), θ1, θ2, θ3 (degrees), d4 (mm), tool x, y, z (mm), c (degrees).
+const FRAME_WIDTH: usize = 9;
 
 /// Limits on what the page holds, so that an hour-long program stays a few megabytes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewerOptions {
     /// Title shown at the top of the page.
     pub title: String,
-    /// Most robot frames kept (each about 90 bytes); beyond it every other frame is dropped.
+    /// Most robot frames kept (each 48 bytes of the page); beyond it every other frame is
+    /// dropped. The default keeps 1 048 576 (17 minutes at 1 ms) so the time slider reaches
+    /// every sample.
     pub max_frames: usize,
     /// Most points of the programmed path kept.
     pub max_path_points: usize,
@@ -35,7 +45,7 @@ impl Default for ViewerOptions {
     fn default() -> Self {
         ViewerOptions {
             title: "biscara view".to_owned(),
-            max_frames: 40_000,
+            max_frames: 1 << 20,
             max_path_points: 20_000,
             max_line_changes: 20_000,
             max_events: 5_000,
@@ -85,17 +95,10 @@ impl<T: Clone> Decimator<T> {
     }
 }
 
-/// One robot frame: time, joints and the points the pictures need (mm, degrees).
-#[derive(Debug, Clone, Copy)]
-struct Frame {
-    t: f64,
-    /// θ1, θ2, θ3 in degrees, d4 in mm.
-    joints: [f64; 4],
-    /// Elbow 1 x, y, elbow 2 x, y.
-    elbows: [f64; 4],
-    /// Tool x, y, z, c.
-    tool: [f64; 4],
-}
+/// One robot frame: t, θ1, θ2, θ3, d4, and the tool pose x, y, z, c from forward kinematics
+/// (s, degrees, mm). The page puts each elbow at its base plus `l1` along θ1 or θ2 and draws
+/// the distal links from the elbows to the tool point, so every passive joint follows from FK.
+type Frame = [f32; FRAME_WIDTH];
 
 /// A pick or a place: time, kind, where.
 #[derive(Debug, Clone, Copy)]
@@ -235,6 +238,10 @@ pub struct Viewer {
     time_step: Option<f64>,
     previous_t: Option<f64>,
     process: Process,
+    /// `check`'s problems: time, kind, message.
+    problems: Vec<(f64, String, String)>,
+    /// The objects' size (width x, length y, height z; mm), when given.
+    object: Option<[f64; 3]>,
 }
 
 impl Viewer {
@@ -255,6 +262,24 @@ impl Viewer {
             line_text: BTreeMap::new(),
             time_step: None,
             previous_t: None,
+            problems: Vec::new(),
+            object: None,
+        }
+    }
+
+    /// The size of the objects picked (width along x, length along y, height; mm). Without it
+    /// the page uses 1.6 × 1.6 gripper radii by 0.8 gripper lengths.
+    pub fn set_object_size(&mut self, size: [f64; 3]) {
+        self.object = Some(size);
+    }
+
+    /// Adds one of `check`'s problems (SPEC §9's `check --json`): its time (s), kind and
+    /// message. The page marks it in the scene, where the tool is at that time, and on the
+    /// timeline. At most `max_events` are kept.
+    pub fn add_problem(&mut self, t: f64, kind: &str, message: &str) {
+        if self.problems.len() < self.options.max_events {
+            let message: String = message.chars().take(200).collect();
+            self.problems.push((t, kind.to_owned(), message));
         }
     }
 
@@ -269,13 +294,9 @@ impl Viewer {
         }
         self.previous_t = Some(row.t);
         let [t1, t2, t3, d4] = row.joints.to_degrees();
-        let elbows = fk.configuration.elbows;
-        self.frames.push(Frame {
-            t: row.t,
-            joints: [t1, t2, t3, d4],
-            elbows: [elbows[0].x, elbows[0].y, elbows[1].x, elbows[1].y],
-            tool: fk.pose.to_degrees(),
-        });
+        let [x, y, z, c] = fk.pose.to_degrees();
+        // f32: 0.1 µm at 1 m, 0.06 ms after 17 minutes.
+        self.frames.push([row.t, t1, t2, t3, d4, x, y, z, c].map(|value| value as f32));
         Ok(())
     }
 
@@ -359,9 +380,28 @@ impl Viewer {
             return Err(ViewError::EmptyTrajectory);
         }
         let data = self.data_json();
-        let (head, tail) = TEMPLATE.split_once(DATA_MARKER).unwrap_or((TEMPLATE, ""));
+        let (head, rest) = TEMPLATE.split_once(THREE_MARKER).unwrap_or((TEMPLATE, ""));
+        let (middle, rest) = rest.split_once(DATA_MARKER).unwrap_or((rest, ""));
+        let (between, tail) = rest.split_once(FRAMES_MARKER).unwrap_or((rest, ""));
         out.write_all(head.as_bytes())?;
+        out.write_all(THREE.as_bytes())?;
+        out.write_all(middle.as_bytes())?;
         out.write_all(data.as_bytes())?;
+        out.write_all(between.as_bytes())?;
+        let mut bytes = Vec::with_capacity(3 * 4096);
+        let mut text = Vec::with_capacity(4 * 4096 + 4);
+        for frame in self.frames.items() {
+            bytes.extend(frame.iter().flat_map(|value| value.to_le_bytes()));
+            if bytes.len() >= 3 * 4096 {
+                let whole = bytes.len() / 3 * 3;
+                base64(&bytes[..whole], &mut text);
+                out.write_all(&text)?;
+                text.clear();
+                bytes.drain(..whole);
+            }
+        }
+        base64(&bytes, &mut text);
+        out.write_all(&text)?;
         out.write_all(tail.as_bytes())?;
         Ok(())
     }
@@ -392,18 +432,11 @@ impl Viewer {
             robot.geometry.gripper_length,
             serde_json::to_string(&robot.joint_limits.to_array()).unwrap_or_default(),
         );
-        let frames: Vec<&Frame> = self.frames.items().collect();
-        json.push_str("\"frames\":{\"t\":[");
-        push_numbers(&mut json, frames.iter().map(|f| f.t), 4);
-        json.push_str("],\"q\":[");
-        push_numbers(&mut json, frames.iter().flat_map(|f| f.joints), 3);
-        json.push_str("],\"e\":[");
-        push_numbers(&mut json, frames.iter().flat_map(|f| f.elbows), 2);
-        json.push_str("],\"p\":[");
-        push_numbers(&mut json, frames.iter().flat_map(|f| f.tool), 2);
         let _ = write!(
             json,
-            "],\"stride\":{},\"rows\":{},\"dt\":{}}},",
+            "\"frames\":{{\"count\":{},\"width\":{FRAME_WIDTH},\"stride\":{},\"rows\":{},\
+             \"dt\":{}}},",
+            self.frames.items().count(),
             self.frames.stride,
             self.frames.seen,
             self.time_step.unwrap_or(0.0)
@@ -453,7 +486,21 @@ impl Viewer {
         );
         json.push_str("],\"work\":[");
         push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
-        json.push_str("],\"scene\":[");
+        json.push_str("],\"problems\":[");
+        for (index, (t, kind, message)) in self.problems.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let _ = write!(json, "[{t:.4},{},{}]", string(kind), string(message));
+        }
+        json.push_str("],\"object\":");
+        match self.object {
+            Some([w, l, h]) => {
+                let _ = write!(json, "[{w},{l},{h}]");
+            }
+            None => json.push_str("null"),
+        }
+        json.push_str(",\"scene\":[");
         for (index, scene_box) in self.scene.boxes.iter().enumerate() {
             if index > 0 {
                 json.push(',');
@@ -472,6 +519,22 @@ impl Viewer {
         }
         json.push_str("]}");
         json
+    }
+}
+
+/// Appends the base64 text of `bytes` (standard alphabet, `=` padding) to `text`.
+fn base64(bytes: &[u8], text: &mut Vec<u8>) {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                text.push(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize]);
+            } else {
+                text.push(b'=');
+            }
+        }
     }
 }
 
@@ -544,6 +607,7 @@ mod tests {
             viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
         }
         viewer.set_line_text(7, "G1 Z10 (pick)");
+        viewer.add_problem(1.5, "collision", "the tool hits <pallet>");
         assert_eq!(viewer.referenced_lines(), [7]);
         assert_eq!(viewer.time_step(), Some(0.5));
         let mut page = Vec::new();
@@ -551,11 +615,21 @@ mod tests {
         let page = String::from_utf8(page).unwrap();
         assert!(page.starts_with("<!DOCTYPE html>"));
         assert!(!page.contains(DATA_MARKER));
-        assert!(page.contains("\"t\":[0,0.5,1,1.5,2]"), "frames");
+        assert!(page.contains("\"frames\":{\"count\":5,\"width\":9,"), "frames");
+        let (_, frames) = page.split_once("id=\"frames\">").unwrap();
+        let frames = frames.split_once('<').unwrap().0;
+        assert_eq!(frames.len(), (5 * 9 * 4usize).div_ceil(3) * 4, "base64 of 45 f32");
+        // The first frame's t = 0 and θ1 = 0: eight zero bytes, "AAAAAAAAAAA".
+        assert!(frames.starts_with("AAAAAAAAAAA"), "{}", &frames[..20]);
         assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
-        assert_eq!(page.matches("</script>").count(), 2, "the scene name must not end a script");
-        assert!(!page.contains("http://") && !page.contains("https://"), "no network");
+        assert!(page.contains(
+            "\"problems\":[[1.5000,\"collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
+        ));
+        assert_eq!(page.matches("</script>").count(), 4, "the scene name must not end a script");
+        // The only address is the XHTML namespace three.js names (never fetched).
+        let addresses = page.replace("http://www.w3.org/1999/xhtml", "");
+        assert!(!addresses.contains("http://") && !addresses.contains("https://"), "no network");
     }
 
     #[test]
@@ -600,10 +674,24 @@ mod tests {
     }
 
     #[test]
+    fn base64_matches_the_standard_alphabet_and_padding() {
+        for (bytes, expected) in [
+            (&b""[..], ""),
+            (b"f", "Zg=="),
+            (b"fo", "Zm8="),
+            (b"foo", "Zm9v"),
+            (b"foob", "Zm9vYg=="),
+        ] {
+            let mut text = Vec::new();
+            base64(bytes, &mut text);
+            assert_eq!(String::from_utf8(text).unwrap(), expected);
+        }
+    }
+
+    #[test]
     fn an_hour_stays_small() {
-        // An hour at 10 ms: ten times more rows than frames are kept, so the page has reached
-        // its bound (at 1 ms, `biscara view` wrote 2.8 MB for the demo job repeated for an hour).
-        let options = ViewerOptions::default();
+        // An hour at 10 ms with room for 40 000 frames: the page has reached its bound.
+        let options = ViewerOptions { max_frames: 40_000, ..ViewerOptions::default() };
         let mut viewer = Viewer::new(&RobotModel::default(), Scene::default(), options);
         let rows = 360_000;
         for step in 0..rows {

@@ -6,9 +6,10 @@
 //! and workspace; none reads files or prints. [`draw_top_view`], [`draw_joints`] and
 //! [`draw_workspace`] return SVG or PNG bytes (plotters; DejaVu Sans embedded for PNG text). [`write_mjcf`] writes the model, [`QposWriter`] the companion file that plays a
 //! joint trajectory on it (the model's joints in MuJoCo's units, the elbows from our FK, and the
-//! tool pose FK expects). [`Viewer`] gathers a trajectory (decimated so that an hour-long program
-//! stays a few megabytes), the programmed path and a [`Scene`], and writes one HTML file with
-//! its data and hand-written JavaScript inside: no network, no other files.
+//! tool pose FK expects). [`Viewer`] gathers a trajectory (every sample up to 1 048 576, packed
+//! as binary), the programmed path, the tool's work, `check`'s problems and a [`Scene`], and
+//! writes one HTML file with its data, three.js (bundled by `scripts/bundle-three.sh`) and the
+//! page's JavaScript inside: a WebGL scene, no network, no other files.
 //!
 //! ```
 //! use biscara_kinematics::RobotModel;
