@@ -44,8 +44,21 @@ fn assert_nothing_left(after: &Run) {
     assert!(!Path::new(LOCK_FILE).exists(), "{LOCK_FILE} left\n{after}");
 }
 
+/// Waits (at most 10 minutes) while a LinuxCNC started outside these tests runs: another test
+/// process on the same machine, whose instance would make this run's "another LinuxCNC is
+/// running" and its leftovers look like ours.
+fn wait_for_other_linuxcnc() {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(600);
+    while (Path::new(LOCK_FILE).exists() || !leftover_processes().is_empty())
+        && std::time::Instant::now() < deadline
+    {
+        std::thread::sleep(std::time::Duration::from_millis(500));
+    }
+}
+
 /// Runs `biscara ARGS` and checks that LinuxCNC left nothing behind.
 fn run_linuxcnc(dir: &Path, args: &[&str]) -> Run {
+    wait_for_other_linuxcnc();
     let run = biscara(dir, args);
     assert_nothing_left(&run);
     run
