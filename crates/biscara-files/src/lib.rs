@@ -31,7 +31,7 @@ mod output;
 use std::path::{Path, PathBuf};
 
 pub use input::{ProgressFile, open_file, open_input, read_bytes, read_text};
-pub use output::write_output;
+pub use output::{on_interrupt, write_output};
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]
