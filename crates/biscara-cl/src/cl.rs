@@ -2,7 +2,7 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_text::{LineReader, MAX_LINE_BYTES, fixed, shorten};
+use biscara_text::{LineReader, MAX_LINE_BYTES, ReadError, fixed, shorten};
 
 use crate::error::ClError;
 
@@ -189,7 +189,7 @@ impl<R: BufRead> ClReader<R> {
                     None => (text, false),
                 };
                 if self.statement.len() + text.len() > MAX_LINE_BYTES {
-                    return Err(ClError::LineTooLong { line });
+                    return Err(ReadError::LineTooLong { line }.into());
                 }
                 self.statement.push_str(text);
                 if !continues {

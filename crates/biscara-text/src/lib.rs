@@ -30,5 +30,7 @@ mod message;
 
 pub use csv::{CsvError, MAX_CSV_COLUMNS, NumericCsvReader};
 pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, fixed, push_fixed, round_to};
-pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line, read_capped_line};
+pub use lines::{
+    LineError, LineReader, MAX_LINE_BYTES, ReadError, read_bounded_line, read_capped_line,
+};
 pub use message::{compact, shorten, strip_position};
