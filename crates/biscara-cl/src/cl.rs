@@ -205,18 +205,24 @@ impl<R: BufRead> ClReader<R> {
     }
 }
 
+impl<R: BufRead> biscara_text::RecordReader for ClReader<R> {
+    type Record = Record;
+    type Error = ClError;
+
+    fn read_record(&mut self) -> Result<Option<Record>, ClError> {
+        self.read()
+    }
+
+    fn stopped(&mut self) -> &mut bool {
+        &mut self.done
+    }
+}
+
 impl<R: BufRead> Iterator for ClReader<R> {
     type Item = Result<Record, ClError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.done {
-            return None;
-        }
-        let result = self.read().transpose();
-        if !matches!(result, Some(Ok(_))) {
-            self.done = true;
-        }
-        result
+        biscara_text::RecordReader::next_record(self)
     }
 }
 
