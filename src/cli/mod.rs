@@ -65,7 +65,7 @@ enum Command {
 }
 
 /// Runs the command line and turns the outcome into an exit code: 0 success, 1 bad input or a
-/// failed check, 2 wrong usage.
+/// failed check, 2 wrong usage (130, interrupted while writing a file, is set in `main.rs`).
 pub(crate) fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,

@@ -2,7 +2,7 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_text::{LineReader, MAX_LINE_BYTES, fixed, shorten};
+use biscara_text::{LineReader, MAX_LINE_BYTES, ReadError, fixed, shorten};
 
 use crate::error::ClError;
 
@@ -189,7 +189,7 @@ impl<R: BufRead> ClReader<R> {
                     None => (text, false),
                 };
                 if self.statement.len() + text.len() > MAX_LINE_BYTES {
-                    return Err(ClError::LineTooLong { line });
+                    return Err(ReadError::LineTooLong { line }.into());
                 }
                 self.statement.push_str(text);
                 if !continues {
@@ -205,18 +205,24 @@ impl<R: BufRead> ClReader<R> {
     }
 }
 
+impl<R: BufRead> biscara_text::RecordReader for ClReader<R> {
+    type Record = Record;
+    type Error = ClError;
+
+    fn read_record(&mut self) -> Result<Option<Record>, ClError> {
+        self.read()
+    }
+
+    fn stopped(&mut self) -> &mut bool {
+        &mut self.done
+    }
+}
+
 impl<R: BufRead> Iterator for ClReader<R> {
     type Item = Result<Record, ClError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.done {
-            return None;
-        }
-        let result = self.read().transpose();
-        if !matches!(result, Some(Ok(_))) {
-            self.done = true;
-        }
-        result
+        biscara_text::RecordReader::next_record(self)
     }
 }
 

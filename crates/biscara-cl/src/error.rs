@@ -1,8 +1,6 @@
 //! Why CL text cannot be read.
 
-use std::io;
-
-use biscara_text::{LineError, MAX_LINE_BYTES, compact};
+use biscara_text::{LineError, ReadError, compact};
 
 /// A CL reading failure: the syntax, counts and values of one statement. Every variant names the
 /// 1-based line of the CL file, and its message starts with `LINE: ` so that a caller only
@@ -10,26 +8,9 @@ use biscara_text::{LineError, MAX_LINE_BYTES, compact};
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ClError {
-    /// Occurs when the CL file cannot be read.
-    #[error("{line}: cannot read the CL file: {source}")]
-    Read {
-        /// The line being read.
-        line: usize,
-        /// The underlying error.
-        source: io::Error,
-    },
-    /// Occurs when a line is not UTF-8 text (or holds NUL bytes): a binary file.
-    #[error("{line}: not a text file (invalid UTF-8 or NUL bytes)")]
-    NotText {
-        /// The line.
-        line: usize,
-    },
-    /// Occurs when a line, or a statement continued with `$`, is longer than 64 KiB.
-    #[error("{line}: the line is longer than {max} bytes", max = MAX_LINE_BYTES)]
-    LineTooLong {
-        /// The line.
-        line: usize,
-    },
+    /// Occurs when a line cannot be read: the file, its text, its length.
+    #[error(transparent)]
+    Read(#[from] ReadError),
     /// Occurs when a statement's major word is not one of the dialect's.
     #[error(
         "{line}: unknown CL statement `{word}`: expected GOTO, RAPID, FEDRAT, CIRCLE, DELAY, PICK, \
@@ -114,10 +95,8 @@ impl ClError {
     /// The 1-based line of the CL file the error is about.
     pub fn line(&self) -> usize {
         match *self {
-            ClError::Read { line, .. }
-            | ClError::NotText { line, .. }
-            | ClError::LineTooLong { line, .. }
-            | ClError::UnknownStatement { line, .. }
+            ClError::Read(ref error) => error.line(),
+            ClError::UnknownStatement { line, .. }
             | ClError::Syntax { line, .. }
             | ClError::WrongCount { line, .. }
             | ClError::NotANumber { line, .. }
@@ -128,10 +107,6 @@ impl ClError {
     }
 
     pub(crate) fn from_line_error(line: usize, error: LineError) -> ClError {
-        match error {
-            LineError::Io(source) => ClError::Read { line, source },
-            LineError::NotText => ClError::NotText { line },
-            LineError::TooLong => ClError::LineTooLong { line },
-        }
+        ClError::Read(ReadError::new("CL", line, error))
     }
 }

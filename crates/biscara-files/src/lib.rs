@@ -32,7 +32,7 @@ use std::path::{Path, PathBuf};
 
 pub use indicatif::ProgressBar;
 pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
-pub use output::write_output;
+pub use output::{on_interrupt, write_output};
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]

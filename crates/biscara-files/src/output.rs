@@ -3,7 +3,7 @@
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 use crate::{FileError, is_stdio, temporary_path};
 
@@ -11,8 +11,8 @@ use crate::{FileError, is_stdio, temporary_path};
 ///
 /// A regular file is written to a temporary file beside it, synced, and renamed over the target
 /// only when `write` succeeds: a failed run leaves no partial file and an earlier good file
-/// untouched, and an interrupt (SIGINT, SIGTERM, SIGHUP) removes the temporary file and exits with
-/// 130. A path that exists and is not a regular file (`/dev/null`, a FIFO, a terminal) is written
+/// untouched, and an interrupt (SIGINT, SIGTERM, SIGHUP) removes the temporary file and ends the
+/// process as the caller asked ([`on_interrupt`]). A path that exists and is not a regular file (`/dev/null`, a FIFO, a terminal) is written
 /// in place: renaming over it would replace the device with a file.
 pub fn write_output<E: From<FileError>>(
     path: Option<&Path>,
@@ -72,28 +72,41 @@ fn write_error(path: &Path, source: io::Error) -> FileError {
 /// Temporary files being written right now, removed by the interrupt handler.
 static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Exit code after SIGINT, SIGTERM or SIGHUP: 128 + SIGINT, as shells report an interrupt.
-const INTERRUPTED: i32 = 130;
+/// What the interrupt handler calls once the temporary files are removed: the caller's, set by
+/// [`on_interrupt`].
+static INTERRUPTED: OnceLock<fn() -> !> = OnceLock::new();
 
-/// Installs, once, the handler of SIGINT, SIGTERM and SIGHUP: it removes the temporary files of
-/// outputs being written and exits with 130. Runs that write no file keep the default behaviour.
+/// Makes SIGINT, SIGTERM and SIGHUP remove the temporary files of the outputs being written and
+/// then call `interrupted`, which ends the process (the `biscara` binary exits with 130, as
+/// shells report an interrupt). The handler is installed when the first output file is written:
+/// runs that write no file keep the signals' default behaviour. Only the first call counts.
+///
+/// Without this call the signals are left alone, and an interrupted run may leave a temporary
+/// file beside its output (never a partial output: the target is replaced only on success).
+pub fn on_interrupt(interrupted: fn() -> !) {
+    let _ = INTERRUPTED.set(interrupted);
+}
+
+/// Installs, once, the handler of SIGINT, SIGTERM and SIGHUP when the caller asked for one.
 fn remove_temporaries_on_interrupt() {
     static INSTALLED: std::sync::Once = std::sync::Once::new();
+    let Some(&interrupted) = INTERRUPTED.get() else { return };
     // Without the handler an interrupt would still leave the target untouched, only a stray
     // temporary file: not worth failing the run for.
     INSTALLED.call_once(|| {
-        let _ = ctrlc::set_handler(remove_temporaries_and_exit);
+        let _ = ctrlc::set_handler(move || {
+            remove_temporaries();
+            interrupted()
+        });
     });
 }
 
-fn remove_temporaries_and_exit() {
-    {
-        let temporaries = TEMPORARIES.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        for path in temporaries.iter() {
-            let _ = std::fs::remove_file(path);
-        }
+/// Removes the temporary files of the outputs being written.
+fn remove_temporaries() {
+    let temporaries = TEMPORARIES.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    for path in temporaries.iter() {
+        let _ = std::fs::remove_file(path);
     }
-    std::process::exit(INTERRUPTED);
 }
 
 fn register(path: &Path) {

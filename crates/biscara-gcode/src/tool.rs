@@ -1,52 +1,8 @@
-//! What the robot carries, and so what M3, M4, M5 and S mean (SPEC §1.6).
+//! The tool a program was written for, guessed from what it uses.
 
-/// The end effector the program drives. The interpreter turns M3/M4/M5 and S into the tool's
-/// own events; it does not infer the tool (that is the caller's, from `robot.json`, a flag or
-/// the program).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Tool {
-    /// The paper's gripper: M3 pick, M4 place, M5 gripper off; S has no effect.
-    #[default]
-    Gripper,
-    /// A laser: M3 on at constant power, M4 on at dynamic power (Grbl's laser mode), M5 off;
-    /// S is the power, and a new S while on is a new power.
-    Laser,
-    /// A spindle: M3 clockwise, M4 counter-clockwise, M5 off; S is the speed in rpm.
-    Spindle,
-    /// An extruder: E words carry the filament on the moves; M3, M4 and M5 are recorded as
-    /// codes with no effect.
-    Extruder,
-    /// A pen: M3 and M4 put it down, M5 lifts it; S has no effect.
-    Pen,
-}
-
-impl Tool {
-    /// Every kind, in the order of SPEC §1.6.
-    pub const ALL: [Tool; 5] =
-        [Tool::Gripper, Tool::Laser, Tool::Spindle, Tool::Extruder, Tool::Pen];
-
-    /// The name of `robot.json` and `--tool`: `gripper`, `laser`, `spindle`, `extruder`, `pen`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Tool::Gripper => "gripper",
-            Tool::Laser => "laser",
-            Tool::Spindle => "spindle",
-            Tool::Extruder => "extruder",
-            Tool::Pen => "pen",
-        }
-    }
-
-    /// The kind named `name` (see [`Tool::name`]); `None` for any other name.
-    pub fn from_name(name: &str) -> Option<Tool> {
-        Tool::ALL.into_iter().find(|tool| tool.name() == name)
-    }
-}
-
-impl std::fmt::Display for Tool {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+/// The end effector the program drives: what M3, M4, M5 and S mean (the one tool kind every
+/// crate shares).
+pub use biscara_motion::Tool;
 
 /// The tool a program was written for, as [`infer_tool`] decided it, and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -235,10 +191,6 @@ mod tests {
         assert_eq!(inferred("G00 E0; no extrusion\nG0 Z8; pen park\n"), Some(Tool::Pen));
         let inference = infer_tool(b"G0 X1\nM4 S100\n").unwrap();
         assert_eq!(inference.line, Some(2));
-        for tool in Tool::ALL {
-            assert_eq!(Tool::from_name(tool.name()), Some(tool));
-        }
-        assert_eq!(Tool::from_name("torch"), None);
     }
 
     /// Found on real programs (Inkscape gcodetools, PartKam): a milling program that turns the

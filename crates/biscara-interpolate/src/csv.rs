@@ -124,16 +124,24 @@ impl<R: BufRead> PathCsvReader<R> {
     }
 }
 
+impl<R: BufRead> biscara_text::RecordReader for PathCsvReader<R> {
+    type Record = CartesianSample;
+    type Error = CsvError;
+
+    fn read_record(&mut self) -> Result<Option<CartesianSample>, CsvError> {
+        self.next_sample()
+    }
+
+    fn stopped(&mut self) -> &mut bool {
+        &mut self.failed
+    }
+}
+
 impl<R: BufRead> Iterator for PathCsvReader<R> {
     type Item = Result<CartesianSample, CsvError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let result = self.next_sample();
-        self.failed = result.is_err();
-        result.transpose()
+        biscara_text::RecordReader::next_record(self)
     }
 }
 

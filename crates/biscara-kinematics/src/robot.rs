@@ -58,34 +58,9 @@ impl Default for ToolSpec {
     }
 }
 
-/// The kinds of end effector (SPEC §1.6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ToolKind {
-    /// The paper's gripper: M3 picks, M4 places.
-    Gripper,
-    /// A laser: M3/M4 on, S the power, M5 off.
-    Laser,
-    /// A spindle: M3/M4 on, S the speed, M5 off.
-    Spindle,
-    /// A 3D printer's extruder: E words.
-    Extruder,
-    /// A pen: M3/M4 down, M5 up.
-    Pen,
-}
-
-impl ToolKind {
-    /// The name in `robot.json`.
-    pub fn name(self) -> &'static str {
-        match self {
-            ToolKind::Gripper => "gripper",
-            ToolKind::Laser => "laser",
-            ToolKind::Spindle => "spindle",
-            ToolKind::Extruder => "extruder",
-            ToolKind::Pen => "pen",
-        }
-    }
-}
+/// The kinds of end effector: the one tool kind every crate shares, named here as `robot.json`
+/// has it (`tool.kind`).
+pub use biscara_motion::Tool as ToolKind;
 
 /// Link lengths of the five-bar, millimetres.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -222,32 +222,35 @@ pub struct JsonlReader<R> {
     failed: bool,
 }
 
-impl<R: BufRead> Iterator for JsonlReader<R> {
-    type Item = Result<Motion, InterFileError>;
+impl<R: BufRead> biscara_text::RecordReader for JsonlReader<R> {
+    type Record = Motion;
+    type Error = InterFileError;
 
-    fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
+    fn read_record(&mut self) -> Result<Option<Motion>, InterFileError> {
         loop {
             self.buffer.clear();
             self.line += 1;
             let line = self.line;
-            match read_bounded_line(&mut self.reader, &mut self.buffer) {
-                Ok(false) => return None,
-                Ok(true) => {}
-                Err(source) => {
-                    self.failed = true;
-                    return Some(Err(InterFileError::Io { line, source }));
-                }
+            let read = read_bounded_line(&mut self.reader, &mut self.buffer);
+            if !read.map_err(|source| InterFileError::Io { line, source })? {
+                return Ok(None);
             }
-            if self.buffer.trim().is_empty() {
-                continue;
+            if !self.buffer.trim().is_empty() {
+                return parse_line(&self.buffer, line).map(Some);
             }
-            let result = parse_line(&self.buffer, line);
-            self.failed = result.is_err();
-            return Some(result);
         }
+    }
+
+    fn stopped(&mut self) -> &mut bool {
+        &mut self.failed
+    }
+}
+
+impl<R: BufRead> Iterator for JsonlReader<R> {
+    type Item = Result<Motion, InterFileError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        biscara_text::RecordReader::next_record(self)
     }
 }
 

@@ -104,7 +104,7 @@ pub struct Pipeline<'m> {
 /// The tool `config`'s flag or else `model`'s robot file names (`None`: inferred from the
 /// program).
 pub(crate) fn configured_tool(model: &RobotModel, config: &SamplingConfig) -> Option<Tool> {
-    config.tool.or_else(|| Tool::from_name(model.robot().tool.kind?.name()))
+    config.tool.or(model.robot().tool.kind)
 }
 
 impl<'m> Pipeline<'m> {

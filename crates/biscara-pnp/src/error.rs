@@ -3,7 +3,7 @@
 use std::io;
 
 use biscara_kinematics::KinematicsError;
-use biscara_text::{LineError, MAX_LINE_BYTES, compact};
+use biscara_text::{LineError, ReadError, compact};
 
 /// A points-file failure. Every variant but [`PointsError::Write`] names the 1-based line it is
 /// about, and its message starts with `LINE: ` so that a caller only prefixes the file name
@@ -11,26 +11,9 @@ use biscara_text::{LineError, MAX_LINE_BYTES, compact};
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum PointsError {
-    /// Occurs when the file cannot be read.
-    #[error("{line}: cannot read the points file: {source}")]
-    Read {
-        /// The line being read.
-        line: usize,
-        /// The underlying error.
-        source: io::Error,
-    },
-    /// Occurs when a line is not UTF-8 text (or holds NUL bytes): a binary file.
-    #[error("{line}: not a text file (invalid UTF-8 or NUL bytes)")]
-    NotText {
-        /// The line.
-        line: usize,
-    },
-    /// Occurs when a line is longer than 64 KiB.
-    #[error("{line}: the line is longer than {max} bytes", max = MAX_LINE_BYTES)]
-    LineTooLong {
-        /// The line.
-        line: usize,
-    },
+    /// Occurs when a line cannot be read: the file, its text, its length.
+    #[error(transparent)]
+    Read(#[from] ReadError),
     /// Occurs when a line starts with a word that is not a keyword.
     #[error(
         "{line}: unknown keyword `{word}`: expected home, approach, feed, dwell, pick or place"
@@ -158,10 +141,8 @@ impl PointsError {
     /// The 1-based line of the points file the error is about; `None` for a write error.
     pub fn line(&self) -> Option<usize> {
         Some(match *self {
-            PointsError::Read { line, .. }
-            | PointsError::NotText { line }
-            | PointsError::LineTooLong { line }
-            | PointsError::UnknownKeyword { line, .. }
+            PointsError::Read(ref error) => error.line(),
+            PointsError::UnknownKeyword { line, .. }
             | PointsError::WrongCount { line, .. }
             | PointsError::NotANumber { line, .. }
             | PointsError::NotFinite { line, .. }
@@ -178,10 +159,6 @@ impl PointsError {
     }
 
     pub(crate) fn from_line_error(line: usize, error: LineError) -> PointsError {
-        match error {
-            LineError::Io(source) => PointsError::Read { line, source },
-            LineError::NotText => PointsError::NotText { line },
-            LineError::TooLong => PointsError::LineTooLong { line },
-        }
+        PointsError::Read(ReadError::new("points", line, error))
     }
 }

@@ -100,18 +100,24 @@ impl<R: BufRead> PointsReader<R> {
     }
 }
 
+impl<R: BufRead> biscara_text::RecordReader for PointsReader<R> {
+    type Record = PointsRecord;
+    type Error = PointsError;
+
+    fn read_record(&mut self) -> Result<Option<PointsRecord>, PointsError> {
+        self.read()
+    }
+
+    fn stopped(&mut self) -> &mut bool {
+        &mut self.done
+    }
+}
+
 impl<R: BufRead> Iterator for PointsReader<R> {
     type Item = Result<PointsRecord, PointsError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.done {
-            return None;
-        }
-        let result = self.read().transpose();
-        if !matches!(result, Some(Ok(_))) {
-            self.done = true;
-        }
-        result
+        biscara_text::RecordReader::next_record(self)
     }
 }
 

@@ -6,6 +6,7 @@
 //! - fixed-decimal numbers: [`fixed`] (never a negative zero), [`round_to`] for JSON, and the
 //!   [`RowBuffer`] the CSV writers gather rows in, with its fast formatter;
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;
+//! - the readers' iterator: [`RecordReader`] (records until the end or the first error);
 //! - message helpers: [`shorten`], [`compact`], [`strip_position`].
 //!
 //! It knows no file format of its own (no header, no column meaning) and nothing of robots,
@@ -27,8 +28,12 @@ mod csv;
 mod fixed;
 mod lines;
 mod message;
+mod records;
 
 pub use csv::{CsvError, MAX_CSV_COLUMNS, NumericCsvReader};
 pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, fixed, push_fixed, round_to};
-pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line, read_capped_line};
+pub use lines::{
+    LineError, LineReader, MAX_LINE_BYTES, ReadError, read_bounded_line, read_capped_line,
+};
 pub use message::{compact, shorten, strip_position};
+pub use records::RecordReader;

@@ -26,6 +26,56 @@ pub enum LineError {
     TooLong,
 }
 
+/// Why a line-based file could not be read, with the 1-based line: the reader errors the CL and
+/// points readers share (written once, so that their messages stay the same). The message
+/// starts with `LINE: `, so that a caller only prefixes the file name.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReadError {
+    /// Occurs when the file cannot be read.
+    #[error("{line}: cannot read the {format} file: {source}")]
+    Io {
+        /// The line being read.
+        line: usize,
+        /// What the file is, for the message: `CL`, `points`.
+        format: &'static str,
+        /// The underlying error.
+        source: io::Error,
+    },
+    /// Occurs when a line is not UTF-8 text (or holds NUL bytes): a binary file.
+    #[error("{line}: not a text file (invalid UTF-8 or NUL bytes)")]
+    NotText {
+        /// The line.
+        line: usize,
+    },
+    /// Occurs when a line (or what a format joins into one) is longer than [`MAX_LINE_BYTES`].
+    #[error("{line}: the line is longer than {MAX_LINE_BYTES} bytes")]
+    LineTooLong {
+        /// The line.
+        line: usize,
+    },
+}
+
+impl ReadError {
+    /// The error of [`LineReader::next_line`] on `line` of a `format` file (`CL`, `points`).
+    pub fn new(format: &'static str, line: usize, error: LineError) -> ReadError {
+        match error {
+            LineError::Io(source) => ReadError::Io { line, format, source },
+            LineError::NotText => ReadError::NotText { line },
+            LineError::TooLong => ReadError::LineTooLong { line },
+        }
+    }
+
+    /// The 1-based line the error is about.
+    pub fn line(&self) -> usize {
+        match *self {
+            ReadError::Io { line, .. }
+            | ReadError::NotText { line }
+            | ReadError::LineTooLong { line } => line,
+        }
+    }
+}
+
 /// Reads lines from `R`, numbering them from 1; `\r\n` and `\n` both end a line, and a leading
 /// byte-order mark is dropped. After an error it reads nothing more.
 #[derive(Debug)]
@@ -193,6 +243,17 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn read_errors_name_their_line_and_the_format() {
+        let io = ReadError::new("CL", 3, LineError::Io(io::Error::other("disk gone")));
+        assert_eq!(io.to_string(), "3: cannot read the CL file: disk gone");
+        let binary = ReadError::new("points", 2, LineError::NotText);
+        assert_eq!(binary.to_string(), "2: not a text file (invalid UTF-8 or NUL bytes)");
+        let long = ReadError::new("points", 7, LineError::TooLong);
+        assert_eq!(long.to_string(), "7: the line is longer than 65536 bytes");
+        assert_eq!([io.line(), binary.line(), long.line()], [3, 2, 7]);
     }
 
     #[test]
