@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
 use biscara::kinematics::{RobotModel, ToolKind};
-use biscara::linuxcnc::runner::{self, RunRequest};
+use biscara::linuxcnc::runner::{self, RunRequest, TempFolder};
 use biscara::linuxcnc::{
     AxisLimitSource, ConfigOptions, Configuration, RecordingStart, configuration, read_recording,
     write_stream_sample,
@@ -238,24 +238,6 @@ fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// A temporary folder removed when dropped.
-struct TempFolder(PathBuf);
-
-impl TempFolder {
-    fn new(prefix: &str) -> anyhow::Result<TempFolder> {
-        let path = std::env::temp_dir().join(format!("{prefix}-{}", std::process::id()));
-        let _ = fs::remove_dir_all(&path);
-        fs::create_dir_all(&path).with_context(|| display_path(&path))?;
-        Ok(TempFolder(path))
-    }
-}
-
-impl Drop for TempFolder {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
-}
-
 /// Writes the stream file of `program`'s joint trajectory into `path`.
 fn write_stream(model: &RobotModel, args: &RunArgs, path: &Path) -> anyhow::Result<usize> {
     let source = FileSource::new(&args.program);
@@ -292,7 +274,7 @@ fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
     let config_dir = match &args.config {
         Some(dir) => dir.clone(),
         None => {
-            let dir = work.0.join("config");
+            let dir = work.path().join("config");
             write_configuration(&configuration(model, &args.choice.options(model))?, &dir)?;
             dir
         }
@@ -301,7 +283,7 @@ fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
         report(Level::Note, "built and installed the kinematics component biscarakins");
     }
     let stream = if args.stream {
-        let path = work.0.join("stream.txt");
+        let path = work.path().join("stream.txt");
         let samples = write_stream(model, args, &path)?;
         report(Level::Note, format_args!("streaming {samples} samples of `biscara joints`"));
         Some(path)

@@ -19,11 +19,7 @@ static LINUXCNC: Mutex<()> = Mutex::new(());
 
 /// The lock when LinuxCNC is installed, else `None` after saying why (a failure under CI).
 fn linuxcnc_or_skip(checks: &str) -> Option<MutexGuard<'static, ()>> {
-    let installed = ["linuxcnc", "halcompile"].iter().all(|program| {
-        std::env::var_os("PATH")
-            .is_some_and(|path| std::env::split_paths(&path).any(|dir| dir.join(program).is_file()))
-    });
-    if !installed {
+    if biscara::linuxcnc::runner::check_installed().is_err() {
         skip_or_fail(
             checks,
             "LinuxCNC (linuxcnc, halcompile)",

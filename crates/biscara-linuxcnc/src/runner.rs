@@ -78,7 +78,7 @@ struct Outcome {
 #[derive(Debug)]
 pub struct Run {
     /// The run folder (removed when this is dropped).
-    folder: PathBuf,
+    folder: TempFolder,
     /// Whether LinuxCNC ran everything without an error.
     pub ok: bool,
     /// LinuxCNC's messages, in order.
@@ -92,18 +92,12 @@ pub struct Run {
 impl Run {
     /// The recorder's file (`halsampler -t`'s lines).
     pub fn samples(&self) -> PathBuf {
-        self.folder.join("samples.txt")
+        self.folder.path().join("samples.txt")
     }
 
     /// LinuxCNC's own output (its log).
     pub fn log(&self) -> String {
-        fs::read_to_string(self.folder.join("linuxcnc.log")).unwrap_or_default()
-    }
-}
-
-impl Drop for Run {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.folder);
+        fs::read_to_string(self.folder.path().join("linuxcnc.log")).unwrap_or_default()
     }
 }
 
@@ -163,18 +157,16 @@ pub fn ensure_component(config: &Path) -> Result<ComponentStatus, LinuxcncError>
     if Path::new(LOCK_FILE).exists() {
         return Err(LinuxcncError::Busy);
     }
-    let build = tempfolder("biscara-halcompile")?;
-    let copy = build.join(format!("{COMPONENT_NAME}.comp"));
+    let build = TempFolder::new("biscara-halcompile")?;
+    let copy = build.path().join(format!("{COMPONENT_NAME}.comp"));
     fs::write(&copy, &source).map_err(|err| LinuxcncError::io(&copy, err))?;
     let output = Command::new("halcompile")
         .arg("--install")
         .arg(&copy)
-        .current_dir(&build)
+        .current_dir(build.path())
         .stdin(Stdio::null())
         .output()
-        .map_err(|err| LinuxcncError::io(Path::new("halcompile"), err));
-    let _ = fs::remove_dir_all(&build);
-    let output = output?;
+        .map_err(|err| LinuxcncError::io(Path::new("halcompile"), err))?;
     if !output.status.success() {
         return Err(LinuxcncError::Component {
             message: format!(
@@ -191,18 +183,36 @@ fn contains(haystack: &[u8], needle: &[u8]) -> bool {
     haystack.windows(needle.len()).any(|window| window == needle)
 }
 
-/// A fresh, empty folder under the system's temporary folder.
-fn tempfolder(prefix: &str) -> Result<PathBuf, LinuxcncError> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let folder = std::env::temp_dir().join(format!(
-        "{prefix}-{}-{}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = fs::remove_dir_all(&folder);
-    fs::create_dir_all(&folder).map_err(|err| LinuxcncError::io(&folder, err))?;
-    Ok(folder)
+/// A fresh, empty folder under the system's temporary folder, removed with what it holds when
+/// dropped: the run folder, the component's build folder, the command line's work folder.
+#[derive(Debug)]
+pub struct TempFolder(PathBuf);
+
+impl TempFolder {
+    /// Creates `PREFIX-PID-N` under the system's temporary folder.
+    pub fn new(prefix: &str) -> Result<TempFolder, LinuxcncError> {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let folder = std::env::temp_dir().join(format!(
+            "{prefix}-{}-{}",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        let _ = fs::remove_dir_all(&folder);
+        fs::create_dir_all(&folder).map_err(|err| LinuxcncError::io(&folder, err))?;
+        Ok(TempFolder(folder))
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
 }
 
 /// Copies the configuration into `folder`, with the headless display in the INI.
@@ -345,9 +355,10 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     if Path::new(LOCK_FILE).exists() {
         return Err(LinuxcncError::Busy);
     }
-    let folder = tempfolder("biscara-linuxcnc")?;
+    let temporary = TempFolder::new("biscara-linuxcnc")?;
+    let folder = temporary.path().to_owned();
     let mut run =
-        Run { folder: folder.clone(), ok: false, messages: Vec::new(), line: 0, failure: None };
+        Run { folder: temporary, ok: false, messages: Vec::new(), line: 0, failure: None };
     prepare(&request.config, &folder)?;
     let log_path = folder.join("linuxcnc.log");
     let log = fs::File::create(&log_path).map_err(|err| LinuxcncError::io(&log_path, err))?;
