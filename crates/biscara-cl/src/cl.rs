@@ -205,26 +205,7 @@ impl<R: BufRead> ClReader<R> {
     }
 }
 
-impl<R: BufRead> biscara_text::RecordReader for ClReader<R> {
-    type Record = Record;
-    type Error = ClError;
-
-    fn read_record(&mut self) -> Result<Option<Record>, ClError> {
-        self.read()
-    }
-
-    fn stopped(&mut self) -> &mut bool {
-        &mut self.done
-    }
-}
-
-impl<R: BufRead> Iterator for ClReader<R> {
-    type Item = Result<Record, ClError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        biscara_text::RecordReader::next_record(self)
-    }
-}
+biscara_text::record_reader!(ClReader, Record, ClError, read, done);
 
 /// Parses one statement (comments removed, continuations joined) that starts on `line`.
 pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {

@@ -124,26 +124,7 @@ impl<R: BufRead> PathCsvReader<R> {
     }
 }
 
-impl<R: BufRead> biscara_text::RecordReader for PathCsvReader<R> {
-    type Record = CartesianSample;
-    type Error = CsvError;
-
-    fn read_record(&mut self) -> Result<Option<CartesianSample>, CsvError> {
-        self.next_sample()
-    }
-
-    fn stopped(&mut self) -> &mut bool {
-        &mut self.failed
-    }
-}
-
-impl<R: BufRead> Iterator for PathCsvReader<R> {
-    type Item = Result<CartesianSample, CsvError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        biscara_text::RecordReader::next_record(self)
-    }
-}
+biscara_text::record_reader!(PathCsvReader, CartesianSample, CsvError, next_sample, failed);
 
 #[cfg(test)]
 mod tests {

@@ -213,26 +213,7 @@ impl<R: BufRead> JointCsvReader<R> {
     }
 }
 
-impl<R: BufRead> biscara_text::RecordReader for JointCsvReader<R> {
-    type Record = JointCsvRow;
-    type Error = JointCsvError;
-
-    fn read_record(&mut self) -> Result<Option<JointCsvRow>, JointCsvError> {
-        self.next_row()
-    }
-
-    fn stopped(&mut self) -> &mut bool {
-        &mut self.failed
-    }
-}
-
-impl<R: BufRead> Iterator for JointCsvReader<R> {
-    type Item = Result<JointCsvRow, JointCsvError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        biscara_text::RecordReader::next_record(self)
-    }
-}
+biscara_text::record_reader!(JointCsvReader, JointCsvRow, JointCsvError, next_row, failed);
 
 #[cfg(test)]
 mod tests {

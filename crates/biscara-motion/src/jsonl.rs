@@ -222,11 +222,9 @@ pub struct JsonlReader<R> {
     failed: bool,
 }
 
-impl<R: BufRead> biscara_text::RecordReader for JsonlReader<R> {
-    type Record = Motion;
-    type Error = InterFileError;
-
-    fn read_record(&mut self) -> Result<Option<Motion>, InterFileError> {
+impl<R: BufRead> JsonlReader<R> {
+    /// The next motion, skipping blank lines; `Ok(None)` at the end.
+    fn read_motion(&mut self) -> Result<Option<Motion>, InterFileError> {
         loop {
             self.buffer.clear();
             self.line += 1;
@@ -240,19 +238,9 @@ impl<R: BufRead> biscara_text::RecordReader for JsonlReader<R> {
             }
         }
     }
-
-    fn stopped(&mut self) -> &mut bool {
-        &mut self.failed
-    }
 }
 
-impl<R: BufRead> Iterator for JsonlReader<R> {
-    type Item = Result<Motion, InterFileError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        biscara_text::RecordReader::next_record(self)
-    }
-}
+biscara_text::record_reader!(JsonlReader, Motion, InterFileError, read_motion, failed);
 
 fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
     let mut motion: Motion = serde_json::from_str(text).map_err(|err| {

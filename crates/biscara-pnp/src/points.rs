@@ -100,26 +100,7 @@ impl<R: BufRead> PointsReader<R> {
     }
 }
 
-impl<R: BufRead> biscara_text::RecordReader for PointsReader<R> {
-    type Record = PointsRecord;
-    type Error = PointsError;
-
-    fn read_record(&mut self) -> Result<Option<PointsRecord>, PointsError> {
-        self.read()
-    }
-
-    fn stopped(&mut self) -> &mut bool {
-        &mut self.done
-    }
-}
-
-impl<R: BufRead> Iterator for PointsReader<R> {
-    type Item = Result<PointsRecord, PointsError>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        biscara_text::RecordReader::next_record(self)
-    }
-}
+biscara_text::record_reader!(PointsReader, PointsRecord, PointsError, read, done);
 
 fn parse_line<'a>(
     line: usize,

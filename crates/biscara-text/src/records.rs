@@ -29,6 +29,36 @@ pub trait RecordReader {
     }
 }
 
+/// Makes a reader type (generic over `R: BufRead`) a [`RecordReader`] and an `Iterator` of
+/// `Result<RECORD, ERROR>`: `record_reader!(Reader, RECORD, ERROR, read, flag)`, where the
+/// reader's method `read(&mut self) -> Result<Option<RECORD>, ERROR>` reads one record and its
+/// `bool` field `flag` is the [`stopped`](RecordReader::stopped) flag (false when created).
+#[macro_export]
+macro_rules! record_reader {
+    ($reader:ident, $record:ty, $error:ty, $read:ident, $flag:ident) => {
+        impl<R: ::std::io::BufRead> $crate::RecordReader for $reader<R> {
+            type Record = $record;
+            type Error = $error;
+
+            fn read_record(&mut self) -> ::core::result::Result<Option<$record>, $error> {
+                self.$read()
+            }
+
+            fn stopped(&mut self) -> &mut bool {
+                &mut self.$flag
+            }
+        }
+
+        impl<R: ::std::io::BufRead> ::core::iter::Iterator for $reader<R> {
+            type Item = ::core::result::Result<$record, $error>;
+
+            fn next(&mut self) -> Option<Self::Item> {
+                $crate::RecordReader::next_record(self)
+            }
+        }
+    };
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
