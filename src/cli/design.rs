@@ -182,15 +182,15 @@ fn index_name(objective: Objective) -> &'static str {
 }
 
 fn range_l1(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("--l1", text).map_err(|err| err.to_string())
+    ParamRange::parse("l1", text).map_err(|err| err.to_string())
 }
 
 fn range_l2(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("--l2", text).map_err(|err| err.to_string())
+    ParamRange::parse("l2", text).map_err(|err| err.to_string())
 }
 
 fn range_base(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("--base", text).map_err(|err| err.to_string())
+    ParamRange::parse("base", text).map_err(|err| err.to_string())
 }
 
 fn task(text: &str) -> Result<Task, String> {

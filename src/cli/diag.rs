@@ -4,7 +4,7 @@ use std::fmt::Display;
 use std::io::Write as _;
 use std::path::Path;
 
-use biscara::pipeline::Note;
+use biscara::pipeline::{Hint, Note, PipelineError};
 use biscara::post::PostError;
 
 use super::files::display_path;
@@ -26,6 +26,34 @@ pub(crate) fn report(level: Level, message: impl Display) {
         Level::Warning => "warning",
     };
     let _ = writeln!(std::io::stderr(), "biscara: {label}: {message}");
+}
+
+/// The error's message as the command line shows it: the library's message, then each hint of
+/// a pipeline error on a line of its own, worded with this command line's flags.
+pub(crate) fn error_message(err: &anyhow::Error) -> String {
+    let mut message = format!("{err:#}");
+    let hints = err.chain().find_map(|cause| cause.downcast_ref::<PipelineError>());
+    for hint in hints.map(PipelineError::hints).unwrap_or_default() {
+        message.push_str("\n    ");
+        message.push_str(&hint_text(hint));
+    }
+    message
+}
+
+/// A pipeline hint in terms of the flags that change it.
+fn hint_text(hint: &Hint) -> String {
+    match hint {
+        Hint::MoreIdleJumps => {
+            "(--max-idle-jumps N allows more, for a loop that computes long)".to_owned()
+        }
+        Hint::DialectDetected(detection) => format!(
+            "(read as {} G-code by --dialect auto: {}; give --dialect to choose another)",
+            detection.dialect, detection.reason
+        ),
+        Hint::PlaceByOrigin => "(place it with --origin instead of --fit)".to_owned(),
+        Hint::DoNotFit => "(run it without --fit)".to_owned(),
+        other => other.to_string(),
+    }
 }
 
 /// An error of a reader whose `Display` starts with `LINE[:COL]:`, located in `path`: the one

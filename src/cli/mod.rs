@@ -79,7 +79,7 @@ pub(crate) fn main() -> ExitCode {
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
         Err(err) => {
             // (Written even to a closed stderr without a panic: the exit code says it.)
-            let _ = writeln!(io::stderr(), "biscara: error: {err:#}");
+            let _ = writeln!(io::stderr(), "biscara: error: {}", diag::error_message(&err));
             ExitCode::from(1)
         }
     }

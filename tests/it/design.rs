@@ -215,7 +215,7 @@ fn bad_design_arguments_are_refused_clearly() {
     let dir = temp_dir("design-bad");
     let base = ["design", "--l2", "230:310:3", "--base", "120:280:3", "-o", "d.csv"];
     for (l1, says) in [
-        ("170:250", "--l1: '170:250' does not have three parts"),
+        ("170:250", "'--l1 <MIN:MAX:N>': '170:250' does not have three parts"),
         ("250:170:3", "has MIN above MAX"),
         ("0:100:3", "MIN that is not a positive length"),
         ("170:250:0", "N outside 1..10000"),
@@ -225,9 +225,9 @@ fn bad_design_arguments_are_refused_clearly() {
     }
     let sweep = [&base[..], &["--l1", "170:250:3"]].concat();
     for (flag, value, says) in [
-        ("--shard", "5/4", "--shard: '5/4' is not a part of the sweep"),
+        ("--shard", "5/4", "'--shard <K/N>': '5/4' is not a part of the sweep"),
         ("--shard", "2", "has no '/'"),
-        ("--task", "1,2,3", "--task: '1,2,3' does not have four values"),
+        ("--task", "1,2,3", "'--task <X0,Y0,X1,Y1>': '1,2,3' does not have four values"),
         ("--task", "5,0,1,1", "has X0 > X1"),
         ("--objective", "speed", "invalid value 'speed'"),
     ] {

@@ -321,7 +321,7 @@ fn fit_places_a_cam_program_in_the_rectangle_and_joints_then_succeeds() {
     let run =
         biscara(&dir, &["joints", program, "--origin", "0,0,20,0", "--fit", "-o", "traj.csv"]);
     run.success()
-        .stderr_has("--fit: the program's XY extent x 0.000..150.000, y 0.000..100.000 mm");
+        .stderr_has("fitted: the program's XY extent x 0.000..150.000, y 0.000..100.000 mm");
     run.stderr_has("offset X-75.000 Y191.000");
     assert!(dir.join("traj.csv").exists());
     // interpret --fit writes the same placement: every end point inside the rectangle.
@@ -361,12 +361,19 @@ fn fit_refuses_a_program_larger_than_the_rectangle() {
     let dir = setup("fit-too-large", &[("job.jsonl", program)]);
     let run = biscara(&dir, &["joints", "job.jsonl", "--fit", "-o", "traj.csv"]);
     run.expect_code(1).stderr_has(
-        "job.jsonl: --fit: the program's XY extent 500.000 x 100.000 mm does not fit the \
+        "job.jsonl: cannot fit the program to the workspace: the program's XY extent 500.000 x 100.000 mm does not fit the \
          workspace rectangle 464.000 x 210.000 mm: as programmed, 36.000 mm too wide in X; \
          turned by 90° about Z, 290.000 mm too tall in Y",
     );
     assert!(!dir.join("traj.csv").exists());
     biscara(&dir, &["check", "-", "--fit"]).expect_code(1).stderr_has("not standard input");
+    // A program with nothing to place: the library says why, the command line names the flag.
+    std::fs::write(dir.join("lift.ngc"), "G0 Z10\nG0 Z20\nM2\n").unwrap();
+    biscara(&dir, &["joints", "lift.ngc", "--fit", "-o", "lift.csv"]).expect_code(1).stderr_has(
+        "lift.ngc: cannot fit the program to the workspace: the program has no move in X or Y \
+         away from its start: there is nothing to place\n    (run it without --fit)",
+    );
+    assert!(!dir.join("lift.csv").exists());
 }
 
 #[test]

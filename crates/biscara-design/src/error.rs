@@ -4,9 +4,10 @@
 #[derive(Debug, thiserror::Error)]
 pub enum DesignError {
     /// A `MIN:MAX:N` range that cannot be read or is impossible.
-    #[error("{what}: '{text}' {reason} (expected MIN:MAX:N, e.g. 180:260:5)")]
+    #[error("'{text}' {reason} (expected MIN:MAX:N, e.g. 180:260:5)")]
     Range {
-        /// The argument, e.g. `--l1`.
+        /// The parameter, e.g. `l1` (the caller names it: the command line's own error names
+        /// its flag).
         what: &'static str,
         /// The text given.
         text: String,
@@ -14,7 +15,7 @@ pub enum DesignError {
         reason: String,
     },
     /// A `K/N` shard that cannot be read or is impossible.
-    #[error("--shard: '{text}' {reason} (expected K/N with 1 ≤ K ≤ N, e.g. 2/8)")]
+    #[error("'{text}' {reason} (expected K/N with 1 ≤ K ≤ N, e.g. 2/8)")]
     Shard {
         /// The text given.
         text: String,
@@ -22,7 +23,7 @@ pub enum DesignError {
         reason: String,
     },
     /// A task rectangle `X0,Y0,X1,Y1` that cannot be read.
-    #[error("--task: '{text}' {reason} (expected X0,Y0,X1,Y1 in mm, e.g. -100,300,100,400)")]
+    #[error("'{text}' {reason} (expected X0,Y0,X1,Y1 in mm, e.g. -100,300,100,400)")]
     Task {
         /// The text given.
         text: String,

@@ -20,7 +20,7 @@ pub struct ParamRange {
 }
 
 impl ParamRange {
-    /// Reads `MIN:MAX:N` for the argument `what` (named in errors): finite positive lengths,
+    /// Reads `MIN:MAX:N` for the parameter `what` (kept in the error): finite positive lengths,
     /// `MIN ≤ MAX`, `1 ≤ N ≤ 10000`, `N = 1` only when `MIN = MAX`.
     pub fn parse(what: &'static str, text: &str) -> Result<ParamRange, DesignError> {
         let fail = |reason: &str| DesignError::Range {
@@ -224,9 +224,9 @@ mod tests {
 
     #[test]
     fn ranges_read_and_refuse() {
-        let r = ParamRange::parse("--l1", "180:260:5").unwrap();
+        let r = ParamRange::parse("l1", "180:260:5").unwrap();
         assert_eq!(r.values().collect::<Vec<_>>(), [180.0, 200.0, 220.0, 240.0, 260.0]);
-        assert_eq!(ParamRange::parse("--l1", "200:200:1").unwrap().values().count(), 1);
+        assert_eq!(ParamRange::parse("l1", "200:200:1").unwrap().values().count(), 1);
         for (bad, says) in [
             ("180:260", "three parts"),
             ("a:260:5", "MIN that is no number"),
@@ -237,17 +237,17 @@ mod tests {
             ("180:260:2.5", "N that is no whole number"),
             ("180:260:1", "N = 1 but MIN ≠ MAX"),
         ] {
-            let err = ParamRange::parse("--l1", bad).unwrap_err().to_string();
-            assert!(err.starts_with("--l1: '") && err.contains(says), "{bad}: {err}");
+            let err = ParamRange::parse("l1", bad).unwrap_err().to_string();
+            assert!(err.starts_with('\'') && err.contains(says), "{bad}: {err}");
         }
     }
 
     #[test]
     fn designs_run_base_fastest_and_shards_split_them() {
         let grid = DesignGrid::new(
-            ParamRange::parse("--l1", "1:2:2").unwrap(),
-            ParamRange::parse("--l2", "10:30:3").unwrap(),
-            ParamRange::parse("--base", "100:400:4").unwrap(),
+            ParamRange::parse("l1", "1:2:2").unwrap(),
+            ParamRange::parse("l2", "10:30:3").unwrap(),
+            ParamRange::parse("base", "100:400:4").unwrap(),
         )
         .unwrap();
         assert_eq!(grid.len(), 24);

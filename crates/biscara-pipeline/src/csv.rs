@@ -27,10 +27,10 @@ impl Pipeline<'_> {
         notes: impl FnMut(Note) + 'static,
     ) -> Result<(), PipelineError> {
         if kind == ProgramKind::Path {
-            return Err(PipelineError::Unsupported {
-                file: source.name().to_owned(),
-                message: "interpolate reads G-code or an inter-file, not a path CSV".to_owned(),
-            });
+            return Err(PipelineError::unsupported(
+                source.name(),
+                "a path CSV holds samples already: give G-code or an inter-file",
+            ));
         }
         if !events {
             let mut samples = self.samples(source, kind, notes)?;

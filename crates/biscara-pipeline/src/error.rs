@@ -29,6 +29,8 @@ pub enum PipelineError {
         error: Box<dyn std::error::Error + Send + Sync>,
         /// The offending line with a caret under the column, where the reader has one.
         snippet: Option<String>,
+        /// What the user can change about it, for the caller to word ([`PipelineError::hints`]).
+        hints: Vec<Hint>,
     },
     /// Occurs when the program cannot be opened or read.
     #[error("cannot read {file}")]
@@ -38,26 +40,30 @@ pub enum PipelineError {
         /// The operating system's reason.
         source: io::Error,
     },
-    /// Occurs when `--fit` cannot place the program: it is larger than the workspace
-    /// rectangle, or it has no extent.
-    #[error("{file}: --fit: {error}")]
+    /// Occurs when the program cannot be fitted to the workspace ([`SamplingConfig::fit`]): it
+    /// is larger than the workspace rectangle, or it has no extent.
+    ///
+    /// [`SamplingConfig::fit`]: crate::SamplingConfig::fit
+    #[error("{file}: cannot fit the program to the workspace: {error}")]
     Fit {
         /// The program's name.
         file: String,
         /// Why it does not fit, with the numbers.
         error: VirtualRobotError,
     },
-    /// Occurs when the workspace for `--fit` cannot be computed.
+    /// Occurs when the workspace to fit the program to cannot be computed.
     #[error(transparent)]
     Workspace(VirtualRobotError),
-    /// Occurs when a program of this kind cannot be used this way (`--fit` on standard input
-    /// or a path CSV, a path CSV where motions are needed).
+    /// Occurs when a program of this kind cannot be used this way (fitting standard input or
+    /// a path CSV, a path CSV where motions are needed, fitting a program that moves forever).
     #[error("{file}: {message}")]
     Unsupported {
         /// The program's name.
         file: String,
         /// What cannot be done and what would work.
         message: String,
+        /// What the user can change about it, for the caller to word ([`PipelineError::hints`]).
+        hints: Vec<Hint>,
     },
     /// Occurs when the output cannot be written (a full disk, a closed pipe).
     #[error("cannot write the output")]
@@ -79,7 +85,65 @@ impl fmt::Display for Snippet<'_> {
 impl PipelineError {
     /// A located error of the program `file`.
     pub fn program(file: &str, error: impl std::error::Error + Send + Sync + 'static) -> Self {
-        PipelineError::Program { file: file.to_owned(), error: Box::new(error), snippet: None }
+        let (file, error) = (file.to_owned(), Box::new(error));
+        PipelineError::Program { file, error, snippet: None, hints: Vec::new() }
+    }
+
+    /// What cannot be done with the program `file`, and why.
+    pub(crate) fn unsupported(file: &str, message: impl Into<String>) -> Self {
+        let (file, message) = (file.to_owned(), message.into());
+        PipelineError::Unsupported { file, message, hints: Vec::new() }
+    }
+
+    /// What the user can change about this error, in the order to show them. The message
+    /// ([`Display`](fmt::Display)) is whole without them; a caller words them for its own
+    /// settings (the command line names its flags, [`Hint`]'s `Display` names the settings).
+    pub fn hints(&self) -> &[Hint] {
+        match self {
+            PipelineError::Program { hints, .. } | PipelineError::Unsupported { hints, .. } => {
+                hints
+            }
+            PipelineError::Fit { error: VirtualRobotError::NoMoves, .. } => &[Hint::DoNotFit],
+            _ => &[],
+        }
+    }
+}
+
+/// What a user can change to get past an error: the library names the remedy, the caller words
+/// it for its own settings (the command line names its flags). `Display` is a wording in terms
+/// of [`SamplingConfig`](crate::SamplingConfig)'s fields.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Hint {
+    /// A loop jumped back more often without a motion than allowed: a larger
+    /// [`max_idle_jumps`](crate::SamplingConfig::max_idle_jumps) allows a loop that computes
+    /// long.
+    MoreIdleJumps,
+    /// The dialect was chosen from the program's content (the error may be the dialect's, not
+    /// the program's): another can be set ([`dialect`](crate::SamplingConfig::dialect)).
+    DialectDetected(Detection),
+    /// The program can be placed by hand ([`origin`](crate::SamplingConfig::origin)) rather
+    /// than fitted.
+    PlaceByOrigin,
+    /// The program has nothing to fit: run it without [`fit`](crate::SamplingConfig::fit).
+    DoNotFit,
+}
+
+impl fmt::Display for Hint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Hint::MoreIdleJumps => {
+                f.write_str("(a larger max_idle_jumps allows more, for a loop that computes long)")
+            }
+            Hint::DialectDetected(detection) => write!(
+                f,
+                "(read as {} G-code, the dialect found in the program: {}; set the dialect to \
+                 choose another)",
+                detection.dialect, detection.reason
+            ),
+            Hint::PlaceByOrigin => f.write_str("(place it by an origin instead)"),
+            Hint::DoNotFit => f.write_str("(run it without fitting it)"),
+        }
     }
 }
 
@@ -88,7 +152,8 @@ impl PipelineError {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Note {
-    /// `--fit` placed the program: its extent, the rectangle, the offset, the turn, and its Z.
+    /// The program was fitted to the workspace: its extent, the rectangle, the offset, the
+    /// turn, and its Z.
     Placed {
         /// The program's name.
         file: String,
@@ -103,14 +168,14 @@ pub enum Note {
         /// Whether the program made its start point its zero with G92, so that its start moved.
         by_start: bool,
     },
-    /// `--dialect auto` chose a dialect (only when something in the program told).
+    /// The dialect was chosen from the program (only when something in the program told).
     Dialect {
         /// The program's name.
         file: String,
         /// The dialect and why.
         detection: Detection,
     },
-    /// No `--tool` and no `tool.kind` in the robot file: the tool was inferred from the program.
+    /// No tool set and no `tool.kind` in the robot file: the tool was inferred from the program.
     Tool {
         /// The program's name.
         file: String,
@@ -190,7 +255,7 @@ impl fmt::Display for Note {
                 let n = |v: f64| fixed(v, 3);
                 write!(
                     f,
-                    "{file}: --fit: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) ",
+                    "{file}: fitted: the program's XY extent x {}..{}, y {}..{} mm ({} x {} mm) ",
                     n(bounds.min[0]),
                     n(bounds.max[0]),
                     n(bounds.min[1]),
@@ -243,7 +308,7 @@ impl fmt::Display for Note {
             }
             Note::Dialect { file, detection } => write!(
                 f,
-                "{file}: read as {} G-code (--dialect auto): {}{}",
+                "{file}: read as {} G-code, the dialect found in the program: {}{}",
                 detection.dialect,
                 detection.reason,
                 if detection.makerbot {
@@ -254,7 +319,7 @@ impl fmt::Display for Note {
             ),
             Note::Tool { file, inference } => write!(
                 f,
-                "{file}{}: tool: {} ({}; inferred: no --tool and no tool.kind in the robot file)",
+                "{file}{}: tool: {} ({}; inferred: no tool set and no tool.kind in the robot file)",
                 inference.line.map(|line| format!(":{line}")).unwrap_or_default(),
                 inference.tool,
                 inference.reason
@@ -303,7 +368,7 @@ impl fmt::Display for Note {
             }
             Note::ToolsWithoutTable { file } => write!(
                 f,
-                "{file}: the program uses tool offsets (G43, G10 L1, …) but no --tool-table was \
+                "{file}: the program uses tool offsets (G43, G10 L1, …) but no tool table was \
                  given: every tool has zero length and diameter"
             ),
             Note::SlowedDown { file, slow }

@@ -6,16 +6,16 @@
 //! - [`ProgramSource`]: where the program's text comes from (a file the caller opens, standard
 //!   input, a string); the crate itself never opens a path.
 //! - [`Pipeline`]: one robot ([`RobotModel`]) and one [`SamplingConfig`] (time step, profile,
-//!   grip time, origin, `--fit`); [`Pipeline::motions`], [`Pipeline::samples`] and
+//!   grip time, origin, fitting to the workspace); [`Pipeline::motions`], [`Pipeline::samples`] and
 //!   [`Pipeline::joints`] are the stages, wired once, here; [`Pipeline::write_path_csv`] and
 //!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files.
 //! - [`Note`]: what the pipeline has to say besides its output (the chosen placement, slowed
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
-//!   `FILE:LINE[:COL]: message`.
+//!   `FILE:LINE[:COL]: message`, with [`Hint`]s the caller words for its own settings.
 //!
 //! - [`generate`]: the other pipeline, points → CL → G-code (`biscara gen`).
 //!
-//! It deliberately holds no whole program: motions and samples are iterators, and `--fit`
+//! It deliberately holds no whole program: motions and samples are iterators, and fitting
 //! reads the program twice (once for its extent) rather than keeping it.
 //!
 //! ```
@@ -47,7 +47,7 @@ mod tool;
 
 pub use biscara_kinematics::RobotModel;
 
-pub use error::{Note, PipelineError};
+pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
 pub use pipeline::{

@@ -15,7 +15,7 @@ use biscara_gcode::{
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
 
-use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
+use crate::{Hint, Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// A program's motions as read, with errors located in the file.
 pub(crate) type MotionReader = Box<dyn Iterator<Item = Result<Motion, PipelineError>>>;
@@ -147,10 +147,9 @@ pub(crate) fn read_motions(
                 finished: false,
             }))
         }
-        ProgramKind::Path => Err(PipelineError::Unsupported {
-            file,
-            message: "a path CSV holds samples, not motions".to_owned(),
-        }),
+        ProgramKind::Path => {
+            Err(PipelineError::unsupported(&file, "a path CSV holds samples, not motions"))
+        }
     }
 }
 
@@ -171,30 +170,20 @@ impl<R: BufRead> GcodeMotions<R> {
     /// the line and a caret, and with the dialect `auto` chose when it is not LinuxCNC's (the
     /// error may be the dialect's, not the program's).
     fn located(&self, err: GcodeError) -> PipelineError {
-        let mut snippet = err.location().map(|location| location.snippet());
+        let snippet = err.location().map(|location| location.snippet());
+        let mut hints = Vec::new();
         if err.to_string().contains("jumps back without a motion are allowed") {
-            snippet = snippet.map(|snippet| {
-                format!(
-                    "{snippet}\n(--max-idle-jumps N allows more, for a loop that computes long)"
-                )
-            });
+            hints.push(Hint::MoreIdleJumps);
         }
         if let Some(detection) =
             self.interpreter.detection().filter(|d| d.dialect != Dialect::Linuxcnc)
         {
-            let why = format!(
-                "(read as {} G-code by --dialect auto: {}; give --dialect to choose another)",
-                detection.dialect, detection.reason
-            );
-            snippet = Some(match snippet {
-                Some(snippet) => format!("{snippet}\n{why}"),
-                None => why,
-            });
+            hints.push(Hint::DialectDetected(detection));
         }
         // An error in a file subroutine names that file, not the program.
         let file = err.location().and_then(|location| location.file.as_deref());
         let file = file.map_or_else(|| self.file.clone(), str::to_owned);
-        PipelineError::Program { file, error: Box::new(err), snippet }
+        PipelineError::Program { file, error: Box::new(err), snippet, hints }
     }
 
     /// The tool inferred, once.

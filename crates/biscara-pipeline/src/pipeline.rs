@@ -197,10 +197,7 @@ impl<'m> Pipeline<'m> {
         let file = source.name().to_owned();
         if kind == ProgramKind::Path {
             if self.config.fit {
-                return Err(PipelineError::Unsupported {
-                    file,
-                    message: "--fit places a program, not a path CSV".to_owned(),
-                });
+                return Err(PipelineError::unsupported(&file, crate::placement::FIT_NOT_PATH));
             }
             let input =
                 source.open().map_err(|source| PipelineError::Io { file: file.clone(), source })?;

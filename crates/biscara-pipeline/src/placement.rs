@@ -9,11 +9,15 @@ use std::rc::Rc;
 use biscara_robot::{Bounds, Transform, Workspace, fit};
 
 use crate::motions::{NoteSink, Reading, Told, read_motions};
-use crate::{Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
+use crate::{Hint, Note, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 
 /// Grid step of the workspace rectangle `--fit` centres programs in, millimetres (the default
 /// of `biscara workspace`).
 const FIT_STEP_MM: f64 = 2.0;
+
+/// Why a path CSV cannot be fitted.
+pub(crate) const FIT_NOT_PATH: &str =
+    "a path CSV holds samples at their place: only a program can be fitted to the workspace";
 
 /// Where a program's motions go.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,16 +54,13 @@ pub fn place(
     }
     let file = source.name();
     if !source.rereadable() {
-        return Err(PipelineError::Unsupported {
-            file: file.to_owned(),
-            message: "--fit reads the program twice: give a file, not standard input".to_owned(),
-        });
+        return Err(PipelineError::unsupported(
+            file,
+            "fitting a program to the workspace reads it twice: give a file, not standard input",
+        ));
     }
     if kind == ProgramKind::Path {
-        return Err(PipelineError::Unsupported {
-            file: file.to_owned(),
-            message: "--fit places a program, not a path CSV".to_owned(),
-        });
+        return Err(PipelineError::unsupported(file, FIT_NOT_PATH));
     }
     let home = model.home_position();
     let mut bounds = Bounds::new(home);
@@ -78,10 +79,11 @@ pub fn place(
             return Err(PipelineError::Unsupported {
                 file: file.to_owned(),
                 message: format!(
-                    "--fit reads the whole program to find its extent, and it goes on past {} \
-                     motions (line {}): an endless loop that moves? Place it with --origin",
+                    "fitting a program to the workspace reads it whole to find its extent, and \
+                     it goes on past {} motions (line {}): an endless loop that moves?",
                     config.max_fit_motions, motion.line
                 ),
+                hints: vec![Hint::PlaceByOrigin],
             });
         }
         bounds.push(&motion);

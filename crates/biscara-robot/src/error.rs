@@ -45,10 +45,7 @@ pub enum VirtualRobotError {
     },
     /// Occurs when a program has no move away from its start pose's XY (none at all, or only
     /// along Z, as a resin printer's lifts), so it has no XY extent to place.
-    #[error(
-        "the program has no move in X or Y away from its start: there is nothing to place (run \
-         it without --fit)"
-    )]
+    #[error("the program has no move in X or Y away from its start: there is nothing to place")]
     NoMoves,
     /// Occurs when a program's XY extent is wider or taller than the workspace rectangle, as
     /// programmed and turned by 90° about Z.

@@ -73,7 +73,11 @@ fn each_sample_by_reference_is_the_iterator_and_stops_at_its_error() {
     let stop = samples.try_for_each_sample(|sample| {
         kept += 1;
         if sample.t >= 0.01 {
-            Err(PipelineError::Unsupported { file: "x".into(), message: "enough".into() })
+            Err(PipelineError::Unsupported {
+                file: "x".into(),
+                message: "enough".into(),
+                hints: vec![],
+            })
         } else {
             Ok(())
         }
@@ -177,7 +181,11 @@ fn fit_refuses_a_source_it_cannot_read_twice_and_a_path_csv() {
     assert!(err.to_string().contains("not standard input"), "{err}");
     let csv = TextSource::new("path.csv", "t_s,x_mm,y_mm,z_mm,c_deg\n0,0,400,50,0\n");
     let err = pipeline(&model, config).samples(&csv, ProgramKind::Path, |_| {}).err().unwrap();
-    assert_eq!(err.to_string(), "path.csv: --fit places a program, not a path CSV");
+    assert_eq!(
+        err.to_string(),
+        "path.csv: a path CSV holds samples at their place: only a program can be fitted to \
+         the workspace"
+    );
 }
 
 #[test]
@@ -392,7 +400,7 @@ fn the_csv_outputs_say_why_they_stop() {
         pipeline.write_path_csv(&csv, ProgramKind::Path, &mut out, 6, false, |_| {}).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "path.csv: interpolate reads G-code or an inter-file, not a path CSV"
+        "path.csv: a path CSV holds samples already: give G-code or an inter-file"
     );
     assert!(out.is_empty());
     // A program that cannot be placed writes nothing, not even the header.
@@ -405,6 +413,9 @@ fn the_csv_outputs_say_why_they_stop() {
     };
     let err =
         fit.write_joint_csv(&far, ProgramKind::Gcode, &mut out, format, false, |_| {}).unwrap_err();
-    assert!(err.to_string().starts_with("far.ngc: --fit: "), "{err}");
+    assert!(
+        err.to_string().starts_with("far.ngc: cannot fit the program to the workspace: "),
+        "{err}"
+    );
     assert!(out.is_empty());
 }

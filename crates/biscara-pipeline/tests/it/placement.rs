@@ -7,7 +7,9 @@ use std::rc::Rc;
 
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, MotionKind, Plane};
-use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, SamplingConfig, TextSource};
+use biscara_pipeline::{
+    Hint, Note, Pipeline, PipelineError, ProgramKind, SamplingConfig, TextSource,
+};
 use biscara_robot::Rectangle;
 
 /// The motions of `program` placed by `--fit`, with the notes.
@@ -170,7 +172,7 @@ fn a_program_that_fits_neither_way_says_by_how_much_in_each() {
     let (motions, _) = placed("big.ngc", "G0 X0 Y0 Z50\nG1 X500 Y300 F1000\nM2\n");
     let err = motions.unwrap_err().to_string();
     assert!(
-        err.starts_with("big.ngc: --fit: the program's XY extent 500.000 x 300.000 mm"),
+        err.starts_with("big.ngc: cannot fit the program to the workspace: the program's XY extent 500.000 x 300.000 mm"),
         "{err}"
     );
     assert!(
@@ -349,6 +351,10 @@ fn fit_stops_an_endless_program_at_its_bound() {
     let model = RobotModel::default();
     let config = SamplingConfig { fit: true, max_fit_motions: 1000, ..SamplingConfig::default() };
     let (motions, _) = run(&model, config, &TextSource::new("endless.ngc", program));
-    let message = motions.expect_err("endless").to_string();
+    let err = motions.expect_err("endless");
+    let message = err.to_string();
     assert!(message.contains("past 1000 motions") && message.contains("endless"), "{message}");
+    // The remedy is the caller's to word (the command line names its flags).
+    assert_eq!(err.hints(), [Hint::PlaceByOrigin]);
+    assert!(!message.contains("--"), "{message}");
 }
