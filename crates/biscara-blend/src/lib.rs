@@ -1,5 +1,5 @@
-//! Corner blending under G64 P (SPEC §6): consecutive moves programmed under G64 (straight or
-//! arcs) are joined by circular fillets that stay within the tolerance P of the programmed
+//! Corner blending under G64 P (docs/motion.md): consecutive moves programmed under G64
+//! (straight or arcs) are joined by circular fillets that stay within the tolerance P of the programmed
 //! corner, and arcs tangent to the moves before and after them join the same chain, so that a
 //! timing law can run through the corner without stopping.
 //!

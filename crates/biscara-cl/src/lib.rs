@@ -1,6 +1,7 @@
 //! CL (cutter-location) statements, the neutral contract between the stage that makes a program
 //! (`biscara-pnp`, `biscara clf`) and the postprocessor that turns it into G-code
-//! (`biscara-post`): the typed [`Statement`], the [`ClReader`] and [`write_statement`] (SPEC §3).
+//! (`biscara-post`): the typed [`Statement`], the [`ClReader`] and [`write_statement`]
+//! (docs/programming.md).
 //!
 //! [`ClReader`] reads APT-style CL data one [`Record`] at a time from any `BufRead`: the dialect
 //! `biscara clf` writes and the forms 3-axis CAM systems write (GOTO with 3, 4 or 6 values,

@@ -1,5 +1,5 @@
 //! Motions: what a G-code program asks the robot to do, one entry per move or event, in program
-//! order — and their file form, the inter-file of SPEC §5 (JSON Lines).
+//! order — and their file form, the inter-file (JSON Lines, docs/motion.md).
 //!
 //! The G-code interpreter produces [`Motion`]s, the interpolator consumes them; this crate is the
 //! contract between the two and knows neither G-code nor kinematics. Positions are absolute, in

@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 /// One entry of a program: a move or an event, with the 1-based line of the block that made it.
 ///
-/// Its file form is one flat JSON object (SPEC §5); see [`crate::write_jsonl`].
+/// Its file form is one flat JSON object (docs/motion.md); see [`crate::write_jsonl`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(into = "Record", try_from = "Record")]
 pub struct Motion {
@@ -13,10 +13,10 @@ pub struct Motion {
     /// What to do.
     pub kind: MotionKind,
     /// Filament the extruder feeds during this move, millimetres (negative: a retraction);
-    /// `None` when the block had no E word. Only moves carry it (SPEC §1.6, §5).
+    /// `None` when the block had no E word. Only moves carry it (docs/motion.md).
     pub extrude: Option<f64>,
-    /// The path-control mode the move was programmed under (SPEC §6): `Some(p)` under G64, the
-    /// corner at the move's end may be blended within `p` millimetres of it (`p = 0`: G64 with
+    /// The path-control mode the move was programmed under (docs/motion.md): `Some(p)` under
+    /// G64, the corner at the move's end may be blended within `p` millimetres of it (`p = 0`: G64 with
     /// no P, the canon's "no tolerance given"); `None` under G61/G61.1, an exact stop. Only moves
     /// carry it.
     pub blend: Option<f64>,

@@ -5,7 +5,7 @@ use std::f64::consts::TAU;
 use crate::Plane;
 
 /// One move's geometry, from `start` to `end` (`[x, y, z, c]`, mm and degrees), traversed as the
-/// path parameter `s` runs from 0 to 1. C moves in proportion to `s` (SPEC §6).
+/// path parameter `s` runs from 0 to 1. C moves in proportion to `s` (docs/motion.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
     start: [f64; 4],

@@ -1,4 +1,4 @@
-//! Pick-and-place jobs: the points file (SPEC §2) and the CL program it makes (SPEC §3) — the
+//! Pick-and-place jobs: the points file and the CL program it makes (docs/programming.md) — the
 //! paper's `trajectoryWorld`.
 //!
 //! [`PointsReader`] reads a points file one statement at a time from any `BufRead`;

@@ -1,4 +1,4 @@
-//! The points file (SPEC §2): the reader.
+//! The points file (docs/programming.md): the reader.
 
 use std::io::BufRead;
 

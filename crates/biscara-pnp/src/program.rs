@@ -1,4 +1,4 @@
-//! From the points to the CL program: the paper's `trajectoryWorld` (SPEC §3).
+//! From the points to the CL program: the paper's `trajectoryWorld` (docs/programming.md).
 
 use std::collections::VecDeque;
 use std::io::{BufRead, Write};
@@ -12,7 +12,7 @@ use crate::points::{Point, PointsReader, PointsStatement};
 /// The name `biscara clf` gives the program (its PARTNO).
 pub const PART_NAME: &str = "PICK AND PLACE";
 
-/// The job's settings, with the defaults of SPEC §2.
+/// The job's settings, with the points file's defaults (docs/programming.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JobSettings {
     /// Start and end pose; default: the robot's home pose.

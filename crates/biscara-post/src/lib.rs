@@ -1,5 +1,5 @@
 //! The postprocessor that turns CL (cutter-location) files into LinuxCNC G-code: the paper's
-//! `gcodeGeneration`, file to file (SPEC §3, §4.1).
+//! `gcodeGeneration`, file to file (docs/programming.md).
 //!
 //! The CL statements, their reader and their writer are `biscara-cl`'s, the contract this crate
 //! shares with the stage that makes programs (`biscara-pnp`). [`Postprocessor`] turns statements

@@ -1,4 +1,5 @@
-//! The postprocessor: CL statements in, LinuxCNC G-code out (SPEC §4.1), one statement at a time.
+//! The postprocessor: CL statements in, LinuxCNC G-code out (docs/programming.md), one
+//! statement at a time.
 
 use std::io::{BufRead, Write};
 
