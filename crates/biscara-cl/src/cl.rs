@@ -2,9 +2,9 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_text::{LineReader, MAX_LINE_BYTES, ReadError, fixed, shorten};
+use biscara_text::{LineError, LineReader, Located, MAX_LINE_BYTES, fixed, shorten};
 
-use crate::error::ClError;
+use crate::error::{ClError, ClErrorKind};
 
 /// Post words that mean nothing to this robot: [`ClReader`] passes them on as
 /// [`Statement::PostWord`], and the postprocessor writes them as comments and lists them.
@@ -170,10 +170,8 @@ impl<R: BufRead> ClReader<R> {
             self.statement.clear();
             let mut first_line = 0;
             loop {
-                let Some((line, text)) = self
-                    .lines
-                    .next_line()
-                    .map_err(|(line, err)| ClError::from_line_error(line, err))?
+                let Some((line, text)) =
+                    self.lines.next_line().map_err(|err| err.map(ClErrorKind::Read))?
                 else {
                     if first_line == 0 {
                         return Ok(None);
@@ -189,7 +187,7 @@ impl<R: BufRead> ClReader<R> {
                     None => (text, false),
                 };
                 if self.statement.len() + text.len() > MAX_LINE_BYTES {
-                    return Err(ReadError::LineTooLong { line }.into());
+                    return Err(Located::at_line(line, ClErrorKind::Read(LineError::TooLong)));
                 }
                 self.statement.push_str(text);
                 if !continues {
@@ -209,6 +207,11 @@ biscara_text::record_reader!(ClReader, Record, ClError, read, done);
 
 /// Parses one statement (comments removed, continuations joined) that starts on `line`.
 pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
+    statement(text).map_err(|kind| Located::at_line(line, kind))
+}
+
+/// Parses one statement; what is wrong, without its line.
+fn statement(text: &str) -> Result<Statement, ClErrorKind> {
     let text = text.trim();
     let end =
         text.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_')).unwrap_or(text.len());
@@ -220,7 +223,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
         Some(arguments) => (true, arguments.trim()),
         None => (false, rest),
     };
-    let unknown = || ClError::UnknownStatement { line, word: shorten(text) };
+    let unknown = || ClErrorKind::UnknownStatement { word: shorten(text) };
     if word.is_empty() {
         return Err(unknown());
     }
@@ -230,8 +233,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
         "RAPID" | "PICK" | "PLACE" | "END" | "FINI" => {
             if !arguments.is_empty() || has_slash {
                 let word = static_word(&upper);
-                return Err(ClError::Syntax {
-                    line,
+                return Err(ClErrorKind::Syntax {
                     word,
                     message: format!("takes no arguments, found `{}`", shorten(rest)),
                 });
@@ -245,7 +247,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
             }
         }
         "GOTO" => {
-            let values = numbers(line, "GOTO", require_slash(line, "GOTO", has_slash, arguments)?)?;
+            let values = numbers("GOTO", require_slash("GOTO", has_slash, arguments)?)?;
             match values[..] {
                 [x, y, z] => Statement::Goto(Goto { x, y, z, c: None, axis: None }),
                 [x, y, z, c] => Statement::Goto(Goto { x, y, z, c: Some(c), axis: None }),
@@ -253,8 +255,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
                     Statement::Goto(Goto { x, y, z, c: None, axis: Some([i, j, k]) })
                 }
                 _ => {
-                    return Err(ClError::WrongCount {
-                        line,
+                    return Err(ClErrorKind::WrongCount {
                         word: "GOTO",
                         expected: "3 (x,y,z), 4 (x,y,z,c) or 6 (x,y,z,i,j,k) values",
                         found: values.len(),
@@ -263,12 +264,10 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
             }
         }
         "CIRCLE" => {
-            let values =
-                numbers(line, "CIRCLE", require_slash(line, "CIRCLE", has_slash, arguments)?)?;
+            let values = numbers("CIRCLE", require_slash("CIRCLE", has_slash, arguments)?)?;
             // Some systems append tolerances: CIRCLE/cx,cy,cz,i,j,k,r,tol,dtol,…
             if values.len() != 7 && values.len() != 11 {
-                return Err(ClError::WrongCount {
-                    line,
+                return Err(ClErrorKind::WrongCount {
                     word: "CIRCLE",
                     expected: "7 values (cx,cy,cz,i,j,k,r), or 11 with tolerances",
                     found: values.len(),
@@ -276,8 +275,7 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
             }
             let radius = values[6];
             if radius <= 0.0 {
-                return Err(ClError::OutOfRange {
-                    line,
+                return Err(ClErrorKind::OutOfRange {
                     word: "CIRCLE",
                     value: radius,
                     reason: "the radius must be positive",
@@ -290,19 +288,16 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
             })
         }
         "DELAY" => {
-            let values =
-                numbers(line, "DELAY", require_slash(line, "DELAY", has_slash, arguments)?)?;
+            let values = numbers("DELAY", require_slash("DELAY", has_slash, arguments)?)?;
             let [seconds] = values[..] else {
-                return Err(ClError::WrongCount {
-                    line,
+                return Err(ClErrorKind::WrongCount {
                     word: "DELAY",
                     expected: "1 value (seconds)",
                     found: values.len(),
                 });
             };
             if seconds < 0.0 {
-                return Err(ClError::OutOfRange {
-                    line,
+                return Err(ClErrorKind::OutOfRange {
                     word: "DELAY",
                     value: seconds,
                     reason: "a delay cannot be negative",
@@ -310,17 +305,14 @@ pub fn parse_statement(line: usize, text: &str) -> Result<Statement, ClError> {
             }
             Statement::Delay(seconds)
         }
-        "FEDRAT" => {
-            Statement::Feed(feed(line, require_slash(line, "FEDRAT", has_slash, arguments)?)?)
-        }
+        "FEDRAT" => Statement::Feed(feed(require_slash("FEDRAT", has_slash, arguments)?)?),
         "UNITS" => {
-            let minor = require_slash(line, "UNITS", has_slash, arguments)?.trim();
+            let minor = require_slash("UNITS", has_slash, arguments)?.trim();
             match minor.to_ascii_uppercase().as_str() {
                 "MM" => Statement::Units(Units::Millimetres),
                 "INCHES" | "INCH" => Statement::Units(Units::Inches),
                 _ => {
-                    return Err(ClError::UnknownMinor {
-                        line,
+                    return Err(ClErrorKind::UnknownMinor {
                         word: "UNITS",
                         minor: shorten(minor),
                         expected: "MM or INCHES",
@@ -341,36 +333,33 @@ fn static_word(upper: &str) -> &'static str {
 }
 
 fn require_slash<'a>(
-    line: usize,
     word: &'static str,
     has_slash: bool,
     arguments: &'a str,
-) -> Result<&'a str, ClError> {
+) -> Result<&'a str, ClErrorKind> {
     if has_slash {
         Ok(arguments)
     } else {
-        Err(ClError::Syntax { line, word, message: format!("expected `{word}/` and its values") })
+        Err(ClErrorKind::Syntax { word, message: format!("expected `{word}/` and its values") })
     }
 }
 
 /// Parses one number of statement `word`: finite and within ±[`MAX_VALUE`].
-fn number(line: usize, word: &'static str, text: &str) -> Result<f64, ClError> {
+fn number(word: &'static str, text: &str) -> Result<f64, ClErrorKind> {
     let text = text.trim();
     if text.is_empty() {
-        return Err(ClError::Syntax {
-            line,
+        return Err(ClErrorKind::Syntax {
             word,
             message: "a value is missing (two commas in a row, or a comma at the end)".to_owned(),
         });
     }
     let value: f64 =
-        text.parse().map_err(|_| ClError::NotANumber { line, word, text: shorten(text) })?;
+        text.parse().map_err(|_| ClErrorKind::NotANumber { word, text: shorten(text) })?;
     if !value.is_finite() {
-        return Err(ClError::NotFinite { line, word, text: shorten(text) });
+        return Err(ClErrorKind::NotFinite { word, text: shorten(text) });
     }
     if value.abs() > MAX_VALUE {
-        return Err(ClError::OutOfRange {
-            line,
+        return Err(ClErrorKind::OutOfRange {
             word,
             value,
             reason: "CL values must lie within ±1e6",
@@ -379,19 +368,18 @@ fn number(line: usize, word: &'static str, text: &str) -> Result<f64, ClError> {
     Ok(value)
 }
 
-fn numbers(line: usize, word: &'static str, arguments: &str) -> Result<Vec<f64>, ClError> {
-    arguments.split(',').map(|text| number(line, word, text)).collect()
+fn numbers(word: &'static str, arguments: &str) -> Result<Vec<f64>, ClErrorKind> {
+    arguments.split(',').map(|text| number(word, text)).collect()
 }
 
-fn feed(line: usize, arguments: &str) -> Result<Feed, ClError> {
+fn feed(arguments: &str) -> Result<Feed, ClErrorKind> {
     let parts: Vec<&str> = arguments.split(',').map(str::trim).collect();
-    let unit_of = |text: &str| -> Result<Option<FeedUnit>, ClError> {
+    let unit_of = |text: &str| -> Result<Option<FeedUnit>, ClErrorKind> {
         if text.starts_with(|ch: char| ch.is_ascii_alphabetic()) {
             match text.to_ascii_uppercase().as_str() {
                 "MMPM" => Ok(Some(FeedUnit::Mmpm)),
                 "IPM" => Ok(Some(FeedUnit::Ipm)),
-                _ => Err(ClError::UnknownMinor {
-                    line,
+                _ => Err(ClErrorKind::UnknownMinor {
                     word: "FEDRAT",
                     minor: shorten(text),
                     expected: "MMPM or IPM (feed per minute; per-revolution feeds are not supported)",
@@ -407,8 +395,7 @@ fn feed(line: usize, arguments: &str) -> Result<Feed, ClError> {
             (Some(unit), None) => (second, Some(unit)),
             (None, Some(unit)) => (first, Some(unit)),
             _ => {
-                return Err(ClError::Syntax {
-                    line,
+                return Err(ClErrorKind::Syntax {
                     word: "FEDRAT",
                     message: format!(
                         "expected a feed and a unit (`FEDRAT/MMPM,f` or `FEDRAT/f,MMPM`), found `{}`",
@@ -418,18 +405,16 @@ fn feed(line: usize, arguments: &str) -> Result<Feed, ClError> {
             }
         },
         _ => {
-            return Err(ClError::WrongCount {
-                line,
+            return Err(ClErrorKind::WrongCount {
                 word: "FEDRAT",
                 expected: "a feed, and optionally MMPM or IPM",
                 found: parts.len(),
             });
         }
     };
-    let value = number(line, "FEDRAT", value)?;
+    let value = number("FEDRAT", value)?;
     if value <= 0.0 {
-        return Err(ClError::OutOfRange {
-            line,
+        return Err(ClErrorKind::OutOfRange {
             word: "FEDRAT",
             value,
             reason: "a feed must be positive",

@@ -31,4 +31,4 @@ pub use cl::{
     Circle, ClReader, Feed, FeedUnit, Goto, MAX_VALUE, POST_WORDS, Record, Statement, Units,
     parse_statement, write_statement,
 };
-pub use error::ClError;
+pub use error::{ClError, ClErrorKind};

@@ -2,44 +2,30 @@
 
 use std::io::{self, BufRead, Write};
 
-use biscara_text::{read_bounded_line, strip_position};
+use biscara_text::{Located, read_bounded_line, strip_position};
 
 use serde_json::ser::{CompactFormatter, Formatter};
 
 use crate::{Motion, MotionKind, Plane};
 
-/// An inter-file that cannot be read.
+/// An inter-file that cannot be read, at its line (and column).
+pub type InterFileError = Located<InterFileErrorKind>;
+
+/// What is wrong in an inter-file.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum InterFileError {
+pub enum InterFileErrorKind {
     /// Occurs when the underlying reader fails (including text that is not UTF-8).
-    #[error("{line}: {source}")]
-    Io {
-        /// 1-based line being read.
-        line: usize,
-        /// The I/O error.
-        source: io::Error,
-    },
+    #[error("{0}")]
+    Io(#[source] io::Error),
     /// Occurs when a line is not a motion object: bad JSON, an unknown kind or key, a missing
-    /// field, a wrong type.
-    #[error("{line}:{column}: {message}")]
-    Syntax {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column within the line.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
+    /// field, a wrong type (with the column where the JSON reader stopped).
+    #[error("{0}")]
+    Syntax(String),
     /// Occurs when a motion holds a number that is not finite, a negative dwell or feed, or zero
     /// turns.
-    #[error("{line}: {message}")]
-    Invalid {
-        /// 1-based line.
-        line: usize,
-        /// What is wrong.
-        message: String,
-    },
+    #[error("{0}")]
+    Invalid(String),
 }
 
 /// Writes one motion as one line of JSON.
@@ -230,7 +216,7 @@ impl<R: BufRead> JsonlReader<R> {
             self.line += 1;
             let line = self.line;
             let read = read_bounded_line(&mut self.reader, &mut self.buffer);
-            if !read.map_err(|source| InterFileError::Io { line, source })? {
+            if !read.map_err(|source| Located::at_line(line, InterFileErrorKind::Io(source)))? {
                 return Ok(None);
             }
             if !self.buffer.trim().is_empty() {
@@ -247,11 +233,11 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
         let message = strip_position(&err.to_string());
         match err.column() {
             // Errors found after the whole object was read (a missing or misplaced key).
-            0 => InterFileError::Invalid { line, message },
-            column => InterFileError::Syntax { line, column, message },
+            0 => Located::at_line(line, InterFileErrorKind::Invalid(message)),
+            column => Located::at(line, column, InterFileErrorKind::Syntax(message)),
         }
     })?;
-    let invalid = |message: String| InterFileError::Invalid { line, message };
+    let invalid = |message: String| Located::at_line(line, InterFileErrorKind::Invalid(message));
     let finite = |values: &[f64]| values.iter().all(|value| value.is_finite());
     match motion.kind {
         MotionKind::Rapid { end }

@@ -29,6 +29,6 @@ mod error;
 mod points;
 mod program;
 
-pub use error::PointsError;
+pub use error::{PointsError, PointsErrorKind, WriteClError};
 pub use points::{Point, PointsReader, PointsRecord, PointsStatement};
 pub use program::{ClProgram, JobSettings, PART_NAME, write_cl};

@@ -2,9 +2,9 @@
 
 use std::io::BufRead;
 
-use biscara_text::{LineReader, shorten};
+use biscara_text::{LineReader, Located, shorten};
 
-use crate::error::PointsError;
+use crate::error::{PointsError, PointsErrorKind};
 
 /// A tool pose as written in a points file: millimetres and degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,10 +82,8 @@ impl<R: BufRead> PointsReader<R> {
 
     fn read(&mut self) -> Result<Option<PointsRecord>, PointsError> {
         loop {
-            let Some((line, text)) = self
-                .lines
-                .next_line()
-                .map_err(|(line, err)| PointsError::from_line_error(line, err))?
+            let Some((line, text)) =
+                self.lines.next_line().map_err(|err| err.map(PointsErrorKind::Read))?
             else {
                 return Ok(None);
             };
@@ -94,7 +92,8 @@ impl<R: BufRead> PointsReader<R> {
                 text.split(|ch: char| ch == ',' || ch.is_whitespace()).filter(|w| !w.is_empty());
             let Some(keyword) = words.next() else { continue };
             let values = words;
-            let statement = parse_line(line, keyword, values)?;
+            let statement =
+                parse_line(keyword, values).map_err(|kind| Located::at_line(line, kind))?;
             return Ok(Some(PointsRecord { line, statement }));
         }
     }
@@ -103,10 +102,9 @@ impl<R: BufRead> PointsReader<R> {
 biscara_text::record_reader!(PointsReader, PointsRecord, PointsError, read, done);
 
 fn parse_line<'a>(
-    line: usize,
     keyword: &str,
     values: impl Iterator<Item = &'a str>,
-) -> Result<PointsStatement, PointsError> {
+) -> Result<PointsStatement, PointsErrorKind> {
     let lower = keyword.to_ascii_lowercase();
     let keyword: &'static str = match lower.as_str() {
         "home" => "home",
@@ -115,21 +113,19 @@ fn parse_line<'a>(
         "dwell" => "dwell",
         "pick" => "pick",
         "place" => "place",
-        _ => return Err(PointsError::UnknownKeyword { line, word: shorten(keyword) }),
+        _ => return Err(PointsErrorKind::UnknownKeyword { word: shorten(keyword) }),
     };
-    let values = values.map(|text| number(line, text)).collect::<Result<Vec<f64>, _>>()?;
+    let values = values.map(number).collect::<Result<Vec<f64>, _>>()?;
     let pose = || match values[..] {
         [x, y, z, c] => match [x, y, z, c].into_iter().find(|value| value.abs() > 1e6) {
-            Some(value) => Err(PointsError::OutOfRange {
-                line,
+            Some(value) => Err(PointsErrorKind::OutOfRange {
                 keyword,
                 value,
                 reason: "coordinates must lie within ±1e6 (mm, degrees)",
             }),
             None => Ok(Point { x, y, z, c }),
         },
-        _ => Err(PointsError::WrongCount {
-            line,
+        _ => Err(PointsErrorKind::WrongCount {
             keyword,
             expected: "a pose of 4 values: x y z c (mm, mm, mm, degrees)",
             found: values.len(),
@@ -137,10 +133,10 @@ fn parse_line<'a>(
     };
     let single = |expected: &'static str| match values[..] {
         [value] => Ok(value),
-        _ => Err(PointsError::WrongCount { line, keyword, expected, found: values.len() }),
+        _ => Err(PointsErrorKind::WrongCount { keyword, expected, found: values.len() }),
     };
     let range = |value: f64, ok: bool, reason: &'static str| {
-        if ok { Ok(value) } else { Err(PointsError::OutOfRange { line, keyword, value, reason }) }
+        if ok { Ok(value) } else { Err(PointsErrorKind::OutOfRange { keyword, value, reason }) }
     };
     Ok(match keyword {
         "home" => PointsStatement::Home(pose()?),
@@ -173,13 +169,13 @@ fn parse_line<'a>(
     })
 }
 
-fn number(line: usize, text: &str) -> Result<f64, PointsError> {
+fn number(text: &str) -> Result<f64, PointsErrorKind> {
     let value: f64 =
-        text.parse().map_err(|_| PointsError::NotANumber { line, text: shorten(text) })?;
+        text.parse().map_err(|_| PointsErrorKind::NotANumber { text: shorten(text) })?;
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(PointsError::NotFinite { line, text: shorten(text) })
+        Err(PointsErrorKind::NotFinite { text: shorten(text) })
     }
 }
 

@@ -5,8 +5,9 @@ use std::io::{BufRead, Write};
 
 use biscara_cl::{Feed, FeedUnit, Goto, Statement, Units, write_statement};
 use biscara_kinematics::{Kinematics, Pose};
+use biscara_text::Located;
 
-use crate::error::PointsError;
+use crate::error::{PointsError, PointsErrorKind, WriteClError};
 use crate::points::{Point, PointsReader, PointsStatement};
 
 /// The name `biscara clf` gives the program (its PARTNO).
@@ -117,7 +118,10 @@ impl<'m, R: BufRead> ClProgram<'m, R> {
                 }
                 PointsStatement::Pick(point) => {
                     if let Some((pick_line, _)) = self.pending_pick {
-                        return Err(PointsError::PickAfterPick { line, pick_line });
+                        return Err(Located::at_line(
+                            line,
+                            PointsErrorKind::PickAfterPick { pick_line },
+                        ));
                     }
                     if self.first_pick.is_none() {
                         self.first_pick = Some(line);
@@ -133,7 +137,7 @@ impl<'m, R: BufRead> ClProgram<'m, R> {
                 }
                 PointsStatement::Place(point) => {
                     let Some((_, pick)) = self.pending_pick.take() else {
-                        return Err(PointsError::PlaceBeforePick { line });
+                        return Err(Located::at_line(line, PointsErrorKind::PlaceBeforePick));
                     };
                     self.check(line, "place", point)?;
                     let above = point.raised(self.settings.approach_mm);
@@ -152,10 +156,13 @@ impl<'m, R: BufRead> ClProgram<'m, R> {
         keyword: &'static str,
     ) -> Result<(), PointsError> {
         if let Some(pick_line) = self.first_pick {
-            return Err(PointsError::SettingAfterPick { line, keyword, pick_line });
+            return Err(Located::at_line(
+                line,
+                PointsErrorKind::SettingAfterPick { keyword, pick_line },
+            ));
         }
         if let Some(first_line) = self.seen[index] {
-            return Err(PointsError::Duplicate { line, keyword, first_line });
+            return Err(Located::at_line(line, PointsErrorKind::Duplicate { keyword, first_line }));
         }
         self.seen[index] = Some(line);
         Ok(())
@@ -165,11 +172,11 @@ impl<'m, R: BufRead> ClProgram<'m, R> {
         self.model
             .inverse_checked(&Pose::from_degrees(point.x, point.y, point.z, point.c))
             .map(|_| ())
-            .map_err(|reason| PointsError::Unreachable {
-                line,
-                what,
-                pose: point.to_array(),
-                reason,
+            .map_err(|reason| {
+                Located::at_line(
+                    line,
+                    PointsErrorKind::Unreachable { what, pose: point.to_array(), reason },
+                )
             })
     }
 
@@ -205,10 +212,10 @@ impl<'m, R: BufRead> ClProgram<'m, R> {
     /// The end of the file: the order rules, then the way home.
     fn end(&mut self) -> Result<(), PointsError> {
         if let Some((line, _)) = self.pending_pick {
-            return Err(PointsError::UnpairedPick { line });
+            return Err(Located::at_line(line, PointsErrorKind::UnpairedPick));
         }
         if !self.started {
-            return Err(PointsError::NoPairs { line: self.reader.line().max(1) });
+            return Err(Located::at_line(self.reader.line().max(1), PointsErrorKind::NoPairs));
         }
         self.queue.push_back(Statement::Rapid);
         self.queue.push_back(goto(self.settings.home));
@@ -245,18 +252,18 @@ pub fn write_cl(
     input: impl BufRead,
     model: &Kinematics,
     mut out: impl Write,
-) -> Result<(), PointsError> {
+) -> Result<(), WriteClError> {
     for statement in ClProgram::new(input, model) {
-        write_statement(&mut out, &statement?).map_err(PointsError::Write)?;
+        write_statement(&mut out, &statement?).map_err(WriteClError::Write)?;
     }
-    out.flush().map_err(PointsError::Write)
+    out.flush().map_err(WriteClError::Write)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn cl(points: &str) -> Result<String, PointsError> {
+    fn cl(points: &str) -> Result<String, WriteClError> {
         let mut out = Vec::new();
         write_cl(points.as_bytes(), &Kinematics::default(), &mut out)?;
         Ok(String::from_utf8(out).unwrap())

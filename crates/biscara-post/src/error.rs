@@ -112,7 +112,7 @@ impl PostError {
     /// The 1-based line of the CL file the error is about; `None` for a write error.
     pub fn line(&self) -> Option<usize> {
         match *self {
-            PostError::Cl(ref err) => Some(err.line()),
+            PostError::Cl(ref err) => Some(err.line),
             PostError::Empty { line }
             | PostError::ToolAxis { line, .. }
             | PostError::ArcPlane { line, .. }

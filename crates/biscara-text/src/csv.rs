@@ -2,23 +2,22 @@
 
 use std::io::{self, BufRead};
 
+use crate::Located;
 use crate::lines::read_bounded_line;
 
-/// A CSV of numbers (path or joint CSV) that cannot be read.
+/// A CSV of numbers (path or joint CSV) that cannot be read, at its line (and column).
+pub type CsvError = Located<CsvErrorKind>;
+
+/// What is wrong in a CSV of numbers.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum CsvError {
+pub enum CsvErrorKind {
     /// Occurs when the underlying reader fails (including text that is not UTF-8 and lines over
     /// [`crate::MAX_LINE_BYTES`]).
-    #[error("{line}: {source}")]
-    Io {
-        /// 1-based line being read.
-        line: usize,
-        /// The I/O error.
-        source: io::Error,
-    },
+    #[error("{0}")]
+    Io(#[source] io::Error),
     /// Occurs when the file is empty or its first line is not the header the reader expects.
-    #[error("1:1: expected {expected}, found `{found}`")]
+    #[error("expected {expected}, found `{found}`")]
     Header {
         /// The headers the reader accepts, in words.
         expected: &'static str,
@@ -27,15 +26,8 @@ pub enum CsvError {
     },
     /// Occurs when a row has the wrong number of fields or a field that is not a finite number,
     /// or time does not increase.
-    #[error("{line}:{column}: {message}")]
-    Row {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column where the offending field starts.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
+    #[error("{0}")]
+    Row(String),
 }
 
 /// The most columns a [`NumericCsvReader`] row may have.
@@ -62,7 +54,7 @@ impl<R: BufRead> NumericCsvReader<R> {
         self.line += 1;
         let line = self.line;
         read_bounded_line(&mut self.reader, &mut self.buffer)
-            .map_err(|source| CsvError::Io { line, source })
+            .map_err(|source| Located::at_line(line, CsvErrorKind::Io(source)))
     }
 
     /// The first line without its line break (empty for an empty input), for the caller to
@@ -76,7 +68,8 @@ impl<R: BufRead> NumericCsvReader<R> {
 
     /// The error for a header that is not one of `expected`.
     pub fn header_error(&self, expected: &'static str) -> CsvError {
-        CsvError::Header { expected, found: self.buffer.trim_end().chars().take(80).collect() }
+        let found = self.buffer.trim_end().chars().take(80).collect();
+        Located::at(1, 1, CsvErrorKind::Header { expected, found })
     }
 
     /// The next non-blank row as exactly `columns` (at most [`MAX_CSV_COLUMNS`]) finite numbers,
@@ -95,7 +88,7 @@ impl<R: BufRead> NumericCsvReader<R> {
         }
         let line = self.line;
         let text = self.buffer.trim_end_matches(['\n', '\r']);
-        let error = |column, message| CsvError::Row { line, column, message };
+        let error = |column, message| Located::at(line, column, CsvErrorKind::Row(message));
         let columns = columns.min(MAX_CSV_COLUMNS);
         let mut values = [0.0; MAX_CSV_COLUMNS];
         let mut count = 0;

@@ -6,6 +6,7 @@
 //! - fixed-decimal numbers: [`fixed`] (never a negative zero), [`round_to`] for JSON, and the
 //!   [`RowBuffer`] the CSV writers gather rows in, with its fast formatter;
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;
+//! - the readers' error shape: [`Located`] (line, column, span, and a kind per reader);
 //! - the readers' iterator: [`RecordReader`] (records until the end or the first error);
 //! - message helpers: [`shorten`], [`compact`], [`strip_position`].
 //!
@@ -27,13 +28,13 @@
 mod csv;
 mod fixed;
 mod lines;
+mod located;
 mod message;
 mod records;
 
-pub use csv::{CsvError, MAX_CSV_COLUMNS, NumericCsvReader};
+pub use csv::{CsvError, CsvErrorKind, MAX_CSV_COLUMNS, NumericCsvReader};
 pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, fixed, push_fixed, round_to};
-pub use lines::{
-    LineError, LineReader, MAX_LINE_BYTES, ReadError, read_bounded_line, read_capped_line,
-};
+pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line, read_capped_line};
+pub use located::Located;
 pub use message::{compact, shorten, strip_position};
 pub use records::RecordReader;

@@ -8,6 +8,8 @@
 
 use std::io::{self, BufRead};
 
+use crate::Located;
+
 /// The longest line a reader accepts, in bytes (64 KiB): a longer one is an error, so a binary
 /// file or a runaway line cannot make a reader hold unbounded memory.
 pub const MAX_LINE_BYTES: usize = 64 * 1024;
@@ -16,64 +18,14 @@ pub const MAX_LINE_BYTES: usize = 64 * 1024;
 #[derive(Debug, thiserror::Error)]
 pub enum LineError {
     /// Occurs when reading fails.
-    #[error("cannot read: {0}")]
-    Io(io::Error),
+    #[error("cannot read the file: {0}")]
+    Io(#[source] io::Error),
     /// Occurs when the line is not valid UTF-8 or holds NUL bytes.
     #[error("not a text file (invalid UTF-8 or NUL bytes)")]
     NotText,
     /// Occurs when the line is longer than [`MAX_LINE_BYTES`].
     #[error("the line is longer than {MAX_LINE_BYTES} bytes")]
     TooLong,
-}
-
-/// Why a line-based file could not be read, with the 1-based line: the reader errors the CL and
-/// points readers share (written once, so that their messages stay the same). The message
-/// starts with `LINE: `, so that a caller only prefixes the file name.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ReadError {
-    /// Occurs when the file cannot be read.
-    #[error("{line}: cannot read the {format} file: {source}")]
-    Io {
-        /// The line being read.
-        line: usize,
-        /// What the file is, for the message: `CL`, `points`.
-        format: &'static str,
-        /// The underlying error.
-        source: io::Error,
-    },
-    /// Occurs when a line is not UTF-8 text (or holds NUL bytes): a binary file.
-    #[error("{line}: not a text file (invalid UTF-8 or NUL bytes)")]
-    NotText {
-        /// The line.
-        line: usize,
-    },
-    /// Occurs when a line (or what a format joins into one) is longer than [`MAX_LINE_BYTES`].
-    #[error("{line}: the line is longer than {MAX_LINE_BYTES} bytes")]
-    LineTooLong {
-        /// The line.
-        line: usize,
-    },
-}
-
-impl ReadError {
-    /// The error of [`LineReader::next_line`] on `line` of a `format` file (`CL`, `points`).
-    pub fn new(format: &'static str, line: usize, error: LineError) -> ReadError {
-        match error {
-            LineError::Io(source) => ReadError::Io { line, format, source },
-            LineError::NotText => ReadError::NotText { line },
-            LineError::TooLong => ReadError::LineTooLong { line },
-        }
-    }
-
-    /// The 1-based line the error is about.
-    pub fn line(&self) -> usize {
-        match *self {
-            ReadError::Io { line, .. }
-            | ReadError::NotText { line }
-            | ReadError::LineTooLong { line } => line,
-        }
-    }
 }
 
 /// Reads lines from `R`, numbering them from 1; `\r\n` and `\n` both end a line, and a leading
@@ -100,7 +52,7 @@ impl<R: BufRead> LineReader<R> {
     /// The next line without its line ending, with its 1-based number; `Ok(None)` at the end.
     ///
     /// An error carries the number of the line it occurred on.
-    pub fn next_line(&mut self) -> Result<Option<(usize, &str)>, (usize, LineError)> {
+    pub fn next_line(&mut self) -> Result<Option<(usize, &str)>, Located<LineError>> {
         if self.done {
             return Ok(None);
         }
@@ -112,19 +64,19 @@ impl<R: BufRead> LineReader<R> {
             }
             Err(err) => {
                 self.done = true;
-                return Err((self.line + 1, LineError::Io(err)));
+                return Err(Located::at_line(self.line + 1, LineError::Io(err)));
             }
         };
         self.line += 1;
         if too_long {
             self.done = true;
-            return Err((self.line, LineError::TooLong));
+            return Err(Located::at_line(self.line, LineError::TooLong));
         }
         let mut text = match std::str::from_utf8(&self.buffer) {
             Ok(text) => text,
             Err(_) => {
                 self.done = true;
-                return Err((self.line, LineError::NotText));
+                return Err(Located::at_line(self.line, LineError::NotText));
             }
         };
         if self.line == 1 {
@@ -132,7 +84,7 @@ impl<R: BufRead> LineReader<R> {
         }
         if text.contains('\0') {
             self.done = true;
-            return Err((self.line, LineError::NotText));
+            return Err(Located::at_line(self.line, LineError::NotText));
         }
         Ok(Some((self.line, text)))
     }
@@ -236,8 +188,8 @@ mod tests {
             match reader.next_line() {
                 Ok(Some((line, text))) => out.push(Ok((line, text.to_owned()))),
                 Ok(None) => break,
-                Err((line, _)) => {
-                    out.push(Err(line));
+                Err(err) => {
+                    out.push(Err(err.line));
                     break;
                 }
             }
@@ -246,14 +198,14 @@ mod tests {
     }
 
     #[test]
-    fn read_errors_name_their_line_and_the_format() {
-        let io = ReadError::new("CL", 3, LineError::Io(io::Error::other("disk gone")));
-        assert_eq!(io.to_string(), "3: cannot read the CL file: disk gone");
-        let binary = ReadError::new("points", 2, LineError::NotText);
+    fn read_errors_name_their_line() {
+        let io = Located::at_line(3, LineError::Io(io::Error::other("disk gone")));
+        assert_eq!(io.to_string(), "3: cannot read the file: disk gone");
+        assert_eq!(std::error::Error::source(&io).unwrap().to_string(), "disk gone");
+        let binary = Located::at_line(2, LineError::NotText);
         assert_eq!(binary.to_string(), "2: not a text file (invalid UTF-8 or NUL bytes)");
-        let long = ReadError::new("points", 7, LineError::TooLong);
+        let long = Located::at_line(7, LineError::TooLong);
         assert_eq!(long.to_string(), "7: the line is longer than 65536 bytes");
-        assert_eq!([io.line(), binary.line(), long.line()], [3, 2, 7]);
     }
 
     #[test]
