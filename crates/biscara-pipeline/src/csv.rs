@@ -1,5 +1,5 @@
-//! The pipeline's two CSV outputs written whole: the path CSV of `interpolate` (SPEC §6) and
-//! the joint CSV of `joints` (SPEC §7), with the tool's column after `--events` (SPEC §1.6).
+//! The pipeline's two CSV outputs written whole: the path CSV of `interpolate` and the joint CSV
+//! of `joints`, with the tool's column after `--events` (docs/motion.md).
 //! The commands and the benchmarks write them through here, so that what is measured is what
 //! runs.
 

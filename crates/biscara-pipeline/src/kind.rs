@@ -5,9 +5,9 @@
 pub enum ProgramKind {
     /// RS274/NGC G-code.
     Gcode,
-    /// An inter-file (JSON Lines of motions, SPEC §5).
+    /// An inter-file (JSON Lines of motions, docs/motion.md).
     Jsonl,
-    /// A path CSV of Cartesian samples (SPEC §6).
+    /// A path CSV of Cartesian samples (docs/motion.md).
     Path,
 }
 

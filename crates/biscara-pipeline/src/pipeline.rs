@@ -21,7 +21,7 @@ use crate::motions::{MotionReader, NoteSink, Reading, Told, read_motions};
 use crate::tool::{Recorder, SharedTool, ToolJointSamples, ToolSamples, Track};
 use crate::{Note, PipelineError, ProgramKind, ProgramSource, place};
 
-/// How a program is placed and sampled in time (SPEC §6, §4.2).
+/// How a program is placed and sampled in time (docs/motion.md, docs/gcode.md).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SamplingConfig {
     /// Time step, s (> 0).
@@ -35,9 +35,9 @@ pub struct SamplingConfig {
     pub origin: Option<Position>,
     /// Centre the program's XY extent in the workspace rectangle (`--fit`).
     pub fit: bool,
-    /// Whose G-code a G-code program is (SPEC §4.3); `Auto` decides from the program.
+    /// Whose G-code a G-code program is (docs/gcode.md); `Auto` decides from the program.
     pub dialect: Dialect,
-    /// The tool the robot carries (`--tool`, SPEC §1.6); `None`: the robot file's `tool.kind`,
+    /// The tool the robot carries (`--tool`, docs/motion.md); `None`: the robot file's `tool.kind`,
     /// else inferred from the program (with a [`Note::Tool`]), else the gripper.
     pub tool: Option<Tool>,
     /// Folders where file subroutines (`o<name> call` → `name.ngc`) are looked for after the
@@ -45,7 +45,7 @@ pub struct SamplingConfig {
     pub subroutine_path: Vec<PathBuf>,
     /// The corner tolerance of a G-code program that never says G61 or G64 (`--blend`, mm):
     /// `None` (the default) runs it with an exact stop at every corner, `Some(p)` as if it began
-    /// with `G64 P{p}` (SPEC §6).
+    /// with `G64 P{p}` (docs/motion.md).
     pub blend: Option<f64>,
     /// LinuxCNC's tool table for G-code programs (`--tool-table`); `None`: every tool has zero
     /// length and diameter.
@@ -170,7 +170,7 @@ impl<'m> Pipeline<'m> {
     }
 
     /// The program's Cartesian samples ([`Pipeline::samples`]) with the tool's state at each
-    /// (`--events`, SPEC §1.6, §6): a wrapper over the motions records the tool's events as the
+    /// (`--events`, docs/motion.md): a wrapper over the motions records the tool's events as the
     /// interpolator reads them, and one over the samples gives each its state. Streaming. A path
     /// CSV has no tool events: its samples carry the gripper column it has.
     pub fn tool_samples(
@@ -244,7 +244,7 @@ impl<'m> Pipeline<'m> {
     }
 
     /// The program's joint samples ([`Pipeline::joints`]) with the tool's state at each
-    /// (`joints --events`, SPEC §1.6, §7): the states of [`Pipeline::tool_samples`] carried to
+    /// (`joints --events`, docs/motion.md): the states of [`Pipeline::tool_samples`] carried to
     /// the joint samples solved from them. Streaming.
     pub fn tool_joints(
         &self,

@@ -1,5 +1,5 @@
 //! Where a program runs: its G54 origin and, with `--fit`, the offset that centres it in the
-//! workspace rectangle (SPEC §4.2, §8.2).
+//! workspace rectangle (docs/gcode.md, docs/virtual-robot.md).
 
 use biscara_kinematics::RobotModel;
 use biscara_motion::Position;

@@ -1,4 +1,4 @@
-//! What the tool does at every sample (SPEC §1.6, §6 `--events`): a wrapper over the sample
+//! What the tool does at every sample (docs/motion.md `--events`): a wrapper over the sample
 //! stream that follows the tool's events as the interpolator reads the motions, streaming.
 
 use std::cell::{Cell, RefCell};
@@ -58,8 +58,8 @@ impl ToolState {
     }
 
     /// How strongly `tool` works at this sample, 0 … 1 (a laser's power over `max_power`, 1 for
-    /// the other tools); `None` while it does not work (SPEC §1.6): a laser off, an extruder not
-    /// feeding, a pen up, a spindle off or on a rapid, a gripper always.
+    /// the other tools); `None` while it does not work (docs/motion.md): a laser off, an extruder
+    /// not feeding, a pen up, a spindle off or on a rapid, a gripper always.
     pub fn strength(&self, tool: Tool, max_power: f64) -> Option<f64> {
         match tool {
             Tool::Laser if self.laser_power > 0.0 => Some(self.laser_power / max_power),
@@ -70,7 +70,7 @@ impl ToolState {
         }
     }
 
-    /// What only `tool` can get wrong at this sample (SPEC §1.6), for `check`: a laser burning
+    /// What only `tool` can get wrong at this sample (docs/motion.md), for `check`: a laser burning
     /// during a rapid move, as the subject, the detail and how much (the power). (An extruder
     /// cannot feed during one: E words are Marlin's, whose G0 is a G1.)
     pub fn problem(&self, tool: Tool) -> Option<(&'static str, String, f64)> {
