@@ -53,6 +53,12 @@ mod polar;
 /// Probing, G38.2–G38.5.
 mod probe;
 /// A program's Python: LinuxCNC's Python plug-ins (`[PYTHON]`), `;py,` lines, `(py,…)`.
+#[cfg(feature = "python")]
+mod python;
+/// A build without the Python plug-ins (the cargo feature `python` off): a program's Python is
+/// refused.
+#[cfg(not(feature = "python"))]
+#[path = "interpreter/no_python.rs"]
 mod python;
 /// G10 L2 R: coordinate systems rotated about Z.
 mod rotation;
@@ -203,6 +209,7 @@ pub struct Interpreter<R> {
     /// The Fanuc dialect's control flow (GOTO, WHILE … DO, M97).
     fanuc: fanuc::Fanuc,
     /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
+    #[cfg_attr(not(feature = "python"), allow(dead_code))]
     python: Option<Box<python::Python>>,
 }
 
@@ -469,11 +476,7 @@ impl<R: BufRead> Interpreter<R> {
             zeroed_at_start: [false; 4],
             control: Box::new(control::Control::new(config.ini.as_deref(), config.max_idle_jumps)),
             fanuc: fanuc::Fanuc::default(),
-            python: config
-                .ini
-                .as_deref()
-                .and_then(crate::python_plugin::PluginSetup::from_ini)
-                .map(|setup| Box::new(python::Python::new(setup))),
+            python: config.ini.as_deref().and_then(python::Python::from_ini).map(Box::new),
         }
         .with_line_limit()
     }
@@ -625,7 +628,7 @@ impl<R: BufRead> Interpreter<R> {
             {
                 // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
                 let code = self.lines.line[4..].to_vec();
-                self.python_comment(python::PythonComment::Run, &code)
+                self.python_comment(comments::PythonComment::Run, &code)
                     .map_err(|fault| self.error(fault))?;
                 if !self.queue.is_empty() {
                     return Ok(());

@@ -41,7 +41,14 @@
 //!   with an INI file whose `[PYTHON]` section loads LinuxCNC's Python plug-ins
 //!   ([`Config::ini`]), in a `python3` child process with stand-ins for LinuxCNC's `interpreter`
 //!   and `emccanon` modules (a subset: parameters, a few attributes, straight moves and dwells);
-//!   without one it is refused (the standalone `rs274` runs `;py,` lines always).
+//!   without one it is refused (the standalone `rs274` runs `;py,` lines always). The plug-ins
+//!   are the cargo feature `python`, on by default.
+//!
+//! It opens no file and starts no process: the files a program names (file subroutines, user
+//! M-code programs, a tool table, an INI file) and `python3` are reached through an
+//! [`Environment`] the caller gives ([`Interpreter::with_environment`]; the command line's is
+//! `biscara_files::FileSystem`, tests give [`InMemory`] files). Without one there are none
+//! ([`NoEnvironment`]).
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
@@ -86,12 +93,14 @@
 
 mod degrees;
 mod dialect;
+mod environment;
 mod error;
 mod ini_file;
 mod interpreter;
 mod lexer;
 mod params;
 mod parser;
+#[cfg(feature = "python")]
 mod python_plugin;
 mod tool;
 mod tool_table;
@@ -99,6 +108,7 @@ mod tool_table;
 pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
 };
+pub use environment::{Environment, InMemory, NoEnvironment, PythonProcess};
 pub use error::{GcodeError, Location};
 pub use ini_file::{IniFile, IniFileError};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};

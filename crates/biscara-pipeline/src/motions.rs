@@ -133,10 +133,12 @@ pub(crate) fn read_motions(
                 Some(input) => input,
                 None => Box::new(Forward(source.open().map_err(io_error)?)),
             };
-            let interpreter = interpret_seekable(input, &config).with_subroutines(
-                source.path().map(Path::to_path_buf),
-                reading.subroutine_path.to_vec(),
-            );
+            let interpreter = interpret_seekable(input, &config)
+                .with_subroutines(
+                    source.path().map(Path::to_path_buf),
+                    reading.subroutine_path.to_vec(),
+                )
+                .with_environment(source.environment());
             Ok(Box::new(GcodeMotions {
                 interpreter,
                 file,

@@ -14,7 +14,7 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         if let Some((_, text, close)) = self.last_comment()
-            && let Some((action, code)) = python::PythonComment::of(&self.lines.line[text..close])
+            && let Some((action, code)) = PythonComment::of(&self.lines.line[text..close])
         {
             let code = code.to_vec();
             self.python_comment(action, &code)?;
@@ -103,5 +103,34 @@ impl<R: BufRead> Interpreter<R> {
         }
         let (first, last) = (open, close + 1);
         Err(Fault::invalid(first, last, message))
+    }
+}
+
+/// What a comment asks of Python (LinuxCNC's `convert_comment`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum PythonComment {
+    /// `py,CODE` (and a `;py,CODE` line).
+    Run,
+    /// `pyrun,FILE`: the file's code.
+    RunFile,
+    /// `pyreload`: `TOPLEVEL` again.
+    Reload,
+}
+
+impl PythonComment {
+    /// The action a comment's text (blanks before it skipped) asks for, and the text it acts on.
+    pub(super) fn of(text: &[u8]) -> Option<(PythonComment, &[u8])> {
+        let starts = |prefix: &[u8]| {
+            text.get(..prefix.len()).is_some_and(|head| head.eq_ignore_ascii_case(prefix))
+        };
+        if starts(b"py,") {
+            Some((PythonComment::Run, &text[3..]))
+        } else if starts(b"pyrun,") {
+            Some((PythonComment::RunFile, &text[6..]))
+        } else if starts(b"pyreload") {
+            Some((PythonComment::Reload, &[]))
+        } else {
+            None
+        }
     }
 }

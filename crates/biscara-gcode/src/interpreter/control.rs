@@ -15,12 +15,14 @@ use std::collections::HashMap;
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 
 use super::{Interpreter, round_to_int};
 
 /// Reading O-word lines, M98/M99 and G65 (`read_o`).
 mod read;
 use crate::dialect::Dialect;
+use crate::environment::{Environment, NoEnvironment};
 use crate::error::GcodeError;
 use crate::lexer::Fault;
 use crate::parser::Reader;
@@ -197,6 +199,8 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// Where files are found and opened, and Python started.
+    pub(super) environment: Arc<dyn Environment>,
     /// The INI file's `[RS274NGC] SUBROUTINE_PATH` folders, after `dirs`.
     ini_dirs: Vec<PathBuf>,
     /// Where the user M-codes' programs are (`USER_M_PATH`, `PROGRAM_PREFIX`), when the INI
@@ -234,6 +238,7 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            environment: Arc::new(NoEnvironment),
             ini_dirs: Vec::new(),
             user_m_dirs: None,
             open_loops: Vec::new(),
@@ -356,6 +361,14 @@ impl<R: BufRead> Interpreter<R> {
     pub fn with_subroutines(mut self, program: Option<PathBuf>, dirs: Vec<PathBuf>) -> Self {
         self.control.program = program;
         self.control.dirs = dirs;
+        self
+    }
+
+    /// Sets where the files the program names (file subroutines, user M-code programs) are
+    /// found and opened, and how Python is started: [`NoEnvironment`](crate::NoEnvironment)
+    /// by default, which has neither files nor Python.
+    pub fn with_environment(mut self, environment: Arc<dyn Environment>) -> Self {
+        self.control.environment = environment;
         self
     }
 
@@ -533,9 +546,10 @@ impl<R: BufRead> Interpreter<R> {
         }
         match &file {
             None => self.lines.close_file(),
-            Some(path) => self.lines.open_file(path).map_err(|err| {
-                self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
-            })?,
+            Some(path) => {
+                let file = self.open_subroutine(path)?;
+                self.lines.open_file(file);
+            }
         }
         self.control.file = file;
         Ok(())
@@ -601,9 +615,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(path) = self.find_file(name)? {
             let path: Rc<Path> = Rc::from(path);
-            self.lines.open_file(&path).map_err(|err| {
-                self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
-            })?;
+            let file = self.open_subroutine(&path)?;
+            self.lines.open_file(file);
             self.control.file = Some(path);
             self.lines.number = 0;
         } else if self.control.file.is_none() {
@@ -613,6 +626,13 @@ impl<R: BufRead> Interpreter<R> {
         self.control.skipping_to_sub = Some(name.clone());
         self.control.skipping_start = self.lines.number;
         Ok(())
+    }
+
+    /// The file subroutine `path`, opened from its start.
+    fn open_subroutine(&self, path: &Path) -> Result<Box<dyn crate::Seekable>, Fault> {
+        self.control.environment.open(path).map_err(|err| {
+            self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
+        })
     }
 
     /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder, else in one the INI
@@ -636,7 +656,7 @@ impl<R: BufRead> Interpreter<R> {
             .chain(self.control.dirs.iter().map(PathBuf::as_path))
             .chain(self.control.ini_dirs.iter().map(PathBuf::as_path))
             .map(|dir| dir.join(&file))
-            .find(|path| path.is_file()))
+            .find(|path| self.control.environment.is_file(path)))
     }
 
     /// A new call level (`enter_context`).

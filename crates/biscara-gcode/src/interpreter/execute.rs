@@ -186,7 +186,7 @@ impl<R: BufRead> Interpreter<R> {
             let name = format!("M{}", code.code);
             if let Some(dirs) = self.control.user_m_dirs()
                 && (100..200).contains(&code.code)
-                && !dirs.iter().any(|dir| dir.join(&name).is_file())
+                && !dirs.iter().any(|dir| self.control.environment.is_file(&dir.join(&name)))
             {
                 return Err(self.code_fault(
                     code,

@@ -12,7 +12,9 @@ use std::rc::Rc;
 
 use biscara_motion::{Feed, MotionKind};
 
+use super::comments::PythonComment;
 use super::{Interpreter, MAX_COORDINATE};
+use crate::IniFile;
 use crate::lexer::{Fault, FaultKind};
 use crate::params::MAX_PARAMETERS;
 use crate::parser::Predefined;
@@ -33,9 +35,11 @@ pub(super) struct Python {
 }
 
 impl Python {
-    /// The plug-ins `setup` names, not started yet.
-    pub(super) fn new(setup: PluginSetup) -> Python {
-        Python { setup, plugin: None, running: None, foreign_axis: None }
+    /// The plug-ins the INI file's `[PYTHON]` section names, not started yet; `None` when it
+    /// has no such section.
+    pub(super) fn from_ini(ini: &IniFile) -> Option<Python> {
+        let setup = PluginSetup::from_ini(ini)?;
+        Some(Python { setup, plugin: None, running: None, foreign_axis: None })
     }
 }
 
@@ -58,35 +62,6 @@ enum Progress {
     Paused,
     Done(Outcome),
     Raised(String),
-}
-
-/// What a comment asks of Python (LinuxCNC's `convert_comment`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum PythonComment {
-    /// `py,CODE` (and a `;py,CODE` line).
-    Run,
-    /// `pyrun,FILE`: the file's code.
-    RunFile,
-    /// `pyreload`: `TOPLEVEL` again.
-    Reload,
-}
-
-impl PythonComment {
-    /// The action a comment's text (blanks before it skipped) asks for, and the text it acts on.
-    pub(super) fn of(text: &[u8]) -> Option<(PythonComment, &[u8])> {
-        let starts = |prefix: &[u8]| {
-            text.get(..prefix.len()).is_some_and(|head| head.eq_ignore_ascii_case(prefix))
-        };
-        if starts(b"py,") {
-            Some((PythonComment::Run, &text[3..]))
-        } else if starts(b"pyrun,") {
-            Some((PythonComment::RunFile, &text[6..]))
-        } else if starts(b"pyreload") {
-            Some((PythonComment::Reload, &[]))
-        } else {
-            None
-        }
-    }
 }
 
 impl<R: BufRead> Interpreter<R> {
@@ -163,7 +138,7 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.line_fault("no Python plug-ins"));
         };
         if python.plugin.is_none() {
-            let started = PythonPlugin::start(&python.setup);
+            let started = PythonPlugin::start(&python.setup, &*self.control.environment);
             let cannot = |message: String| {
                 format!("the INI file's Python plug-ins ([PYTHON]) cannot be loaded: {message}")
             };
