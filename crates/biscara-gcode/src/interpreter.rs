@@ -500,6 +500,9 @@ impl<R: BufRead> Interpreter<R> {
             FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
             FaultKind::Cannot { code, reason } => GcodeError::CannotRun { at, code, reason },
             FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
+            FaultKind::Needs(setting) => {
+                GcodeError::NeedsSetting { at, message: fault.message, setting }
+            }
         }
     }
 

@@ -34,6 +34,7 @@ pub(crate) enum FaultKind {
     NotSupported { code: String, note: &'static str },
     Cannot { code: String, reason: &'static str },
     ForeignAxis(char),
+    Needs(crate::error::Setting),
 }
 
 impl Fault {

@@ -109,7 +109,7 @@ pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
 };
 pub use environment::{Environment, InMemory, NoEnvironment, PythonProcess};
-pub use error::{GcodeError, Location};
+pub use error::{GcodeError, Location, Setting};
 pub use ini_file::{IniFile, IniFileError};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
 pub use lexer::{Forward, Seekable};

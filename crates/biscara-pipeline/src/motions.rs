@@ -9,8 +9,8 @@ use std::sync::Arc;
 use std::path::{Path, PathBuf};
 
 use biscara_gcode::{
-    Config as GcodeConfig, Dialect, Forward, GcodeError, IniFile, Interpreter, Seekable, Tool,
-    ToolTable, interpret_seekable,
+    Config as GcodeConfig, Dialect, Forward, GcodeError, IniFile, Interpreter, Seekable, Setting,
+    Tool, ToolTable, interpret_seekable,
 };
 use biscara_kinematics::RobotModel;
 use biscara_motion::{Motion, MotionKind, Position, read_jsonl};
@@ -174,12 +174,19 @@ impl<R: BufRead> GcodeMotions<R> {
     /// error may be the dialect's, not the program's).
     fn located(&self, err: GcodeError) -> PipelineError {
         let mut snippet = err.location().map(|location| location.snippet());
-        if err.to_string().contains("jumps back without a motion are allowed") {
-            snippet = snippet.map(|snippet| {
-                format!(
-                    "{snippet}\n(--max-idle-jumps N allows more, for a loop that computes long)"
-                )
-            });
+        // The library says what is wrong; the command line's flag that helps is added here.
+        let hint = match err.setting() {
+            Some(Setting::MaxIdleJumps) => {
+                Some("(--max-idle-jumps N allows more, for a loop that computes long)")
+            }
+            Some(Setting::Ini) => Some("(--ini FILE gives the INI file)"),
+            Some(Setting::SubroutinePath) => {
+                Some("(--subroutine-path DIR adds a folder file subroutines are found in)")
+            }
+            _ => None,
+        };
+        if let Some(hint) = hint {
+            snippet = snippet.map(|snippet| format!("{snippet}\n{hint}"));
         }
         if let Some(detection) =
             self.interpreter.detection().filter(|d| d.dialect != Dialect::Linuxcnc)

@@ -24,7 +24,8 @@ mod read;
 use crate::dialect::Dialect;
 use crate::environment::{Environment, NoEnvironment};
 use crate::error::GcodeError;
-use crate::lexer::Fault;
+use crate::error::Setting;
+use crate::lexer::{Fault, FaultKind};
 use crate::parser::Reader;
 
 /// LinuxCNC's `INTERP_SUB_PARAMS`: a call's arguments are #1 … #30.
@@ -478,6 +479,11 @@ impl<R: BufRead> Interpreter<R> {
         Fault::invalid(0, self.lines.line.len().max(1), message)
     }
 
+    /// The line refused until the caller gives `setting`.
+    pub(super) fn setting_fault(&self, message: impl Into<String>, setting: Setting) -> Fault {
+        Fault { kind: FaultKind::Needs(setting), ..self.line_fault(message) }
+    }
+
     /// The label of a `repeat` or `while` on `line`: remembered where it is first met; met again
     /// elsewhere, rs274's "duplicate O-word label" (unless it was defined by `shared_with`, as a
     /// `do` shares its label with the `while` that closes it).
@@ -561,11 +567,12 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn count_jump(&mut self, loop_line: usize) -> Result<(), Fault> {
         self.control.idle_jumps += 1;
         if self.control.idle_jumps > self.control.max_idle_jumps {
-            return Err(self.line_fault(format!(
+            let message = format!(
                 "the loop at line {loop_line} has jumped back {} times without a motion: an \
                  endless loop? (that many jumps back without a motion are allowed)",
                 self.control.max_idle_jumps
-            )));
+            );
+            return Err(self.setting_fault(message, Setting::MaxIdleJumps));
         }
         Ok(())
     }
@@ -639,10 +646,11 @@ impl<R: BufRead> Interpreter<R> {
     /// file names.
     fn find_file(&self, name: &str) -> Result<Option<PathBuf>, Fault> {
         if name.contains('/') || name.contains("..") || name.contains('\\') {
-            return Err(self.line_fault(format!(
+            let message = format!(
                 "o<{name}>: a subroutine name with '/' or '..' is refused (file subroutines \
-                 are found by name alone, beside the program or on --subroutine-path)"
-            )));
+                 are found by name alone, beside the program or in the subroutine folders)"
+            );
+            return Err(self.setting_fault(message, Setting::SubroutinePath));
         }
         if name.is_empty() || name.contains('#') {
             return Ok(None);

@@ -94,9 +94,10 @@ impl<R: BufRead> Interpreter<R> {
         code: &[u8],
     ) -> Result<(), Fault> {
         if self.python.is_none() {
-            return Err(self.line_fault(
+            return Err(self.setting_fault(
                 "this line's Python runs only with LinuxCNC's Python plug-ins: give an INI file \
-                 with a [PYTHON] section (--ini); a program alone never runs code",
+                 with a [PYTHON] section; a program alone never runs code",
+                crate::error::Setting::Ini,
             ));
         }
         let code = String::from_utf8_lossy(code).into_owned();

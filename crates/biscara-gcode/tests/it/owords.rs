@@ -9,7 +9,9 @@ use std::io::{BufReader, Cursor, Write};
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use biscara_gcode::{Config, Dialect, GcodeError, InMemory, interpret, interpret_seekable};
+use biscara_gcode::{
+    Config, Dialect, GcodeError, InMemory, Setting, interpret, interpret_seekable,
+};
 use biscara_motion::{Motion, MotionKind};
 
 use crate::memory::{in_a_process_of_its_own, resident_kib};
@@ -146,6 +148,8 @@ fn file_subroutines_are_found_beside_the_program_then_on_the_path() {
     // A name with a path in it is refused, not looked up.
     let err = run("o<../main> call\nM2\n", vec![library.clone()]).expect_err("a name with ..");
     assert!(err.to_string().contains("a subroutine name with '/' or '..' is refused"), "{err}");
+    assert!(!err.to_string().contains("--"), "no command-line flag in the library: {err}");
+    assert_eq!(err.setting(), Some(Setting::SubroutinePath));
     // Without an environment there are no files: the subroutine is looked for in the program.
     let alone = interpret_seekable(Cursor::new(main.to_owned()), &Config::default())
         .with_subroutines(Some(program.clone()), vec![library])

@@ -11,7 +11,7 @@ use std::process::Command;
 use std::sync::Arc;
 
 use biscara_files::FileSystem;
-use biscara_gcode::{Config, GcodeError, InMemory, IniFile, Interpreter, interpret};
+use biscara_gcode::{Config, GcodeError, InMemory, IniFile, Interpreter, Setting, interpret};
 use biscara_motion::{Motion, MotionKind};
 
 use crate::memory::in_a_process_of_its_own;
@@ -144,8 +144,11 @@ fn a_programs_python_is_refused_without_a_python_section() {
     for program in [";py,print('hello')\nM2\n", "G0 X1 (py,x = 1)\nM2\n", "(pyreload)\nM2\n"] {
         let result: Result<Vec<Motion>, GcodeError> =
             interpret(program.as_bytes(), &Config::default()).collect();
-        let message = result.expect_err("refused").to_string();
+        let err = result.expect_err("refused");
+        assert_eq!(err.setting(), Some(Setting::Ini));
+        let message = err.to_string();
         assert!(message.contains("runs only with LinuxCNC's Python plug-ins"), "{message}");
+        assert!(!message.contains("--"), "no command-line flag in the library: {message}");
     }
     // Not Python: `;PY,` (LinuxCNC's check is case-sensitive), `; py,` and `(pyx)`.
     let program = ";PY,print('hello')\n; py,x\nG0 X1 (pyx)\nM2\n";
