@@ -9,7 +9,7 @@ use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use crate::dialect::{Detection, Dialect, Summary};
+use crate::dialect::Dialect;
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
 use crate::lexer::{
@@ -21,7 +21,7 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
-use crate::tool::{Tool, ToolInference};
+use crate::tool::Tool;
 use crate::tool_table::{ToolEntry, ToolTable};
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
@@ -163,54 +163,45 @@ pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interprete
     interpreter
 }
 
-/// The iterator returned by [`interpret`].
+/// The iterator returned by [`interpret`]: the line reader, generic over the input, and the
+/// machine's parts, each owning its state.
 #[derive(Debug)]
 pub struct Interpreter<R> {
+    /// The program's lines (and the file subroutines').
     lines: LineReader<R>,
-    compact: Compact,
-    block: Block,
+    /// The line being read, as a block.
+    syntax: Syntax,
+    /// LinuxCNC's modal state and position.
     state: State,
-    queue: VecDeque<Motion>,
-    block_delete: bool,
-    percent: Percent,
-    finished: bool,
-    /// The dialect being read ([`Dialect::Linuxcnc`] while `auto` has not decided).
-    dialect: Dialect,
-    /// Whether `auto` still has to read ahead (before the first line).
-    undecided: bool,
-    /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
-    provisional: bool,
-    detection: Option<Detection>,
-    summary: Summary,
-    tool: Tool,
-    /// Whether the tool is still to be inferred from the look-ahead.
-    infer_tool: bool,
-    /// What the inference found.
-    tool_inference: Option<ToolInference>,
-    /// Whether the tool is on (M3/M4 until M5 or M6).
-    tool_on: bool,
-    /// Grbl's laser mode: the laser, on, is off during the rapids since the last feed move
-    /// (a `laser_off` was emitted before the first of them; the next feed move turns it on).
-    laser_rapid_off: bool,
-    /// MakerBot's flavour: the A word is the extruder.
-    makerbot: bool,
-    /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
-    e_position: f64,
-    e_relative: bool,
-    /// The extrusion of the block being executed, for its first move.
-    pending_extrude: Option<f64>,
-    /// Whether any motion was emitted (an empty program is not a program).
-    moved: bool,
-    /// The axes (x y z c) a G92 named before the first motion: the program made its start
-    /// point its zero there.
-    zeroed_at_start: [bool; 4],
+    /// The motions made and not yet taken, and whether the program has ended.
+    output: Output,
+    /// The dialect's and the tool's hooks.
+    hooks: hooks::Hooks,
     /// O-word control flow.
     control: Box<control::Control>,
-    /// The Fanuc dialect's control flow (GOTO, WHILE … DO, M97).
-    fanuc: fanuc::Fanuc,
     /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
     #[cfg_attr(not(feature = "python"), allow(dead_code))]
     python: Option<Box<python::Python>>,
+}
+
+/// The line being read: its significant characters, the block read from them, and how lines
+/// are framed (block delete, `%`).
+#[derive(Debug)]
+struct Syntax {
+    compact: Compact,
+    block: Block,
+    block_delete: bool,
+    percent: Percent,
+}
+
+/// What the interpreter has made and not yet given.
+#[derive(Debug)]
+struct Output {
+    queue: VecDeque<Motion>,
+    /// Whether the program has ended (or failed): nothing more is read.
+    finished: bool,
+    /// Whether any motion was emitted (an empty program is not a program).
+    moved: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -278,6 +269,9 @@ struct State {
     comp: cutter_comp::CutterComp,
     /// The INI file whose variables `#<_ini[…]…>` names read, when it allows it.
     ini: Option<std::sync::Arc<IniFile>>,
+    /// The axes (x y z c) a G92 named before the first motion: the program made its start
+    /// point its zero there.
+    zeroed_at_start: [bool; 4],
 }
 
 impl State {
@@ -323,6 +317,7 @@ impl State {
             naive_cam: None,
             comp: cutter_comp::CutterComp::new(),
             ini: config.ini.clone().filter(|ini| ini.variables_enabled()),
+            zeroed_at_start: [false; 4],
         };
         state.publish_position();
         state
@@ -447,35 +442,16 @@ impl<R: BufRead> Interpreter<R> {
     fn new(reader: R, config: &Config) -> Interpreter<R> {
         Interpreter {
             lines: LineReader::new(reader),
-            compact: Compact::default(),
-            block: Block::default(),
-            state: State::new(config),
-            queue: VecDeque::with_capacity(8),
-            block_delete: config.block_delete,
-            percent: Percent::Unknown,
-            finished: false,
-            dialect: if config.dialect == Dialect::Auto {
-                Dialect::Linuxcnc
-            } else {
-                config.dialect
+            syntax: Syntax {
+                compact: Compact::default(),
+                block: Block::default(),
+                block_delete: config.block_delete,
+                percent: Percent::Unknown,
             },
-            undecided: config.dialect == Dialect::Auto,
-            provisional: false,
-            detection: None,
-            summary: Summary::default(),
-            tool: config.tool,
-            infer_tool: config.infer_tool,
-            tool_inference: None,
-            tool_on: false,
-            laser_rapid_off: false,
-            makerbot: false,
-            e_position: 0.0,
-            e_relative: false,
-            pending_extrude: None,
-            moved: false,
-            zeroed_at_start: [false; 4],
+            state: State::new(config),
+            output: Output { queue: VecDeque::with_capacity(8), finished: false, moved: false },
+            hooks: hooks::Hooks::new(config),
             control: Box::new(control::Control::new(config.ini.as_deref(), config.max_idle_jumps)),
-            fanuc: fanuc::Fanuc::default(),
             python: config.ini.as_deref().and_then(python::Python::from_ini).map(Box::new),
         }
         .with_line_limit()
@@ -508,15 +484,15 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Reads and executes lines until a motion is queued, the program ends, or an error.
     fn step(&mut self) -> Result<(), GcodeError> {
-        if self.undecided {
+        if self.hooks.undecided {
             self.decide()?;
         }
-        if self.infer_tool {
+        if self.hooks.infer_tool {
             self.infer_tool()?;
         }
         if self.python_paused() {
             self.resume_python().map_err(|fault| self.error(fault))?;
-            if !self.queue.is_empty() {
+            if !self.output.queue.is_empty() {
                 return Ok(());
             }
         }
@@ -529,15 +505,15 @@ impl<R: BufRead> Interpreter<R> {
                 if let Some(err) = self.control_end() {
                     return Err(err);
                 }
-                if let Some((target, line)) = self.fanuc.seeking {
+                if let Some((target, line)) = self.hooks.fanuc.seeking {
                     return Err(GcodeError::NoBlockNumber { line, target });
                 }
-                if self.dialect != Dialect::Linuxcnc {
+                if self.hooks.dialect != Dialect::Linuxcnc {
                     self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
                 }
                 return self.end_of_input();
             }
-            if self.provisional && self.lines.line.len() > MAX_LINE {
+            if self.hooks.provisional && self.lines.line.len() > MAX_LINE {
                 self.long_line_decides()?;
             }
             if self.lines.too_long {
@@ -551,89 +527,94 @@ impl<R: BufRead> Interpreter<R> {
             if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
                 continue;
             }
-            if self.percent == Percent::Unknown {
+            if self.syntax.percent == Percent::Unknown {
                 if trimmed.first() == Some(&b'%') {
-                    self.percent = Percent::Open;
+                    self.syntax.percent = Percent::Open;
                     continue;
                 }
-                self.percent = Percent::Absent;
-            } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                self.syntax.percent = Percent::Absent;
+            } else if self.syntax.percent == Percent::Open
+                && trimmed == b"%"
+                && !self.lines.in_file()
+            {
                 if let Some(err) = self.control_percent() {
                     return Err(err);
                 }
                 // rs274 never sends the motions cutter compensation holds at a closing `%`.
                 self.state.comp.discard();
-                self.finished = true;
+                self.output.finished = true;
                 return Ok(());
             }
             self.state.line = self.lines.number;
             if self.state.resync {
                 self.resync_position();
             }
-            if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
-                if !self.queue.is_empty() {
+            if self.hooks.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
+                if !self.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let inner = match self.dialect {
+            let inner = match self.hooks.dialect {
                 Dialect::Mach3 | Dialect::Marlin | Dialect::Fanuc => InnerParen::Opens,
                 Dialect::Grbl => InnerParen::Ignored,
                 _ => InnerParen::Refused,
             };
-            if let Err(fault) = compact(&self.lines.line, &mut self.compact, inner) {
+            if let Err(fault) = compact(&self.lines.line, &mut self.syntax.compact, inner) {
                 // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
                 // characters until ')' or EOL"): closed there, the line is read.
                 if self.fanuc_seeking() {
                     continue;
                 }
-                if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
+                if self.hooks.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
                     return Err(self.error(fault));
                 }
             }
-            if self.makerbot {
+            if self.hooks.makerbot {
                 self.rename_makerbot_a();
             }
-            if self.compact.bytes().is_empty() {
+            if self.syntax.compact.bytes().is_empty() {
                 continue;
             }
-            if self.block_delete && self.compact.bytes()[0] == b'/' {
+            if self.syntax.block_delete && self.syntax.compact.bytes()[0] == b'/' {
                 continue;
             }
-            if self.dialect == Dialect::Fanuc
+            if self.hooks.dialect == Dialect::Fanuc
                 && let fanuc::FanucLine::Done =
                     self.fanuc_line().map_err(|fault| self.error(fault))?
             {
-                if !self.queue.is_empty() {
+                if !self.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let bytes = self.compact.bytes();
-            let g65 = matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            let bytes = self.syntax.compact.bytes();
+            let g65 = matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && control::may_call_g65(bytes);
             if (self.control.engaged() || control::may_control(bytes) || g65)
                 && self.control_line()?
             {
                 // (A line skipped inside a false `if` is no O-word of its own.)
-                if self.dialect == Dialect::Grbl && control::may_control(self.compact.bytes()) {
-                    self.summary.count_refused("O-words");
+                if self.hooks.dialect == Dialect::Grbl
+                    && control::may_control(self.syntax.compact.bytes())
+                {
+                    self.hooks.summary.count_refused("O-words");
                 }
-                if !self.queue.is_empty() {
+                if !self.output.queue.is_empty() {
                     // A Python subroutine's move.
                     return Ok(());
                 }
                 continue;
             }
-            if self.compact.bytes()[0] == b';'
-                && self.dialect == Dialect::Linuxcnc
+            if self.syntax.compact.bytes()[0] == b';'
+                && self.hooks.dialect == Dialect::Linuxcnc
                 && self.lines.line.starts_with(b";py,")
             {
                 // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
                 let code = self.lines.line[4..].to_vec();
                 self.python_comment(comments::PythonComment::Run, &code)
                     .map_err(|fault| self.error(fault))?;
-                if !self.queue.is_empty() {
+                if !self.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
@@ -641,22 +622,22 @@ impl<R: BufRead> Interpreter<R> {
             let raw_len = self.lines.line.len();
             let result = {
                 let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state)
-                        .mach3(self.dialect == Dialect::Mach3);
-                reader.read_block(&mut self.block)
+                    Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state)
+                        .mach3(self.hooks.dialect == Dialect::Mach3);
+                reader.read_block(&mut self.syntax.block)
             };
             result.map_err(|fault| self.error(fault))?;
-            if self.dialect != Dialect::Linuxcnc {
-                if self.dialect == Dialect::Grbl {
+            if self.hooks.dialect != Dialect::Linuxcnc {
+                if self.hooks.dialect == Dialect::Grbl {
                     self.count_refused_by_grbl();
                 }
-                self.pending_extrude = None;
+                self.hooks.pending_extrude = None;
                 if self.adapt_block().map_err(|fault| self.error(fault))? {
                     continue;
                 }
             }
             self.execute().map_err(|fault| self.error(fault))?;
-            if !self.queue.is_empty() || self.finished {
+            if !self.output.queue.is_empty() || self.output.finished {
                 return Ok(());
             }
         }
@@ -665,8 +646,9 @@ impl<R: BufRead> Interpreter<R> {
     /// Raw column range of the block's compact range `start..end`.
     fn span(&self, start: usize, end: usize) -> (usize, usize) {
         let raw_len = self.lines.line.len();
-        let first = self.compact.column(start, raw_len);
-        let last = if end > start { self.compact.column(end - 1, raw_len) + 1 } else { first };
+        let first = self.syntax.compact.column(start, raw_len);
+        let last =
+            if end > start { self.syntax.compact.column(end - 1, raw_len) + 1 } else { first };
         (first, last.max(first + 1))
     }
 
@@ -684,11 +666,11 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn emit(&mut self, kind: MotionKind) {
-        if self.dialect == Dialect::Grbl && self.tool == Tool::Laser {
+        if self.hooks.dialect == Dialect::Grbl && self.hooks.tool == Tool::Laser {
             self.grbl_laser_gate(&kind);
         }
-        let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
-        self.moved = true;
+        let extrude = if kind.end().is_some() { self.hooks.pending_extrude.take() } else { None };
+        self.output.moved = true;
         if self.control.idle_jumps != 0 {
             self.moved_since_jump(&kind);
         }
@@ -698,7 +680,7 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.comp.holding() {
             self.state.comp.hold(motion);
         } else {
-            self.queue.push_back(motion);
+            self.output.queue.push_back(motion);
         }
     }
 }
@@ -725,15 +707,15 @@ impl<R: BufRead> Iterator for Interpreter<R> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(motion) = self.queue.pop_front() {
+            if let Some(motion) = self.output.queue.pop_front() {
                 return Some(Ok(motion));
             }
-            if self.finished {
+            if self.output.finished {
                 return None;
             }
             if let Err(err) = self.step() {
-                self.finished = true;
-                self.queue.clear();
+                self.output.finished = true;
+                self.output.queue.clear();
                 return Some(Err(err));
             }
         }

@@ -98,14 +98,14 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.inverse_time {
             return Err(self.motion_fault("Cannot use inverse time feed with canned cycles"));
         }
-        let letters = self.block.letters;
+        let letters = self.syntax.block.letters;
         let word = |letter: u8| letters[usize::from(letter - b'a')].map(|word| word.value);
         let r_word = match word(b'r') {
             Some(r) => r,
             None if same => self.state.cycle.r,
             None => return Err(self.motion_fault("R clearance plane unspecified in cycle")),
         };
-        let repeats = match self.block.word(b'l') {
+        let repeats = match self.syntax.block.word(b'l') {
             None => 1,
             Some(l) if l.value == 0.0 => {
                 return Err(self.word_fault(l, "Cannot do zero repeats of cycle"));
@@ -206,7 +206,7 @@ impl<R: BufRead> Interpreter<R> {
             if self.state.metric { RAPID_DELTA_INCH * 25.4 } else { RAPID_DELTA_INCH };
         let back_bore_top = if self.state.incremental { cc + ijk[2] } else { ijk[2] };
         let mut increment = increment;
-        let polar = self.state.incremental && self.block.polar();
+        let polar = self.state.incremental && self.syntax.block.polar();
         for repeat in 0..repeats {
             if polar
                 && repeat > 0

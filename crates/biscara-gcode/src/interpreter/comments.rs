@@ -10,7 +10,7 @@ impl<R: BufRead> Interpreter<R> {
     /// ([`Interpreter::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
     /// end before the rest of the line.
     pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
-        if self.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
+        if self.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
         if let Some((_, text, close)) = self.last_comment()

@@ -400,11 +400,15 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn control_step(&mut self) -> Result<bool, Fault> {
-        let at = first_item(self.compact.bytes());
-        let lead = self.compact.bytes().get(at).copied();
+        let at = first_item(self.syntax.compact.bytes());
+        let lead = self.syntax.compact.bytes().get(at).copied();
         let m_number = if lead == Some(b'm') {
-            let mut reader =
-                Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &self.syntax.compact,
+                self.lines.line.len(),
+                &self.state.params,
+                &self.state,
+            );
             reader.set_position(at + 1);
             reader.read_integer_value().ok()
         } else {
@@ -412,7 +416,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (!matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
+        if g65 && (!matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -421,7 +425,7 @@ impl<R: BufRead> Interpreter<R> {
             (_, Some(99)) if !skipping => {
                 // M99 in the main program: the standalone rs274 ends the program there, as M2
                 // (LinuxCNC loops only when its INI file asks for it).
-                let bytes = self.compact.bytes_mut();
+                let bytes = self.syntax.compact.bytes_mut();
                 if bytes.get(at..at + 3) == Some(b"m99") {
                     bytes[at + 1] = b'0';
                     bytes[at + 2] = b'2';
@@ -789,7 +793,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            if matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {

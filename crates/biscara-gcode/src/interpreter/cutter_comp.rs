@@ -259,7 +259,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     pub(super) fn set_cutter_comp(&mut self) -> Result<(), Fault> {
-        let Some(code) = self.block.g[7] else { return Ok(()) };
+        let Some(code) = self.syntax.block.g[7] else { return Ok(()) };
         let fail = |this: &Self, message: String| this.code_fault(code, message);
         if code.code == 400 {
             return self.cutter_comp_off();
@@ -275,12 +275,12 @@ impl<R: BufRead> Interpreter<R> {
         }
         let whole = code.code / 10;
         let mut side = if whole == 41 { Side::Left } else { Side::Right };
-        let d = self.block.word(b'd');
+        let d = self.syntax.block.word(b'd');
         let radius = if code.code % 10 == 1 {
             let Some(d) = d else {
                 return Err(fail(self, format!("G{whole}.1 with no D word")));
             };
-            if let Some(l) = self.block.word(b'l') {
+            if let Some(l) = self.syntax.block.word(b'l') {
                 if self.state.plane != Plane::Xz {
                     return Err(
                         self.word_fault(l, format!("G{whole}.1 with L word, but plane is not G18"))
@@ -295,8 +295,8 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             d.value / 2.0
-        } else if self.dialect == Dialect::Mach3
-            && let Some(p) = self.block.word(b'p')
+        } else if self.hooks.dialect == Dialect::Mach3
+            && let Some(p) = self.syntax.block.word(b'p')
         {
             // Mach3's G41/G42 P: the radius itself, program units, instead of the tool table's
             // (a Fusion 360 Mach3 post writes P1.587 for its 3.175 mm cutter).
@@ -412,7 +412,7 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
             };
-            self.queue.push_back(motion);
+            self.output.queue.push_back(motion);
         }
     }
 
@@ -422,8 +422,8 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn enqueue(&mut self, end: [f64; 4], shape: Shape) {
-        self.moved = true;
-        let extrude = self.pending_extrude.take();
+        self.output.moved = true;
+        let extrude = self.hooks.pending_extrude.take();
         let held = HeldMove {
             line: self.state.line,
             extrude,

@@ -71,7 +71,7 @@ impl<R: BufRead> Interpreter<R> {
         if must_move && current == end {
             return Err(self.motion_fault("Start point too close to probe point"));
         }
-        self.summary.count_probe(&name);
+        self.hooks.summary.count_probe(&name);
         if let Some(name) = CodeName::new(&name) {
             self.emit(MotionKind::Code { code: name });
         }
@@ -85,7 +85,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.state.params.set(PROBE_TRIPPED, 0.0);
         let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
-        if distance != 0.0 && self.dialect == Dialect::Linuxcnc {
+        if distance != 0.0 && self.hooks.dialect == Dialect::Linuxcnc {
             let backoff = BACKOFF_MM / self.state.factor();
             let mut stop = end;
             for axis in 0..3 {

@@ -191,7 +191,7 @@ impl<R: BufRead> Interpreter<R> {
             };
             let answered = plugin.answer(answer);
             answered.map_err(|message| self.plugin_failed(&message))?;
-            if !self.queue.is_empty() {
+            if !self.output.queue.is_empty() {
                 return Ok(Progress::Paused);
             }
         }

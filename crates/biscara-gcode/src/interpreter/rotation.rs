@@ -159,7 +159,8 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn rotated_l20_origin(&self, system: usize) -> Option<[f64; 2]> {
         let state = &self.state;
         let turn = state.params.get(rotation_parameter(system));
-        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let given =
+            [b'x', b'y'].map(|letter| self.syntax.block.word(letter).map(|word| word.value));
         if (state.rotation == 0.0 && turn == 0.0) || given.iter().all(Option::is_none) {
             return None;
         }
@@ -177,7 +178,8 @@ impl<R: BufRead> Interpreter<R> {
     /// position of the current point with the given axes replaced, back in the program's
     /// coordinates.
     pub(super) fn rotated_g53_ends(&self) -> Option<[f64; 2]> {
-        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let given =
+            [b'x', b'y'].map(|letter| self.syntax.block.word(letter).map(|word| word.value));
         if given.iter().all(Option::is_none) {
             return None;
         }

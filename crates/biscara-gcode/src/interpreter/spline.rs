@@ -42,7 +42,7 @@ impl<R: BufRead> Interpreter<R> {
     /// G5 (`motion` 50) or G5.1 (51): the checks of rs274's `convert_spline`, in its order,
     /// then the curve's straight moves.
     pub(super) fn spline(&mut self, motion: u16) -> Result<(), Fault> {
-        let code_at = self.block.g[1].map_or((0, 1), |code| (code.at, code.end));
+        let code_at = self.syntax.block.g[1].map_or((0, 1), |code| (code.at, code.end));
         let fail = |this: &Self, message: &str| this.fault_at(code_at.0, code_at.1, message);
         if self.state.comp.on() {
             return Err(fail(
@@ -52,7 +52,7 @@ impl<R: BufRead> Interpreter<R> {
             ));
         }
         if self.state.inverse_time {
-            if self.block.word(b'f').is_none() {
+            if self.syntax.block.word(b'f').is_none() {
                 return Err(fail(self, "F word missing with inverse time arc move"));
             }
             let (first, last) = self.span(code_at.0, code_at.1);
@@ -72,11 +72,12 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.plane != Plane::Xy {
             return Err(fail(self, "Splines must be in the XY plane: select it with G17"));
         }
-        if let Some(word) = [b'z', b'c'].iter().filter_map(|&letter| self.block.word(letter)).next()
+        if let Some(word) =
+            [b'z', b'c'].iter().filter_map(|&letter| self.syntax.block.word(letter)).next()
         {
             return Err(self.word_fault(word, "Splines may not have motion in Z, A, B, or C"));
         }
-        let value = |letter: u8| self.block.word(letter).map(|word| word.value);
+        let value = |letter: u8| self.syntax.block.word(letter).map(|word| word.value);
         let start = self.state.current;
         let end = self.find_ends(false);
         let (i, j) = (value(b'i'), value(b'j'));

@@ -22,16 +22,17 @@ impl<R: BufRead> Interpreter<R> {
         if m_number == Some(98) {
             block.kind = OType::M98;
             // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            let mut reader =
+                Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
             let m_end = {
                 reader.set_position(at + 1);
                 reader.read_integer_value()?;
                 reader.position()
             };
             reader.set_position(m_end);
-            let words = &mut self.block;
+            let words = &mut self.syntax.block;
             words.clear();
-            let bytes = self.compact.bytes();
+            let bytes = self.syntax.compact.bytes();
             while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
                 reader.read_item(words)?;
             }
@@ -53,13 +54,14 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
             }
             block.kind = OType::M99;
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            let mut reader =
+                Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
             reader.set_position(at + 1);
             reader.read_integer_value()?;
             pos = reader.position();
             bare = self.control.frames[level].name.as_deref().unwrap_or("").to_owned();
         } else {
-            let bytes = self.compact.bytes();
+            let bytes = self.syntax.compact.bytes();
             pos = at + 1;
             if bytes.get(pos) == Some(&b'<') {
                 let start = pos + 1;
@@ -77,7 +79,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
             } else {
                 let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+                    Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
                 reader.set_position(pos);
                 let number = reader.read_integer_value()?;
                 pos = reader.position();
@@ -124,7 +126,7 @@ impl<R: BufRead> Interpreter<R> {
                 if skipping_other {
                     return Ok(None);
                 }
-                if block.kind != OType::M99 && self.compact.bytes().get(pos) == Some(&b'[') {
+                if block.kind != OType::M99 && self.syntax.compact.bytes().get(pos) == Some(&b'[') {
                     let value = self.expression(&mut pos)?;
                     self.state.owords.value = value;
                     self.state.owords.returned = true;
@@ -140,7 +142,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 block.call_type = CallType::Oword;
                 let mut count = 0;
-                while let Some(&byte) = self.compact.bytes().get(pos) {
+                while let Some(&byte) = self.syntax.compact.bytes().get(pos) {
                     match byte {
                         b'(' => pos += 1,
                         b'[' => {
@@ -160,7 +162,7 @@ impl<R: BufRead> Interpreter<R> {
                 if skipping_other {
                     return Ok(None);
                 }
-                if self.compact.bytes().get(pos) != Some(&b'[') {
+                if self.syntax.compact.bytes().get(pos) != Some(&b'[') {
                     return Err(self.line_fault(format!(
                         "Left bracket missing after '{}'",
                         block.kind.name()
@@ -181,7 +183,7 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(Some(block));
         }
         // After `if [...]` and the like, nothing but comments.
-        let bytes = self.compact.bytes();
+        let bytes = self.syntax.compact.bytes();
         while let Some(&byte) = bytes.get(pos) {
             match byte {
                 b'(' => pos += 1,
@@ -200,14 +202,18 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
         let mut block = OBlock::new(OType::M98, CallType::G65);
         let digits =
-            self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+            self.syntax.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        let mut reader = Reader::new(
+            &self.syntax.compact,
+            self.lines.line.len(),
+            &self.state.params,
+            &self.state,
+        );
         reader.set_position(at + 1 + digits);
         let mut program = None;
         loop {
             let pos = reader.position();
-            let Some(&letter) = self.compact.bytes().get(pos) else { break };
+            let Some(&letter) = self.syntax.compact.bytes().get(pos) else { break };
             if letter == b';' {
                 break;
             }
@@ -249,8 +255,12 @@ impl<R: BufRead> Interpreter<R> {
 
     /// A `[ … ]` expression at compact index `pos` (moved past it).
     pub(super) fn expression(&self, pos: &mut usize) -> Result<f64, Fault> {
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        let mut reader = Reader::new(
+            &self.syntax.compact,
+            self.lines.line.len(),
+            &self.state.params,
+            &self.state,
+        );
         reader.set_position(*pos);
         let value = reader.read_expression()?;
         *pos = reader.position();
