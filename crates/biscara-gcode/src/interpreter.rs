@@ -9,7 +9,7 @@ use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use crate::dialect::Dialect;
+use crate::dialect::{Detection, Dialect, LOOKAHEAD_BYTES, Summary};
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
 use crate::lexer::{
@@ -21,7 +21,7 @@ use crate::params::{
     coordinate_system_base,
 };
 use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
-use crate::tool::Tool;
+use crate::tool::{Tool, ToolInference};
 use crate::tool_table::{ToolEntry, ToolTable};
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
@@ -163,12 +163,26 @@ pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interprete
     interpreter
 }
 
-/// The iterator returned by [`interpret`]: the line reader, generic over the input, and the
-/// machine's parts, each owning its state.
+/// The iterator returned by [`interpret`]: the line reader, generic over the input, with the
+/// O-word control flow and the Python plug-ins that move in it, and the machine that executes
+/// the blocks read.
 #[derive(Debug)]
 pub struct Interpreter<R> {
     /// The program's lines (and the file subroutines').
     lines: LineReader<R>,
+    /// The machine: everything that does not read lines.
+    machine: Machine,
+    /// O-word control flow.
+    control: Box<control::Control>,
+    /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
+    #[cfg_attr(not(feature = "python"), allow(dead_code))]
+    python: Option<Box<python::Python>>,
+}
+
+/// The machine that executes blocks, not generic over the input: the block being executed,
+/// LinuxCNC's modal state, the motions made, and the dialect's and tool's hooks.
+#[derive(Debug)]
+struct Machine {
     /// The line being read, as a block.
     syntax: Syntax,
     /// LinuxCNC's modal state and position.
@@ -177,11 +191,6 @@ pub struct Interpreter<R> {
     output: Output,
     /// The dialect's and the tool's hooks.
     hooks: hooks::Hooks,
-    /// O-word control flow.
-    control: Box<control::Control>,
-    /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
-    #[cfg_attr(not(feature = "python"), allow(dead_code))]
-    python: Option<Box<python::Python>>,
 }
 
 /// The line being read: its significant characters, the block read from them, and how lines
@@ -190,6 +199,8 @@ pub struct Interpreter<R> {
 struct Syntax {
     compact: Compact,
     block: Block,
+    /// The length of the raw line (for the columns of errors).
+    raw_len: usize,
     block_delete: bool,
     percent: Percent,
 }
@@ -202,6 +213,28 @@ struct Output {
     finished: bool,
     /// Whether any motion was emitted (an empty program is not a program).
     moved: bool,
+    /// Jumps back since the last motion.
+    idle_jumps: u64,
+    /// The end point of the last motion (a move to where the robot is is no motion).
+    last_end: Option<[f64; 4]>,
+}
+
+impl Output {
+    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
+    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
+    /// without loops pays one test a motion; the first move after a jump may compare with an
+    /// older end point, and then there was a motion since.)
+    #[cold]
+    fn moved_since_jump(&mut self, kind: &MotionKind) {
+        let end = kind.end();
+        let waits = matches!(*kind, MotionKind::Dwell { seconds } if seconds > 0.0);
+        if (end.is_some() && end != self.last_end) || waits {
+            self.idle_jumps = 0;
+        }
+        if end.is_some() {
+            self.last_end = end;
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -438,19 +471,96 @@ impl Predefined for State {
     }
 }
 
+/// What the program told so far, as the caller asks.
+impl<R: BufRead> Interpreter<R> {
+    /// The dialect being read: the configured one, or what `auto` chose so far.
+    pub fn dialect(&self) -> Dialect {
+        self.machine.hooks.dialect
+    }
+
+    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
+    /// when the dialect was given. A program in which nothing tells the dialects apart is read
+    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
+    /// then it is Grbl, decided at its last line (the detection changes at the end).
+    pub fn detection(&self) -> Option<Detection> {
+        if let Some(detection) = &self.machine.hooks.detection {
+            return Some(detection.clone());
+        }
+        self.machine.hooks.provisional.then(|| Detection {
+            dialect: Dialect::Linuxcnc,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
+                 word, printer M-code, `$` line, nested comment or program number)",
+                LOOKAHEAD_BYTES / 1024
+            ),
+            line: None,
+            makerbot: false,
+        })
+    }
+
+    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
+    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
+    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
+    pub fn zeroed_at_start(&self) -> [bool; 4] {
+        self.machine.state.zeroed_at_start
+    }
+
+    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
+    pub fn summary(&self) -> &Summary {
+        &self.machine.hooks.summary
+    }
+
+    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
+    /// asked and something told (known once the first motion is read).
+    pub fn tool_inference(&self) -> Option<&ToolInference> {
+        self.machine.hooks.tool_inference.as_ref()
+    }
+
+    /// The tool M3, M4, M5 and S drive.
+    pub fn tool(&self) -> Tool {
+        self.machine.hooks.tool
+    }
+
+    /// Whether the program used G43, G43.2, G10 L1/L10/L11 or M61 while no tool table was
+    /// given (every tool then has zero length and diameter).
+    pub fn tools_without_table(&self) -> bool {
+        self.machine.state.tools.used_without_table
+    }
+
+    /// The tool table as the program has changed it so far (G10 L1, L10, L11): what cutter
+    /// compensation looks diameters up in.
+    pub fn tool_table(&self) -> &ToolTable {
+        &self.machine.state.tools.table
+    }
+
+    /// The tool in the spindle (after M6; zero offsets before any).
+    pub fn current_tool(&self) -> ToolEntry {
+        self.machine.state.tools.spindle
+    }
+}
+
 impl<R: BufRead> Interpreter<R> {
     fn new(reader: R, config: &Config) -> Interpreter<R> {
         Interpreter {
             lines: LineReader::new(reader),
-            syntax: Syntax {
-                compact: Compact::default(),
-                block: Block::default(),
-                block_delete: config.block_delete,
-                percent: Percent::Unknown,
+            machine: Machine {
+                syntax: Syntax {
+                    compact: Compact::default(),
+                    block: Block::default(),
+                    raw_len: 0,
+                    block_delete: config.block_delete,
+                    percent: Percent::Unknown,
+                },
+                state: State::new(config),
+                output: Output {
+                    queue: VecDeque::with_capacity(8),
+                    finished: false,
+                    moved: false,
+                    idle_jumps: 0,
+                    last_end: None,
+                },
+                hooks: hooks::Hooks::new(config),
             },
-            state: State::new(config),
-            output: Output { queue: VecDeque::with_capacity(8), finished: false, moved: false },
-            hooks: hooks::Hooks::new(config),
             control: Box::new(control::Control::new(config.ini.as_deref(), config.max_idle_jumps)),
             python: config.ini.as_deref().and_then(python::Python::from_ini).map(Box::new),
         }
@@ -484,15 +594,15 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Reads and executes lines until a motion is queued, the program ends, or an error.
     fn step(&mut self) -> Result<(), GcodeError> {
-        if self.hooks.undecided {
+        if self.machine.hooks.undecided {
             self.decide()?;
         }
-        if self.hooks.infer_tool {
+        if self.machine.hooks.infer_tool {
             self.infer_tool()?;
         }
         if self.python_paused() {
             self.resume_python().map_err(|fault| self.error(fault))?;
-            if !self.output.queue.is_empty() {
+            if !self.machine.output.queue.is_empty() {
                 return Ok(());
             }
         }
@@ -501,19 +611,20 @@ impl<R: BufRead> Interpreter<R> {
                 .lines
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
+            self.machine.syntax.raw_len = self.lines.line.len();
             if !more {
                 if let Some(err) = self.control_end() {
                     return Err(err);
                 }
-                if let Some((target, line)) = self.hooks.fanuc.seeking {
+                if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
                     return Err(GcodeError::NoBlockNumber { line, target });
                 }
-                if self.hooks.dialect != Dialect::Linuxcnc {
-                    self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+                if self.machine.hooks.dialect != Dialect::Linuxcnc {
+                    self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
                 }
                 return self.end_of_input();
             }
-            if self.hooks.provisional && self.lines.line.len() > MAX_LINE {
+            if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
                 self.long_line_decides()?;
             }
             if self.lines.too_long {
@@ -527,13 +638,13 @@ impl<R: BufRead> Interpreter<R> {
             if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
                 continue;
             }
-            if self.syntax.percent == Percent::Unknown {
+            if self.machine.syntax.percent == Percent::Unknown {
                 if trimmed.first() == Some(&b'%') {
-                    self.syntax.percent = Percent::Open;
+                    self.machine.syntax.percent = Percent::Open;
                     continue;
                 }
-                self.syntax.percent = Percent::Absent;
-            } else if self.syntax.percent == Percent::Open
+                self.machine.syntax.percent = Percent::Absent;
+            } else if self.machine.syntax.percent == Percent::Open
                 && trimmed == b"%"
                 && !self.lines.in_file()
             {
@@ -541,111 +652,141 @@ impl<R: BufRead> Interpreter<R> {
                     return Err(err);
                 }
                 // rs274 never sends the motions cutter compensation holds at a closing `%`.
-                self.state.comp.discard();
-                self.output.finished = true;
+                self.machine.state.comp.discard();
+                self.machine.output.finished = true;
                 return Ok(());
             }
-            self.state.line = self.lines.number;
-            if self.state.resync {
-                self.resync_position();
+            self.machine.state.line = self.lines.number;
+            if self.machine.state.resync {
+                self.machine.resync_position();
             }
-            if self.hooks.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
-                if !self.output.queue.is_empty() {
+            if self.machine.hooks.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let inner = match self.hooks.dialect {
+            let inner = match self.machine.hooks.dialect {
                 Dialect::Mach3 | Dialect::Marlin | Dialect::Fanuc => InnerParen::Opens,
                 Dialect::Grbl => InnerParen::Ignored,
                 _ => InnerParen::Refused,
             };
-            if let Err(fault) = compact(&self.lines.line, &mut self.syntax.compact, inner) {
+            if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
                 // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
                 // characters until ')' or EOL"): closed there, the line is read.
                 if self.fanuc_seeking() {
                     continue;
                 }
-                if self.hooks.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
+                if self.machine.hooks.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT
+                {
                     return Err(self.error(fault));
                 }
             }
-            if self.hooks.makerbot {
-                self.rename_makerbot_a();
+            if self.machine.hooks.makerbot {
+                self.machine.rename_makerbot_a();
             }
-            if self.syntax.compact.bytes().is_empty() {
+            if self.machine.syntax.compact.bytes().is_empty() {
                 continue;
             }
-            if self.syntax.block_delete && self.syntax.compact.bytes()[0] == b'/' {
+            if self.machine.syntax.block_delete && self.machine.syntax.compact.bytes()[0] == b'/' {
                 continue;
             }
-            if self.hooks.dialect == Dialect::Fanuc
+            if self.machine.hooks.dialect == Dialect::Fanuc
                 && let fanuc::FanucLine::Done =
                     self.fanuc_line().map_err(|fault| self.error(fault))?
             {
-                if !self.output.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let bytes = self.syntax.compact.bytes();
-            let g65 = matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            let bytes = self.machine.syntax.compact.bytes();
+            let g65 = matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && control::may_call_g65(bytes);
             if (self.control.engaged() || control::may_control(bytes) || g65)
                 && self.control_line()?
             {
                 // (A line skipped inside a false `if` is no O-word of its own.)
-                if self.hooks.dialect == Dialect::Grbl
-                    && control::may_control(self.syntax.compact.bytes())
+                if self.machine.hooks.dialect == Dialect::Grbl
+                    && control::may_control(self.machine.syntax.compact.bytes())
                 {
-                    self.hooks.summary.count_refused("O-words");
+                    self.machine.hooks.summary.count_refused("O-words");
                 }
-                if !self.output.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     // A Python subroutine's move.
                     return Ok(());
                 }
                 continue;
             }
-            if self.syntax.compact.bytes()[0] == b';'
-                && self.hooks.dialect == Dialect::Linuxcnc
+            if self.machine.syntax.compact.bytes()[0] == b';'
+                && self.machine.hooks.dialect == Dialect::Linuxcnc
                 && self.lines.line.starts_with(b";py,")
             {
                 // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
                 let code = self.lines.line[4..].to_vec();
                 self.python_comment(comments::PythonComment::Run, &code)
                     .map_err(|fault| self.error(fault))?;
-                if !self.output.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
             let raw_len = self.lines.line.len();
             let result = {
-                let mut reader =
-                    Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state)
-                        .mach3(self.hooks.dialect == Dialect::Mach3);
-                reader.read_block(&mut self.syntax.block)
+                let mut reader = Reader::new(
+                    &self.machine.syntax.compact,
+                    raw_len,
+                    &self.machine.state.params,
+                    &self.machine.state,
+                )
+                .mach3(self.machine.hooks.dialect == Dialect::Mach3);
+                reader.read_block(&mut self.machine.syntax.block)
             };
             result.map_err(|fault| self.error(fault))?;
-            if self.hooks.dialect != Dialect::Linuxcnc {
-                if self.hooks.dialect == Dialect::Grbl {
-                    self.count_refused_by_grbl();
+            if self.machine.hooks.dialect != Dialect::Linuxcnc {
+                if self.machine.hooks.dialect == Dialect::Grbl {
+                    self.machine.count_refused_by_grbl();
                 }
-                self.hooks.pending_extrude = None;
-                if self.adapt_block().map_err(|fault| self.error(fault))? {
+                self.machine.hooks.pending_extrude = None;
+                if self.machine.adapt_block().map_err(|fault| self.error(fault))? {
                     continue;
                 }
             }
-            self.execute().map_err(|fault| self.error(fault))?;
-            if !self.output.queue.is_empty() || self.output.finished {
+            self.execute_block().map_err(|fault| self.error(fault))?;
+            if !self.machine.output.queue.is_empty() || self.machine.output.finished {
                 return Ok(());
             }
         }
     }
 
+    /// Executes the block just read, in LinuxCNC's order of execution: the machine's, with the
+    /// comment LinuxCNC executes (which may run Python) in its place.
+    fn execute_block(&mut self) -> Result<(), Fault> {
+        if self.machine.syntax.block.empty {
+            return self.convert_comment();
+        }
+        let plan = self.machine.execute_settings()?;
+        self.convert_comment()?;
+        let user_m_missing = self.user_m_missing();
+        self.machine.execute(plan, user_m_missing)
+    }
+
+    /// Whether the block's user M-code (M100–M199) has no program where the INI file says
+    /// they are (LinuxCNC's unknown M code); `false` without an INI file that says.
+    fn user_m_missing(&self) -> bool {
+        let Some(code) = self.machine.syntax.block.m[10] else { return false };
+        let name = format!("M{}", code.code);
+        self.control.user_m_dirs().is_some_and(|dirs| {
+            (100..200).contains(&code.code)
+                && !dirs.iter().any(|dir| self.control.environment.is_file(&dir.join(&name)))
+        })
+    }
+}
+
+impl Machine {
     /// Raw column range of the block's compact range `start..end`.
     fn span(&self, start: usize, end: usize) -> (usize, usize) {
-        let raw_len = self.lines.line.len();
+        let raw_len = self.syntax.raw_len;
         let first = self.syntax.compact.column(start, raw_len);
         let last =
             if end > start { self.syntax.compact.column(end - 1, raw_len) + 1 } else { first };
@@ -671,8 +812,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         let extrude = if kind.end().is_some() { self.hooks.pending_extrude.take() } else { None };
         self.output.moved = true;
-        if self.control.idle_jumps != 0 {
-            self.moved_since_jump(&kind);
+        if self.output.idle_jumps != 0 {
+            self.output.moved_since_jump(&kind);
         }
         let blend = kind.end().and(self.state.blend);
         let naive_cam = self.naive_cam(&kind, blend);
@@ -707,15 +848,15 @@ impl<R: BufRead> Iterator for Interpreter<R> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(motion) = self.output.queue.pop_front() {
+            if let Some(motion) = self.machine.output.queue.pop_front() {
                 return Some(Ok(motion));
             }
-            if self.output.finished {
+            if self.machine.output.finished {
                 return None;
             }
             if let Err(err) = self.step() {
-                self.output.finished = true;
-                self.output.queue.clear();
+                self.machine.output.finished = true;
+                self.machine.output.queue.clear();
                 return Some(Err(err));
             }
         }

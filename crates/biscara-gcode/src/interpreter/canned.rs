@@ -6,11 +6,9 @@
 //! (x, y, z), YZ (y, z, x), XZ (z, x, y). What the spindle does (G74/G84 reverse it, G86–G88
 //! stop it) is emitted as the tool's events, as M3, M4 and M5 are.
 
-use std::io::BufRead;
-
 use biscara_motion::{Feed, MotionKind, Plane};
 
-use super::{AXES, Interpreter};
+use super::{AXES, Machine};
 use crate::lexer::Fault;
 
 /// LinuxCNC's `G83_RAPID_DELTA`: how far above the last depth a peck restarts, inches.
@@ -62,7 +60,7 @@ pub(super) fn is_cycle(motion: u16) -> bool {
         && matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// A point of the cycle: `aa`, `bb`, `cc` in the plane's axes, the others unchanged.
     fn cycle_point(&self, axes: [usize; 3], aa: f64, bb: f64, cc: f64) -> [f64; 4] {
         let mut point = self.state.current;

@@ -1,11 +1,9 @@
 //! The checks LinuxCNC makes of a block before executing it (`check_g_codes`,
 //! `check_other_codes`, `check_items`), and the range of the values this robot accepts.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
     /// 240-digit number), rather than passing them on.
     pub(super) fn check_range(&self) -> Result<(), Fault> {

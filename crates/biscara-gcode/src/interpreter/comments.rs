@@ -10,7 +10,7 @@ impl<R: BufRead> Interpreter<R> {
     /// ([`Interpreter::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
     /// end before the rest of the line.
     pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
-        if self.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
+        if self.machine.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
         if let Some((_, text, close)) = self.last_comment()
@@ -78,9 +78,12 @@ impl<R: BufRead> Interpreter<R> {
                     .map(u8::to_ascii_lowercase)
                     .collect();
                 let value = if name.first() == Some(&b'_') {
-                    self.state.predefined(&name).or_else(|| self.state.params.named(&name))
+                    self.machine
+                        .state
+                        .predefined(&name)
+                        .or_else(|| self.machine.state.params.named(&name))
                 } else {
-                    self.state.params.named(&name)
+                    self.machine.state.params.named(&name)
                 };
                 match value {
                     Some(value) => message.push_str(&format!("{value:.6}")),
@@ -92,7 +95,9 @@ impl<R: BufRead> Interpreter<R> {
             let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
             let number = std::str::from_utf8(&rest[..digits]).ok().and_then(|d| d.parse().ok());
             match number.filter(|&n: &usize| (1..crate::params::MAX_PARAMETERS).contains(&n)) {
-                Some(number) => message.push_str(&format!("{:.6}", self.state.params.get(number))),
+                Some(number) => {
+                    message.push_str(&format!("{:.6}", self.machine.state.params.get(number)))
+                }
                 None if digits == 0 => message.push('#'),
                 None => message.push_str("######"),
             }

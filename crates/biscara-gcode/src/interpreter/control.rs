@@ -212,11 +212,8 @@ pub(super) struct Control {
     open_loops: Vec<Rc<str>>,
     /// Whether the lines of an input read only forwards are being kept (`Some(true)`: for good).
     recording: Option<bool>,
-    /// Jumps back since the last motion, and how many are allowed.
-    pub(super) idle_jumps: u64,
+    /// How many jumps back are allowed without a motion.
     max_idle_jumps: u64,
-    /// The end point of the last motion (a move to where the robot is is no motion).
-    pub(super) last_end: Option<[f64; 4]>,
     /// A call in the main program reads on to find its subroutine: the lines from the call on
     /// are kept (an input read only forwards), to come back to.
     forward: bool,
@@ -244,9 +241,7 @@ impl Default for Control {
             user_m_dirs: None,
             open_loops: Vec::new(),
             recording: None,
-            idle_jumps: 0,
             max_idle_jumps: crate::MAX_IDLE_JUMPS,
-            last_end: None,
             forward: false,
         }
     }
@@ -400,14 +395,14 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn control_step(&mut self) -> Result<bool, Fault> {
-        let at = first_item(self.syntax.compact.bytes());
-        let lead = self.syntax.compact.bytes().get(at).copied();
+        let at = first_item(self.machine.syntax.compact.bytes());
+        let lead = self.machine.syntax.compact.bytes().get(at).copied();
         let m_number = if lead == Some(b'm') {
             let mut reader = Reader::new(
-                &self.syntax.compact,
+                &self.machine.syntax.compact,
                 self.lines.line.len(),
-                &self.state.params,
-                &self.state,
+                &self.machine.state.params,
+                &self.machine.state,
             );
             reader.set_position(at + 1);
             reader.read_integer_value().ok()
@@ -416,7 +411,9 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (!matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
+        if g65
+            && (!matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping)
+        {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -425,7 +422,7 @@ impl<R: BufRead> Interpreter<R> {
             (_, Some(99)) if !skipping => {
                 // M99 in the main program: the standalone rs274 ends the program there, as M2
                 // (LinuxCNC loops only when its INI file asks for it).
-                let bytes = self.syntax.compact.bytes_mut();
+                let bytes = self.machine.syntax.compact.bytes_mut();
                 if bytes.get(at..at + 3) == Some(b"m99") {
                     bytes[at + 1] = b'0';
                     bytes[at + 2] = b'2';
@@ -569,8 +566,8 @@ impl<R: BufRead> Interpreter<R> {
     /// have been more than [`Config::max_idle_jumps`](crate::Config::max_idle_jumps), naming
     /// `loop_line`, the line jumped to — an endless loop that never moves would run forever.
     pub(super) fn count_jump(&mut self, loop_line: usize) -> Result<(), Fault> {
-        self.control.idle_jumps += 1;
-        if self.control.idle_jumps > self.control.max_idle_jumps {
+        self.machine.output.idle_jumps += 1;
+        if self.machine.output.idle_jumps > self.control.max_idle_jumps {
             let message = format!(
                 "the loop at line {loop_line} has jumped back {} times without a motion: an \
                  endless loop? (that many jumps back without a motion are allowed)",
@@ -579,22 +576,6 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.setting_fault(message, Setting::MaxIdleJumps));
         }
         Ok(())
-    }
-
-    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
-    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
-    /// without loops pays one test a motion; the first move after a jump may compare with an
-    /// older end point, and then there was a motion since.)
-    #[cold]
-    pub(super) fn moved_since_jump(&mut self, kind: &biscara_motion::MotionKind) {
-        let end = kind.end();
-        let waits = matches!(*kind, biscara_motion::MotionKind::Dwell { seconds } if seconds > 0.0);
-        if (end.is_some() && end != self.control.last_end) || waits {
-            self.control.idle_jumps = 0;
-        }
-        if end.is_some() {
-            self.control.last_end = end;
-        }
     }
 
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
@@ -676,30 +657,30 @@ impl<R: BufRead> Interpreter<R> {
         if self.control.frames.len() >= SUB_LEVELS {
             return Err(self.line_fault("Too many subroutine levels"));
         }
-        let locals = self.state.params.take_locals();
-        let modes = std::mem::take(&mut self.state.modal_stack);
+        let locals = self.machine.state.params.take_locals();
+        let modes = std::mem::take(&mut self.machine.state.modal_stack);
         if let Some(caller) = self.control.frames.last_mut() {
             caller.locals = locals;
             caller.modes = modes;
         }
         self.control.frames.push(Frame::new(Some(block.name.clone()), block.call_type));
-        self.state.owords.level = self.control.level();
+        self.machine.state.owords.level = self.control.level();
         Ok(())
     }
 
     /// Back to the caller's level (`leave_context`).
     pub(super) fn leave_context(&mut self) -> Result<(), Fault> {
         // M73: the modal state saved at this level comes back as the subroutine returns.
-        self.restore_on_return()?;
+        self.machine.restore_on_return()?;
         if self.control.frames.len() > 1 {
             self.control.frames.pop();
         }
         let modes = self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.modes));
-        self.state.modal_stack = modes.unwrap_or_default();
+        self.machine.state.modal_stack = modes.unwrap_or_default();
         let locals =
             self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.locals));
-        self.state.params.restore_locals(locals.unwrap_or_default());
-        self.state.owords.level = self.control.level();
+        self.machine.state.params.restore_locals(locals.unwrap_or_default());
+        self.machine.state.owords.level = self.control.level();
         Ok(())
     }
 
@@ -709,8 +690,9 @@ impl<R: BufRead> Interpreter<R> {
         let caller = self.control.level() - 1;
         if block.call_type != CallType::M98 {
             for index in 0..SUB_PARAMS {
-                self.control.frames[caller].saved_params[index] = self.state.params.get(index + 1);
-                self.state.params.set(index + 1, block.params[index]);
+                self.control.frames[caller].saved_params[index] =
+                    self.machine.state.params.get(index + 1);
+                self.machine.state.params.set(index + 1, block.params[index]);
             }
         }
         let frame = &mut self.control.frames[caller];
@@ -750,7 +732,7 @@ impl<R: BufRead> Interpreter<R> {
             if call_type != CallType::M98 {
                 for index in 0..SUB_PARAMS {
                     let saved = self.control.frames[caller].saved_params[index];
-                    self.state.params.set(index + 1, saved);
+                    self.machine.state.params.set(index + 1, saved);
                 }
             }
             let frame = &self.control.frames[caller];
@@ -769,7 +751,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.skipping_o = None;
             self.control.defining_sub = false;
             self.control.sub_name = None;
-            self.state.owords.defining = false;
+            self.machine.state.owords.defining = false;
         }
         Ok(())
     }
@@ -793,7 +775,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            if matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {
@@ -839,7 +821,7 @@ impl<R: BufRead> Interpreter<R> {
                     self.skip_to(block);
                     self.control.defining_sub = true;
                     self.control.sub_name = Some(block.name.clone());
-                    self.state.owords.defining = true;
+                    self.machine.state.owords.defining = true;
                 }
             }
             OType::EndSub | OType::Return | OType::M99 => {

@@ -17,11 +17,10 @@
 
 use std::collections::VecDeque;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use super::Interpreter;
+use super::Machine;
 use super::motion::find_turn;
 use crate::Dialect;
 use crate::lexer::Fault;
@@ -204,7 +203,7 @@ pub(super) struct CompArc {
     pub feed: Feed,
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Refuses a code that LinuxCNC refuses while compensation is on.
     pub(super) fn refuse_with_comp(&self, at: (usize, usize), message: &str) -> Result<(), Fault> {
         if self.state.comp.on() { Err(self.fault_at(at.0, at.1, message)) } else { Ok(()) }

@@ -1,16 +1,22 @@
 //! Executing one block in LinuxCNC's order of execution (`execute_block`).
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
-    /// Executes the block just read, in LinuxCNC's order of execution.
-    pub(super) fn execute(&mut self) -> Result<(), Fault> {
-        let block = &self.syntax.block;
-        if block.empty {
-            return self.convert_comment();
-        }
+/// What the checks of a block found, for its execution.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Plan {
+    /// Its group 1 code (G0–G3, G80, cycles, …).
+    motion_code: Option<Code>,
+    /// Its group 0 code (G4, G10, G28, G53, G92, …).
+    group0: Option<Code>,
+    /// The motion it makes: its own, or the modal one when it has axis words.
+    motion_to_be: Option<u16>,
+}
+
+impl Machine {
+    /// Checks the block just read (not empty) and stores its parameter settings: LinuxCNC's
+    /// order of execution up to its comment.
+    pub(super) fn execute_settings(&mut self) -> Result<Plan, Fault> {
         self.check_support()?;
         if self.syntax.block.extra.is_some() {
             self.check_polar_words()?;
@@ -98,7 +104,13 @@ impl<R: BufRead> Interpreter<R> {
             let (start, end, value) = self.syntax.block.named[index];
             self.state.params.set_named(&self.syntax.compact.bytes()[start..end], value);
         }
-        self.convert_comment()?;
+        Ok(Plan { motion_code, group0, motion_to_be })
+    }
+
+    /// Executes the rest of the block, after its comment, in LinuxCNC's order of execution;
+    /// `user_m_missing`: its user M-code has no program where the INI file says they are.
+    pub(super) fn execute(&mut self, plan: Plan, user_m_missing: bool) -> Result<(), Fault> {
+        let Plan { motion_code, group0, motion_to_be } = plan;
 
         // 3. feed mode
         if let Some(code) = self.syntax.block.g[5] {
@@ -184,10 +196,7 @@ impl<R: BufRead> Interpreter<R> {
         // LinuxCNC's unknown M code.
         if let Some(code) = self.syntax.block.m[10] {
             let name = format!("M{}", code.code);
-            if let Some(dirs) = self.control.user_m_dirs()
-                && (100..200).contains(&code.code)
-                && !dirs.iter().any(|dir| self.control.environment.is_file(&dir.join(&name)))
-            {
+            if user_m_missing {
                 return Err(self.code_fault(
                     code,
                     format!(

@@ -7,7 +7,7 @@ use std::io::BufRead;
 
 use biscara_motion::{CodeName, MotionKind};
 
-use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Percent};
+use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Machine, Percent};
 use crate::dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, g_name,
     grbl_runs_g, grbl_runs_m, prelude,
@@ -92,86 +92,38 @@ impl<R: BufRead> Interpreter<R> {
     /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
     pub(super) fn apply_dialect(&mut self) {
         self.lines.max =
-            if self.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
-        if self.hooks.dialect == Dialect::Marlin && self.state.feed_rate == 0.0 {
-            self.state.feed_rate = MARLIN_DEFAULT_FEED;
-            self.state.feed_mm = MARLIN_DEFAULT_FEED;
+            if self.machine.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
+        if self.machine.hooks.dialect == Dialect::Marlin && self.machine.state.feed_rate == 0.0 {
+            self.machine.state.feed_rate = MARLIN_DEFAULT_FEED;
+            self.machine.state.feed_mm = MARLIN_DEFAULT_FEED;
         }
-    }
-
-    /// The dialect being read: the configured one, or what `auto` chose so far.
-    pub fn dialect(&self) -> Dialect {
-        self.hooks.dialect
-    }
-
-    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
-    /// when the dialect was given. A program in which nothing tells the dialects apart is read
-    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
-    /// then it is Grbl, decided at its last line (the detection changes at the end).
-    pub fn detection(&self) -> Option<Detection> {
-        if let Some(detection) = &self.hooks.detection {
-            return Some(detection.clone());
-        }
-        self.hooks.provisional.then(|| Detection {
-            dialect: Dialect::Linuxcnc,
-            reason: format!(
-                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
-                 word, printer M-code, `$` line, nested comment or program number)",
-                LOOKAHEAD_BYTES / 1024
-            ),
-            line: None,
-            makerbot: false,
-        })
-    }
-
-    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
-    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
-    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
-    pub fn zeroed_at_start(&self) -> [bool; 4] {
-        self.state.zeroed_at_start
-    }
-
-    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
-    pub fn summary(&self) -> &Summary {
-        &self.hooks.summary
-    }
-
-    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
-    /// asked and something told (known once the first motion is read).
-    pub fn tool_inference(&self) -> Option<&ToolInference> {
-        self.hooks.tool_inference.as_ref()
-    }
-
-    /// The tool M3, M4, M5 and S drive.
-    pub fn tool(&self) -> Tool {
-        self.hooks.tool
     }
 
     /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
     pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
-        self.hooks.infer_tool = false;
+        self.machine.hooks.infer_tool = false;
         self.lines
             .source()
             .read_ahead(LOOKAHEAD_BYTES)
             .map_err(|source| GcodeError::Read { line: 1, source })?;
         let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
             // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
-            (self.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
+            (self.machine.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
                 tool: Tool::Extruder,
                 reason: "read as Marlin G-code: a 3D printer".to_owned(),
                 line: None,
             })
         });
         if let Some(inference) = inference {
-            self.hooks.tool = inference.tool;
-            self.hooks.tool_inference = Some(inference);
+            self.machine.hooks.tool = inference.tool;
+            self.machine.hooks.tool_inference = Some(inference);
         }
         Ok(())
     }
 
     /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
     pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
-        self.hooks.undecided = false;
+        self.machine.hooks.undecided = false;
         let complete = self
             .lines
             .source()
@@ -179,13 +131,13 @@ impl<R: BufRead> Interpreter<R> {
             .map_err(|source| GcodeError::Read { line: 1, source })?;
         match detect_dialect(self.lines.source().head(), complete) {
             Some(detection) => {
-                self.hooks.dialect = detection.dialect;
-                self.hooks.makerbot = detection.makerbot;
-                self.hooks.detection = Some(detection);
+                self.machine.hooks.dialect = detection.dialect;
+                self.machine.hooks.makerbot = detection.makerbot;
+                self.machine.hooks.detection = Some(detection);
                 self.apply_dialect();
             }
             None => {
-                self.hooks.provisional = true;
+                self.machine.hooks.provisional = true;
                 // A long comment line further on is evidence too ([`Self::long_line_decides`]).
                 self.lines.max = MAX_LONG_LINE;
             }
@@ -206,9 +158,9 @@ impl<R: BufRead> Interpreter<R> {
                 max: MAX_LINE,
             });
         }
-        self.hooks.provisional = false;
-        self.hooks.dialect = Dialect::Grbl;
-        self.hooks.detection = Some(Detection {
+        self.machine.hooks.provisional = false;
+        self.machine.hooks.dialect = Dialect::Grbl;
+        self.machine.hooks.detection = Some(Detection {
             dialect: Dialect::Grbl,
             reason: format!(
                 "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
@@ -227,11 +179,11 @@ impl<R: BufRead> Interpreter<R> {
     /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
     /// need no program end.
     pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
-        self.output.finished = true;
-        if self.hooks.provisional && self.output.moved {
-            self.hooks.provisional = false;
-            self.hooks.dialect = Dialect::Grbl;
-            self.hooks.detection = Some(Detection {
+        self.machine.output.finished = true;
+        if self.machine.hooks.provisional && self.machine.output.moved {
+            self.machine.hooks.provisional = false;
+            self.machine.hooks.dialect = Dialect::Grbl;
+            self.machine.hooks.detection = Some(Detection {
                 dialect: Dialect::Grbl,
                 reason: format!(
                     "nothing tells the dialects apart, and the program ends at line {} without \
@@ -243,15 +195,53 @@ impl<R: BufRead> Interpreter<R> {
                 makerbot: false,
             });
         }
-        if self.hooks.dialect != Dialect::Linuxcnc {
+        if self.machine.hooks.dialect != Dialect::Linuxcnc {
             return Ok(());
         }
-        Err(match self.syntax.percent {
+        Err(match self.machine.syntax.percent {
             Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
             _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
         })
     }
 
+    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
+    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
+        match prelude(self.machine.hooks.dialect, &self.lines.line) {
+            Prelude::Block => Ok(false),
+            Prelude::Event { name, known } => {
+                self.machine.record(&name, known);
+                Ok(true)
+            }
+            Prelude::ExtruderMode { name, relative } => {
+                self.machine.hooks.e_relative = relative;
+                self.machine.record(&name, true);
+                Ok(true)
+            }
+            Prelude::Home { axes } => {
+                // One rapid of the named axes to the home pose (G28's stored position), with no
+                // intermediate point.
+                let mut end = self.machine.state.current;
+                for axis in (0..4).filter(|&axis| axes[axis]) {
+                    let machine = self.machine.state.mm_to_program(
+                        axis,
+                        self.machine.state.params.get(G28_HOME + axis_slot(axis)),
+                    );
+                    end[axis] = machine
+                        - self.machine.state.origin[axis]
+                        - self.machine.state.axis_offset[axis];
+                }
+                self.machine.move_to(end, None);
+                self.machine.state.publish_position();
+                Ok(true)
+            }
+            Prelude::Refuse { start, end, code, note } => {
+                Err(self.error(Fault::not_supported(start, end, code, note)))
+            }
+        }
+    }
+}
+
+impl Machine {
     /// Records a no-motion code as an event.
     pub(super) fn record(&mut self, name: &str, known: bool) {
         self.hooks.summary.count(name, known);
@@ -286,39 +276,6 @@ impl<R: BufRead> Interpreter<R> {
         }
         if bytes.contains(&b'[') {
             self.hooks.summary.count_refused("expressions ([ ])");
-        }
-    }
-
-    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
-    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
-        match prelude(self.hooks.dialect, &self.lines.line) {
-            Prelude::Block => Ok(false),
-            Prelude::Event { name, known } => {
-                self.record(&name, known);
-                Ok(true)
-            }
-            Prelude::ExtruderMode { name, relative } => {
-                self.hooks.e_relative = relative;
-                self.record(&name, true);
-                Ok(true)
-            }
-            Prelude::Home { axes } => {
-                // One rapid of the named axes to the home pose (G28's stored position), with no
-                // intermediate point.
-                let mut end = self.state.current;
-                for axis in (0..4).filter(|&axis| axes[axis]) {
-                    let machine = self
-                        .state
-                        .mm_to_program(axis, self.state.params.get(G28_HOME + axis_slot(axis)));
-                    end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
-                }
-                self.move_to(end, None);
-                self.state.publish_position();
-                Ok(true)
-            }
-            Prelude::Refuse { start, end, code, note } => {
-                Err(self.error(Fault::not_supported(start, end, code, note)))
-            }
         }
     }
 

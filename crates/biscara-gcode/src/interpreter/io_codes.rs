@@ -12,9 +12,7 @@
 //! - `$`: the spindle, truncated to an integer: 0, or −1 (all spindles) where rs274 takes it;
 //!   any other number is refused with rs274's message.
 
-use std::io::BufRead;
-
-use super::Interpreter;
+use super::Machine;
 use crate::lexer::Fault;
 use crate::parser::Word;
 
@@ -27,7 +25,7 @@ fn round(value: f64) -> f64 {
     (value + if value < 0.0 { -0.5 } else { 0.5 }).trunc()
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Whether a `$` word is on the line but no code uses it (`check_other_codes`).
     pub(super) fn check_dollar(&self) -> Result<(), Fault> {
         let Some(dollar) = self.syntax.block.extra().and_then(|extra| extra.spindle) else {

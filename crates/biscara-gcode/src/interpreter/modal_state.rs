@@ -13,11 +13,9 @@
 //! and the speed with none, and an M72 that changes anything loses the rest of its line (see
 //! [`Interpreter::modal_state`]).
 
-use std::io::BufRead;
-
 use biscara_motion::Plane;
 
-use super::Interpreter;
+use super::Machine;
 use crate::lexer::Fault;
 use crate::parser::Code;
 
@@ -54,7 +52,7 @@ pub(super) struct ModalStack {
     pub auto_restore: bool,
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// M70, M71, M72 or M73. `Ok(true)` when M72 restored a state that differs from the one in
     /// force: rs274 then runs the restoring codes as blocks of their own, read into the place of
     /// the current one, so that the rest of the M72's line (what comes after M70–M73 in the
@@ -111,7 +109,7 @@ impl<R: BufRead> Interpreter<R> {
             && let Some(saved) = stack.saved
         {
             // (The line is the return's: the whole of it is shown.)
-            self.restore_modes(saved, (0, self.lines.line.len().max(1)))?;
+            self.restore_modes(saved, (0, self.syntax.raw_len.max(1)))?;
         }
         Ok(())
     }

@@ -1,10 +1,8 @@
 //! Modes and offsets: path control, units, coordinate systems, G10 L2/L20, G92 and G52.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G61, G61.1 (exact stop) and G64 P… Q… (blending within P of the corners, in the program's
     /// length unit, kept in millimetres; no P, or a negative one, is LinuxCNC's tolerance 0: no
     /// tolerance given).

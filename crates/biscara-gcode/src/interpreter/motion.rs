@@ -1,11 +1,9 @@
 //! Motion: the end point of a block, G28/G30, straight moves and arcs with LinuxCNC's
 //! tolerances, and LinuxCNC's length and turn helpers.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// End point of a move (`find_ends`).
     pub(super) fn find_ends(&self, g53: bool) -> [f64; 4] {
         let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());

@@ -10,15 +10,13 @@
 //! cycles take it as they take X and Y (an incremental cycle's repeats step on in polar
 //! coordinates, as in rs274); a line without `@` or `^` does no work here.
 
-use std::io::BufRead;
-
 use biscara_motion::Plane;
 
-use super::Interpreter;
+use super::Machine;
 use crate::lexer::Fault;
 use crate::parser::Word;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// X or Y words with `@` or `^` (read with the line, before its other checks).
     pub(super) fn check_polar_words(&self) -> Result<(), Fault> {
         let Some(extra) = self.syntax.block.extra() else { return Ok(()) };

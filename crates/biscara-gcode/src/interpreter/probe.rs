@@ -13,11 +13,9 @@
 //! Before the moves comes an event with the code (`G38.2`), so that a time series shows where
 //! the robot probes, and the program's notes count the probe moves.
 
-use std::io::BufRead;
-
 use biscara_motion::{CodeName, Feed, MotionKind};
 
-use super::Interpreter;
+use super::Machine;
 use crate::dialect::{Dialect, g_name};
 use crate::lexer::Fault;
 use crate::params::axis_slot;
@@ -37,7 +35,7 @@ pub(super) fn is_probe(code: u16) -> bool {
     matches!(code, 382..=385 | 310)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G38.2 (`code` 382: toward the work, error on no contact), G38.3 (383: no error), G38.4
     /// (384: away from the work, error on no loss of contact), G38.5 (385: no error) and
     /// Mach3's G31 (310: toward the work, no error).

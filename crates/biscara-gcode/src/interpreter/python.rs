@@ -81,8 +81,8 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Calls the Python subroutine `name` with `arguments`, its call level entered.
     pub(super) fn python_call(&mut self, name: Rc<str>, arguments: &[f64]) -> Result<(), Fault> {
-        self.state.owords.value = 0.0;
-        self.state.owords.returned = false;
+        self.machine.state.owords.value = 0.0;
+        self.machine.state.owords.returned = false;
         let sent = self.plugin()?.call(&name, arguments);
         self.send_python(sent, Running::Call(name))
     }
@@ -177,7 +177,9 @@ impl<R: BufRead> Interpreter<R> {
                 Message::Raised(message) => return Ok(Progress::Raised(message)),
                 Message::Param(key) => self.python_param(&key),
                 Message::SetParam(key, value) => self.python_set_param(key, value),
-                Message::Names { locals } => Answer::Names(self.state.params.names(!locals)),
+                Message::Names { locals } => {
+                    Answer::Names(self.machine.state.params.names(!locals))
+                }
                 Message::Attribute(name) => self.python_attribute(&name),
                 Message::SetAttribute(name, value) => self.python_set_attribute(&name, value),
                 Message::Canon { name, values } => match self.python_canon(&name, &values) {
@@ -191,7 +193,7 @@ impl<R: BufRead> Interpreter<R> {
             };
             let answered = plugin.answer(answer);
             answered.map_err(|message| self.plugin_failed(&message))?;
-            if !self.output.queue.is_empty() {
+            if !self.machine.output.queue.is_empty() {
                 return Ok(Progress::Paused);
             }
         }
@@ -208,8 +210,8 @@ impl<R: BufRead> Interpreter<R> {
         match outcome {
             Outcome::None => {}
             Outcome::Float(value) => {
-                self.state.owords.value = value;
-                self.state.owords.returned = true;
+                self.machine.state.owords.value = value;
+                self.machine.state.owords.returned = true;
             }
             Outcome::Int(value) => {
                 return refuse(format!(
@@ -261,7 +263,9 @@ impl<R: BufRead> Interpreter<R> {
     fn python_param(&self, key: &Key) -> Answer {
         match key {
             Key::Numbered(index) => match usize::try_from(*index) {
-                Ok(index) if index < MAX_PARAMETERS => Answer::Value(self.state.params.get(index)),
+                Ok(index) if index < MAX_PARAMETERS => {
+                    Answer::Value(self.machine.state.params.get(index))
+                }
                 _ => Answer::Error(format!(
                     "params subscript out of range : {index} - must be between 0 and \
                      {MAX_PARAMETERS}"
@@ -270,9 +274,12 @@ impl<R: BufRead> Interpreter<R> {
             Key::Named(name) => {
                 let bytes = name.as_bytes();
                 let value = if bytes.first() == Some(&b'_') {
-                    self.state.predefined(bytes).or_else(|| self.state.params.named(bytes))
+                    self.machine
+                        .state
+                        .predefined(bytes)
+                        .or_else(|| self.machine.state.params.named(bytes))
                 } else {
-                    self.state.params.named(bytes)
+                    self.machine.state.params.named(bytes)
                 };
                 value.map_or_else(
                     || Answer::Error(format!("parameter does not exist: {name}")),
@@ -288,7 +295,7 @@ impl<R: BufRead> Interpreter<R> {
         match key {
             Key::Numbered(index) => match usize::try_from(index) {
                 Ok(index) if index < MAX_PARAMETERS => {
-                    self.state.params.set(index, value);
+                    self.machine.state.params.set(index, value);
                     Answer::Ok
                 }
                 _ => Answer::Error(format!(
@@ -298,12 +305,12 @@ impl<R: BufRead> Interpreter<R> {
             },
             Key::Named(name) => {
                 let bytes = name.as_bytes();
-                if (bytes.first() == Some(&b'_') && self.state.predefined(bytes).is_some())
+                if (bytes.first() == Some(&b'_') && self.machine.state.predefined(bytes).is_some())
                     || !value.is_finite()
                 {
                     return Answer::Error(format!("can't assign value to parameter: {name}"));
                 }
-                self.state.params.set_named(bytes, value);
+                self.machine.state.params.set_named(bytes, value);
                 Answer::Ok
             }
         }
@@ -312,15 +319,15 @@ impl<R: BufRead> Interpreter<R> {
     /// `self.NAME` for the interpreter's attributes Python may read.
     fn python_attribute(&self, name: &str) -> Answer {
         Answer::Value(match name {
-            "return_value" => self.state.owords.value,
-            "value_returned" => f64::from(u8::from(self.state.owords.returned)),
-            "call_level" => self.state.owords.level as f64,
+            "return_value" => self.machine.state.owords.value,
+            "value_returned" => f64::from(u8::from(self.machine.state.owords.returned)),
+            "call_level" => self.machine.state.owords.level as f64,
             "remap_level" | "task" => 0.0,
-            "sequence_number" => self.state.line as f64,
-            "current_x" => self.state.current[0],
-            "current_y" => self.state.current[1],
-            "current_z" => self.state.current[2],
-            "feed_rate" => self.state.feed_rate,
+            "sequence_number" => self.machine.state.line as f64,
+            "current_x" => self.machine.state.current[0],
+            "current_y" => self.machine.state.current[1],
+            "current_z" => self.machine.state.current[2],
+            "feed_rate" => self.machine.state.feed_rate,
             "filename" => return Answer::Text(self.control.file_name()),
             _ => return Answer::Error(format!("no attribute {name}")),
         })
@@ -329,8 +336,8 @@ impl<R: BufRead> Interpreter<R> {
     /// `self.NAME = value` for the attributes Python may set.
     fn python_set_attribute(&mut self, name: &str, value: f64) -> Answer {
         match name {
-            "return_value" => self.state.owords.value = value,
-            "value_returned" => self.state.owords.returned = value != 0.0,
+            "return_value" => self.machine.state.owords.value = value,
+            "value_returned" => self.machine.state.owords.returned = value != 0.0,
             _ => return Answer::Error(format!("can't set attribute {name}")),
         }
         Answer::Ok
@@ -353,33 +360,33 @@ impl<R: BufRead> Interpreter<R> {
                         ));
                     }
                 }
-                if self.state.comp.active() {
+                if self.machine.state.comp.active() {
                     return Err(format!(
                         "emccanon.{name} under cutter radius compensation is not supported"
                     ));
                 }
-                let end = self.state.absolute([x, y, z, c]);
+                let end = self.machine.state.absolute([x, y, z, c]);
                 if end.iter().any(|value| !value.is_finite() || value.abs() > MAX_COORDINATE) {
                     return Err(format!(
                         "emccanon.{name} to ({x}, {y}, {z}, C{c}): beyond ±{MAX_COORDINATE} mm"
                     ));
                 }
                 let kind = if name == "STRAIGHT_FEED" {
-                    if self.state.feed_mm <= 0.0 {
+                    if self.machine.state.feed_mm <= 0.0 {
                         return Err("emccanon.STRAIGHT_FEED with zero feed rate: program an F \
                                     word before the call"
                             .to_owned());
                     }
-                    let feed = Feed { mm_per_min: self.state.feed_mm, inverse_time: false };
+                    let feed = Feed { mm_per_min: self.machine.state.feed_mm, inverse_time: false };
                     MotionKind::Linear { end, feed }
                 } else {
                     MotionKind::Rapid { end }
                 };
-                self.emit(kind);
+                self.machine.emit(kind);
                 Ok(())
             }
             ("DWELL", &[seconds]) if seconds.is_finite() && seconds >= 0.0 => {
-                self.emit(MotionKind::Dwell { seconds });
+                self.machine.emit(MotionKind::Dwell { seconds });
                 Ok(())
             }
             ("DWELL", _) => Err("emccanon.DWELL needs a time of 0 s or more".to_owned()),

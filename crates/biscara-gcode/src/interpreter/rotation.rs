@@ -12,13 +12,12 @@
 //! system in force moves the current point as if no G92 offset were set.
 
 use std::f64::consts::PI;
-use std::io::BufRead;
 
 use biscara_motion::Feed;
 
 use super::motion::find_turn;
 use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
-use super::{Interpreter, State};
+use super::{Machine, State};
 use crate::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.
@@ -111,7 +110,7 @@ impl State {
     }
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Makes `system` the one in force (its origin and rotation from the parameters), keeping
     /// the machine position. `g10`: rs274's G10 L2 on the system in force, which leaves the
     /// G92 offset out of the rotations.

@@ -21,11 +21,9 @@
 //! block's line; a block makes at most [`MAX_SEGMENTS`] of them (memory stays bounded), and a
 //! spline that would need more is refused (its control points then lie metres apart).
 
-use std::io::BufRead;
-
 use biscara_motion::{Feed, Plane};
 
-use super::Interpreter;
+use super::Machine;
 use crate::lexer::Fault;
 
 /// How far the straight moves of a spline may be from its curve, mm.
@@ -38,7 +36,7 @@ pub(super) fn is_spline(motion: u16) -> bool {
     matches!(motion, 50 | 51)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G5 (`motion` 50) or G5.1 (51): the checks of rs274's `convert_spline`, in its order,
     /// then the curve's straight moves.
     pub(super) fn spline(&mut self, motion: u16) -> Result<(), Fault> {

@@ -8,10 +8,8 @@
 //! 0), taken by M6; as in `rs274`, M61 changes the current pocket but not that copy, and a
 //! G10 L1 of the tool in the current pocket updates it.
 
-use std::io::BufRead;
-
 use super::rotation::{rotate, rotation_parameter};
-use super::{AXES, Interpreter};
+use super::{AXES, Machine};
 use crate::lexer::Fault;
 use crate::params::{G92_ENABLED, axis_slot};
 use crate::parser::Code;
@@ -92,24 +90,7 @@ fn not_found(tool: impl std::fmt::Display) -> String {
     format!("Requested tool {tool} not found in the tool table")
 }
 
-impl<R: BufRead> Interpreter<R> {
-    /// Whether the program used G43, G43.2, G10 L1/L10/L11 or M61 while no tool table was
-    /// given (every tool then has zero length and diameter).
-    pub fn tools_without_table(&self) -> bool {
-        self.state.tools.used_without_table
-    }
-
-    /// The tool table as the program has changed it so far (G10 L1, L10, L11): what cutter
-    /// compensation looks diameters up in.
-    pub fn tool_table(&self) -> &ToolTable {
-        &self.state.tools.table
-    }
-
-    /// The tool in the spindle (after M6; zero offsets before any).
-    pub fn current_tool(&self) -> ToolEntry {
-        self.state.tools.spindle
-    }
-
+impl Machine {
     fn note_no_table(&mut self) {
         if !self.state.tools.has_table {
             self.state.tools.used_without_table = true;

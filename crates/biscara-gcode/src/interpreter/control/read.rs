@@ -22,17 +22,21 @@ impl<R: BufRead> Interpreter<R> {
         if m_number == Some(98) {
             block.kind = OType::M98;
             // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
-            let mut reader =
-                Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &self.machine.syntax.compact,
+                raw_len,
+                &self.machine.state.params,
+                &self.machine.state,
+            );
             let m_end = {
                 reader.set_position(at + 1);
                 reader.read_integer_value()?;
                 reader.position()
             };
             reader.set_position(m_end);
-            let words = &mut self.syntax.block;
+            let words = &mut self.machine.syntax.block;
             words.clear();
-            let bytes = self.syntax.compact.bytes();
+            let bytes = self.machine.syntax.compact.bytes();
             while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
                 reader.read_item(words)?;
             }
@@ -43,7 +47,7 @@ impl<R: BufRead> Interpreter<R> {
             if p.value - number > 0.9999 {
                 number = p.value.ceil();
             } else if p.value - number > 0.0001 {
-                let (first, last) = self.span(p.at, p.end);
+                let (first, last) = self.machine.span(p.at, p.end);
                 return Err(Fault::syntax(first, last, "Non integer value for integer"));
             }
             bare = format!("{}", number as i32);
@@ -54,14 +58,18 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
             }
             block.kind = OType::M99;
-            let mut reader =
-                Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &self.machine.syntax.compact,
+                raw_len,
+                &self.machine.state.params,
+                &self.machine.state,
+            );
             reader.set_position(at + 1);
             reader.read_integer_value()?;
             pos = reader.position();
             bare = self.control.frames[level].name.as_deref().unwrap_or("").to_owned();
         } else {
-            let bytes = self.syntax.compact.bytes();
+            let bytes = self.machine.syntax.compact.bytes();
             pos = at + 1;
             if bytes.get(pos) == Some(&b'<') {
                 let start = pos + 1;
@@ -78,8 +86,12 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
             } else {
-                let mut reader =
-                    Reader::new(&self.syntax.compact, raw_len, &self.state.params, &self.state);
+                let mut reader = Reader::new(
+                    &self.machine.syntax.compact,
+                    raw_len,
+                    &self.machine.state.params,
+                    &self.machine.state,
+                );
                 reader.set_position(pos);
                 let number = reader.read_integer_value()?;
                 pos = reader.position();
@@ -126,13 +138,15 @@ impl<R: BufRead> Interpreter<R> {
                 if skipping_other {
                     return Ok(None);
                 }
-                if block.kind != OType::M99 && self.syntax.compact.bytes().get(pos) == Some(&b'[') {
+                if block.kind != OType::M99
+                    && self.machine.syntax.compact.bytes().get(pos) == Some(&b'[')
+                {
                     let value = self.expression(&mut pos)?;
-                    self.state.owords.value = value;
-                    self.state.owords.returned = true;
+                    self.machine.state.owords.value = value;
+                    self.machine.state.owords.returned = true;
                 } else {
-                    self.state.owords.value = 0.0;
-                    self.state.owords.returned = false;
+                    self.machine.state.owords.value = 0.0;
+                    self.machine.state.owords.returned = false;
                 }
             }
             _ if self.control.defining_sub => block.kind = OType::None,
@@ -142,7 +156,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 block.call_type = CallType::Oword;
                 let mut count = 0;
-                while let Some(&byte) = self.syntax.compact.bytes().get(pos) {
+                while let Some(&byte) = self.machine.syntax.compact.bytes().get(pos) {
                     match byte {
                         b'(' => pos += 1,
                         b'[' => {
@@ -162,7 +176,7 @@ impl<R: BufRead> Interpreter<R> {
                 if skipping_other {
                     return Ok(None);
                 }
-                if self.syntax.compact.bytes().get(pos) != Some(&b'[') {
+                if self.machine.syntax.compact.bytes().get(pos) != Some(&b'[') {
                     return Err(self.line_fault(format!(
                         "Left bracket missing after '{}'",
                         block.kind.name()
@@ -183,13 +197,13 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(Some(block));
         }
         // After `if [...]` and the like, nothing but comments.
-        let bytes = self.syntax.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         while let Some(&byte) = bytes.get(pos) {
             match byte {
                 b'(' => pos += 1,
                 b';' => break,
                 _ => {
-                    let (first, last) = self.span(pos, bytes.len());
+                    let (first, last) = self.machine.span(pos, bytes.len());
                     return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
                 }
             }
@@ -201,19 +215,21 @@ impl<R: BufRead> Interpreter<R> {
     /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
     pub(super) fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
         let mut block = OBlock::new(OType::M98, CallType::G65);
-        let digits =
-            self.syntax.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+        let digits = self.machine.syntax.compact.bytes()[at + 1..]
+            .iter()
+            .take_while(|b| b.is_ascii_digit())
+            .count();
         let mut reader = Reader::new(
-            &self.syntax.compact,
+            &self.machine.syntax.compact,
             self.lines.line.len(),
-            &self.state.params,
-            &self.state,
+            &self.machine.state.params,
+            &self.machine.state,
         );
         reader.set_position(at + 1 + digits);
         let mut program = None;
         loop {
             let pos = reader.position();
-            let Some(&letter) = self.syntax.compact.bytes().get(pos) else { break };
+            let Some(&letter) = self.machine.syntax.compact.bytes().get(pos) else { break };
             if letter == b';' {
                 break;
             }
@@ -229,7 +245,7 @@ impl<R: BufRead> Interpreter<R> {
                 _ => match g65_argument(letter) {
                     Some(index) => block.params[index - 1] = value,
                     None => {
-                        let (first, last) = self.span(pos, pos + 1);
+                        let (first, last) = self.machine.span(pos, pos + 1);
                         return Err(Fault::syntax(
                             first,
                             last,
@@ -256,10 +272,10 @@ impl<R: BufRead> Interpreter<R> {
     /// A `[ … ]` expression at compact index `pos` (moved past it).
     pub(super) fn expression(&self, pos: &mut usize) -> Result<f64, Fault> {
         let mut reader = Reader::new(
-            &self.syntax.compact,
+            &self.machine.syntax.compact,
             self.lines.line.len(),
-            &self.state.params,
-            &self.state,
+            &self.machine.state.params,
+            &self.machine.state,
         );
         reader.set_position(*pos);
         let value = reader.read_expression()?;
