@@ -10,7 +10,7 @@ use std::fmt;
 use std::io::{self, BufRead, Write};
 use std::path::{Path, PathBuf};
 
-use crate::lexer::Seekable;
+use crate::syntax::lexer::Seekable;
 
 /// The world outside the program: files by path, and a Python interpreter.
 ///

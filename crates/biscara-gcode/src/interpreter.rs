@@ -12,15 +12,15 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use crate::dialect::{Detection, Dialect, LOOKAHEAD_BYTES, Summary};
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
-use crate::lexer::{
+use crate::syntax::lexer::{
     Compact, Fault, FaultKind, InnerParen, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT,
     compact,
 };
-use crate::params::{
+use crate::syntax::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
 };
-use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::syntax::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::{ToolEntry, ToolTable};
 

@@ -91,17 +91,14 @@
 
 #![warn(missing_docs)]
 
-mod degrees;
 mod dialect;
 mod environment;
 mod error;
 mod ini_file;
 mod interpreter;
-mod lexer;
-mod params;
-mod parser;
 #[cfg(feature = "python")]
 mod python_plugin;
+mod syntax;
 mod tool;
 mod tool_table;
 
@@ -112,7 +109,7 @@ pub use environment::{Environment, InMemory, NoEnvironment, PythonProcess};
 pub use error::{GcodeError, Location, Setting};
 pub use ini_file::{IniFile, IniFileError};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
-pub use lexer::{Forward, Seekable};
+pub use syntax::lexer::{Forward, Seekable};
 pub use tool::{Tool, ToolInference, infer_tool};
 pub use tool_table::{ToolEntry, ToolTable, ToolTableError};
 

@@ -9,7 +9,7 @@
 use biscara_motion::{Feed, MotionKind, Plane};
 
 use super::{AXES, Machine};
-use crate::lexer::Fault;
+use crate::syntax::lexer::Fault;
 
 /// LinuxCNC's `G83_RAPID_DELTA`: how far above the last depth a peck restarts, inches.
 const RAPID_DELTA_INCH: f64 = 0.010;

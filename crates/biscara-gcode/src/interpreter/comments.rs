@@ -94,7 +94,9 @@ impl<R: BufRead> Interpreter<R> {
             }
             let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
             let number = std::str::from_utf8(&rest[..digits]).ok().and_then(|d| d.parse().ok());
-            match number.filter(|&n: &usize| (1..crate::params::MAX_PARAMETERS).contains(&n)) {
+            match number
+                .filter(|&n: &usize| (1..crate::syntax::params::MAX_PARAMETERS).contains(&n))
+            {
                 Some(number) => {
                     message.push_str(&format!("{:.6}", self.machine.state.params.get(number)))
                 }

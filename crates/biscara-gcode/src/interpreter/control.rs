@@ -25,8 +25,8 @@ use crate::dialect::Dialect;
 use crate::environment::{Environment, NoEnvironment};
 use crate::error::GcodeError;
 use crate::error::Setting;
-use crate::lexer::{Fault, FaultKind};
-use crate::parser::Reader;
+use crate::syntax::lexer::{Fault, FaultKind};
+use crate::syntax::parser::Reader;
 
 /// LinuxCNC's `INTERP_SUB_PARAMS`: a call's arguments are #1 … #30.
 const SUB_PARAMS: usize = 30;

@@ -23,8 +23,8 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use super::Machine;
 use super::motion::find_turn;
 use crate::Dialect;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
 /// LinuxCNC's `TOLERANCE_CONCAVE_CORNER` (radians): below it a corner is straight on.
 const TOLERANCE_CONCAVE_CORNER: f64 = 0.05;

@@ -19,8 +19,8 @@
 use std::io::BufRead;
 
 use super::{Interpreter, control};
-use crate::lexer::Fault;
-use crate::parser::Reader;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Reader;
 
 /// M97 calls deeper than this are an error (Haas nests local subprograms a few levels deep;
 /// LinuxCNC allows ten call levels).
@@ -538,8 +538,10 @@ impl super::Machine {
             let x = self.syntax.block.letters[letter(b'x')].take();
             let p = self.syntax.block.letters[letter(b'p')];
             let seconds = match (x, p) {
-                (Some(x), _) => Some(crate::parser::Word { value: x.value, ..x }),
-                (None, Some(p)) => Some(crate::parser::Word { value: p.value / 1000.0, ..p }),
+                (Some(x), _) => Some(crate::syntax::parser::Word { value: x.value, ..x }),
+                (None, Some(p)) => {
+                    Some(crate::syntax::parser::Word { value: p.value / 1000.0, ..p })
+                }
                 (None, None) => None,
             };
             self.syntax.block.letters[letter(b'p')] = seconds;

@@ -13,9 +13,9 @@ use crate::dialect::{
     grbl_runs_g, grbl_runs_m, prelude,
 };
 use crate::error::GcodeError;
-use crate::lexer::Fault;
-use crate::params::{G28_HOME, axis_slot};
-use crate::parser::Word;
+use crate::syntax::lexer::Fault;
+use crate::syntax::params::{G28_HOME, axis_slot};
+use crate::syntax::parser::Word;
 use crate::tool::{Tool, ToolInference};
 
 /// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).

@@ -13,8 +13,8 @@
 //!   any other number is refused with rs274's message.
 
 use super::Machine;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
 /// rs274's message for a `$` word no code on the line uses.
 const UNUSED_DOLLAR: &str = "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, \

@@ -16,8 +16,8 @@
 use biscara_motion::Plane;
 
 use super::Machine;
-use crate::lexer::Fault;
-use crate::parser::Code;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Code;
 
 /// The modal state M70 saves.
 #[derive(Debug, Clone, Copy)]

@@ -8,7 +8,7 @@ use std::rc::Rc;
 use super::Interpreter;
 use super::comments::PythonComment;
 use crate::IniFile;
-use crate::lexer::Fault;
+use crate::syntax::lexer::Fault;
 
 /// No plug-ins can be loaded in this build.
 #[derive(Debug)]

@@ -13,8 +13,8 @@
 use biscara_motion::Plane;
 
 use super::Machine;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
 impl Machine {
     /// X or Y words with `@` or `^` (read with the line, before its other checks).

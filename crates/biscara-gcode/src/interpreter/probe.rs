@@ -17,8 +17,8 @@ use biscara_motion::{CodeName, Feed, MotionKind};
 
 use super::Machine;
 use crate::dialect::{Dialect, g_name};
-use crate::lexer::Fault;
-use crate::params::axis_slot;
+use crate::syntax::lexer::Fault;
+use crate::syntax::params::axis_slot;
 
 /// First of the parameters that receive the probed point (x y z a b c u v w follow).
 const PROBED_POINT: usize = 5061;

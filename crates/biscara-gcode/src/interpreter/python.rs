@@ -15,10 +15,10 @@ use biscara_motion::{Feed, MotionKind};
 use super::comments::PythonComment;
 use super::{Interpreter, MAX_COORDINATE};
 use crate::IniFile;
-use crate::lexer::{Fault, FaultKind};
-use crate::params::MAX_PARAMETERS;
-use crate::parser::Predefined;
 use crate::python_plugin::{Answer, Key, Message, Outcome, PluginSetup, PythonPlugin};
+use crate::syntax::lexer::{Fault, FaultKind};
+use crate::syntax::params::MAX_PARAMETERS;
+use crate::syntax::parser::Predefined;
 
 /// The plug-ins, and the request running.
 #[derive(Debug)]

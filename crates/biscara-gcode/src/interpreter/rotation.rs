@@ -18,7 +18,7 @@ use biscara_motion::Feed;
 use super::motion::find_turn;
 use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
 use super::{Machine, State};
-use crate::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
+use crate::syntax::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.
 const ROTATION_SLOT: usize = 9;

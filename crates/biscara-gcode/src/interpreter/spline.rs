@@ -24,7 +24,7 @@
 use biscara_motion::{Feed, Plane};
 
 use super::Machine;
-use crate::lexer::Fault;
+use crate::syntax::lexer::Fault;
 
 /// How far the straight moves of a spline may be from its curve, mm.
 pub(super) const CHORD_TOLERANCE_MM: f64 = 0.001;

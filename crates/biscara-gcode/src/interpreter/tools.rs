@@ -10,9 +10,9 @@
 
 use super::rotation::{rotate, rotation_parameter};
 use super::{AXES, Machine};
-use crate::lexer::Fault;
-use crate::params::{G92_ENABLED, axis_slot};
-use crate::parser::Code;
+use crate::syntax::lexer::Fault;
+use crate::syntax::params::{G92_ENABLED, axis_slot};
+use crate::syntax::parser::Code;
 use crate::tool_table::{ToolEntry, ToolTable};
 
 /// First of the current tool's parameters: 5400 tool, 5401–5409 offsets (x y z a b c u v w),
@@ -72,7 +72,7 @@ impl Tools {
     }
 
     /// Parameters 5400–5413 from the tool in the spindle (values in mm and degrees).
-    pub(super) fn publish(&self, params: &mut crate::params::Params) {
+    pub(super) fn publish(&self, params: &mut crate::syntax::params::Params) {
         let spindle = &self.spindle;
         params.set(TOOL_PARAMETERS, f64::from(spindle.tool));
         for axis in 0..4 {
