@@ -771,6 +771,26 @@ impl<R: BufRead> Interpreter<R> {
         self.machine.execute(plan, user_m_missing)
     }
 
+    /// The line's last comment, as LinuxCNC executes it first (`convert_comment`): `abort,`
+    /// ([`Machine::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
+    /// end before the rest of the line.
+    pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
+        if self.machine.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
+            return Ok(());
+        }
+        if let Some((_, text, close)) = comments::last_comment(&self.lines.line)
+            && let Some((action, code)) = comments::PythonComment::of(&self.lines.line[text..close])
+        {
+            let code = code.to_vec();
+            self.python_comment(action, &code)?;
+            while self.python_paused() {
+                self.resume_python()?;
+            }
+            return Ok(());
+        }
+        self.machine.abort_comment(&self.lines.line)
+    }
+
     /// Whether the block's user M-code (M100–M199) has no program where the INI file says
     /// they are (LinuxCNC's unknown M code); `false` without an INI file that says.
     fn user_m_missing(&self) -> bool {
