@@ -804,6 +804,11 @@ impl<R: BufRead> Interpreter<R> {
 }
 
 impl Machine {
+    /// A fault about the whole line.
+    fn line_fault(&self, message: impl Into<String>) -> Fault {
+        Fault::invalid(0, self.syntax.raw_len.max(1), message)
+    }
+
     /// Raw column range of the block's compact range `start..end`.
     fn span(&self, start: usize, end: usize) -> (usize, usize) {
         let raw_len = self.syntax.raw_len;

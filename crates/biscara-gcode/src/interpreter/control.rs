@@ -27,6 +27,7 @@ use crate::error::GcodeError;
 use crate::error::Setting;
 use crate::syntax::lexer::{Fault, FaultKind};
 use crate::syntax::parser::Reader;
+pub(super) use read::{first_item, may_call_g65, may_control};
 
 /// LinuxCNC's `INTERP_SUB_PARAMS`: a call's arguments are #1 … #30.
 const SUB_PARAMS: usize = 30;
@@ -308,49 +309,6 @@ impl OBlock {
     }
 }
 
-/// Whether a line's significant characters may be an O-word line, `M98` or `M99`: the only
-/// look at an ordinary line.
-#[inline]
-pub(super) fn may_control(bytes: &[u8]) -> bool {
-    let mut at = usize::from(bytes.first() == Some(&b'/'));
-    if bytes.get(at) == Some(&b'n') {
-        at += 1;
-        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
-            at += 1;
-        }
-    }
-    match bytes.get(at) {
-        Some(b'o') => true,
-        Some(b'm') => !matches!(bytes.get(at + 1), Some(b'1'..=b'8')),
-        _ => false,
-    }
-}
-
-/// Whether a line's first item is G65 (`g65`, `g065`, not `g65.1`): Mach4's macro call, looked
-/// for only in the Mach3 dialect.
-pub(super) fn may_call_g65(bytes: &[u8]) -> bool {
-    let at = first_item(bytes);
-    let Some(item) = bytes.get(at..).filter(|item| item.first() == Some(&b'g')) else {
-        return false;
-    };
-    let digits = item[1..].iter().take_while(|b| b.is_ascii_digit()).count();
-    let number = &item[1..1 + digits];
-    let number = &number[number.iter().take_while(|&&b| b == b'0').count()..];
-    number == b"65" && item.get(1 + digits) != Some(&b'.')
-}
-
-/// Where the first item of a line starts (after `/` and the N number).
-pub(super) fn first_item(bytes: &[u8]) -> usize {
-    let mut at = usize::from(bytes.first() == Some(&b'/'));
-    if bytes.get(at) == Some(&b'n') {
-        at += 1;
-        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
-            at += 1;
-        }
-    }
-    at
-}
-
 impl<R: BufRead> Interpreter<R> {
     /// Sets where file subroutines are found: beside `program` (also named in messages) and
     /// in `dirs`, in that order.
@@ -431,7 +389,11 @@ impl<R: BufRead> Interpreter<R> {
             }
             _ => return Ok(skipping),
         }
-        let block = if g65 { Some(self.read_g65(at)?) } else { self.read_o(at, m_number)? };
+        let block = if g65 {
+            Some(self.machine.read_g65(at)?)
+        } else {
+            self.control.read_o(&mut self.machine, at, m_number)?
+        };
         let Some(block) = block else { return Ok(true) };
         self.convert_control(&block)?;
         if !self.lines.can_jump() && self.control.file.is_none() {
@@ -477,7 +439,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     pub(super) fn line_fault(&self, message: impl Into<String>) -> Fault {
-        Fault::invalid(0, self.lines.line.len().max(1), message)
+        self.machine.line_fault(message)
     }
 
     /// The line refused until the caller gives `setting`.
