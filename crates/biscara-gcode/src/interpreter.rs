@@ -1,15 +1,17 @@
-//! Executing blocks: LinuxCNC's modal state, order of execution, offsets, arcs and feeds.
-//!
-//! The state is kept as LinuxCNC keeps it — positions and offsets in the program's current
-//! length units, so that its tolerances apply exactly — and every motion is converted to
-//! absolute millimetres in the robot's base frame when it is emitted.
+//! The interpreter: [`Interpreter`] reads lines (generic over the input), runs the O-word
+//! control flow and the Python plug-ins that jump and move in them, and the dialects' hooks
+//! that read the input (`auto`'s look-ahead, the tool's inference, a line before the block
+//! reader, the end of the input); a non-generic [`Machine`] executes each block read
+//! (`machine.rs`, and the files of the codes it executes).
 
 use std::collections::VecDeque;
 use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use crate::dialect::{Detection, Dialect, LOOKAHEAD_BYTES, Summary};
+use crate::dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+};
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
 use crate::syntax::lexer::{
@@ -23,6 +25,7 @@ use crate::syntax::params::{
 use crate::syntax::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::{ToolEntry, ToolTable};
+use hooks::MARLIN_DEFAULT_FEED;
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
 mod canned;
@@ -42,6 +45,8 @@ mod fanuc;
 mod hooks;
 /// M19, M48–M53, M62–M68 and the `$` word.
 mod io_codes;
+/// The machine that executes blocks: its parts and LinuxCNC's modal state.
+mod machine;
 /// M70–M73: the modal state saved and restored.
 mod modal_state;
 /// Modes and offsets: path control, units, coordinate systems, G10 L2/L20, G92, G52.
@@ -66,6 +71,8 @@ mod rotation;
 mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
+
+use machine::{Machine, Output, Percent, State, Syntax};
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -177,298 +184,6 @@ pub struct Interpreter<R> {
     /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
     #[cfg_attr(not(feature = "python"), allow(dead_code))]
     python: Option<Box<python::Python>>,
-}
-
-/// The machine that executes blocks, not generic over the input: the block being executed,
-/// LinuxCNC's modal state, the motions made, and the dialect's and tool's hooks.
-#[derive(Debug)]
-struct Machine {
-    /// The line being read, as a block.
-    syntax: Syntax,
-    /// LinuxCNC's modal state and position.
-    state: State,
-    /// The motions made and not yet taken, and whether the program has ended.
-    output: Output,
-    /// The dialect's and the tool's hooks.
-    hooks: hooks::Hooks,
-}
-
-/// The line being read: its significant characters, the block read from them, and how lines
-/// are framed (block delete, `%`).
-#[derive(Debug)]
-struct Syntax {
-    compact: Compact,
-    block: Block,
-    /// The length of the raw line (for the columns of errors).
-    raw_len: usize,
-    block_delete: bool,
-    percent: Percent,
-}
-
-/// What the interpreter has made and not yet given.
-#[derive(Debug)]
-struct Output {
-    queue: VecDeque<Motion>,
-    /// Whether the program has ended (or failed): nothing more is read.
-    finished: bool,
-    /// Whether any motion was emitted (an empty program is not a program).
-    moved: bool,
-    /// Jumps back since the last motion.
-    idle_jumps: u64,
-    /// The end point of the last motion (a move to where the robot is is no motion).
-    last_end: Option<[f64; 4]>,
-}
-
-impl Output {
-    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
-    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
-    /// without loops pays one test a motion; the first move after a jump may compare with an
-    /// older end point, and then there was a motion since.)
-    #[cold]
-    fn moved_since_jump(&mut self, kind: &MotionKind) {
-        let end = kind.end();
-        let waits = matches!(*kind, MotionKind::Dwell { seconds } if seconds > 0.0);
-        if (end.is_some() && end != self.last_end) || waits {
-            self.idle_jumps = 0;
-        }
-        if end.is_some() {
-            self.last_end = end;
-        }
-    }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Percent {
-    /// Before the first line.
-    Unknown,
-    /// The program started with `%`: it ends at the next `%`.
-    Open,
-    /// The program did not start with `%`: it ends with M2 or M30.
-    Absent,
-}
-
-/// LinuxCNC's modal state and position, in the program's current length units.
-#[derive(Debug)]
-struct State {
-    metric: bool,
-    incremental: bool,
-    ijk_absolute: bool,
-    plane: Plane,
-    inverse_time: bool,
-    /// The F number in force (program units per minute).
-    feed_rate: f64,
-    /// The feed rate in force as the machine holds it: mm/min, converted when it was set.
-    feed_mm: f64,
-    /// 0, 10, 20, 30 for G0–G3; `None` after G80 and at the start.
-    motion: Option<u16>,
-    current: [f64; 4],
-    origin: [f64; 4],
-    axis_offset: [f64; 4],
-    system: usize,
-    /// The rotation of the system in force about Z, degrees (G10 L2 R; 0: none).
-    rotation: f64,
-    params: Params,
-    line: usize,
-    speed: f64,
-    /// The tool length offset in force (G43…), in the program units in force when it was set:
-    /// as in rs274, a change of units does not convert it (it is used so by later G43, G49,
-    /// G53, G28 and G10 L10), though the machine keeps the offset it was given
-    /// ([`State::tool_offset_mm`]).
-    tool_offset: [f64; 4],
-    /// The tool length offset the machine applies, mm and degrees.
-    tool_offset_mm: [f64; 4],
-    /// How far tool length offsets set since the last move have shifted the current point:
-    /// rs274 takes its position back from the last move after M6 (its canon does not follow).
-    tool_shift: [f64; 4],
-    /// A tool change (M6, M61) was made: the current point is taken back from the last move as
-    /// the next line is read.
-    resync: bool,
-    tools: tools::Tools,
-    /// The canned cycles' retract mode and sticky values.
-    cycle: canned::CycleState,
-    /// The modal state M70/M73 saved.
-    modal_stack: modal_state::ModalStack,
-    spindle: u16,
-    mist: bool,
-    flood: bool,
-    /// `#<_value>`, `#<_value_returned>`, `#<_call_level>`.
-    owords: control::Values,
-    /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
-    /// G61/G61.1.
-    blend: Option<f64>,
-    /// G64 Q in millimetres when positive (LinuxCNC's naive-CAM tolerance), `None` otherwise.
-    naive_cam: Option<f64>,
-    /// Cutter radius compensation and the motions it holds back.
-    comp: cutter_comp::CutterComp,
-    /// The INI file whose variables `#<_ini[…]…>` names read, when it allows it.
-    ini: Option<std::sync::Arc<IniFile>>,
-    /// The axes (x y z c) a G92 named before the first motion: the program made its start
-    /// point its zero there.
-    zeroed_at_start: [bool; 4],
-}
-
-impl State {
-    fn new(config: &Config) -> State {
-        let mut params = Params::new();
-        for axis in 0..4 {
-            params.set(G28_HOME + axis_slot(axis), config.home[axis]);
-            params.set(G30_HOME + axis_slot(axis), config.home[axis]);
-            params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
-        }
-        params.set(COORDINATE_SYSTEM, 1.0);
-        let start = config.start.unwrap_or(config.home);
-        let current = std::array::from_fn(|axis| start[axis] - config.origin[axis]);
-        let mut state = State {
-            metric: true,
-            incremental: false,
-            ijk_absolute: false,
-            plane: Plane::Xy,
-            inverse_time: false,
-            feed_rate: 0.0,
-            feed_mm: 0.0,
-            motion: None,
-            current,
-            origin: config.origin,
-            axis_offset: [0.0; 4],
-            system: 1,
-            rotation: 0.0,
-            params,
-            line: 0,
-            speed: 0.0,
-            tool_offset: [0.0; 4],
-            tool_offset_mm: [0.0; 4],
-            tool_shift: [0.0; 4],
-            resync: false,
-            tools: tools::Tools::new(config.tool_table.as_deref()),
-            cycle: canned::CycleState::default(),
-            modal_stack: modal_state::ModalStack::default(),
-            spindle: 5,
-            mist: false,
-            flood: false,
-            owords: control::Values::default(),
-            blend: config.blend,
-            naive_cam: None,
-            comp: cutter_comp::CutterComp::new(),
-            ini: config.ini.clone().filter(|ini| ini.variables_enabled()),
-            zeroed_at_start: [false; 4],
-        };
-        state.publish_position();
-        state
-    }
-
-    /// Millimetres per program unit.
-    fn factor(&self) -> f64 {
-        if self.metric { 1.0 } else { MM_PER_INCH }
-    }
-
-    /// Program units → mm for `axis` (C is in degrees whatever the units).
-    fn to_mm(&self, axis: usize, value: f64) -> f64 {
-        if axis == 3 { value } else { value * self.factor() }
-    }
-
-    fn mm_to_program(&self, axis: usize, value: f64) -> f64 {
-        if axis == 3 { value } else { value / self.factor() }
-    }
-
-    /// Whether the G92 offsets are in force (parameter 5210: G92 and G92.3 set it, G92.1 and
-    /// G92.2 clear it).
-    fn g92_in_force(&self) -> bool {
-        self.params.get(G92_ENABLED) != 0.0
-    }
-
-    /// A tool table entry's offsets `[x, y, z, c]` (mm, degrees) in program units.
-    fn offsets_in_program_units(&self, entry: &ToolEntry) -> [f64; 4] {
-        std::array::from_fn(|axis| self.mm_to_program(axis, entry.offset[axis]))
-    }
-
-    /// A position in the current coordinate system → absolute mm and degrees.
-    fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
-        if self.rotation != 0.0 {
-            return self.absolute_rotated(position);
-        }
-        std::array::from_fn(|axis| {
-            self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
-                + self.tool_offset_mm[axis]
-        })
-    }
-
-    /// Parameters 5420–5428: the current position.
-    fn publish_position(&mut self) {
-        for axis in 0..4 {
-            self.params.set(5420 + axis_slot(axis), self.current[axis]);
-        }
-    }
-}
-
-impl Predefined for State {
-    fn predefined(&self, name: &[u8]) -> Option<f64> {
-        let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| self.machine(self.current)[axis];
-        Some(match name {
-            b"_x" => self.current[0],
-            b"_y" => self.current[1],
-            b"_z" => self.current[2],
-            b"_c" => self.current[3],
-            b"_a" | b"_b" | b"_u" | b"_v" | b"_w" => 0.0,
-            b"_abs_x" => machine(0),
-            b"_abs_y" => machine(1),
-            b"_abs_z" => machine(2),
-            b"_abs_c" => machine(3),
-            b"_abs_a" | b"_abs_b" | b"_abs_u" | b"_abs_v" | b"_abs_w" => 0.0,
-            b"_metric" => flag(self.metric),
-            b"_imperial" => flag(!self.metric),
-            b"_absolute" => flag(!self.incremental),
-            b"_incremental" => flag(self.incremental),
-            b"_inverse_time" => flag(self.inverse_time),
-            b"_units_per_minute" => flag(!self.inverse_time),
-            b"_units_per_rev" => 0.0,
-            b"_ijk_absolute_mode" => flag(self.ijk_absolute),
-            b"_coord_system" => match self.system {
-                7..=9 => 590.0 + (self.system - 6) as f64,
-                n => 530.0 + 10.0 * n as f64,
-            },
-            b"_plane" => match self.plane {
-                Plane::Xy => 170.0,
-                Plane::Xz => 180.0,
-                Plane::Yz => 190.0,
-            },
-            b"_motion_mode" => self.motion.map_or(800.0, f64::from),
-            b"_ccomp" => self.comp.code(),
-            b"_feed" => self.feed_rate,
-            b"_rpm" => self.speed,
-            b"_current_tool" => f64::from(self.tools.spindle.tool),
-            b"_selected_tool" => self.tools.selected_tool,
-            b"_current_pocket" => self.tools.current_pocket,
-            b"_selected_pocket" => self.tools.selected_pocket,
-            b"_tool_offset" => flag(self.tools.offset_active),
-            b"_spindle_on" => flag(self.spindle != 5),
-            b"_spindle_cw" => flag(self.spindle == 3),
-            b"_mist" => flag(self.mist),
-            b"_flood" => flag(self.flood),
-            b"_line" => self.line as f64,
-            b"_lathe_diameter_mode" => 0.0,
-            b"_lathe_radius_mode" => 1.0,
-            b"_spindle_rpm_mode" => 1.0,
-            b"_spindle_css_mode" => 0.0,
-            b"_speed_override" | b"_feed_override" | b"_adaptive_feed" | b"_feed_hold" => 0.0,
-            b"_value" => self.owords.value,
-            b"_value_returned" => flag(self.owords.returned),
-            b"_call_level" => self.owords.level as f64,
-            b"_remap_level" | b"_task" => 0.0,
-            b"_vmajor" => 2.0,
-            b"_vminor" => 9.0,
-            // An INI file variable: read-only, as LinuxCNC caches it.
-            _ => return self.ini.as_ref()?.variable(name),
-        })
-    }
-
-    fn defining_sub(&self) -> bool {
-        self.owords.defining
-    }
-
-    fn ini_why_not(&self, name: &[u8]) -> Option<String> {
-        Some(self.ini.as_ref()?.why_not(name))
-    }
 }
 
 /// What the program told so far, as the caller asks.
@@ -803,53 +518,169 @@ impl<R: BufRead> Interpreter<R> {
     }
 }
 
-impl Machine {
-    /// A fault about the whole line.
-    fn line_fault(&self, message: impl Into<String>) -> Fault {
-        Fault::invalid(0, self.syntax.raw_len.max(1), message)
+/// The dialects' and the tool's hooks that read the input: `auto`'s look-ahead, the tool's
+/// inference, a dialect's look at a line before the block reader, the end of the input.
+impl<R: BufRead> Interpreter<R> {
+    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
+    /// with its decision).
+    pub(super) fn with_line_limit(mut self) -> Self {
+        self.apply_dialect();
+        self
     }
 
-    /// Raw column range of the block's compact range `start..end`.
-    fn span(&self, start: usize, end: usize) -> (usize, usize) {
-        let raw_len = self.syntax.raw_len;
-        let first = self.syntax.compact.column(start, raw_len);
-        let last =
-            if end > start { self.syntax.compact.column(end - 1, raw_len) + 1 } else { first };
-        (first, last.max(first + 1))
-    }
-
-    fn fault_at(&self, start: usize, end: usize, message: impl Into<String>) -> Fault {
-        let (first, last) = self.span(start, end);
-        Fault::invalid(first, last, message)
-    }
-
-    fn word_fault(&self, word: Word, message: impl Into<String>) -> Fault {
-        self.fault_at(word.at, word.end, message)
-    }
-
-    fn code_fault(&self, code: Code, message: impl Into<String>) -> Fault {
-        self.fault_at(code.at, code.end, message)
-    }
-
-    fn emit(&mut self, kind: MotionKind) {
-        if self.hooks.dialect == Dialect::Grbl && self.hooks.tool == Tool::Laser {
-            self.grbl_laser_gate(&kind);
+    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
+    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
+    pub(super) fn apply_dialect(&mut self) {
+        self.lines.max =
+            if self.machine.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
+        if self.machine.hooks.dialect == Dialect::Marlin && self.machine.state.feed_rate == 0.0 {
+            self.machine.state.feed_rate = MARLIN_DEFAULT_FEED;
+            self.machine.state.feed_mm = MARLIN_DEFAULT_FEED;
         }
-        let extrude = if kind.end().is_some() { self.hooks.pending_extrude.take() } else { None };
-        self.output.moved = true;
-        if self.output.idle_jumps != 0 {
-            self.output.moved_since_jump(&kind);
+    }
+
+    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
+    pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
+        self.machine.hooks.infer_tool = false;
+        self.lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
+            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
+            (self.machine.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
+                tool: Tool::Extruder,
+                reason: "read as Marlin G-code: a 3D printer".to_owned(),
+                line: None,
+            })
+        });
+        if let Some(inference) = inference {
+            self.machine.hooks.tool = inference.tool;
+            self.machine.hooks.tool_inference = Some(inference);
         }
-        let blend = kind.end().and(self.state.blend);
-        let naive_cam = self.naive_cam(&kind, blend);
-        let motion = Motion { line: self.state.line, kind, extrude, blend, naive_cam };
-        if self.state.comp.holding() {
-            self.state.comp.hold(motion);
-        } else {
-            self.output.queue.push_back(motion);
+        Ok(())
+    }
+
+    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
+    pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
+        self.machine.hooks.undecided = false;
+        let complete = self
+            .lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        match detect_dialect(self.lines.source().head(), complete) {
+            Some(detection) => {
+                self.machine.hooks.dialect = detection.dialect;
+                self.machine.hooks.makerbot = detection.makerbot;
+                self.machine.hooks.detection = Some(detection);
+                self.apply_dialect();
+            }
+            None => {
+                self.machine.hooks.provisional = true;
+                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
+                self.lines.max = MAX_LONG_LINE;
+            }
+        }
+        Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
+    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
+    /// long only in its comment decides Grbl (every line before read the same in both); a long
+    /// command is refused as LinuxCNC refuses it.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
+        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
+            return Err(GcodeError::LineTooLong {
+                at: self.location(MAX_LINE, MAX_LINE + 1),
+                max: MAX_LINE,
+            });
+        }
+        self.machine.hooks.provisional = false;
+        self.machine.hooks.dialect = Dialect::Grbl;
+        self.machine.hooks.detection = Some(Detection {
+            dialect: Dialect::Grbl,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
+                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
+                 its line buffer",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
+        Ok(())
+    }
+
+    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
+    /// need no program end.
+    pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
+        self.machine.output.finished = true;
+        if self.machine.hooks.provisional && self.machine.output.moved {
+            self.machine.hooks.provisional = false;
+            self.machine.hooks.dialect = Dialect::Grbl;
+            self.machine.hooks.detection = Some(Detection {
+                dialect: Dialect::Grbl,
+                reason: format!(
+                    "nothing tells the dialects apart, and the program ends at line {} without \
+                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
+                     reads the same in both)",
+                    self.lines.number
+                ),
+                line: None,
+                makerbot: false,
+            });
+        }
+        if self.machine.hooks.dialect != Dialect::Linuxcnc {
+            return Ok(());
+        }
+        Err(match self.machine.syntax.percent {
+            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
+            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
+        })
+    }
+
+    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
+    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
+        match prelude(self.machine.hooks.dialect, &self.lines.line) {
+            Prelude::Block => Ok(false),
+            Prelude::Event { name, known } => {
+                self.machine.record(&name, known);
+                Ok(true)
+            }
+            Prelude::ExtruderMode { name, relative } => {
+                self.machine.hooks.e_relative = relative;
+                self.machine.record(&name, true);
+                Ok(true)
+            }
+            Prelude::Home { axes } => {
+                // One rapid of the named axes to the home pose (G28's stored position), with no
+                // intermediate point.
+                let mut end = self.machine.state.current;
+                for axis in (0..4).filter(|&axis| axes[axis]) {
+                    let machine = self.machine.state.mm_to_program(
+                        axis,
+                        self.machine.state.params.get(G28_HOME + axis_slot(axis)),
+                    );
+                    end[axis] = machine
+                        - self.machine.state.origin[axis]
+                        - self.machine.state.axis_offset[axis];
+                }
+                self.machine.move_to(end, None);
+                self.machine.state.publish_position();
+                Ok(true)
+            }
+            Prelude::Refuse { start, end, code, note } => {
+                Err(self.error(Fault::not_supported(start, end, code, note)))
+            }
         }
     }
 }
+
 /// C's `%.4g`, roughly: four significant digits, trailing zeros dropped.
 fn format_g4(value: f64) -> String {
     if value == 0.0 {

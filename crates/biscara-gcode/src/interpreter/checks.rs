@@ -47,7 +47,7 @@ impl Machine {
         )
     }
 
-    /// An error of the block's motion, at [`Interpreter::motion_span`].
+    /// An error of the block's motion, at [`Machine::motion_span`].
     pub(super) fn motion_fault(&self, message: impl Into<String>) -> Fault {
         let (start, end) = self.motion_span();
         self.fault_at(start, end, message)

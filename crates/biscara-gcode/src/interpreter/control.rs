@@ -9,7 +9,7 @@
 //! File subroutines (`o<name> call` of a name not defined so far) are opened as LinuxCNC opens
 //! them, `NAME.ngc`, beside the program or in the `--subroutine-path` folders. A program read
 //! only forwards (standard input) cannot jump: the error says so. A line that is not an O-word
-//! line costs one look at its first letter ([`may_control`]).
+//! line costs one look at its first letter (`may_control`).
 
 use std::collections::HashMap;
 use std::io::BufRead;

@@ -1,25 +1,20 @@
-//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6):
-//! `auto`'s look-ahead, what a dialect makes of a line before the block reader and of a block
-//! after it, the end of the input, and what M3/M4/M5/S emit for each tool. None of them runs in
-//! [`Dialect::Linuxcnc`] except [`Interpreter::tool_event`] (the gripper's pick, place, off).
-
-use std::io::BufRead;
+//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6),
+//! on the machine: their state (`Hooks`), what a dialect makes of a block after the block
+//! reader, and what M3/M4/M5/S emit for each tool. None of them runs in [`Dialect::Linuxcnc`]
+//! except [`Machine::tool_event`] (the gripper's pick, place, off). The hooks that read the
+//! input (`auto`'s look-ahead, a line before the block reader, the end of the input) are the
+//! interpreter's.
 
 use biscara_motion::{CodeName, MotionKind};
 
-use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Machine, Percent};
-use crate::dialect::{
-    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, g_name,
-    grbl_runs_g, grbl_runs_m, prelude,
-};
-use crate::error::GcodeError;
+use super::{AXES, MM_PER_INCH, Machine};
+use crate::dialect::{Detection, Dialect, Summary, g_name, grbl_runs_g, grbl_runs_m};
 use crate::syntax::lexer::Fault;
-use crate::syntax::params::{G28_HOME, axis_slot};
 use crate::syntax::parser::Word;
 use crate::tool::{Tool, ToolInference};
 
 /// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
-const MARLIN_DEFAULT_FEED: f64 = 4000.0;
+pub(super) const MARLIN_DEFAULT_FEED: f64 = 4000.0;
 /// The largest extruder position (E word) accepted, mm.
 const MAX_EXTRUSION: f64 = 1e9;
 
@@ -76,167 +71,6 @@ impl Hooks {
             e_relative: false,
             pending_extrude: None,
             fanuc: super::fanuc::Fanuc::default(),
-        }
-    }
-}
-
-impl<R: BufRead> Interpreter<R> {
-    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
-    /// with its decision).
-    pub(super) fn with_line_limit(mut self) -> Self {
-        self.apply_dialect();
-        self
-    }
-
-    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
-    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
-    pub(super) fn apply_dialect(&mut self) {
-        self.lines.max =
-            if self.machine.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
-        if self.machine.hooks.dialect == Dialect::Marlin && self.machine.state.feed_rate == 0.0 {
-            self.machine.state.feed_rate = MARLIN_DEFAULT_FEED;
-            self.machine.state.feed_mm = MARLIN_DEFAULT_FEED;
-        }
-    }
-
-    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
-    pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
-        self.machine.hooks.infer_tool = false;
-        self.lines
-            .source()
-            .read_ahead(LOOKAHEAD_BYTES)
-            .map_err(|source| GcodeError::Read { line: 1, source })?;
-        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
-            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
-            (self.machine.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
-                tool: Tool::Extruder,
-                reason: "read as Marlin G-code: a 3D printer".to_owned(),
-                line: None,
-            })
-        });
-        if let Some(inference) = inference {
-            self.machine.hooks.tool = inference.tool;
-            self.machine.hooks.tool_inference = Some(inference);
-        }
-        Ok(())
-    }
-
-    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
-    pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
-        self.machine.hooks.undecided = false;
-        let complete = self
-            .lines
-            .source()
-            .read_ahead(LOOKAHEAD_BYTES)
-            .map_err(|source| GcodeError::Read { line: 1, source })?;
-        match detect_dialect(self.lines.source().head(), complete) {
-            Some(detection) => {
-                self.machine.hooks.dialect = detection.dialect;
-                self.machine.hooks.makerbot = detection.makerbot;
-                self.machine.hooks.detection = Some(detection);
-                self.apply_dialect();
-            }
-            None => {
-                self.machine.hooks.provisional = true;
-                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
-                self.lines.max = MAX_LONG_LINE;
-            }
-        }
-        Ok(())
-    }
-
-    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
-    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
-    /// long only in its comment decides Grbl (every line before read the same in both); a long
-    /// command is refused as LinuxCNC refuses it.
-    #[cold]
-    #[inline(never)]
-    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
-        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
-            return Err(GcodeError::LineTooLong {
-                at: self.location(MAX_LINE, MAX_LINE + 1),
-                max: MAX_LINE,
-            });
-        }
-        self.machine.hooks.provisional = false;
-        self.machine.hooks.dialect = Dialect::Grbl;
-        self.machine.hooks.detection = Some(Detection {
-            dialect: Dialect::Grbl,
-            reason: format!(
-                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
-                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
-                 its line buffer",
-                LOOKAHEAD_BYTES / 1024,
-                self.lines.number
-            ),
-            line: Some(self.lines.number),
-            makerbot: false,
-        });
-        self.apply_dialect();
-        Ok(())
-    }
-
-    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
-    /// need no program end.
-    pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
-        self.machine.output.finished = true;
-        if self.machine.hooks.provisional && self.machine.output.moved {
-            self.machine.hooks.provisional = false;
-            self.machine.hooks.dialect = Dialect::Grbl;
-            self.machine.hooks.detection = Some(Detection {
-                dialect: Dialect::Grbl,
-                reason: format!(
-                    "nothing tells the dialects apart, and the program ends at line {} without \
-                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
-                     reads the same in both)",
-                    self.lines.number
-                ),
-                line: None,
-                makerbot: false,
-            });
-        }
-        if self.machine.hooks.dialect != Dialect::Linuxcnc {
-            return Ok(());
-        }
-        Err(match self.machine.syntax.percent {
-            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
-            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
-        })
-    }
-
-    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
-    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
-        match prelude(self.machine.hooks.dialect, &self.lines.line) {
-            Prelude::Block => Ok(false),
-            Prelude::Event { name, known } => {
-                self.machine.record(&name, known);
-                Ok(true)
-            }
-            Prelude::ExtruderMode { name, relative } => {
-                self.machine.hooks.e_relative = relative;
-                self.machine.record(&name, true);
-                Ok(true)
-            }
-            Prelude::Home { axes } => {
-                // One rapid of the named axes to the home pose (G28's stored position), with no
-                // intermediate point.
-                let mut end = self.machine.state.current;
-                for axis in (0..4).filter(|&axis| axes[axis]) {
-                    let machine = self.machine.state.mm_to_program(
-                        axis,
-                        self.machine.state.params.get(G28_HOME + axis_slot(axis)),
-                    );
-                    end[axis] = machine
-                        - self.machine.state.origin[axis]
-                        - self.machine.state.axis_offset[axis];
-                }
-                self.machine.move_to(end, None);
-                self.machine.state.publish_position();
-                Ok(true)
-            }
-            Prelude::Refuse { start, end, code, note } => {
-                Err(self.error(Fault::not_supported(start, end, code, note)))
-            }
         }
     }
 }

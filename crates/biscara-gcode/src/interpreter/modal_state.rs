@@ -11,7 +11,7 @@
 //! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused
 //! as not supported). Not the motion mode. As in rs274, the feed comes back with one decimal
 //! and the speed with none, and an M72 that changes anything loses the rest of its line (see
-//! [`Interpreter::modal_state`]).
+//! [`Machine::modal_state`]).
 
 use biscara_motion::Plane;
 

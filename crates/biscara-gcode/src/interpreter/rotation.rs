@@ -5,7 +5,7 @@
 //! (Z and C are not rotated; the tool length offset is added after the rotation). Arcs in the
 //! XY plane turn with their centre; an arc in the XZ or YZ plane of a rotated system lies in a
 //! tilted plane, which the inter-file (SPEC §5) cannot describe: it runs as straight moves
-//! within 0.001 mm of it ([`Interpreter::tilted_arc`]). Nothing here
+//! within 0.001 mm of it ([`Machine::tilted_arc`]). Nothing here
 //! runs while no system is rotated: [`State::rotation`] is zero and the plain sums are used.
 //!
 //! rs274's own bookkeeping is followed where it differs from that geometry: G10 L2 on the
