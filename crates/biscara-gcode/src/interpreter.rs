@@ -72,7 +72,10 @@ mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
 
+use comments::PythonComment;
 use machine::{Machine, Output, Percent, State, Syntax};
+use python::{Reach, Returned};
+use std::rc::Rc;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -504,6 +507,52 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         self.machine.abort_comment(&self.lines.line)
+    }
+
+    /// Whether a request to Python is paused (a move it made waits to be taken).
+    fn python_paused(&self) -> bool {
+        self.python.as_ref().is_some_and(|python| python.paused())
+    }
+
+    /// Whether `o<name> call` calls a Python function of the plug-ins' `oword` module.
+    fn python_callable(&mut self, name: &str) -> Result<bool, Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(false) };
+        python.callable(&mut Reach { machine: &mut self.machine, control: &self.control }, name)
+    }
+
+    /// Calls the Python subroutine `name` with `arguments`, its call level entered.
+    fn python_call(&mut self, name: Rc<str>, arguments: &[f64]) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(()) };
+        let reach = &mut Reach { machine: &mut self.machine, control: &self.control };
+        let returned = python.call(reach, name, arguments)?;
+        self.python_returned(returned)
+    }
+
+    /// Runs a comment's Python: `code` (a file name for [`PythonComment::RunFile`]); refused
+    /// without plug-ins.
+    fn python_comment(&mut self, action: PythonComment, code: &[u8]) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else {
+            return Err(python::refused(&self.machine));
+        };
+        let reach = &mut Reach { machine: &mut self.machine, control: &self.control };
+        let returned = python.comment(reach, action, code)?;
+        self.python_returned(returned)
+    }
+
+    /// Goes on with the request to Python paused, once its move has been taken.
+    fn resume_python(&mut self) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(()) };
+        let returned =
+            python.resume(&mut Reach { machine: &mut self.machine, control: &self.control })?;
+        self.python_returned(returned)
+    }
+
+    /// A Python subroutine that returned leaves its call level.
+    fn python_returned(&mut self, returned: Returned) -> Result<(), Fault> {
+        match returned {
+            Returned::Yes => self.leave_context(),
+            Returned::No => Ok(()),
+        }
     }
 
     /// Whether the block's user M-code (M100–M199) has no program where the INI file says
