@@ -6,6 +6,7 @@ use std::sync::Arc;
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
+use biscara_files::FileSystem;
 use clap::{Args, ValueEnum};
 
 use super::files::FileSource;
@@ -261,11 +262,19 @@ pub(crate) fn placed_reading(
         dialect: dialect.dialect,
         tool: dialect.tool,
         subroutine_path: files.subroutine_path.clone(),
-        tool_table: files.tool_table.as_deref().map(ToolTable::read).transpose()?.map(Arc::new),
-        ini: files.ini.as_deref().map(IniFile::read).transpose()?.map(Arc::new),
+        tool_table: read_with(files.tool_table.as_deref(), ToolTable::read)?,
+        ini: read_with(files.ini.as_deref(), IniFile::read)?,
         max_idle_jumps: files.max_idle_jumps,
         ..SamplingConfig::default()
     })
+}
+
+/// The file `path` (when given) read by `read` from the file system, shared.
+fn read_with<T, E: std::error::Error + Send + Sync + 'static>(
+    path: Option<&std::path::Path>,
+    read: fn(&dyn biscara::gcode::Environment, &std::path::Path) -> Result<T, E>,
+) -> anyhow::Result<Option<Arc<T>>> {
+    Ok(path.map(|path| read(&FileSystem, path)).transpose()?.map(Arc::new))
 }
 
 /// The default corner tolerance of a G-code program.

@@ -52,6 +52,10 @@ fn hint_text(hint: &Hint) -> String {
         ),
         Hint::PlaceByOrigin => "(place it with --origin instead of --fit)".to_owned(),
         Hint::DoNotFit => "(run it without --fit)".to_owned(),
+        Hint::GiveIni => "(--ini FILE gives the INI file)".to_owned(),
+        Hint::AddSubroutineFolder => {
+            "(--subroutine-path DIR adds a folder file subroutines are found in)".to_owned()
+        }
         other => other.to_string(),
     }
 }

@@ -3,8 +3,9 @@
 
 use std::io::{self, BufRead, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-use biscara::gcode::Seekable;
+use biscara::gcode::{Environment, Seekable};
 use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::Scene;
 use biscara::view::ImageFormat;
@@ -57,6 +58,10 @@ impl ProgramSource for FileSource {
 
     fn rereadable(&self) -> bool {
         self.path != Path::new("-")
+    }
+
+    fn environment(&self) -> Arc<dyn Environment> {
+        Arc::new(biscara_files::FileSystem)
     }
 }
 

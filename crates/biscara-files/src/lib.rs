@@ -1,7 +1,9 @@
 //! The files of a command-line run, the one place that opens paths: inputs (a file, or standard
 //! input for `-`, with a progress bar on a terminal for large files), whole text files checked
 //! for UTF-8, and outputs written atomically (a temporary file beside the target, renamed over it
-//! only on success, removed when the run is interrupted).
+//! only on success, removed when the run is interrupted), and the G-code interpreter's
+//! [`FileSystem`] (its file subroutines, tool tables and INI files, and `python3` for LinuxCNC's
+//! Python plug-ins).
 //!
 //! The stage crates never open a path: they read `impl BufRead` and write `impl Write`. This crate
 //! gives the binary those readers and writers with the guarantees users rely on: a failed or
@@ -25,11 +27,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod environment;
 mod input;
 mod output;
 
 use std::path::{Path, PathBuf};
 
+pub use environment::FileSystem;
 pub use indicatif::ProgressBar;
 pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
 pub use output::{on_interrupt, write_output};

@@ -165,7 +165,7 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// → LinuxCNC). Only complete lines are looked at (all of them when `complete` says the text is
 /// the whole program). `None` when nothing decides.
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
-    let text = text.strip_prefix(crate::lexer::UTF8_BOM).unwrap_or(text);
+    let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
     let end = if complete {
         text.len()
     } else {
@@ -265,7 +265,7 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
                 "line {line} is {length} characters long, longer than LinuxCNC's {} only in its \
                  comment, which Grbl drops before its line buffer (nothing else tells the \
                  dialects apart)",
-                crate::lexer::MAX_LINE
+                crate::syntax::lexer::MAX_LINE
             ),
             line: Some(line),
             makerbot: false,
@@ -295,7 +295,7 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
 /// many characters outside comments (and not counting blanks), which Grbl, Marlin and Mach3
 /// read and LinuxCNC refuses.
 pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
-    if raw.len() <= crate::lexer::MAX_LINE {
+    if raw.len() <= crate::syntax::lexer::MAX_LINE {
         return false;
     }
     let text = std::str::from_utf8(raw)
@@ -305,7 +305,8 @@ pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
     }
     let (code, comment) = split_comment(&raw.to_ascii_lowercase());
     !comment.is_empty()
-        && code.iter().filter(|b| !b.is_ascii_whitespace()).count() <= crate::lexer::MAX_LINE
+        && code.iter().filter(|b| !b.is_ascii_whitespace()).count()
+            <= crate::syntax::lexer::MAX_LINE
 }
 
 /// The evidence an `O0001` line gives (Mach3's, and Fanuc's).
@@ -902,7 +903,7 @@ fn marlin_prelude(raw: &[u8]) -> Prelude {
                 },
             },
             // A G-code neither Marlin nor LinuxCNC knows (Ultimaker's G280 prime): skipped.
-            _ if code > 99 || crate::parser::g_group(code as u16 * 10).is_none() => {
+            _ if code > 99 || crate::syntax::parser::g_group(code as u16 * 10).is_none() => {
                 Prelude::Event { name: code_name(letter, number), known: false }
             }
             _ => Prelude::Block,

@@ -114,6 +114,19 @@ pub enum GcodeError {
         /// The letter, upper case.
         letter: char,
     },
+    /// Occurs when the program needs something of the caller it was not given, or goes past a
+    /// bound the caller set: Python plug-ins without an INI file that loads them, a file
+    /// subroutine named with a path, an endless loop. [`GcodeError::setting`] says which
+    /// setting would help (a command line names its flag).
+    #[error("{at}: {message}")]
+    NeedsSetting {
+        /// Where.
+        at: Location,
+        /// What is wrong.
+        message: String,
+        /// The caller's setting that would help.
+        setting: Setting,
+    },
     /// Occurs when the file ends before `M2`, `M30` or a closing `%`.
     #[error(
         "{line}:1: File ended with no percent sign or program end: end the program with M2 or \
@@ -142,6 +155,22 @@ pub enum GcodeError {
     },
 }
 
+/// A setting of the caller's that would help a refused program: the library says what is
+/// wrong, a command line adds how to give it (its flag).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Setting {
+    /// An INI file ([`Config::ini`](crate::Config::ini)), whose `[PYTHON]` section loads the
+    /// Python plug-ins.
+    Ini,
+    /// The folders file subroutines are found in
+    /// ([`Interpreter::with_subroutines`](crate::Interpreter::with_subroutines)).
+    SubroutinePath,
+    /// How many jumps back without a motion are allowed
+    /// ([`Config::max_idle_jumps`](crate::Config::max_idle_jumps)).
+    MaxIdleJumps,
+}
+
 fn note_suffix(note: &str) -> String {
     if note.is_empty() { String::new() } else { format!(" ({note})") }
 }
@@ -159,7 +188,8 @@ impl GcodeError {
             | GcodeError::Invalid { at, .. }
             | GcodeError::NotSupported { at, .. }
             | GcodeError::CannotRun { at, .. }
-            | GcodeError::ForeignAxis { at, .. } => at.line,
+            | GcodeError::ForeignAxis { at, .. }
+            | GcodeError::NeedsSetting { at, .. } => at.line,
         }
     }
 
@@ -171,7 +201,17 @@ impl GcodeError {
             | GcodeError::Invalid { at, .. }
             | GcodeError::NotSupported { at, .. }
             | GcodeError::CannotRun { at, .. }
-            | GcodeError::ForeignAxis { at, .. } => Some(at),
+            | GcodeError::ForeignAxis { at, .. }
+            | GcodeError::NeedsSetting { at, .. } => Some(at),
+            _ => None,
+        }
+    }
+
+    /// The caller's setting that would help, when the program needs one
+    /// ([`GcodeError::NeedsSetting`]).
+    pub fn setting(&self) -> Option<Setting> {
+        match self {
+            GcodeError::NeedsSetting { setting, .. } => Some(*setting),
             _ => None,
         }
     }

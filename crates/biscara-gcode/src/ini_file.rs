@@ -14,6 +14,8 @@ use std::fmt;
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
+use crate::environment::Environment;
+
 /// The longest line read, bytes.
 const MAX_LINE: usize = 64 * 1024;
 
@@ -54,10 +56,10 @@ impl fmt::Display for IniFileError {
 impl std::error::Error for IniFileError {}
 
 impl IniFile {
-    /// Reads the INI file `path`.
-    pub fn read(path: &Path) -> Result<IniFile, IniFileError> {
+    /// Reads the INI file `path`, opened in `environment`.
+    pub fn read(environment: &dyn Environment, path: &Path) -> Result<IniFile, IniFileError> {
         let name = path.display().to_string();
-        let file = std::fs::File::open(path).map_err(|err| IniFileError {
+        let file = environment.open(path).map_err(|err| IniFileError {
             file: name.clone(),
             line: 0,
             message: format!("cannot read the INI file: {err}"),
@@ -65,7 +67,7 @@ impl IniFile {
         let folder = path.parent().map(|folder| {
             if folder.as_os_str().is_empty() { PathBuf::from(".") } else { folder.to_path_buf() }
         });
-        Ok(IniFile { folder, ..IniFile::parse(std::io::BufReader::new(file), &name)? })
+        Ok(IniFile { folder, ..IniFile::parse(file, &name)? })
     }
 
     /// The same file, its relative paths taken from `folder`.
@@ -356,7 +358,20 @@ mod tests {
         let long = format!("[VARS]\nX = {}\n", "1".repeat(MAX_LINE + 10));
         let long = IniFile::parse(long.as_bytes(), "m.ini").expect_err("long");
         assert_eq!(long.to_string(), format!("m.ini:2: line longer than {MAX_LINE} bytes"));
-        let missing = IniFile::read(Path::new("/nonexistent/m.ini")).expect_err("missing");
+        let none = crate::NoEnvironment;
+        let missing = IniFile::read(&none, Path::new("/nonexistent/m.ini")).expect_err("missing");
         assert!(missing.to_string().starts_with("/nonexistent/m.ini: cannot read the INI file"));
+    }
+
+    #[test]
+    fn a_file_read_by_path_starts_its_relative_paths_in_its_folder() {
+        let files = crate::InMemory::new()
+            .with_file("conf/m.ini", "[RS274NGC]\nSUBROUTINE_PATH = subs\n")
+            .with_file("m.ini", "[EMC]\n");
+        let nested = IniFile::read(&files, Path::new("conf/m.ini")).expect("conf/m.ini");
+        assert_eq!(nested.folder(), Some(Path::new("conf")));
+        assert_eq!(nested.subroutine_dirs(), [PathBuf::from("conf/subs")]);
+        let here = IniFile::read(&files, Path::new("m.ini")).expect("m.ini");
+        assert_eq!(here.folder(), Some(Path::new(".")));
     }
 }

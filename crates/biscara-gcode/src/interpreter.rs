@@ -1,28 +1,31 @@
-//! Executing blocks: LinuxCNC's modal state, order of execution, offsets, arcs and feeds.
-//!
-//! The state is kept as LinuxCNC keeps it — positions and offsets in the program's current
-//! length units, so that its tolerances apply exactly — and every motion is converted to
-//! absolute millimetres in the robot's base frame when it is emitted.
+//! The interpreter: [`Interpreter`] reads lines (generic over the input), runs the O-word
+//! control flow and the Python plug-ins that jump and move in them, and the dialects' hooks
+//! that read the input (`auto`'s look-ahead, the tool's inference, a line before the block
+//! reader, the end of the input); a non-generic [`Machine`] executes each block read
+//! (`machine.rs`, and the files of the codes it executes).
 
 use std::collections::VecDeque;
 use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use crate::dialect::{Detection, Dialect, Summary};
+use crate::dialect::{
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+};
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
-use crate::lexer::{
+use crate::syntax::lexer::{
     Compact, Fault, FaultKind, InnerParen, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT,
     compact,
 };
-use crate::params::{
+use crate::syntax::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
     coordinate_system_base,
 };
-use crate::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
+use crate::syntax::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::{ToolEntry, ToolTable};
+use hooks::MARLIN_DEFAULT_FEED;
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
 mod canned;
@@ -42,6 +45,8 @@ mod fanuc;
 mod hooks;
 /// M19, M48–M53, M62–M68 and the `$` word.
 mod io_codes;
+/// The machine that executes blocks: its parts and LinuxCNC's modal state.
+mod machine;
 /// M70–M73: the modal state saved and restored.
 mod modal_state;
 /// Modes and offsets: path control, units, coordinate systems, G10 L2/L20, G92, G52.
@@ -53,6 +58,12 @@ mod polar;
 /// Probing, G38.2–G38.5.
 mod probe;
 /// A program's Python: LinuxCNC's Python plug-ins (`[PYTHON]`), `;py,` lines, `(py,…)`.
+#[cfg(feature = "python")]
+mod python;
+/// A build without the Python plug-ins (the cargo feature `python` off): a program's Python is
+/// refused.
+#[cfg(not(feature = "python"))]
+#[path = "interpreter/no_python.rs"]
 mod python;
 /// G10 L2 R: coordinate systems rotated about Z.
 mod rotation;
@@ -60,6 +71,11 @@ mod rotation;
 mod spline;
 /// Tools: T, M6, M61, G43/G43.1/G43.2/G49, G10 L1/L10/L11.
 mod tools;
+
+use comments::PythonComment;
+use machine::{Machine, Output, Percent, State, Syntax};
+use python::{Reach, Returned};
+use std::rc::Rc;
 
 const MM_PER_INCH: f64 = 25.4;
 /// LinuxCNC's `RADIUS_TOLERANCE_INCH` (and × 25.4 for mm): the least radius of an arc.
@@ -157,282 +173,87 @@ pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interprete
     interpreter
 }
 
-/// The iterator returned by [`interpret`].
+/// The iterator returned by [`interpret`]: the line reader, generic over the input, with the
+/// O-word control flow and the Python plug-ins that move in it, and the machine that executes
+/// the blocks read.
 #[derive(Debug)]
 pub struct Interpreter<R> {
+    /// The program's lines (and the file subroutines').
     lines: LineReader<R>,
-    compact: Compact,
-    block: Block,
-    state: State,
-    queue: VecDeque<Motion>,
-    block_delete: bool,
-    percent: Percent,
-    finished: bool,
-    /// The dialect being read ([`Dialect::Linuxcnc`] while `auto` has not decided).
-    dialect: Dialect,
-    /// Whether `auto` still has to read ahead (before the first line).
-    undecided: bool,
-    /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
-    provisional: bool,
-    detection: Option<Detection>,
-    summary: Summary,
-    tool: Tool,
-    /// Whether the tool is still to be inferred from the look-ahead.
-    infer_tool: bool,
-    /// What the inference found.
-    tool_inference: Option<ToolInference>,
-    /// Whether the tool is on (M3/M4 until M5 or M6).
-    tool_on: bool,
-    /// Grbl's laser mode: the laser, on, is off during the rapids since the last feed move
-    /// (a `laser_off` was emitted before the first of them; the next feed move turns it on).
-    laser_rapid_off: bool,
-    /// MakerBot's flavour: the A word is the extruder.
-    makerbot: bool,
-    /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
-    e_position: f64,
-    e_relative: bool,
-    /// The extrusion of the block being executed, for its first move.
-    pending_extrude: Option<f64>,
-    /// Whether any motion was emitted (an empty program is not a program).
-    moved: bool,
-    /// The axes (x y z c) a G92 named before the first motion: the program made its start
-    /// point its zero there.
-    zeroed_at_start: [bool; 4],
+    /// The machine: everything that does not read lines.
+    machine: Machine,
     /// O-word control flow.
     control: Box<control::Control>,
-    /// The Fanuc dialect's control flow (GOTO, WHILE … DO, M97).
-    fanuc: fanuc::Fanuc,
     /// The Python plug-ins the INI file's `[PYTHON]` section loads (`None`: it has none).
+    #[cfg_attr(not(feature = "python"), allow(dead_code))]
     python: Option<Box<python::Python>>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Percent {
-    /// Before the first line.
-    Unknown,
-    /// The program started with `%`: it ends at the next `%`.
-    Open,
-    /// The program did not start with `%`: it ends with M2 or M30.
-    Absent,
-}
+/// What the program told so far, as the caller asks.
+impl<R: BufRead> Interpreter<R> {
+    /// The dialect being read: the configured one, or what `auto` chose so far.
+    pub fn dialect(&self) -> Dialect {
+        self.machine.hooks.dialect
+    }
 
-/// LinuxCNC's modal state and position, in the program's current length units.
-#[derive(Debug)]
-struct State {
-    metric: bool,
-    incremental: bool,
-    ijk_absolute: bool,
-    plane: Plane,
-    inverse_time: bool,
-    /// The F number in force (program units per minute).
-    feed_rate: f64,
-    /// The feed rate in force as the machine holds it: mm/min, converted when it was set.
-    feed_mm: f64,
-    /// 0, 10, 20, 30 for G0–G3; `None` after G80 and at the start.
-    motion: Option<u16>,
-    current: [f64; 4],
-    origin: [f64; 4],
-    axis_offset: [f64; 4],
-    system: usize,
-    /// The rotation of the system in force about Z, degrees (G10 L2 R; 0: none).
-    rotation: f64,
-    params: Params,
-    line: usize,
-    speed: f64,
-    /// The tool length offset in force (G43…), in the program units in force when it was set:
-    /// as in rs274, a change of units does not convert it (it is used so by later G43, G49,
-    /// G53, G28 and G10 L10), though the machine keeps the offset it was given
-    /// ([`State::tool_offset_mm`]).
-    tool_offset: [f64; 4],
-    /// The tool length offset the machine applies, mm and degrees.
-    tool_offset_mm: [f64; 4],
-    /// How far tool length offsets set since the last move have shifted the current point:
-    /// rs274 takes its position back from the last move after M6 (its canon does not follow).
-    tool_shift: [f64; 4],
-    /// A tool change (M6, M61) was made: the current point is taken back from the last move as
-    /// the next line is read.
-    resync: bool,
-    tools: tools::Tools,
-    /// The canned cycles' retract mode and sticky values.
-    cycle: canned::CycleState,
-    /// The modal state M70/M73 saved.
-    modal_stack: modal_state::ModalStack,
-    spindle: u16,
-    mist: bool,
-    flood: bool,
-    /// `#<_value>`, `#<_value_returned>`, `#<_call_level>`.
-    owords: control::Values,
-    /// The path-control mode: `Some(p)` under G64 (0 when P was not given), `None` under
-    /// G61/G61.1.
-    blend: Option<f64>,
-    /// G64 Q in millimetres when positive (LinuxCNC's naive-CAM tolerance), `None` otherwise.
-    naive_cam: Option<f64>,
-    /// Cutter radius compensation and the motions it holds back.
-    comp: cutter_comp::CutterComp,
-    /// The INI file whose variables `#<_ini[…]…>` names read, when it allows it.
-    ini: Option<std::sync::Arc<IniFile>>,
-}
-
-impl State {
-    fn new(config: &Config) -> State {
-        let mut params = Params::new();
-        for axis in 0..4 {
-            params.set(G28_HOME + axis_slot(axis), config.home[axis]);
-            params.set(G30_HOME + axis_slot(axis), config.home[axis]);
-            params.set(coordinate_system_base(1) + axis_slot(axis), config.origin[axis]);
+    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
+    /// when the dialect was given. A program in which nothing tells the dialects apart is read
+    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
+    /// then it is Grbl, decided at its last line (the detection changes at the end).
+    pub fn detection(&self) -> Option<Detection> {
+        if let Some(detection) = &self.machine.hooks.detection {
+            return Some(detection.clone());
         }
-        params.set(COORDINATE_SYSTEM, 1.0);
-        let start = config.start.unwrap_or(config.home);
-        let current = std::array::from_fn(|axis| start[axis] - config.origin[axis]);
-        let mut state = State {
-            metric: true,
-            incremental: false,
-            ijk_absolute: false,
-            plane: Plane::Xy,
-            inverse_time: false,
-            feed_rate: 0.0,
-            feed_mm: 0.0,
-            motion: None,
-            current,
-            origin: config.origin,
-            axis_offset: [0.0; 4],
-            system: 1,
-            rotation: 0.0,
-            params,
-            line: 0,
-            speed: 0.0,
-            tool_offset: [0.0; 4],
-            tool_offset_mm: [0.0; 4],
-            tool_shift: [0.0; 4],
-            resync: false,
-            tools: tools::Tools::new(config.tool_table.as_deref()),
-            cycle: canned::CycleState::default(),
-            modal_stack: modal_state::ModalStack::default(),
-            spindle: 5,
-            mist: false,
-            flood: false,
-            owords: control::Values::default(),
-            blend: config.blend,
-            naive_cam: None,
-            comp: cutter_comp::CutterComp::new(),
-            ini: config.ini.clone().filter(|ini| ini.variables_enabled()),
-        };
-        state.publish_position();
-        state
-    }
-
-    /// Millimetres per program unit.
-    fn factor(&self) -> f64 {
-        if self.metric { 1.0 } else { MM_PER_INCH }
-    }
-
-    /// Program units → mm for `axis` (C is in degrees whatever the units).
-    fn to_mm(&self, axis: usize, value: f64) -> f64 {
-        if axis == 3 { value } else { value * self.factor() }
-    }
-
-    fn mm_to_program(&self, axis: usize, value: f64) -> f64 {
-        if axis == 3 { value } else { value / self.factor() }
-    }
-
-    /// Whether the G92 offsets are in force (parameter 5210: G92 and G92.3 set it, G92.1 and
-    /// G92.2 clear it).
-    fn g92_in_force(&self) -> bool {
-        self.params.get(G92_ENABLED) != 0.0
-    }
-
-    /// A tool table entry's offsets `[x, y, z, c]` (mm, degrees) in program units.
-    fn offsets_in_program_units(&self, entry: &ToolEntry) -> [f64; 4] {
-        std::array::from_fn(|axis| self.mm_to_program(axis, entry.offset[axis]))
-    }
-
-    /// A position in the current coordinate system → absolute mm and degrees.
-    fn absolute(&self, position: [f64; 4]) -> [f64; 4] {
-        if self.rotation != 0.0 {
-            return self.absolute_rotated(position);
-        }
-        std::array::from_fn(|axis| {
-            self.to_mm(axis, position[axis] + self.origin[axis] + self.axis_offset[axis])
-                + self.tool_offset_mm[axis]
+        self.machine.hooks.provisional.then(|| Detection {
+            dialect: Dialect::Linuxcnc,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
+                 word, printer M-code, `$` line, nested comment or program number)",
+                LOOKAHEAD_BYTES / 1024
+            ),
+            line: None,
+            makerbot: false,
         })
     }
 
-    /// Parameters 5420–5428: the current position.
-    fn publish_position(&mut self) {
-        for axis in 0..4 {
-            self.params.set(5420 + axis_slot(axis), self.current[axis]);
-        }
-    }
-}
-
-impl Predefined for State {
-    fn predefined(&self, name: &[u8]) -> Option<f64> {
-        let flag = |condition: bool| if condition { 1.0 } else { 0.0 };
-        let machine = |axis: usize| self.machine(self.current)[axis];
-        Some(match name {
-            b"_x" => self.current[0],
-            b"_y" => self.current[1],
-            b"_z" => self.current[2],
-            b"_c" => self.current[3],
-            b"_a" | b"_b" | b"_u" | b"_v" | b"_w" => 0.0,
-            b"_abs_x" => machine(0),
-            b"_abs_y" => machine(1),
-            b"_abs_z" => machine(2),
-            b"_abs_c" => machine(3),
-            b"_abs_a" | b"_abs_b" | b"_abs_u" | b"_abs_v" | b"_abs_w" => 0.0,
-            b"_metric" => flag(self.metric),
-            b"_imperial" => flag(!self.metric),
-            b"_absolute" => flag(!self.incremental),
-            b"_incremental" => flag(self.incremental),
-            b"_inverse_time" => flag(self.inverse_time),
-            b"_units_per_minute" => flag(!self.inverse_time),
-            b"_units_per_rev" => 0.0,
-            b"_ijk_absolute_mode" => flag(self.ijk_absolute),
-            b"_coord_system" => match self.system {
-                7..=9 => 590.0 + (self.system - 6) as f64,
-                n => 530.0 + 10.0 * n as f64,
-            },
-            b"_plane" => match self.plane {
-                Plane::Xy => 170.0,
-                Plane::Xz => 180.0,
-                Plane::Yz => 190.0,
-            },
-            b"_motion_mode" => self.motion.map_or(800.0, f64::from),
-            b"_ccomp" => self.comp.code(),
-            b"_feed" => self.feed_rate,
-            b"_rpm" => self.speed,
-            b"_current_tool" => f64::from(self.tools.spindle.tool),
-            b"_selected_tool" => self.tools.selected_tool,
-            b"_current_pocket" => self.tools.current_pocket,
-            b"_selected_pocket" => self.tools.selected_pocket,
-            b"_tool_offset" => flag(self.tools.offset_active),
-            b"_spindle_on" => flag(self.spindle != 5),
-            b"_spindle_cw" => flag(self.spindle == 3),
-            b"_mist" => flag(self.mist),
-            b"_flood" => flag(self.flood),
-            b"_line" => self.line as f64,
-            b"_lathe_diameter_mode" => 0.0,
-            b"_lathe_radius_mode" => 1.0,
-            b"_spindle_rpm_mode" => 1.0,
-            b"_spindle_css_mode" => 0.0,
-            b"_speed_override" | b"_feed_override" | b"_adaptive_feed" | b"_feed_hold" => 0.0,
-            b"_value" => self.owords.value,
-            b"_value_returned" => flag(self.owords.returned),
-            b"_call_level" => self.owords.level as f64,
-            b"_remap_level" | b"_task" => 0.0,
-            b"_vmajor" => 2.0,
-            b"_vminor" => 9.0,
-            // An INI file variable: read-only, as LinuxCNC caches it.
-            _ => return self.ini.as_ref()?.variable(name),
-        })
+    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
+    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
+    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
+    pub fn zeroed_at_start(&self) -> [bool; 4] {
+        self.machine.state.zeroed_at_start
     }
 
-    fn defining_sub(&self) -> bool {
-        self.owords.defining
+    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
+    pub fn summary(&self) -> &Summary {
+        &self.machine.hooks.summary
     }
 
-    fn ini_why_not(&self, name: &[u8]) -> Option<String> {
-        Some(self.ini.as_ref()?.why_not(name))
+    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
+    /// asked and something told (known once the first motion is read).
+    pub fn tool_inference(&self) -> Option<&ToolInference> {
+        self.machine.hooks.tool_inference.as_ref()
+    }
+
+    /// The tool M3, M4, M5 and S drive.
+    pub fn tool(&self) -> Tool {
+        self.machine.hooks.tool
+    }
+
+    /// Whether the program used G43, G43.2, G10 L1/L10/L11 or M61 while no tool table was
+    /// given (every tool then has zero length and diameter).
+    pub fn tools_without_table(&self) -> bool {
+        self.machine.state.tools.used_without_table
+    }
+
+    /// The tool table as the program has changed it so far (G10 L1, L10, L11): what cutter
+    /// compensation looks diameters up in.
+    pub fn tool_table(&self) -> &ToolTable {
+        &self.machine.state.tools.table
+    }
+
+    /// The tool in the spindle (after M6; zero offsets before any).
+    pub fn current_tool(&self) -> ToolEntry {
+        self.machine.state.tools.spindle
     }
 }
 
@@ -440,40 +261,26 @@ impl<R: BufRead> Interpreter<R> {
     fn new(reader: R, config: &Config) -> Interpreter<R> {
         Interpreter {
             lines: LineReader::new(reader),
-            compact: Compact::default(),
-            block: Block::default(),
-            state: State::new(config),
-            queue: VecDeque::with_capacity(8),
-            block_delete: config.block_delete,
-            percent: Percent::Unknown,
-            finished: false,
-            dialect: if config.dialect == Dialect::Auto {
-                Dialect::Linuxcnc
-            } else {
-                config.dialect
+            machine: Machine {
+                syntax: Syntax {
+                    compact: Compact::default(),
+                    block: Block::default(),
+                    raw_len: 0,
+                    block_delete: config.block_delete,
+                    percent: Percent::Unknown,
+                },
+                state: State::new(config),
+                output: Output {
+                    queue: VecDeque::with_capacity(8),
+                    finished: false,
+                    moved: false,
+                    idle_jumps: 0,
+                    last_end: None,
+                },
+                hooks: hooks::Hooks::new(config),
             },
-            undecided: config.dialect == Dialect::Auto,
-            provisional: false,
-            detection: None,
-            summary: Summary::default(),
-            tool: config.tool,
-            infer_tool: config.infer_tool,
-            tool_inference: None,
-            tool_on: false,
-            laser_rapid_off: false,
-            makerbot: false,
-            e_position: 0.0,
-            e_relative: false,
-            pending_extrude: None,
-            moved: false,
-            zeroed_at_start: [false; 4],
             control: Box::new(control::Control::new(config.ini.as_deref(), config.max_idle_jumps)),
-            fanuc: fanuc::Fanuc::default(),
-            python: config
-                .ini
-                .as_deref()
-                .and_then(crate::python_plugin::PluginSetup::from_ini)
-                .map(|setup| Box::new(python::Python::new(setup))),
+            python: config.ini.as_deref().and_then(python::Python::from_ini).map(Box::new),
         }
         .with_line_limit()
     }
@@ -497,20 +304,23 @@ impl<R: BufRead> Interpreter<R> {
             FaultKind::NotSupported { code, note } => GcodeError::NotSupported { at, code, note },
             FaultKind::Cannot { code, reason } => GcodeError::CannotRun { at, code, reason },
             FaultKind::ForeignAxis(letter) => GcodeError::ForeignAxis { at, letter },
+            FaultKind::Needs(setting) => {
+                GcodeError::NeedsSetting { at, message: fault.message, setting }
+            }
         }
     }
 
     /// Reads and executes lines until a motion is queued, the program ends, or an error.
     fn step(&mut self) -> Result<(), GcodeError> {
-        if self.undecided {
+        if self.machine.hooks.undecided {
             self.decide()?;
         }
-        if self.infer_tool {
+        if self.machine.hooks.infer_tool {
             self.infer_tool()?;
         }
         if self.python_paused() {
             self.resume_python().map_err(|fault| self.error(fault))?;
-            if !self.queue.is_empty() {
+            if !self.machine.output.queue.is_empty() {
                 return Ok(());
             }
         }
@@ -519,19 +329,20 @@ impl<R: BufRead> Interpreter<R> {
                 .lines
                 .next_line()
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
+            self.machine.syntax.raw_len = self.lines.line.len();
             if !more {
                 if let Some(err) = self.control_end() {
                     return Err(err);
                 }
-                if let Some((target, line)) = self.fanuc.seeking {
+                if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
                     return Err(GcodeError::NoBlockNumber { line, target });
                 }
-                if self.dialect != Dialect::Linuxcnc {
-                    self.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+                if self.machine.hooks.dialect != Dialect::Linuxcnc {
+                    self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
                 }
                 return self.end_of_input();
             }
-            if self.provisional && self.lines.line.len() > MAX_LINE {
+            if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
                 self.long_line_decides()?;
             }
             if self.lines.too_long {
@@ -545,157 +356,380 @@ impl<R: BufRead> Interpreter<R> {
             if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
                 continue;
             }
-            if self.percent == Percent::Unknown {
+            if self.machine.syntax.percent == Percent::Unknown {
                 if trimmed.first() == Some(&b'%') {
-                    self.percent = Percent::Open;
+                    self.machine.syntax.percent = Percent::Open;
                     continue;
                 }
-                self.percent = Percent::Absent;
-            } else if self.percent == Percent::Open && trimmed == b"%" && !self.lines.in_file() {
+                self.machine.syntax.percent = Percent::Absent;
+            } else if self.machine.syntax.percent == Percent::Open
+                && trimmed == b"%"
+                && !self.lines.in_file()
+            {
                 if let Some(err) = self.control_percent() {
                     return Err(err);
                 }
                 // rs274 never sends the motions cutter compensation holds at a closing `%`.
-                self.state.comp.discard();
-                self.finished = true;
+                self.machine.state.comp.discard();
+                self.machine.output.finished = true;
                 return Ok(());
             }
-            self.state.line = self.lines.number;
-            if self.state.resync {
-                self.resync_position();
+            self.machine.state.line = self.lines.number;
+            if self.machine.state.resync {
+                self.machine.resync_position();
             }
-            if self.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
-                if !self.queue.is_empty() {
+            if self.machine.hooks.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let inner = match self.dialect {
+            let inner = match self.machine.hooks.dialect {
                 Dialect::Mach3 | Dialect::Marlin | Dialect::Fanuc => InnerParen::Opens,
                 Dialect::Grbl => InnerParen::Ignored,
                 _ => InnerParen::Refused,
             };
-            if let Err(fault) = compact(&self.lines.line, &mut self.compact, inner) {
+            if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
                 // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
                 // characters until ')' or EOL"): closed there, the line is read.
                 if self.fanuc_seeking() {
                     continue;
                 }
-                if self.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT {
+                if self.machine.hooks.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT
+                {
                     return Err(self.error(fault));
                 }
             }
-            if self.makerbot {
-                self.rename_makerbot_a();
+            if self.machine.hooks.makerbot {
+                self.machine.rename_makerbot_a();
             }
-            if self.compact.bytes().is_empty() {
+            if self.machine.syntax.compact.bytes().is_empty() {
                 continue;
             }
-            if self.block_delete && self.compact.bytes()[0] == b'/' {
+            if self.machine.syntax.block_delete && self.machine.syntax.compact.bytes()[0] == b'/' {
                 continue;
             }
-            if self.dialect == Dialect::Fanuc
+            if self.machine.hooks.dialect == Dialect::Fanuc
                 && let fanuc::FanucLine::Done =
                     self.fanuc_line().map_err(|fault| self.error(fault))?
             {
-                if !self.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
-            let bytes = self.compact.bytes();
-            let g65 = matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            let bytes = self.machine.syntax.compact.bytes();
+            let g65 = matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && control::may_call_g65(bytes);
             if (self.control.engaged() || control::may_control(bytes) || g65)
                 && self.control_line()?
             {
                 // (A line skipped inside a false `if` is no O-word of its own.)
-                if self.dialect == Dialect::Grbl && control::may_control(self.compact.bytes()) {
-                    self.summary.count_refused("O-words");
+                if self.machine.hooks.dialect == Dialect::Grbl
+                    && control::may_control(self.machine.syntax.compact.bytes())
+                {
+                    self.machine.hooks.summary.count_refused("O-words");
                 }
-                if !self.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     // A Python subroutine's move.
                     return Ok(());
                 }
                 continue;
             }
-            if self.compact.bytes()[0] == b';'
-                && self.dialect == Dialect::Linuxcnc
+            if self.machine.syntax.compact.bytes()[0] == b';'
+                && self.machine.hooks.dialect == Dialect::Linuxcnc
                 && self.lines.line.starts_with(b";py,")
             {
                 // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
                 let code = self.lines.line[4..].to_vec();
-                self.python_comment(python::PythonComment::Run, &code)
+                self.python_comment(comments::PythonComment::Run, &code)
                     .map_err(|fault| self.error(fault))?;
-                if !self.queue.is_empty() {
+                if !self.machine.output.queue.is_empty() {
                     return Ok(());
                 }
                 continue;
             }
             let raw_len = self.lines.line.len();
             let result = {
-                let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state)
-                        .mach3(self.dialect == Dialect::Mach3);
-                reader.read_block(&mut self.block)
+                let mut reader = Reader::new(
+                    &self.machine.syntax.compact,
+                    raw_len,
+                    &self.machine.state.params,
+                    &self.machine.state,
+                )
+                .mach3(self.machine.hooks.dialect == Dialect::Mach3);
+                reader.read_block(&mut self.machine.syntax.block)
             };
             result.map_err(|fault| self.error(fault))?;
-            if self.dialect != Dialect::Linuxcnc {
-                if self.dialect == Dialect::Grbl {
-                    self.count_refused_by_grbl();
+            if self.machine.hooks.dialect != Dialect::Linuxcnc {
+                if self.machine.hooks.dialect == Dialect::Grbl {
+                    self.machine.count_refused_by_grbl();
                 }
-                self.pending_extrude = None;
-                if self.adapt_block().map_err(|fault| self.error(fault))? {
+                self.machine.hooks.pending_extrude = None;
+                if self.machine.adapt_block().map_err(|fault| self.error(fault))? {
                     continue;
                 }
             }
-            self.execute().map_err(|fault| self.error(fault))?;
-            if !self.queue.is_empty() || self.finished {
+            self.execute_block().map_err(|fault| self.error(fault))?;
+            if !self.machine.output.queue.is_empty() || self.machine.output.finished {
                 return Ok(());
             }
         }
     }
 
-    /// Raw column range of the block's compact range `start..end`.
-    fn span(&self, start: usize, end: usize) -> (usize, usize) {
-        let raw_len = self.lines.line.len();
-        let first = self.compact.column(start, raw_len);
-        let last = if end > start { self.compact.column(end - 1, raw_len) + 1 } else { first };
-        (first, last.max(first + 1))
-    }
-
-    fn fault_at(&self, start: usize, end: usize, message: impl Into<String>) -> Fault {
-        let (first, last) = self.span(start, end);
-        Fault::invalid(first, last, message)
-    }
-
-    fn word_fault(&self, word: Word, message: impl Into<String>) -> Fault {
-        self.fault_at(word.at, word.end, message)
-    }
-
-    fn code_fault(&self, code: Code, message: impl Into<String>) -> Fault {
-        self.fault_at(code.at, code.end, message)
-    }
-
-    fn emit(&mut self, kind: MotionKind) {
-        if self.dialect == Dialect::Grbl && self.tool == Tool::Laser {
-            self.grbl_laser_gate(&kind);
+    /// Executes the block just read, in LinuxCNC's order of execution: the machine's, with the
+    /// comment LinuxCNC executes (which may run Python) in its place.
+    fn execute_block(&mut self) -> Result<(), Fault> {
+        if self.machine.syntax.block.empty {
+            return self.convert_comment();
         }
-        let extrude = if kind.end().is_some() { self.pending_extrude.take() } else { None };
-        self.moved = true;
-        if self.control.idle_jumps != 0 {
-            self.moved_since_jump(&kind);
+        let plan = self.machine.execute_settings()?;
+        self.convert_comment()?;
+        let user_m_missing = self.user_m_missing();
+        self.machine.execute(plan, user_m_missing)
+    }
+
+    /// The line's last comment, as LinuxCNC executes it first (`convert_comment`): `abort,`
+    /// ([`Machine::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
+    /// end before the rest of the line.
+    pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
+        if self.machine.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
+            return Ok(());
         }
-        let blend = kind.end().and(self.state.blend);
-        let naive_cam = self.naive_cam(&kind, blend);
-        let motion = Motion { line: self.state.line, kind, extrude, blend, naive_cam };
-        if self.state.comp.holding() {
-            self.state.comp.hold(motion);
-        } else {
-            self.queue.push_back(motion);
+        if let Some((_, text, close)) = comments::last_comment(&self.lines.line)
+            && let Some((action, code)) = comments::PythonComment::of(&self.lines.line[text..close])
+        {
+            let code = code.to_vec();
+            self.python_comment(action, &code)?;
+            while self.python_paused() {
+                self.resume_python()?;
+            }
+            return Ok(());
+        }
+        self.machine.abort_comment(&self.lines.line)
+    }
+
+    /// Whether a request to Python is paused (a move it made waits to be taken).
+    fn python_paused(&self) -> bool {
+        self.python.as_ref().is_some_and(|python| python.paused())
+    }
+
+    /// Whether `o<name> call` calls a Python function of the plug-ins' `oword` module.
+    fn python_callable(&mut self, name: &str) -> Result<bool, Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(false) };
+        python.callable(&mut Reach { machine: &mut self.machine, control: &self.control }, name)
+    }
+
+    /// Calls the Python subroutine `name` with `arguments`, its call level entered.
+    fn python_call(&mut self, name: Rc<str>, arguments: &[f64]) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(()) };
+        let reach = &mut Reach { machine: &mut self.machine, control: &self.control };
+        let returned = python.call(reach, name, arguments)?;
+        self.python_returned(returned)
+    }
+
+    /// Runs a comment's Python: `code` (a file name for [`PythonComment::RunFile`]); refused
+    /// without plug-ins.
+    fn python_comment(&mut self, action: PythonComment, code: &[u8]) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else {
+            return Err(python::refused(&self.machine));
+        };
+        let reach = &mut Reach { machine: &mut self.machine, control: &self.control };
+        let returned = python.comment(reach, action, code)?;
+        self.python_returned(returned)
+    }
+
+    /// Goes on with the request to Python paused, once its move has been taken.
+    fn resume_python(&mut self) -> Result<(), Fault> {
+        let Some(python) = self.python.as_mut() else { return Ok(()) };
+        let returned =
+            python.resume(&mut Reach { machine: &mut self.machine, control: &self.control })?;
+        self.python_returned(returned)
+    }
+
+    /// A Python subroutine that returned leaves its call level.
+    fn python_returned(&mut self, returned: Returned) -> Result<(), Fault> {
+        match returned {
+            Returned::Yes => self.leave_context(),
+            Returned::No => Ok(()),
+        }
+    }
+
+    /// Whether the block's user M-code (M100–M199) has no program where the INI file says
+    /// they are (LinuxCNC's unknown M code); `false` without an INI file that says.
+    fn user_m_missing(&self) -> bool {
+        let Some(code) = self.machine.syntax.block.m[10] else { return false };
+        let name = format!("M{}", code.code);
+        self.control.user_m_dirs().is_some_and(|dirs| {
+            (100..200).contains(&code.code)
+                && !dirs.iter().any(|dir| self.control.environment.is_file(&dir.join(&name)))
+        })
+    }
+}
+
+/// The dialects' and the tool's hooks that read the input: `auto`'s look-ahead, the tool's
+/// inference, a dialect's look at a line before the block reader, the end of the input.
+impl<R: BufRead> Interpreter<R> {
+    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
+    /// with its decision).
+    pub(super) fn with_line_limit(mut self) -> Self {
+        self.apply_dialect();
+        self
+    }
+
+    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
+    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
+    pub(super) fn apply_dialect(&mut self) {
+        self.lines.max =
+            if self.machine.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
+        if self.machine.hooks.dialect == Dialect::Marlin && self.machine.state.feed_rate == 0.0 {
+            self.machine.state.feed_rate = MARLIN_DEFAULT_FEED;
+            self.machine.state.feed_mm = MARLIN_DEFAULT_FEED;
+        }
+    }
+
+    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
+    pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
+        self.machine.hooks.infer_tool = false;
+        self.lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
+            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
+            (self.machine.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
+                tool: Tool::Extruder,
+                reason: "read as Marlin G-code: a 3D printer".to_owned(),
+                line: None,
+            })
+        });
+        if let Some(inference) = inference {
+            self.machine.hooks.tool = inference.tool;
+            self.machine.hooks.tool_inference = Some(inference);
+        }
+        Ok(())
+    }
+
+    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
+    pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
+        self.machine.hooks.undecided = false;
+        let complete = self
+            .lines
+            .source()
+            .read_ahead(LOOKAHEAD_BYTES)
+            .map_err(|source| GcodeError::Read { line: 1, source })?;
+        match detect_dialect(self.lines.source().head(), complete) {
+            Some(detection) => {
+                self.machine.hooks.dialect = detection.dialect;
+                self.machine.hooks.makerbot = detection.makerbot;
+                self.machine.hooks.detection = Some(detection);
+                self.apply_dialect();
+            }
+            None => {
+                self.machine.hooks.provisional = true;
+                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
+                self.lines.max = MAX_LONG_LINE;
+            }
+        }
+        Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
+    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
+    /// long only in its comment decides Grbl (every line before read the same in both); a long
+    /// command is refused as LinuxCNC refuses it.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
+        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
+            return Err(GcodeError::LineTooLong {
+                at: self.location(MAX_LINE, MAX_LINE + 1),
+                max: MAX_LINE,
+            });
+        }
+        self.machine.hooks.provisional = false;
+        self.machine.hooks.dialect = Dialect::Grbl;
+        self.machine.hooks.detection = Some(Detection {
+            dialect: Dialect::Grbl,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
+                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
+                 its line buffer",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
+        Ok(())
+    }
+
+    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
+    /// need no program end.
+    pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
+        self.machine.output.finished = true;
+        if self.machine.hooks.provisional && self.machine.output.moved {
+            self.machine.hooks.provisional = false;
+            self.machine.hooks.dialect = Dialect::Grbl;
+            self.machine.hooks.detection = Some(Detection {
+                dialect: Dialect::Grbl,
+                reason: format!(
+                    "nothing tells the dialects apart, and the program ends at line {} without \
+                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
+                     reads the same in both)",
+                    self.lines.number
+                ),
+                line: None,
+                makerbot: false,
+            });
+        }
+        if self.machine.hooks.dialect != Dialect::Linuxcnc {
+            return Ok(());
+        }
+        Err(match self.machine.syntax.percent {
+            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
+            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
+        })
+    }
+
+    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
+    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
+        match prelude(self.machine.hooks.dialect, &self.lines.line) {
+            Prelude::Block => Ok(false),
+            Prelude::Event { name, known } => {
+                self.machine.record(&name, known);
+                Ok(true)
+            }
+            Prelude::ExtruderMode { name, relative } => {
+                self.machine.hooks.e_relative = relative;
+                self.machine.record(&name, true);
+                Ok(true)
+            }
+            Prelude::Home { axes } => {
+                // One rapid of the named axes to the home pose (G28's stored position), with no
+                // intermediate point.
+                let mut end = self.machine.state.current;
+                for axis in (0..4).filter(|&axis| axes[axis]) {
+                    let machine = self.machine.state.mm_to_program(
+                        axis,
+                        self.machine.state.params.get(G28_HOME + axis_slot(axis)),
+                    );
+                    end[axis] = machine
+                        - self.machine.state.origin[axis]
+                        - self.machine.state.axis_offset[axis];
+                }
+                self.machine.move_to(end, None);
+                self.machine.state.publish_position();
+                Ok(true)
+            }
+            Prelude::Refuse { start, end, code, note } => {
+                Err(self.error(Fault::not_supported(start, end, code, note)))
+            }
         }
     }
 }
+
 /// C's `%.4g`, roughly: four significant digits, trailing zeros dropped.
 fn format_g4(value: f64) -> String {
     if value == 0.0 {
@@ -719,15 +753,15 @@ impl<R: BufRead> Iterator for Interpreter<R> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(motion) = self.queue.pop_front() {
+            if let Some(motion) = self.machine.output.queue.pop_front() {
                 return Some(Ok(motion));
             }
-            if self.finished {
+            if self.machine.output.finished {
                 return None;
             }
             if let Err(err) = self.step() {
-                self.finished = true;
-                self.queue.clear();
+                self.machine.output.finished = true;
+                self.machine.output.queue.clear();
                 return Some(Err(err));
             }
         }

@@ -41,7 +41,14 @@
 //!   with an INI file whose `[PYTHON]` section loads LinuxCNC's Python plug-ins
 //!   ([`Config::ini`]), in a `python3` child process with stand-ins for LinuxCNC's `interpreter`
 //!   and `emccanon` modules (a subset: parameters, a few attributes, straight moves and dwells);
-//!   without one it is refused (the standalone `rs274` runs `;py,` lines always).
+//!   without one it is refused (the standalone `rs274` runs `;py,` lines always). The plug-ins
+//!   are the cargo feature `python`, on by default.
+//!
+//! It opens no file and starts no process: the files a program names (file subroutines, user
+//! M-code programs, a tool table, an INI file) and `python3` are reached through an
+//! [`Environment`] the caller gives ([`Interpreter::with_environment`]; the command line's is
+//! `biscara_files::FileSystem`, tests give [`InMemory`] files). Without one there are none
+//! ([`NoEnvironment`]).
 //! - A program that ends at a closing `%` emits no `end` (LinuxCNC calls that `FINISH`, not
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
@@ -84,25 +91,25 @@
 
 #![warn(missing_docs)]
 
-mod degrees;
 mod dialect;
+mod environment;
 mod error;
 mod ini_file;
 mod interpreter;
-mod lexer;
-mod params;
-mod parser;
+#[cfg(feature = "python")]
 mod python_plugin;
+mod syntax;
 mod tool;
 mod tool_table;
 
 pub use dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Summary, UnknownDialect, detect_dialect,
 };
-pub use error::{GcodeError, Location};
+pub use environment::{Environment, InMemory, NoEnvironment, PythonProcess};
+pub use error::{GcodeError, Location, Setting};
 pub use ini_file::{IniFile, IniFileError};
 pub use interpreter::{Config, Interpreter, interpret, interpret_seekable};
-pub use lexer::{Forward, Seekable};
+pub use syntax::lexer::{Forward, Seekable};
 pub use tool::{Tool, ToolInference, infer_tool};
 pub use tool_table::{ToolEntry, ToolTable, ToolTableError};
 

@@ -1,17 +1,17 @@
 //! LinuxCNC's Python plug-ins: the O-word subroutines an INI file's `[PYTHON]` section loads
 //! (`TOPLEVEL`, whose `oword` module holds them) and the Python of `;py,` lines and `(py,…)`
-//! comments, run in a `python3` child process.
+//! comments, run in a `python3` child process the caller's [`Environment`] starts.
 //!
 //! LinuxCNC embeds Python in its interpreter; biscara runs `python3` beside it, with stand-ins
 //! for LinuxCNC's `interpreter` and `emccanon` modules (`python_plugin.py`), and answers over a
 //! pipe what Python asks of the interpreter (parameters, a few attributes, moves) while a call
 //! runs. The process starts at the first use and lives until the interpreter is dropped.
 
-use std::io::{BufRead, BufReader, Write};
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 
 use crate::IniFile;
+use crate::environment::{Environment, PythonProcess};
 
 /// The host program `python3` runs.
 const HOST: &str = include_str!("python_plugin.py");
@@ -106,29 +106,25 @@ pub(crate) enum Answer {
 /// The running `python3`.
 #[derive(Debug)]
 pub(crate) struct PythonPlugin {
-    child: Child,
-    to: ChildStdin,
-    from: BufReader<ChildStdout>,
+    process: Box<dyn PythonProcess>,
 }
 
 impl PythonPlugin {
-    /// Starts `python3`, which runs `TOPLEVEL` (and its `__init__(self)`, if it has one):
-    /// [`PythonPlugin::next_message`] follows it, to its `Done` or `Raised`.
-    pub(crate) fn start(setup: &PluginSetup) -> Result<PythonPlugin, String> {
-        let mut command = Command::new("python3");
-        command.arg("-c").arg(HOST);
-        command.arg(setup.toplevel.as_deref().unwrap_or(Path::new("")));
-        command.args(&setup.prepend).arg("--").args(&setup.append);
-        let mut child = command
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
+    /// Starts `python3` in `environment`, which runs `TOPLEVEL` (and its `__init__(self)`, if
+    /// it has one): [`PythonPlugin::next_message`] follows it, to its `Done` or `Raised`.
+    pub(crate) fn start(
+        setup: &PluginSetup,
+        environment: &dyn Environment,
+    ) -> Result<PythonPlugin, String> {
+        let mut arguments: Vec<OsString> = vec!["-c".into(), HOST.into()];
+        arguments.push(setup.toplevel.as_deref().unwrap_or(Path::new("")).into());
+        arguments.extend(setup.prepend.iter().map(OsString::from));
+        arguments.push("--".into());
+        arguments.extend(setup.append.iter().map(OsString::from));
+        let process = environment
+            .start_python(&arguments)
             .map_err(|err| format!("cannot run python3 for them: {err}"))?;
-        let (Some(to), Some(from)) = (child.stdin.take(), child.stdout.take()) else {
-            return Err("cannot talk to python3".to_owned());
-        };
-        Ok(PythonPlugin { child, to, from: BufReader::new(from) })
+        Ok(PythonPlugin { process })
     }
 
     /// Asks whether `oword.NAME` is a Python function; answers every message until it is done.
@@ -216,12 +212,13 @@ impl PythonPlugin {
     fn send(&mut self, fields: &[&str]) -> Result<(), String> {
         let mut line = fields.join("\t");
         line.push('\n');
-        self.to.write_all(line.as_bytes()).and_then(|()| self.to.flush()).map_err(|_| self.ended())
+        let to = self.process.input();
+        to.write_all(line.as_bytes()).and_then(|()| to.flush()).map_err(|_| self.ended())
     }
 
     fn read_fields(&mut self) -> Result<Vec<String>, String> {
         let mut line = String::new();
-        match self.from.read_line(&mut line) {
+        match self.process.output().read_line(&mut line) {
             Ok(0) | Err(_) => Err(self.ended()),
             Ok(_) => Ok(line.trim_end_matches('\n').split('\t').map(str::to_owned).collect()),
         }
@@ -229,16 +226,7 @@ impl PythonPlugin {
 
     /// Why the pipe broke: python3 ended.
     fn ended(&mut self) -> String {
-        let status = self.child.wait().map(|status| status.to_string()).unwrap_or_default();
-        format!("python3 ended unexpectedly ({status})")
-    }
-}
-
-impl Drop for PythonPlugin {
-    fn drop(&mut self) {
-        // Python may be in a loop of its own: it is stopped, not waited for.
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        format!("python3 ended unexpectedly ({})", self.process.wait())
     }
 }
 

@@ -24,7 +24,8 @@ pub struct ToolInference {
 /// `(pocket 1)`) → spindle. Otherwise M3 and M4 with no S word are the gripper's pick and
 /// place. `None` when nothing tells (the caller keeps the gripper).
 pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
-    let text = String::from_utf8_lossy(text.strip_prefix(crate::lexer::UTF8_BOM).unwrap_or(text));
+    let text =
+        String::from_utf8_lossy(text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text));
     let found = |tool: Tool, reason: &str, line: usize| {
         Some(ToolInference { tool, reason: reason.to_owned(), line: Some(line) })
     };

@@ -14,6 +14,8 @@ use std::fmt;
 use std::io::BufRead;
 use std::path::Path;
 
+use crate::environment::Environment;
+
 /// One tool of the table: its number, pocket, offsets and diameter.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ToolEntry {
@@ -73,16 +75,16 @@ impl ToolTable {
         ToolTable::default()
     }
 
-    /// Reads the table in file `path`.
-    pub fn read(path: &Path) -> Result<ToolTable, ToolTableError> {
+    /// Reads the table in file `path`, opened in `environment`.
+    pub fn read(environment: &dyn Environment, path: &Path) -> Result<ToolTable, ToolTableError> {
         let name = path.display().to_string();
-        let file = std::fs::File::open(path).map_err(|err| ToolTableError {
+        let file = environment.open(path).map_err(|err| ToolTableError {
             file: name.clone(),
             line: 0,
             column: 0,
             message: format!("cannot read the tool table: {err}"),
         })?;
-        ToolTable::parse(std::io::BufReader::new(file), &name)
+        ToolTable::parse(file, &name)
     }
 
     /// Reads a table from `reader`; `name` names it in errors.
@@ -332,7 +334,11 @@ mod tests {
 
     #[test]
     fn a_missing_file_is_named() {
-        let err = ToolTable::read(Path::new("/nonexistent/tools.tbl")).unwrap_err();
+        let none = crate::NoEnvironment;
+        let err = ToolTable::read(&none, Path::new("/nonexistent/tools.tbl")).unwrap_err();
         assert!(err.to_string().starts_with("/nonexistent/tools.tbl: cannot read the tool table"));
+        let files = crate::InMemory::new().with_file("tools.tbl", "T1 P1 Z10 D6\n");
+        let table = ToolTable::read(&files, Path::new("tools.tbl")).expect("read from memory");
+        assert_eq!(table.get(1).map(|entry| entry.offset[2]), Some(10.0));
     }
 }

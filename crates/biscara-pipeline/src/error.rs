@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io;
 
-use biscara_gcode::{Detection, Dialect, ToolInference};
+use biscara_gcode::{Detection, Dialect, Setting, ToolInference};
 use biscara_interpolate::SlowDown;
 use biscara_robot::{Fit, VirtualRobotError};
 use biscara_text::fixed;
@@ -127,6 +127,24 @@ pub enum Hint {
     PlaceByOrigin,
     /// The program has nothing to fit: run it without [`fit`](crate::SamplingConfig::fit).
     DoNotFit,
+    /// The program's Python needs LinuxCNC's INI file with a `[PYTHON]` section
+    /// ([`ini`](crate::SamplingConfig::ini)).
+    GiveIni,
+    /// A file subroutine's name cannot hold a folder: add the folder to the places file
+    /// subroutines are found in ([`subroutine_path`](crate::SamplingConfig::subroutine_path)).
+    AddSubroutineFolder,
+}
+
+impl Hint {
+    /// The hint for a setting the interpreter says would help.
+    pub(crate) fn for_setting(setting: Setting) -> Option<Hint> {
+        match setting {
+            Setting::MaxIdleJumps => Some(Hint::MoreIdleJumps),
+            Setting::Ini => Some(Hint::GiveIni),
+            Setting::SubroutinePath => Some(Hint::AddSubroutineFolder),
+            _ => None,
+        }
+    }
 }
 
 impl fmt::Display for Hint {
@@ -143,6 +161,8 @@ impl fmt::Display for Hint {
             ),
             Hint::PlaceByOrigin => f.write_str("(place it by an origin instead)"),
             Hint::DoNotFit => f.write_str("(run it without fitting it)"),
+            Hint::GiveIni => f.write_str("(set the INI file)"),
+            Hint::AddSubroutineFolder => f.write_str("(add the folder to the subroutine path)"),
         }
     }
 }

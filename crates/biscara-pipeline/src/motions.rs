@@ -133,10 +133,12 @@ pub(crate) fn read_motions(
                 Some(input) => input,
                 None => Box::new(Forward(source.open().map_err(io_error)?)),
             };
-            let interpreter = interpret_seekable(input, &config).with_subroutines(
-                source.path().map(Path::to_path_buf),
-                reading.subroutine_path.to_vec(),
-            );
+            let interpreter = interpret_seekable(input, &config)
+                .with_subroutines(
+                    source.path().map(Path::to_path_buf),
+                    reading.subroutine_path.to_vec(),
+                )
+                .with_environment(source.environment());
             Ok(Box::new(GcodeMotions {
                 interpreter,
                 file,
@@ -171,10 +173,8 @@ impl<R: BufRead> GcodeMotions<R> {
     /// error may be the dialect's, not the program's).
     fn located(&self, err: GcodeError) -> PipelineError {
         let snippet = err.location().map(|location| location.snippet());
-        let mut hints = Vec::new();
-        if err.to_string().contains("jumps back without a motion are allowed") {
-            hints.push(Hint::MoreIdleJumps);
-        }
+        // The library says what is wrong; the caller words the setting that helps.
+        let mut hints: Vec<Hint> = err.setting().and_then(Hint::for_setting).into_iter().collect();
         if let Some(detection) =
             self.interpreter.detection().filter(|d| d.dialect != Dialect::Linuxcnc)
         {

@@ -2,8 +2,9 @@
 
 use std::io::{self, BufRead};
 use std::path::Path;
+use std::sync::Arc;
 
-use biscara_gcode::Seekable;
+use biscara_gcode::{Environment, NoEnvironment, Seekable};
 
 /// A program's text, opened by the caller: the pipeline never touches a path.
 pub trait ProgramSource {
@@ -29,6 +30,12 @@ pub trait ProgramSource {
     /// beside it, and it names the program in LinuxCNC's messages. `None` by default.
     fn path(&self) -> Option<&Path> {
         None
+    }
+
+    /// Where the files a G-code program names (file subroutines, user M-code programs) are
+    /// found, and how its Python starts: none of them by default ([`NoEnvironment`]).
+    fn environment(&self) -> Arc<dyn Environment> {
+        Arc::new(NoEnvironment)
     }
 }
 

@@ -6,12 +6,10 @@
 //! (x, y, z), YZ (y, z, x), XZ (z, x, y). What the spindle does (G74/G84 reverse it, G86–G88
 //! stop it) is emitted as the tool's events, as M3, M4 and M5 are.
 
-use std::io::BufRead;
-
 use biscara_motion::{Feed, MotionKind, Plane};
 
-use super::{AXES, Interpreter};
-use crate::lexer::Fault;
+use super::{AXES, Machine};
+use crate::syntax::lexer::Fault;
 
 /// LinuxCNC's `G83_RAPID_DELTA`: how far above the last depth a peck restarts, inches.
 const RAPID_DELTA_INCH: f64 = 0.010;
@@ -62,7 +60,7 @@ pub(super) fn is_cycle(motion: u16) -> bool {
         && matches!(motion, 730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// A point of the cycle: `aa`, `bb`, `cc` in the plane's axes, the others unchanged.
     fn cycle_point(&self, axes: [usize; 3], aa: f64, bb: f64, cc: f64) -> [f64; 4] {
         let mut point = self.state.current;
@@ -98,14 +96,14 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.inverse_time {
             return Err(self.motion_fault("Cannot use inverse time feed with canned cycles"));
         }
-        let letters = self.block.letters;
+        let letters = self.syntax.block.letters;
         let word = |letter: u8| letters[usize::from(letter - b'a')].map(|word| word.value);
         let r_word = match word(b'r') {
             Some(r) => r,
             None if same => self.state.cycle.r,
             None => return Err(self.motion_fault("R clearance plane unspecified in cycle")),
         };
-        let repeats = match self.block.word(b'l') {
+        let repeats = match self.syntax.block.word(b'l') {
             None => 1,
             Some(l) if l.value == 0.0 => {
                 return Err(self.word_fault(l, "Cannot do zero repeats of cycle"));
@@ -206,7 +204,7 @@ impl<R: BufRead> Interpreter<R> {
             if self.state.metric { RAPID_DELTA_INCH * 25.4 } else { RAPID_DELTA_INCH };
         let back_bore_top = if self.state.incremental { cc + ijk[2] } else { ijk[2] };
         let mut increment = increment;
-        let polar = self.state.incremental && self.block.polar();
+        let polar = self.state.incremental && self.syntax.block.polar();
         for repeat in 0..repeats {
             if polar
                 && repeat > 0

@@ -1,16 +1,14 @@
 //! The checks LinuxCNC makes of a block before executing it (`check_g_codes`,
 //! `check_other_codes`, `check_items`), and the range of the values this robot accepts.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Refuses motions whose positions or feeds are beyond any robot (a typo such as a
     /// 240-digit number), rather than passing them on.
     pub(super) fn check_range(&self) -> Result<(), Fault> {
         let far = |value: &f64| value.abs() > MAX_COORDINATE;
-        for motion in &self.queue {
+        for motion in &self.output.queue {
             let value = match &motion.kind {
                 MotionKind::Arc { end, center, .. } => end.iter().chain(center).copied().find(far),
                 MotionKind::Rapid { end } | MotionKind::Linear { end, .. } => {
@@ -35,7 +33,7 @@ impl<R: BufRead> Interpreter<R> {
 
     pub(super) fn first_axis_word(&self) -> Option<Word> {
         AXES.iter()
-            .filter_map(|&letter| self.block.word(letter))
+            .filter_map(|&letter| self.syntax.block.word(letter))
             .chain(self.first_polar_word())
             .min_by_key(|word| word.at)
     }
@@ -43,13 +41,13 @@ impl<R: BufRead> Interpreter<R> {
     /// Where an error of the block's motion points: its G code, or else its first axis word
     /// (a modal motion), or else the line's start.
     pub(super) fn motion_span(&self) -> (usize, usize) {
-        self.block.g[1].map_or_else(
+        self.syntax.block.g[1].map_or_else(
             || self.first_axis_word().map_or((0, 1), |word| (word.at, word.end)),
             |code| (code.at, code.end),
         )
     }
 
-    /// An error of the block's motion, at [`Interpreter::motion_span`].
+    /// An error of the block's motion, at [`Machine::motion_span`].
     pub(super) fn motion_fault(&self, message: impl Into<String>) -> Fault {
         let (start, end) = self.motion_span();
         self.fault_at(start, end, message)
@@ -57,15 +55,15 @@ impl<R: BufRead> Interpreter<R> {
 
     /// LinuxCNC's checks of G4 and G10 (in `check_g_codes`, before the other words').
     pub(super) fn check_group_zero(&self) -> Result<(), Fault> {
-        let Some(zero) = self.block.g[0] else { return Ok(()) };
-        let p = self.block.word(b'p');
+        let Some(zero) = self.syntax.block.g[0] else { return Ok(()) };
+        let p = self.syntax.block.word(b'p');
         match zero.code {
             // P-1 is LinuxCNC's "no P" value.
             40 if p.is_none_or(|p| p.value == -1.0) => {
                 Err(self.code_fault(zero, "Dwell time missing with g4"))
             }
             100 => {
-                let l = self.block.word(b'l').map(|l| l.value as i64);
+                let l = self.syntax.block.word(b'l').map(|l| l.value as i64);
                 let Some(l @ (0 | 1 | 2 | 10 | 11 | 20)) = l else {
                     return Err(self.code_fault(
                         zero,
@@ -73,7 +71,7 @@ impl<R: BufRead> Interpreter<R> {
                     ));
                 };
                 // (Grbl takes no P as P0: see `set_coordinate_data`.)
-                let grbl_p0 = p.is_none() && self.dialect == Dialect::Grbl;
+                let grbl_p0 = p.is_none() && self.hooks.dialect == Dialect::Grbl;
                 if matches!(l, 2 | 20)
                     && !grbl_p0
                     && !p.is_some_and(|p| (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0)
@@ -84,7 +82,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
                 Ok(())
             }
-            520 | 920 if AXES.iter().all(|&letter| self.block.word(letter).is_none()) => {
+            520 | 920 if AXES.iter().all(|&letter| self.syntax.block.word(letter).is_none()) => {
                 Err(self.code_fault(zero, "All axes missing with g52 or g92"))
             }
             _ => Ok(()),
@@ -93,10 +91,10 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Refuses codes and words this interpreter does not implement.
     pub(super) fn check_support(&self) -> Result<(), Fault> {
-        if !self.block.unsupported {
+        if !self.syntax.block.unsupported {
             return Ok(());
         }
-        for code in self.block.g.iter().flatten() {
+        for code in self.syntax.block.g.iter().flatten() {
             let name = || {
                 if code.code % 10 == 0 {
                     format!("G{}", code.code / 10)
@@ -117,7 +115,7 @@ impl<R: BufRead> Interpreter<R> {
                 _ => {}
             }
         }
-        for code in self.block.m.iter().flatten() {
+        for code in self.syntax.block.m.iter().flatten() {
             if let Some((_, Support::No(note))) = m_group(code.code) {
                 let (first, last) = self.span(code.at, code.end);
                 return Err(Fault::not_supported(first, last, format!("M{}", code.code), note));
@@ -129,7 +127,7 @@ impl<R: BufRead> Interpreter<R> {
     /// LinuxCNC's checks of words no code in the block uses (`check_other_codes`, in its order:
     /// D E H I J K L P Q R).
     pub(super) fn check_other_words(&self, motion: Option<u16>) -> Result<(), Fault> {
-        let block = &self.block;
+        let block = &self.syntax.block;
         let group0 = block.g[0].map(|code| code.code);
         let arc = matches!(motion, Some(20 | 30));
         let g5 = motion == Some(50);
@@ -186,7 +184,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // Mach3 takes the compensation radius from a P word (G41 P1.5): G41/G42 use it.
-        let mach3_radius = self.dialect == Dialect::Mach3
+        let mach3_radius = self.hooks.dialect == Dialect::Mach3
             && block.g[7].is_some_and(|code| matches!(code.code, 410 | 420));
         if let Some(p) = block.word(b'p')
             && !mach3_radius

@@ -1,58 +1,34 @@
 //! Comments LinuxCNC executes: `(ABORT, …)`, and Python's `(py,…)`, `(pyrun,…)`,
 //! `(pyreload)`.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
-    /// The line's last comment, as LinuxCNC executes it first (`convert_comment`): `abort,`
-    /// ([`Interpreter::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
-    /// end before the rest of the line.
-    pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
-        if self.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
-            return Ok(());
+/// Where the last `( … )` comment before any `;` of `line` is: its `(`, its text (after the
+/// blanks that follow the `(`) and its `)`.
+pub(super) fn last_comment(line: &[u8]) -> Option<(usize, usize, usize)> {
+    let mut last = None;
+    let mut at = 0;
+    while let Some(open) = line[at..].iter().position(|&b| b == b'(').map(|i| at + i) {
+        if line[at..open].contains(&b';') {
+            break;
         }
-        if let Some((_, text, close)) = self.last_comment()
-            && let Some((action, code)) = python::PythonComment::of(&self.lines.line[text..close])
-        {
-            let code = code.to_vec();
-            self.python_comment(action, &code)?;
-            while self.python_paused() {
-                self.resume_python()?;
-            }
-            return Ok(());
-        }
-        self.abort_comment()
+        let Some(close) = line[open..].iter().position(|&b| b == b')').map(|i| open + i) else {
+            break;
+        };
+        last = Some((open, close));
+        at = close + 1;
     }
+    let (open, close) = last?;
+    let blanks = line[open + 1..close].iter().take_while(|b| b.is_ascii_whitespace()).count();
+    Some((open, open + 1 + blanks, close))
+}
 
-    /// Where the line's last `( … )` comment before any `;` is: its `(`, its text (after the
-    /// blanks that follow the `(`) and its `)`.
-    pub(super) fn last_comment(&self) -> Option<(usize, usize, usize)> {
-        let line = &self.lines.line;
-        let mut last = None;
-        let mut at = 0;
-        while let Some(open) = line[at..].iter().position(|&b| b == b'(').map(|i| at + i) {
-            if line[at..open].contains(&b';') {
-                break;
-            }
-            let Some(close) = line[open..].iter().position(|&b| b == b')').map(|i| open + i) else {
-                break;
-            };
-            last = Some((open, close));
-            at = close + 1;
-        }
-        let (open, close) = last?;
-        let blanks = line[open + 1..close].iter().take_while(|b| b.is_ascii_whitespace()).count();
-        Some((open, open + 1 + blanks, close))
-    }
-
-    /// LinuxCNC's `(ABORT, text)`: the line's last comment, when it reads `abort,` (spaces
+impl Machine {
+    /// LinuxCNC's `(ABORT, text)`: `line`'s last comment, when it reads `abort,` (spaces
     /// before it allowed, any case), stops the program with its text as the message, `#n` and
     /// `#<name>` in it replaced by their values (`######` when undefined).
-    pub(super) fn abort_comment(&self) -> Result<(), Fault> {
-        let line = &self.lines.line;
-        let Some((open, text, close)) = self.last_comment() else { return Ok(()) };
+    pub(super) fn abort_comment(&self, line: &[u8]) -> Result<(), Fault> {
+        let Some((open, text, close)) = last_comment(line) else { return Ok(()) };
         let text = &line[text..close];
         if !text.get(..6).is_some_and(|head| head.eq_ignore_ascii_case(b"abort,")) {
             return Ok(());
@@ -91,7 +67,9 @@ impl<R: BufRead> Interpreter<R> {
             }
             let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
             let number = std::str::from_utf8(&rest[..digits]).ok().and_then(|d| d.parse().ok());
-            match number.filter(|&n: &usize| (1..crate::params::MAX_PARAMETERS).contains(&n)) {
+            match number
+                .filter(|&n: &usize| (1..crate::syntax::params::MAX_PARAMETERS).contains(&n))
+            {
                 Some(number) => message.push_str(&format!("{:.6}", self.state.params.get(number))),
                 None if digits == 0 => message.push('#'),
                 None => message.push_str("######"),
@@ -103,5 +81,34 @@ impl<R: BufRead> Interpreter<R> {
         }
         let (first, last) = (open, close + 1);
         Err(Fault::invalid(first, last, message))
+    }
+}
+
+/// What a comment asks of Python (LinuxCNC's `convert_comment`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum PythonComment {
+    /// `py,CODE` (and a `;py,CODE` line).
+    Run,
+    /// `pyrun,FILE`: the file's code.
+    RunFile,
+    /// `pyreload`: `TOPLEVEL` again.
+    Reload,
+}
+
+impl PythonComment {
+    /// The action a comment's text (blanks before it skipped) asks for, and the text it acts on.
+    pub(super) fn of(text: &[u8]) -> Option<(PythonComment, &[u8])> {
+        let starts = |prefix: &[u8]| {
+            text.get(..prefix.len()).is_some_and(|head| head.eq_ignore_ascii_case(prefix))
+        };
+        if starts(b"py,") {
+            Some((PythonComment::Run, &text[3..]))
+        } else if starts(b"pyrun,") {
+            Some((PythonComment::RunFile, &text[6..]))
+        } else if starts(b"pyreload") {
+            Some((PythonComment::Reload, &[]))
+        } else {
+            None
+        }
     }
 }

@@ -9,21 +9,25 @@
 //! File subroutines (`o<name> call` of a name not defined so far) are opened as LinuxCNC opens
 //! them, `NAME.ngc`, beside the program or in the `--subroutine-path` folders. A program read
 //! only forwards (standard input) cannot jump: the error says so. A line that is not an O-word
-//! line costs one look at its first letter ([`may_control`]).
+//! line costs one look at its first letter (`may_control`).
 
 use std::collections::HashMap;
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 
 use super::{Interpreter, round_to_int};
 
 /// Reading O-word lines, M98/M99 and G65 (`read_o`).
 mod read;
 use crate::dialect::Dialect;
+use crate::environment::{Environment, NoEnvironment};
 use crate::error::GcodeError;
-use crate::lexer::Fault;
-use crate::parser::Reader;
+use crate::error::Setting;
+use crate::syntax::lexer::{Fault, FaultKind};
+use crate::syntax::parser::Reader;
+pub(super) use read::{first_item, may_call_g65, may_control};
 
 /// LinuxCNC's `INTERP_SUB_PARAMS`: a call's arguments are #1 … #30.
 const SUB_PARAMS: usize = 30;
@@ -197,6 +201,8 @@ pub(super) struct Control {
     program: Option<PathBuf>,
     /// `--subroutine-path` folders.
     dirs: Vec<PathBuf>,
+    /// Where files are found and opened, and Python started.
+    pub(super) environment: Arc<dyn Environment>,
     /// The INI file's `[RS274NGC] SUBROUTINE_PATH` folders, after `dirs`.
     ini_dirs: Vec<PathBuf>,
     /// Where the user M-codes' programs are (`USER_M_PATH`, `PROGRAM_PREFIX`), when the INI
@@ -207,11 +213,8 @@ pub(super) struct Control {
     open_loops: Vec<Rc<str>>,
     /// Whether the lines of an input read only forwards are being kept (`Some(true)`: for good).
     recording: Option<bool>,
-    /// Jumps back since the last motion, and how many are allowed.
-    pub(super) idle_jumps: u64,
+    /// How many jumps back are allowed without a motion.
     max_idle_jumps: u64,
-    /// The end point of the last motion (a move to where the robot is is no motion).
-    pub(super) last_end: Option<[f64; 4]>,
     /// A call in the main program reads on to find its subroutine: the lines from the call on
     /// are kept (an input read only forwards), to come back to.
     forward: bool,
@@ -234,13 +237,12 @@ impl Default for Control {
             file: None,
             program: None,
             dirs: Vec::new(),
+            environment: Arc::new(NoEnvironment),
             ini_dirs: Vec::new(),
             user_m_dirs: None,
             open_loops: Vec::new(),
             recording: None,
-            idle_jumps: 0,
             max_idle_jumps: crate::MAX_IDLE_JUMPS,
-            last_end: None,
             forward: false,
         }
     }
@@ -307,55 +309,20 @@ impl OBlock {
     }
 }
 
-/// Whether a line's significant characters may be an O-word line, `M98` or `M99`: the only
-/// look at an ordinary line.
-#[inline]
-pub(super) fn may_control(bytes: &[u8]) -> bool {
-    let mut at = usize::from(bytes.first() == Some(&b'/'));
-    if bytes.get(at) == Some(&b'n') {
-        at += 1;
-        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
-            at += 1;
-        }
-    }
-    match bytes.get(at) {
-        Some(b'o') => true,
-        Some(b'm') => !matches!(bytes.get(at + 1), Some(b'1'..=b'8')),
-        _ => false,
-    }
-}
-
-/// Whether a line's first item is G65 (`g65`, `g065`, not `g65.1`): Mach4's macro call, looked
-/// for only in the Mach3 dialect.
-pub(super) fn may_call_g65(bytes: &[u8]) -> bool {
-    let at = first_item(bytes);
-    let Some(item) = bytes.get(at..).filter(|item| item.first() == Some(&b'g')) else {
-        return false;
-    };
-    let digits = item[1..].iter().take_while(|b| b.is_ascii_digit()).count();
-    let number = &item[1..1 + digits];
-    let number = &number[number.iter().take_while(|&&b| b == b'0').count()..];
-    number == b"65" && item.get(1 + digits) != Some(&b'.')
-}
-
-/// Where the first item of a line starts (after `/` and the N number).
-pub(super) fn first_item(bytes: &[u8]) -> usize {
-    let mut at = usize::from(bytes.first() == Some(&b'/'));
-    if bytes.get(at) == Some(&b'n') {
-        at += 1;
-        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
-            at += 1;
-        }
-    }
-    at
-}
-
 impl<R: BufRead> Interpreter<R> {
     /// Sets where file subroutines are found: beside `program` (also named in messages) and
     /// in `dirs`, in that order.
     pub fn with_subroutines(mut self, program: Option<PathBuf>, dirs: Vec<PathBuf>) -> Self {
         self.control.program = program;
         self.control.dirs = dirs;
+        self
+    }
+
+    /// Sets where the files the program names (file subroutines, user M-code programs) are
+    /// found and opened, and how Python is started: [`NoEnvironment`](crate::NoEnvironment)
+    /// by default, which has neither files nor Python.
+    pub fn with_environment(mut self, environment: Arc<dyn Environment>) -> Self {
+        self.control.environment = environment;
         self
     }
 
@@ -386,11 +353,15 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn control_step(&mut self) -> Result<bool, Fault> {
-        let at = first_item(self.compact.bytes());
-        let lead = self.compact.bytes().get(at).copied();
+        let at = first_item(self.machine.syntax.compact.bytes());
+        let lead = self.machine.syntax.compact.bytes().get(at).copied();
         let m_number = if lead == Some(b'm') {
-            let mut reader =
-                Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &self.machine.syntax.compact,
+                self.lines.line.len(),
+                &self.machine.state.params,
+                &self.machine.state,
+            );
             reader.set_position(at + 1);
             reader.read_integer_value().ok()
         } else {
@@ -398,7 +369,9 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (!matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping) {
+        if g65
+            && (!matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping)
+        {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -407,7 +380,7 @@ impl<R: BufRead> Interpreter<R> {
             (_, Some(99)) if !skipping => {
                 // M99 in the main program: the standalone rs274 ends the program there, as M2
                 // (LinuxCNC loops only when its INI file asks for it).
-                let bytes = self.compact.bytes_mut();
+                let bytes = self.machine.syntax.compact.bytes_mut();
                 if bytes.get(at..at + 3) == Some(b"m99") {
                     bytes[at + 1] = b'0';
                     bytes[at + 2] = b'2';
@@ -416,7 +389,11 @@ impl<R: BufRead> Interpreter<R> {
             }
             _ => return Ok(skipping),
         }
-        let block = if g65 { Some(self.read_g65(at)?) } else { self.read_o(at, m_number)? };
+        let block = if g65 {
+            Some(self.machine.read_g65(at)?)
+        } else {
+            self.control.read_o(&mut self.machine, at, m_number)?
+        };
         let Some(block) = block else { return Ok(true) };
         self.convert_control(&block)?;
         if !self.lines.can_jump() && self.control.file.is_none() {
@@ -462,7 +439,12 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     pub(super) fn line_fault(&self, message: impl Into<String>) -> Fault {
-        Fault::invalid(0, self.lines.line.len().max(1), message)
+        self.machine.line_fault(message)
+    }
+
+    /// The line refused until the caller gives `setting`.
+    pub(super) fn setting_fault(&self, message: impl Into<String>, setting: Setting) -> Fault {
+        Fault { kind: FaultKind::Needs(setting), ..self.line_fault(message) }
     }
 
     /// The label of a `repeat` or `while` on `line`: remembered where it is first met; met again
@@ -533,9 +515,10 @@ impl<R: BufRead> Interpreter<R> {
         }
         match &file {
             None => self.lines.close_file(),
-            Some(path) => self.lines.open_file(path).map_err(|err| {
-                self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
-            })?,
+            Some(path) => {
+                let file = self.open_subroutine(path)?;
+                self.lines.open_file(file);
+            }
         }
         self.control.file = file;
         Ok(())
@@ -545,31 +528,16 @@ impl<R: BufRead> Interpreter<R> {
     /// have been more than [`Config::max_idle_jumps`](crate::Config::max_idle_jumps), naming
     /// `loop_line`, the line jumped to — an endless loop that never moves would run forever.
     pub(super) fn count_jump(&mut self, loop_line: usize) -> Result<(), Fault> {
-        self.control.idle_jumps += 1;
-        if self.control.idle_jumps > self.control.max_idle_jumps {
-            return Err(self.line_fault(format!(
+        self.machine.output.idle_jumps += 1;
+        if self.machine.output.idle_jumps > self.control.max_idle_jumps {
+            let message = format!(
                 "the loop at line {loop_line} has jumped back {} times without a motion: an \
                  endless loop? (that many jumps back without a motion are allowed)",
                 self.control.max_idle_jumps
-            )));
+            );
+            return Err(self.setting_fault(message, Setting::MaxIdleJumps));
         }
         Ok(())
-    }
-
-    /// After a jump back: a move somewhere else than the last one went, or a wait, ends the
-    /// run of jumps without motion. (Moves are looked at only after a jump, so that a program
-    /// without loops pays one test a motion; the first move after a jump may compare with an
-    /// older end point, and then there was a motion since.)
-    #[cold]
-    pub(super) fn moved_since_jump(&mut self, kind: &biscara_motion::MotionKind) {
-        let end = kind.end();
-        let waits = matches!(*kind, biscara_motion::MotionKind::Dwell { seconds } if seconds > 0.0);
-        if (end.is_some() && end != self.control.last_end) || waits {
-            self.control.idle_jumps = 0;
-        }
-        if end.is_some() {
-            self.control.last_end = end;
-        }
     }
 
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
@@ -601,9 +569,8 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(path) = self.find_file(name)? {
             let path: Rc<Path> = Rc::from(path);
-            self.lines.open_file(&path).map_err(|err| {
-                self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
-            })?;
+            let file = self.open_subroutine(&path)?;
+            self.lines.open_file(file);
             self.control.file = Some(path);
             self.lines.number = 0;
         } else if self.control.file.is_none() {
@@ -615,14 +582,22 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// The file subroutine `path`, opened from its start.
+    fn open_subroutine(&self, path: &Path) -> Result<Box<dyn crate::Seekable>, Fault> {
+        self.control.environment.open(path).map_err(|err| {
+            self.line_fault(format!("Unable to open file: {} ({err})", path.display()))
+        })
+    }
+
     /// `NAME.ngc` beside the program, else in a `--subroutine-path` folder, else in one the INI
     /// file names.
     fn find_file(&self, name: &str) -> Result<Option<PathBuf>, Fault> {
         if name.contains('/') || name.contains("..") || name.contains('\\') {
-            return Err(self.line_fault(format!(
+            let message = format!(
                 "o<{name}>: a subroutine name with '/' or '..' is refused (file subroutines \
-                 are found by name alone, beside the program or on --subroutine-path)"
-            )));
+                 are found by name alone, beside the program or in the subroutine folders)"
+            );
+            return Err(self.setting_fault(message, Setting::SubroutinePath));
         }
         if name.is_empty() || name.contains('#') {
             return Ok(None);
@@ -636,7 +611,7 @@ impl<R: BufRead> Interpreter<R> {
             .chain(self.control.dirs.iter().map(PathBuf::as_path))
             .chain(self.control.ini_dirs.iter().map(PathBuf::as_path))
             .map(|dir| dir.join(&file))
-            .find(|path| path.is_file()))
+            .find(|path| self.control.environment.is_file(path)))
     }
 
     /// A new call level (`enter_context`).
@@ -644,30 +619,30 @@ impl<R: BufRead> Interpreter<R> {
         if self.control.frames.len() >= SUB_LEVELS {
             return Err(self.line_fault("Too many subroutine levels"));
         }
-        let locals = self.state.params.take_locals();
-        let modes = std::mem::take(&mut self.state.modal_stack);
+        let locals = self.machine.state.params.take_locals();
+        let modes = std::mem::take(&mut self.machine.state.modal_stack);
         if let Some(caller) = self.control.frames.last_mut() {
             caller.locals = locals;
             caller.modes = modes;
         }
         self.control.frames.push(Frame::new(Some(block.name.clone()), block.call_type));
-        self.state.owords.level = self.control.level();
+        self.machine.state.owords.level = self.control.level();
         Ok(())
     }
 
     /// Back to the caller's level (`leave_context`).
     pub(super) fn leave_context(&mut self) -> Result<(), Fault> {
         // M73: the modal state saved at this level comes back as the subroutine returns.
-        self.restore_on_return()?;
+        self.machine.restore_on_return()?;
         if self.control.frames.len() > 1 {
             self.control.frames.pop();
         }
         let modes = self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.modes));
-        self.state.modal_stack = modes.unwrap_or_default();
+        self.machine.state.modal_stack = modes.unwrap_or_default();
         let locals =
             self.control.frames.last_mut().map(|caller| std::mem::take(&mut caller.locals));
-        self.state.params.restore_locals(locals.unwrap_or_default());
-        self.state.owords.level = self.control.level();
+        self.machine.state.params.restore_locals(locals.unwrap_or_default());
+        self.machine.state.owords.level = self.control.level();
         Ok(())
     }
 
@@ -677,8 +652,9 @@ impl<R: BufRead> Interpreter<R> {
         let caller = self.control.level() - 1;
         if block.call_type != CallType::M98 {
             for index in 0..SUB_PARAMS {
-                self.control.frames[caller].saved_params[index] = self.state.params.get(index + 1);
-                self.state.params.set(index + 1, block.params[index]);
+                self.control.frames[caller].saved_params[index] =
+                    self.machine.state.params.get(index + 1);
+                self.machine.state.params.set(index + 1, block.params[index]);
             }
         }
         let frame = &mut self.control.frames[caller];
@@ -718,7 +694,7 @@ impl<R: BufRead> Interpreter<R> {
             if call_type != CallType::M98 {
                 for index in 0..SUB_PARAMS {
                     let saved = self.control.frames[caller].saved_params[index];
-                    self.state.params.set(index + 1, saved);
+                    self.machine.state.params.set(index + 1, saved);
                 }
             }
             let frame = &self.control.frames[caller];
@@ -737,7 +713,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.skipping_o = None;
             self.control.defining_sub = false;
             self.control.sub_name = None;
-            self.state.owords.defining = false;
+            self.machine.state.owords.defining = false;
         }
         Ok(())
     }
@@ -761,7 +737,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            if matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {
@@ -807,7 +783,7 @@ impl<R: BufRead> Interpreter<R> {
                     self.skip_to(block);
                     self.control.defining_sub = true;
                     self.control.sub_name = Some(block.name.clone());
-                    self.state.owords.defining = true;
+                    self.machine.state.owords.defining = true;
                 }
             }
             OType::EndSub | OType::Return | OType::M99 => {

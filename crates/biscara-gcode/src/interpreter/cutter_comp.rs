@@ -17,15 +17,14 @@
 
 use std::collections::VecDeque;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::io::BufRead;
 
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
-use super::Interpreter;
+use super::Machine;
 use super::motion::find_turn;
 use crate::Dialect;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
 /// LinuxCNC's `TOLERANCE_CONCAVE_CORNER` (radians): below it a corner is straight on.
 const TOLERANCE_CONCAVE_CORNER: f64 = 0.05;
@@ -204,7 +203,7 @@ pub(super) struct CompArc {
     pub feed: Feed,
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Refuses a code that LinuxCNC refuses while compensation is on.
     pub(super) fn refuse_with_comp(&self, at: (usize, usize), message: &str) -> Result<(), Fault> {
         if self.state.comp.on() { Err(self.fault_at(at.0, at.1, message)) } else { Ok(()) }
@@ -259,7 +258,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     pub(super) fn set_cutter_comp(&mut self) -> Result<(), Fault> {
-        let Some(code) = self.block.g[7] else { return Ok(()) };
+        let Some(code) = self.syntax.block.g[7] else { return Ok(()) };
         let fail = |this: &Self, message: String| this.code_fault(code, message);
         if code.code == 400 {
             return self.cutter_comp_off();
@@ -275,12 +274,12 @@ impl<R: BufRead> Interpreter<R> {
         }
         let whole = code.code / 10;
         let mut side = if whole == 41 { Side::Left } else { Side::Right };
-        let d = self.block.word(b'd');
+        let d = self.syntax.block.word(b'd');
         let radius = if code.code % 10 == 1 {
             let Some(d) = d else {
                 return Err(fail(self, format!("G{whole}.1 with no D word")));
             };
-            if let Some(l) = self.block.word(b'l') {
+            if let Some(l) = self.syntax.block.word(b'l') {
                 if self.state.plane != Plane::Xz {
                     return Err(
                         self.word_fault(l, format!("G{whole}.1 with L word, but plane is not G18"))
@@ -295,8 +294,8 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             d.value / 2.0
-        } else if self.dialect == Dialect::Mach3
-            && let Some(p) = self.block.word(b'p')
+        } else if self.hooks.dialect == Dialect::Mach3
+            && let Some(p) = self.syntax.block.word(b'p')
         {
             // Mach3's G41/G42 P: the radius itself, program units, instead of the tool table's
             // (a Fusion 360 Mach3 post writes P1.587 for its 3.175 mm cutter).
@@ -412,7 +411,7 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
             };
-            self.queue.push_back(motion);
+            self.output.queue.push_back(motion);
         }
     }
 
@@ -422,8 +421,8 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn enqueue(&mut self, end: [f64; 4], shape: Shape) {
-        self.moved = true;
-        let extrude = self.pending_extrude.take();
+        self.output.moved = true;
+        let extrude = self.hooks.pending_extrude.take();
         let held = HeldMove {
             line: self.state.line,
             extrude,

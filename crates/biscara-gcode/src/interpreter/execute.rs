@@ -1,24 +1,30 @@
 //! Executing one block in LinuxCNC's order of execution (`execute_block`).
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
-    /// Executes the block just read, in LinuxCNC's order of execution.
-    pub(super) fn execute(&mut self) -> Result<(), Fault> {
-        let block = &self.block;
-        if block.empty {
-            return self.convert_comment();
-        }
+/// What the checks of a block found, for its execution.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Plan {
+    /// Its group 1 code (G0–G3, G80, cycles, …).
+    motion_code: Option<Code>,
+    /// Its group 0 code (G4, G10, G28, G53, G92, …).
+    group0: Option<Code>,
+    /// The motion it makes: its own, or the modal one when it has axis words.
+    motion_to_be: Option<u16>,
+}
+
+impl Machine {
+    /// Checks the block just read (not empty) and stores its parameter settings: LinuxCNC's
+    /// order of execution up to its comment.
+    pub(super) fn execute_settings(&mut self) -> Result<Plan, Fault> {
         self.check_support()?;
-        if self.block.extra.is_some() {
+        if self.syntax.block.extra.is_some() {
             self.check_polar_words()?;
         }
-        let motion_code = self.block.g[1];
-        let group0 = self.block.g[0];
-        let axis_words =
-            AXES.iter().any(|&letter| self.block.word(letter).is_some()) || self.block.polar();
+        let motion_code = self.syntax.block.g[1];
+        let group0 = self.syntax.block.g[0];
+        let axis_words = AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some())
+            || self.syntax.block.polar();
         // rs274 checks the axis words of a motion other than G0–G3 first of all
         // (`enhance_block`).
         if let Some(code) = motion_code
@@ -36,7 +42,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         // G43.1 and G43.2 use the axis words too (without making the modal motion move).
         let group0_uses_axes = group0.is_some_and(|zero| uses_axes(zero.code))
-            || self.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
+            || self.syntax.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         let modal_motion = match motion_code {
             Some(code) => Some(code.code),
             None => self.state.motion,
@@ -64,7 +70,7 @@ impl<R: BufRead> Interpreter<R> {
             if !matches!(motion_to_be, Some(0 | 10)) {
                 return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
             }
-            let incremental = match self.block.g[3] {
+            let incremental = match self.syntax.block.g[3] {
                 Some(code) => code.code == 910,
                 None => self.state.incremental,
             };
@@ -76,8 +82,8 @@ impl<R: BufRead> Interpreter<R> {
         self.check_other_words(motion_to_be)?;
         // Read-only names are refused when the settings are stored, after the block's checks
         // (rs274 reports an unused E word on `#<_x>=1 E1`, not the assignment).
-        for &(start, end, _) in &self.block.named {
-            let name = &self.compact.bytes()[start..end];
+        for &(start, end, _) in &self.syntax.block.named {
+            let name = &self.syntax.compact.bytes()[start..end];
             if name.first() == Some(&b'_') && self.state.predefined(name).is_some() {
                 return Err(self.fault_at(
                     start.saturating_sub(2),
@@ -90,18 +96,24 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // Parameter settings take effect after the whole line is read.
-        for index in 0..self.block.numbered.len() {
-            let (number, value) = self.block.numbered[index];
+        for index in 0..self.syntax.block.numbered.len() {
+            let (number, value) = self.syntax.block.numbered[index];
             self.state.params.set(number, value);
         }
-        for index in 0..self.block.named.len() {
-            let (start, end, value) = self.block.named[index];
-            self.state.params.set_named(&self.compact.bytes()[start..end], value);
+        for index in 0..self.syntax.block.named.len() {
+            let (start, end, value) = self.syntax.block.named[index];
+            self.state.params.set_named(&self.syntax.compact.bytes()[start..end], value);
         }
-        self.convert_comment()?;
+        Ok(Plan { motion_code, group0, motion_to_be })
+    }
+
+    /// Executes the rest of the block, after its comment, in LinuxCNC's order of execution;
+    /// `user_m_missing`: its user M-code has no program where the INI file says they are.
+    pub(super) fn execute(&mut self, plan: Plan, user_m_missing: bool) -> Result<(), Fault> {
+        let Plan { motion_code, group0, motion_to_be } = plan;
 
         // 3. feed mode
-        if let Some(code) = self.block.g[5] {
+        if let Some(code) = self.syntax.block.g[5] {
             if code.code == 930 {
                 self.state.inverse_time = true;
             } else {
@@ -111,37 +123,37 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 4. feed rate
-        if let Some(f) = self.block.word(b'f')
+        if let Some(f) = self.syntax.block.word(b'f')
             && !self.state.inverse_time
         {
             self.state.feed_rate = f.value;
             self.state.feed_mm = f.value * self.state.factor();
         }
-        if self.block.extra.is_some() {
+        if self.syntax.block.extra.is_some() {
             self.check_spindle_number()?;
         }
         // 5, 6. spindle speed, tool selection: no effect on motion (a new power or speed
         // for a laser or spindle that is on).
-        if let Some(s) = self.block.word(b's') {
+        if let Some(s) = self.syntax.block.word(b's') {
             let changed = s.value != self.state.speed;
             self.state.speed = s.value;
-            let powered = matches!(self.tool, Tool::Laser | Tool::Spindle);
-            if changed && powered && self.tool_on && self.block.m[7].is_none() {
+            let powered = matches!(self.hooks.tool, Tool::Laser | Tool::Spindle);
+            if changed && powered && self.hooks.tool_on && self.syntax.block.m[7].is_none() {
                 self.tool_event(self.state.spindle);
             }
         }
         // (Calls into the tier-3 modules only when the block has their words: every line
         // passes here.)
-        if self.block.word(b't').is_some() {
+        if self.syntax.block.word(b't').is_some() {
             self.select_tool()?;
         }
         // 7. digital and analog outputs and inputs
-        if self.block.m[5].is_some() {
+        if self.syntax.block.m[5].is_some() {
             self.io_output()?;
         }
         // 8. tool change: LinuxCNC stops the spindle first (here: gripper off); M61 says which
         // tool is in the spindle.
-        if let Some(code) = self.block.m[6] {
+        if let Some(code) = self.syntax.block.m[6] {
             if code.code == 61 {
                 self.set_current_tool(code)?;
             } else {
@@ -155,20 +167,20 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 9. spindle: the gripper (or the tool)
-        if let Some(code) = self.block.m[7].filter(|code| code.code >= 70) {
+        if let Some(code) = self.syntax.block.m[7].filter(|code| code.code >= 70) {
             if self.modal_state(code)? {
                 // rs274 read the restoring codes into this block's place: the rest is lost.
                 self.state.publish_position();
                 return Ok(());
             }
-        } else if self.block.m[7].is_some_and(|code| code.code == 19) {
+        } else if self.syntax.block.m[7].is_some_and(|code| code.code == 19) {
             self.orient_spindle()?;
-        } else if let Some(code) = self.block.m[7] {
+        } else if let Some(code) = self.syntax.block.m[7] {
             self.state.spindle = code.code;
             self.tool_event(code.code);
         }
         // 11. coolant
-        if let Some(code) = self.block.m[8] {
+        if let Some(code) = self.syntax.block.m[8] {
             match code.code {
                 7 => self.state.mist = true,
                 8 => self.state.flood = true,
@@ -176,18 +188,15 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // overrides
-        if self.block.m[9].is_some() {
+        if self.syntax.block.m[9].is_some() {
             self.overrides()?;
         }
         // 12. user M codes: LinuxCNC runs an external program; here an event, with a note.
         // With an INI file that says where the programs are, one that is not there is
         // LinuxCNC's unknown M code.
-        if let Some(code) = self.block.m[10] {
+        if let Some(code) = self.syntax.block.m[10] {
             let name = format!("M{}", code.code);
-            if let Some(dirs) = self.control.user_m_dirs()
-                && (100..200).contains(&code.code)
-                && !dirs.iter().any(|dir| dir.join(&name).is_file())
-            {
+            if user_m_missing {
                 return Err(self.code_fault(
                     code,
                     format!(
@@ -200,7 +209,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         // 14. dwell
         if group0.is_some_and(|zero| zero.code == 40)
-            && let Some(p) = self.block.word(b'p')
+            && let Some(p) = self.syntax.block.word(b'p')
         {
             if p.value < 0.0 {
                 return Err(
@@ -210,7 +219,7 @@ impl<R: BufRead> Interpreter<R> {
             self.emit(MotionKind::Dwell { seconds: p.value });
         }
         // 15. plane
-        if let Some(code) = self.block.g[2] {
+        if let Some(code) = self.syntax.block.g[2] {
             let plane = match code.code {
                 170 => Plane::Xy,
                 180 => Plane::Xz,
@@ -225,19 +234,19 @@ impl<R: BufRead> Interpreter<R> {
             self.state.plane = plane;
         }
         // 16. length units
-        if let Some(code) = self.block.g[6] {
+        if let Some(code) = self.syntax.block.g[6] {
             self.set_units(code.code == 210);
         }
         // 17. cutter radius compensation
-        if self.block.g[7].is_some() {
+        if self.syntax.block.g[7].is_some() {
             self.set_cutter_comp()?;
         }
         // 18. tool length offset
-        if let Some(code) = self.block.g[8] {
+        if let Some(code) = self.syntax.block.g[8] {
             self.tool_length_offset(code)?;
         }
         // 19. coordinate system
-        if let Some(code) = self.block.g[12] {
+        if let Some(code) = self.syntax.block.g[12] {
             let system = match code.code {
                 540 => 1,
                 550 => 2,
@@ -256,14 +265,14 @@ impl<R: BufRead> Interpreter<R> {
             self.select_system(system);
         }
         // 20. path control mode
-        if let Some(code) = self.block.g[13] {
+        if let Some(code) = self.syntax.block.g[13] {
             self.set_path_control(code)?;
         }
         // 21. distance modes
-        if let Some(code) = self.block.g[3] {
+        if let Some(code) = self.syntax.block.g[3] {
             self.state.incremental = code.code == 910;
         }
-        if let Some(code) = self.block.g[4] {
+        if let Some(code) = self.syntax.block.g[4] {
             self.state.ijk_absolute = code.code == 901;
         }
         // 23. G10, G28, G30, G92 family
@@ -304,7 +313,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // (rs274 ignores G92.1, G92.2 and G92.3 while cutter compensation is on)
-        if let Some(code) = self.block.g[11].filter(|_| !self.state.comp.on()) {
+        if let Some(code) = self.syntax.block.g[11].filter(|_| !self.state.comp.on()) {
             self.apply_g92(code.code == 923);
             if code.code == 921 {
                 for slot in 0..10 {
@@ -313,7 +322,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         // 22. retract mode
-        if let Some(code) = self.block.g[10] {
+        if let Some(code) = self.syntax.block.g[10] {
             self.state.cycle.retract_to_old = code.code == 980;
         }
         // 24. motion
@@ -327,7 +336,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         if let Some(motion) = motion_to_be {
             let g53 = group0.is_some_and(|zero| zero.code == 530);
-            if self.block.extra.is_some() {
+            if self.syntax.block.extra.is_some() {
                 self.apply_polar(motion, g53)?;
             }
             match motion {
@@ -340,13 +349,13 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.check_range()?;
         // 25. stop
-        if let Some(code) = self.block.m[4] {
+        if let Some(code) = self.syntax.block.m[4] {
             self.flush_cutter_comp()?;
             match code.code {
                 2 | 30 => {
                     self.state.comp = cutter_comp::CutterComp::new();
                     self.emit(MotionKind::End);
-                    self.finished = true;
+                    self.output.finished = true;
                 }
                 _ => self.emit(MotionKind::Pause),
             }

@@ -19,8 +19,8 @@
 use std::io::BufRead;
 
 use super::{Interpreter, control};
-use crate::lexer::Fault;
-use crate::parser::Reader;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Reader;
 
 /// M97 calls deeper than this are an error (Haas nests local subprograms a few levels deep;
 /// LinuxCNC allows ten call levels).
@@ -136,7 +136,7 @@ pub(super) enum FanucLine {
 impl<R: BufRead> Interpreter<R> {
     /// Whether lines are being passed over to a block number (`GOTO`, `M97`).
     pub(super) fn fanuc_seeking(&self) -> bool {
-        self.fanuc.seeking.is_some()
+        self.machine.hooks.fanuc.seeking.is_some()
     }
 
     /// The Fanuc dialect's look at a line, after its significant characters are known.
@@ -144,7 +144,7 @@ impl<R: BufRead> Interpreter<R> {
         if self.control.engaged() {
             // Lines passed over (a loop that ends, a subprogram defined): only the loops' ends
             // are named, for the loop being left to find its end.
-            let bytes = self.compact.bytes();
+            let bytes = self.machine.syntax.compact.bytes();
             let at = control::first_item(bytes);
             if let Some(rest) = bytes[at..].strip_prefix(b"end")
                 && rest.first().is_some_and(u8::is_ascii_digit)
@@ -153,12 +153,12 @@ impl<R: BufRead> Interpreter<R> {
             }
             return Ok(FanucLine::Block);
         }
-        let bytes = self.compact.bytes();
-        if let Some((target, _)) = self.fanuc.seeking {
+        let bytes = self.machine.syntax.compact.bytes();
+        if let Some((target, _)) = self.machine.hooks.fanuc.seeking {
             if block_number(bytes) != Some(target) {
                 return Ok(FanucLine::Done);
             }
-            self.fanuc.seeking = None;
+            self.machine.hooks.fanuc.seeking = None;
         }
         let at = control::first_item(bytes);
         let rest = &bytes[at..];
@@ -187,7 +187,7 @@ impl<R: BufRead> Interpreter<R> {
         if let Some((code, end)) = g_code_at(bytes, at)
             && let Some(name) = self.fanuc_no_op(code, &bytes[end..])
         {
-            self.record(name, true);
+            self.machine.record(name, true);
             return Ok(FanucLine::Done);
         }
         if rest.first() == Some(&b'#') {
@@ -196,14 +196,20 @@ impl<R: BufRead> Interpreter<R> {
         if self.fanuc_m_codes()? {
             return Ok(FanucLine::Done);
         }
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let at = control::first_item(bytes);
         if bytes[at..].starts_with(b"m97") && !bytes.get(at + 3).is_some_and(u8::is_ascii_digit) {
             return self.fanuc_m97(at);
         }
         if bytes[at..].starts_with(b"m99")
             && !bytes.get(at + 3).is_some_and(u8::is_ascii_digit)
-            && self.fanuc.calls.last().is_some_and(|call| call.level == self.control_level())
+            && self
+                .machine
+                .hooks
+                .fanuc
+                .calls
+                .last()
+                .is_some_and(|call| call.level == self.control_level())
         {
             self.fanuc_return()?;
             return Ok(FanucLine::Done);
@@ -231,25 +237,37 @@ impl<R: BufRead> Interpreter<R> {
 
     /// The O-word call level (0 in the main program).
     fn control_level(&self) -> usize {
-        self.state.owords.level
+        self.machine.state.owords.level
     }
 
     /// The integer value at compact index `at` (a number or a parameter).
     fn fanuc_integer(&self, at: usize) -> Result<u32, Fault> {
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        let mut reader = Reader::new(
+            &self.machine.syntax.compact,
+            self.lines.line.len(),
+            &self.machine.state.params,
+            &self.machine.state,
+        );
         reader.set_position(at);
         let value = reader.read_integer_value()?;
         u32::try_from(value).map_err(|_| {
-            self.fault_at(at, self.compact.bytes().len(), "a block number must be 0 or more")
+            self.machine.fault_at(
+                at,
+                self.machine.syntax.compact.bytes().len(),
+                "a block number must be 0 or more",
+            )
         })
     }
 
     /// The value of the bracketed condition opening at compact index `open`, and the index
     /// after its `]`.
     fn fanuc_condition(&self, open: usize) -> Result<(f64, usize), Fault> {
-        let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+        let mut reader = Reader::new(
+            &self.machine.syntax.compact,
+            self.lines.line.len(),
+            &self.machine.state.params,
+            &self.machine.state,
+        );
         reader.set_position(open);
         let value = reader.read_expression()?;
         Ok((value, reader.position()))
@@ -258,7 +276,7 @@ impl<R: BufRead> Interpreter<R> {
     /// `IF [cond] GOTO n` and `IF [cond] THEN statement`.
     fn fanuc_if(&mut self, at: usize) -> Result<FanucLine, Fault> {
         let (value, after) = self.fanuc_condition(at + 2)?;
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         if bytes[after..].starts_with(b"goto") {
             let target = self.fanuc_integer(after + 4)?;
             if value != 0.0 {
@@ -271,28 +289,33 @@ impl<R: BufRead> Interpreter<R> {
                 return Ok(FanucLine::Done);
             }
             // The statement runs as the block, its N number kept.
-            self.compact.remove(at..after + 4);
-            let at = control::first_item(self.compact.bytes());
-            if self.compact.bytes().get(at) == Some(&b'#') {
+            self.machine.syntax.compact.remove(at..after + 4);
+            let at = control::first_item(self.machine.syntax.compact.bytes());
+            if self.machine.syntax.compact.bytes().get(at) == Some(&b'#') {
                 self.fanuc_bracket_assignment(at);
             }
             return Ok(FanucLine::Block);
         }
-        Err(self.fault_at(at, bytes.len(), "IF [condition] must be followed by GOTO n or THEN"))
+        Err(self.machine.fault_at(
+            at,
+            bytes.len(),
+            "IF [condition] must be followed by GOTO n or THEN",
+        ))
     }
 
     /// `WHILE [cond] DO n`.
     fn fanuc_while(&mut self, at: usize) -> Result<FanucLine, Fault> {
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let open = at + 5;
-        let close = closing_bracket(bytes, open)
-            .ok_or_else(|| self.fault_at(open, bytes.len(), "WHILE's [condition] is not closed"))?;
+        let close = closing_bracket(bytes, open).ok_or_else(|| {
+            self.machine.fault_at(open, bytes.len(), "WHILE's [condition] is not closed")
+        })?;
         let Some((number, end)) = bytes
             .get(close + 1..)
             .filter(|rest| rest.starts_with(b"do"))
             .and_then(|_| integer_at(bytes, close + 3))
         else {
-            return Err(self.fault_at(
+            return Err(self.machine.fault_at(
                 at,
                 bytes.len(),
                 "WHILE [condition] must be followed by DO n",
@@ -312,31 +335,32 @@ impl<R: BufRead> Interpreter<R> {
     ) -> Result<FanucLine, Fault> {
         let line = self.lines.number;
         // A new loop with the same number ends the scope of an earlier one.
-        self.fanuc.loops.retain(|&(other, _)| other != number);
-        self.fanuc.loops.push((number, line));
+        self.machine.hooks.fanuc.loops.retain(|&(other, _)| other != number);
+        self.machine.hooks.fanuc.loops.push((number, line));
         let mut text = format!("o<fanuc_do{number}_line{line}>while").into_bytes();
         text.extend_from_slice(&condition);
-        if !self.compact.replace(at..end, &text) {
-            return Err(self.fault_at(at, end, "the WHILE line is too long"));
+        if !self.machine.syntax.compact.replace(at..end, &text) {
+            return Err(self.machine.fault_at(at, end, "the WHILE line is too long"));
         }
         Ok(FanucLine::Block)
     }
 
     /// `END n`: the end of the loop `DO n`.
     fn fanuc_end(&mut self, at: usize) -> Result<FanucLine, Fault> {
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let (number, end) = integer_at(bytes, at + 3).unwrap_or((0, bytes.len()));
-        let Some(&(_, line)) = self.fanuc.loops.iter().rev().find(|(other, _)| *other == number)
+        let Some(&(_, line)) =
+            self.machine.hooks.fanuc.loops.iter().rev().find(|(other, _)| *other == number)
         else {
-            return Err(self.fault_at(
+            return Err(self.machine.fault_at(
                 at,
                 end,
                 format!("END {number} with no DO {number} before it"),
             ));
         };
         let text = format!("o<fanuc_do{number}_line{line}>endwhile").into_bytes();
-        if !self.compact.replace(at..end, &text) {
-            return Err(self.fault_at(at, end, "the END line is too long"));
+        if !self.machine.syntax.compact.replace(at..end, &text) {
+            return Err(self.machine.fault_at(at, end, "the END line is too long"));
         }
         Ok(FanucLine::Block)
     }
@@ -344,7 +368,7 @@ impl<R: BufRead> Interpreter<R> {
     /// `#n=value`: an expression without brackets (`#1=#1+1`, which Macro B reads and
     /// LinuxCNC does not) is put in brackets.
     fn fanuc_bracket_assignment(&mut self, at: usize) {
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let Some(equals) = bytes[at..].iter().position(|&b| b == b'=').map(|i| at + i) else {
             return;
         };
@@ -368,10 +392,10 @@ impl<R: BufRead> Interpreter<R> {
         }
         if operator {
             // Within the line's length (a longer one is refused by the block reader as is).
-            if self.compact.replace(end..end, b"]")
-                && !self.compact.replace(equals + 1..equals + 1, b"[")
+            if self.machine.syntax.compact.replace(end..end, b"]")
+                && !self.machine.syntax.compact.replace(equals + 1..equals + 1, b"[")
             {
-                self.compact.remove(end..end + 1);
+                self.machine.syntax.compact.remove(end..end + 1);
             }
         }
     }
@@ -382,8 +406,8 @@ impl<R: BufRead> Interpreter<R> {
         let mut index = 0;
         let mut depth = 0usize;
         let mut found = false;
-        while index < self.compact.bytes().len() {
-            let bytes = self.compact.bytes();
+        while index < self.machine.syntax.compact.bytes().len() {
+            let bytes = self.machine.syntax.compact.bytes();
             match bytes[index] {
                 b'[' => depth += 1,
                 b']' => depth = depth.saturating_sub(1),
@@ -394,8 +418,8 @@ impl<R: BufRead> Interpreter<R> {
                         && !runs_m(code)
                         && code != 97
                     {
-                        self.record(&format!("M{code}"), true);
-                        self.compact.remove(index..end);
+                        self.machine.record(&format!("M{code}"), true);
+                        self.machine.syntax.compact.remove(index..end);
                         found = true;
                         continue;
                     }
@@ -407,19 +431,19 @@ impl<R: BufRead> Interpreter<R> {
         if !found {
             return Ok(false);
         }
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let at = control::first_item(bytes);
         Ok(bytes[at..].iter().all(|&b| b == b'(' || b == b';'))
     }
 
     /// `M97 P n [L k]`: runs the same program's block `N n` to its M99, `k` times.
     fn fanuc_m97(&mut self, at: usize) -> Result<FanucLine, Fault> {
-        let bytes = self.compact.bytes();
+        let bytes = self.machine.syntax.compact.bytes();
         let word =
             |letter: u8| bytes[at + 3..].iter().position(|&b| b == letter).map(|i| at + 3 + i + 1);
         let (p, l) = (word(b'p'), word(b'l'));
         let Some(p) = p else {
-            return Err(self.fault_at(at, at + 3, "M97 needs P, the block number to call"));
+            return Err(self.machine.fault_at(at, at + 3, "M97 needs P, the block number to call"));
         };
         let target = self.fanuc_integer(p)?;
         let repeats = match l {
@@ -429,14 +453,14 @@ impl<R: BufRead> Interpreter<R> {
         if repeats == 0 {
             return Ok(FanucLine::Done);
         }
-        if self.fanuc.calls.len() >= MAX_LOCAL_CALLS {
-            return Err(self.fault_at(
+        if self.machine.hooks.fanuc.calls.len() >= MAX_LOCAL_CALLS {
+            return Err(self.machine.fault_at(
                 at,
                 at + 3,
                 format!("M97 calls nested more than {MAX_LOCAL_CALLS} deep"),
             ));
         }
-        self.fanuc.calls.push(LocalCall {
+        self.machine.hooks.fanuc.calls.push(LocalCall {
             offset: self.lines.next_offset(),
             line: self.lines.number,
             level: self.control_level(),
@@ -449,9 +473,9 @@ impl<R: BufRead> Interpreter<R> {
 
     /// M99 at the end of an M97 subprogram: again, or back after the M97.
     fn fanuc_return(&mut self) -> Result<(), Fault> {
-        let Some(call) = self.fanuc.calls.pop() else { return Ok(()) };
+        let Some(call) = self.machine.hooks.fanuc.calls.pop() else { return Ok(()) };
         if call.repeats > 0 {
-            self.fanuc.calls.push(LocalCall { repeats: call.repeats - 1, ..call });
+            self.machine.hooks.fanuc.calls.push(LocalCall { repeats: call.repeats - 1, ..call });
             return self.fanuc_goto(call.target);
         }
         self.go_to(call.offset, call.line)
@@ -461,7 +485,7 @@ impl<R: BufRead> Interpreter<R> {
     /// block numbered `N n` (an error at the end of the input if there is none).
     fn fanuc_goto(&mut self, target: u32) -> Result<(), Fault> {
         self.count_jump(self.lines.number)?;
-        self.fanuc.seeking = Some((target, self.lines.number));
+        self.machine.hooks.fanuc.seeking = Some((target, self.lines.number));
         self.go_to(0, 0)
     }
 }
@@ -472,60 +496,62 @@ fn repeats_in_k(motion: u16) -> bool {
     matches!(motion, 730 | 810..=860 | 880 | 890)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl super::Machine {
     /// The Mach3 and Fanuc dialects' changes to the block just read (before it is run):
     /// - bare axis words after G80 run in the motion mode from before the cycle (G0–G3), as
     ///   Fanuc and Mach3 do (Autodesk's posts write G80 and go on with `X… Y…`);
     /// - G53 with no axis word moves nowhere (a Mach3 post's `G53 G90 G40` preamble): dropped;
     /// - Fanuc: G04 P is milliseconds and X seconds; a canned cycle's K is its repeat count.
     pub(super) fn adapt_fanuc_block(&mut self) {
-        let axis_words = super::AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        if let Some(code) = self.block.g[1]
+        let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
+        if let Some(code) = self.syntax.block.g[1]
             && matches!(code.code, 0 | 10 | 20 | 30)
         {
-            self.fanuc.plain_motion = Some(code.code);
+            self.hooks.fanuc.plain_motion = Some(code.code);
         }
-        let group0 = self.block.g[0].map(|code| code.code);
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
         if group0 == Some(530) && !axis_words {
-            self.block.g[0] = None;
-            self.summary.count_adapted("G53 without axis words (no move)");
+            self.syntax.block.g[0] = None;
+            self.hooks.summary.count_adapted("G53 without axis words (no move)");
         }
         let uses_axes = group0.is_some_and(|code| matches!(code, 100 | 280 | 300 | 520 | 920));
         if axis_words
-            && self.block.g[1].is_none()
+            && self.syntax.block.g[1].is_none()
             && self.state.motion.is_none()
             && !uses_axes
-            && let Some(motion) = self.fanuc.plain_motion
+            && let Some(motion) = self.hooks.fanuc.plain_motion
         {
             self.state.motion = Some(motion);
-            self.summary.count_adapted(match motion {
+            self.hooks.summary.count_adapted(match motion {
                 0 => "axis words after G80, run in G0 (the motion before the cycle)",
                 10 => "axis words after G80, run in G1 (the motion before the cycle)",
                 20 => "axis words after G80, run in G2 (the motion before the cycle)",
                 _ => "axis words after G80, run in G3 (the motion before the cycle)",
             });
         }
-        if self.dialect != crate::Dialect::Fanuc {
+        if self.hooks.dialect != crate::Dialect::Fanuc {
             return;
         }
         let letter = |letter: u8| usize::from(letter - b'a');
         if group0 == Some(40) {
             // G04 X seconds, else P milliseconds.
-            let x = self.block.letters[letter(b'x')].take();
-            let p = self.block.letters[letter(b'p')];
+            let x = self.syntax.block.letters[letter(b'x')].take();
+            let p = self.syntax.block.letters[letter(b'p')];
             let seconds = match (x, p) {
-                (Some(x), _) => Some(crate::parser::Word { value: x.value, ..x }),
-                (None, Some(p)) => Some(crate::parser::Word { value: p.value / 1000.0, ..p }),
+                (Some(x), _) => Some(crate::syntax::parser::Word { value: x.value, ..x }),
+                (None, Some(p)) => {
+                    Some(crate::syntax::parser::Word { value: p.value / 1000.0, ..p })
+                }
                 (None, None) => None,
             };
-            self.block.letters[letter(b'p')] = seconds;
+            self.syntax.block.letters[letter(b'p')] = seconds;
         }
-        let cycle = self.block.g[1].map(|code| code.code).or(self.state.motion);
+        let cycle = self.syntax.block.g[1].map(|code| code.code).or(self.state.motion);
         if cycle.is_some_and(repeats_in_k)
-            && self.block.letters[letter(b'l')].is_none()
-            && let Some(k) = self.block.letters[letter(b'k')].take()
+            && self.syntax.block.letters[letter(b'l')].is_none()
+            && let Some(k) = self.syntax.block.letters[letter(b'k')].take()
         {
-            self.block.letters[letter(b'l')] = Some(k);
+            self.syntax.block.letters[letter(b'l')] = Some(k);
         }
     }
 }

@@ -1,202 +1,84 @@
-//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6):
-//! `auto`'s look-ahead, what a dialect makes of a line before the block reader and of a block
-//! after it, the end of the input, and what M3/M4/M5/S emit for each tool. None of them runs in
-//! [`Dialect::Linuxcnc`] except [`Interpreter::tool_event`] (the gripper's pick, place, off).
-
-use std::io::BufRead;
+//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6),
+//! on the machine: their state (`Hooks`), what a dialect makes of a block after the block
+//! reader, and what M3/M4/M5/S emit for each tool. None of them runs in [`Dialect::Linuxcnc`]
+//! except [`Machine::tool_event`] (the gripper's pick, place, off). The hooks that read the
+//! input (`auto`'s look-ahead, a line before the block reader, the end of the input) are the
+//! interpreter's.
 
 use biscara_motion::{CodeName, MotionKind};
 
-use super::{AXES, Interpreter, MAX_LINE, MM_PER_INCH, Percent};
-use crate::dialect::{
-    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, g_name,
-    grbl_runs_g, grbl_runs_m, prelude,
-};
-use crate::error::GcodeError;
-use crate::lexer::Fault;
-use crate::params::{G28_HOME, axis_slot};
-use crate::parser::Word;
+use super::{AXES, MM_PER_INCH, Machine};
+use crate::dialect::{Detection, Dialect, Summary, g_name, grbl_runs_g, grbl_runs_m};
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 use crate::tool::{Tool, ToolInference};
 
 /// Marlin's feed rate before the first F word, mm/min (`DEFAULT_FEEDRATE_MM_M`, Marlin 2.1).
-const MARLIN_DEFAULT_FEED: f64 = 4000.0;
+pub(super) const MARLIN_DEFAULT_FEED: f64 = 4000.0;
 /// The largest extruder position (E word) accepted, mm.
 const MAX_EXTRUSION: f64 = 1e9;
 
-impl<R: BufRead> Interpreter<R> {
-    /// The interpreter with its dialect's settings applied (a given dialect; `auto`'s come
-    /// with its decision).
-    pub(super) fn with_line_limit(mut self) -> Self {
-        self.apply_dialect();
-        self
-    }
+/// The dialect's and the tool's state: which dialect is read (and what `auto` found), the
+/// tool and whether it is on, Grbl's laser gate, Marlin's extruder, the Fanuc control flow.
+#[derive(Debug)]
+pub(super) struct Hooks {
+    /// The dialect being read ([`Dialect::Linuxcnc`] while `auto` has not decided).
+    pub(super) dialect: Dialect,
+    /// Whether `auto` still has to read ahead (before the first line).
+    pub(super) undecided: bool,
+    /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
+    pub(super) provisional: bool,
+    pub(super) detection: Option<Detection>,
+    pub(super) summary: Summary,
+    pub(super) tool: Tool,
+    /// Whether the tool is still to be inferred from the look-ahead.
+    pub(super) infer_tool: bool,
+    /// What the inference found.
+    pub(super) tool_inference: Option<ToolInference>,
+    /// Whether the tool is on (M3/M4 until M5 or M6).
+    pub(super) tool_on: bool,
+    /// Grbl's laser mode: the laser, on, is off during the rapids since the last feed move
+    /// (a `laser_off` was emitted before the first of them; the next feed move turns it on).
+    pub(super) laser_rapid_off: bool,
+    /// MakerBot's flavour: the A word is the extruder.
+    pub(super) makerbot: bool,
+    /// Marlin's extruder: position (mm) and whether E words are relative (M83, G91).
+    pub(super) e_position: f64,
+    pub(super) e_relative: bool,
+    /// The extrusion of the block being executed, for its first move.
+    pub(super) pending_extrude: Option<f64>,
+    /// The Fanuc dialect's control flow (GOTO, WHILE … DO, M97).
+    pub(super) fanuc: super::fanuc::Fanuc,
+}
 
-    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
-    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
-    pub(super) fn apply_dialect(&mut self) {
-        self.lines.max = if self.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
-        if self.dialect == Dialect::Marlin && self.state.feed_rate == 0.0 {
-            self.state.feed_rate = MARLIN_DEFAULT_FEED;
-            self.state.feed_mm = MARLIN_DEFAULT_FEED;
-        }
-    }
-
-    /// The dialect being read: the configured one, or what `auto` chose so far.
-    pub fn dialect(&self) -> Dialect {
-        self.dialect
-    }
-
-    /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
-    /// when the dialect was given. A program in which nothing tells the dialects apart is read
-    /// as LinuxCNC — unless it ends without M2/M30, which LinuxCNC refuses and Grbl accepts:
-    /// then it is Grbl, decided at its last line (the detection changes at the end).
-    pub fn detection(&self) -> Option<Detection> {
-        if let Some(detection) = &self.detection {
-            return Some(detection.clone());
-        }
-        self.provisional.then(|| Detection {
-            dialect: Dialect::Linuxcnc,
-            reason: format!(
-                "nothing in the first {} KiB tells the dialects apart (no generator comment, E \
-                 word, printer M-code, `$` line, nested comment or program number)",
-                LOOKAHEAD_BYTES / 1024
-            ),
-            line: None,
+impl Hooks {
+    /// The hooks `config` asks for, before the first line.
+    pub(super) fn new(config: &super::Config) -> Hooks {
+        let auto = config.dialect == Dialect::Auto;
+        Hooks {
+            dialect: if auto { Dialect::Linuxcnc } else { config.dialect },
+            undecided: auto,
+            provisional: false,
+            detection: None,
+            summary: Summary::default(),
+            tool: config.tool,
+            infer_tool: config.infer_tool,
+            tool_inference: None,
+            tool_on: false,
+            laser_rapid_off: false,
             makerbot: false,
-        })
-    }
-
-    /// The axes (x, y, z, c) that a G92 named before the program's first motion: the program
-    /// made the point where it starts its zero on them (`G92 X0 Y0 Z0`), so it is placed by
-    /// moving its start ([`Config::start`](crate::Config::start)) rather than its G54 origin.
-    pub fn zeroed_at_start(&self) -> [bool; 4] {
-        self.zeroed_at_start
-    }
-
-    /// The no-motion codes read so far, with their counts (complete once the iterator ends).
-    pub fn summary(&self) -> &Summary {
-        &self.summary
-    }
-
-    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
-    /// asked and something told (known once the first motion is read).
-    pub fn tool_inference(&self) -> Option<&ToolInference> {
-        self.tool_inference.as_ref()
-    }
-
-    /// The tool M3, M4, M5 and S drive.
-    pub fn tool(&self) -> Tool {
-        self.tool
-    }
-
-    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
-    pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
-        self.infer_tool = false;
-        self.lines
-            .source()
-            .read_ahead(LOOKAHEAD_BYTES)
-            .map_err(|source| GcodeError::Read { line: 1, source })?;
-        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
-            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
-            (self.dialect == Dialect::Marlin).then(|| ToolInference {
-                tool: Tool::Extruder,
-                reason: "read as Marlin G-code: a 3D printer".to_owned(),
-                line: None,
-            })
-        });
-        if let Some(inference) = inference {
-            self.tool = inference.tool;
-            self.tool_inference = Some(inference);
+            e_position: 0.0,
+            e_relative: false,
+            pending_extrude: None,
+            fanuc: super::fanuc::Fanuc::default(),
         }
-        Ok(())
     }
+}
 
-    /// `auto`: reads up to [`LOOKAHEAD_BYTES`] ahead and decides from them.
-    pub(super) fn decide(&mut self) -> Result<(), GcodeError> {
-        self.undecided = false;
-        let complete = self
-            .lines
-            .source()
-            .read_ahead(LOOKAHEAD_BYTES)
-            .map_err(|source| GcodeError::Read { line: 1, source })?;
-        match detect_dialect(self.lines.source().head(), complete) {
-            Some(detection) => {
-                self.dialect = detection.dialect;
-                self.makerbot = detection.makerbot;
-                self.detection = Some(detection);
-                self.apply_dialect();
-            }
-            None => {
-                self.provisional = true;
-                // A long comment line further on is evidence too ([`Self::long_line_decides`]).
-                self.lines.max = MAX_LONG_LINE;
-            }
-        }
-        Ok(())
-    }
-
-    /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
-    /// limit: LinuxCNC would refuse it, Grbl drops its comment before its line buffer, so a line
-    /// long only in its comment decides Grbl (every line before read the same in both); a long
-    /// command is refused as LinuxCNC refuses it.
-    #[cold]
-    #[inline(never)]
-    pub(super) fn long_line_decides(&mut self) -> Result<(), GcodeError> {
-        if self.lines.too_long || !crate::dialect::long_only_in_comment(&self.lines.line) {
-            return Err(GcodeError::LineTooLong {
-                at: self.location(MAX_LINE, MAX_LINE + 1),
-                max: MAX_LINE,
-            });
-        }
-        self.provisional = false;
-        self.dialect = Dialect::Grbl;
-        self.detection = Some(Detection {
-            dialect: Dialect::Grbl,
-            reason: format!(
-                "nothing in the first {} KiB tells the dialects apart, and line {} is longer than \
-                 LinuxCNC's {MAX_LINE} characters only in its comment, which Grbl drops before \
-                 its line buffer",
-                LOOKAHEAD_BYTES / 1024,
-                self.lines.number
-            ),
-            line: Some(self.lines.number),
-            makerbot: false,
-        });
-        self.apply_dialect();
-        Ok(())
-    }
-
-    /// The end of the input: LinuxCNC wants M2, M30 or the closing `%`; the other dialects
-    /// need no program end.
-    pub(super) fn end_of_input(&mut self) -> Result<(), GcodeError> {
-        self.finished = true;
-        if self.provisional && self.moved {
-            self.provisional = false;
-            self.dialect = Dialect::Grbl;
-            self.detection = Some(Detection {
-                dialect: Dialect::Grbl,
-                reason: format!(
-                    "nothing tells the dialects apart, and the program ends at line {} without \
-                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
-                     reads the same in both)",
-                    self.lines.number
-                ),
-                line: None,
-                makerbot: false,
-            });
-        }
-        if self.dialect != Dialect::Linuxcnc {
-            return Ok(());
-        }
-        Err(match self.percent {
-            Percent::Open => GcodeError::NoClosingPercent { line: self.lines.number.max(1) },
-            _ => GcodeError::NoProgramEnd { line: self.lines.number.max(1) },
-        })
-    }
-
+impl Machine {
     /// Records a no-motion code as an event.
     pub(super) fn record(&mut self, name: &str, known: bool) {
-        self.summary.count(name, known);
+        self.hooks.summary.count(name, known);
         if let Some(code) = CodeName::new(name) {
             self.emit(MotionKind::Code { code });
         }
@@ -205,116 +87,93 @@ impl<R: BufRead> Interpreter<R> {
     /// Grbl 1.1: counts what this block uses that Grbl itself refuses (error 20), read here as
     /// LinuxCNC reads it: G and M codes outside its list, parameters and expressions.
     pub(super) fn count_refused_by_grbl(&mut self) {
-        for code in self.block.g.iter().flatten() {
+        for code in self.syntax.block.g.iter().flatten() {
             if !grbl_runs_g(code.code) {
-                self.summary.count_refused(&g_name(code.code));
+                self.hooks.summary.count_refused(&g_name(code.code));
             }
         }
         // Grbl's G10 sets coordinate systems only (L2, L20), not tools (L1, L10, L11).
-        if self.block.g[0].is_some_and(|code| code.code == 100)
-            && let Some(l) = self.block.word(b'l').filter(|l| l.value != 2.0 && l.value != 20.0)
+        if self.syntax.block.g[0].is_some_and(|code| code.code == 100)
+            && let Some(l) =
+                self.syntax.block.word(b'l').filter(|l| l.value != 2.0 && l.value != 20.0)
         {
-            self.summary.count_refused(&format!("G10 L{}", l.value));
+            self.hooks.summary.count_refused(&format!("G10 L{}", l.value));
         }
-        for code in self.block.m.iter().flatten() {
+        for code in self.syntax.block.m.iter().flatten() {
             if !grbl_runs_m(code.code) {
-                self.summary.count_refused(&format!("M{}", code.code));
+                self.hooks.summary.count_refused(&format!("M{}", code.code));
             }
         }
-        let bytes = self.compact.bytes();
+        let bytes = self.syntax.compact.bytes();
         if bytes.contains(&b'#') {
-            self.summary.count_refused("parameters (#)");
+            self.hooks.summary.count_refused("parameters (#)");
         }
         if bytes.contains(&b'[') {
-            self.summary.count_refused("expressions ([ ])");
-        }
-    }
-
-    /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
-    pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
-        match prelude(self.dialect, &self.lines.line) {
-            Prelude::Block => Ok(false),
-            Prelude::Event { name, known } => {
-                self.record(&name, known);
-                Ok(true)
-            }
-            Prelude::ExtruderMode { name, relative } => {
-                self.e_relative = relative;
-                self.record(&name, true);
-                Ok(true)
-            }
-            Prelude::Home { axes } => {
-                // One rapid of the named axes to the home pose (G28's stored position), with no
-                // intermediate point.
-                let mut end = self.state.current;
-                for axis in (0..4).filter(|&axis| axes[axis]) {
-                    let machine = self
-                        .state
-                        .mm_to_program(axis, self.state.params.get(G28_HOME + axis_slot(axis)));
-                    end[axis] = machine - self.state.origin[axis] - self.state.axis_offset[axis];
-                }
-                self.move_to(end, None);
-                self.state.publish_position();
-                Ok(true)
-            }
-            Prelude::Refuse { start, end, code, note } => {
-                Err(self.error(Fault::not_supported(start, end, code, note)))
-            }
+            self.hooks.summary.count_refused("expressions ([ ])");
         }
     }
 
     /// A dialect's changes to the block just read; `Ok(true)` when the block is done with.
     pub(super) fn adapt_block(&mut self) -> Result<bool, Fault> {
-        if self.dialect != Dialect::Marlin {
-            if matches!(self.dialect, Dialect::Mach3 | Dialect::Fanuc) {
+        if self.hooks.dialect != Dialect::Marlin {
+            if matches!(self.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) {
                 self.adapt_fanuc_block();
             }
             return Ok(false);
         }
         // One command per line: later G and M words are the command's parameters.
-        let first =
-            self.block.g.iter().chain(self.block.m.iter()).flatten().map(|code| code.at).min();
+        let first = self
+            .syntax
+            .block
+            .g
+            .iter()
+            .chain(self.syntax.block.m.iter())
+            .flatten()
+            .map(|code| code.at)
+            .min();
         if let Some(first) = first {
-            for slot in self.block.g.iter_mut().chain(self.block.m.iter_mut()) {
+            for slot in self.syntax.block.g.iter_mut().chain(self.syntax.block.m.iter_mut()) {
                 if slot.is_some_and(|code| code.at != first) {
                     *slot = None;
                 }
             }
         }
-        if let Some(code) = self.block.g[3] {
-            self.e_relative = code.code == 910;
+        if let Some(code) = self.syntax.block.g[3] {
+            self.hooks.e_relative = code.code == 910;
         }
-        let group0 = self.block.g[0].map(|code| code.code);
-        if self.block.g[1].is_none() && group0 != Some(920) {
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
+        if self.syntax.block.g[1].is_none() && group0 != Some(920) {
             // Axis words of a command that is not a move are its parameters: no modal motion.
             for &letter in &AXES {
-                self.block.letters[usize::from(letter - b'a')] = None;
+                self.syntax.block.letters[usize::from(letter - b'a')] = None;
             }
         }
-        let factor = if self.block.g[6].map_or(self.state.metric, |code| code.code == 210) {
+        let factor = if self.syntax.block.g[6].map_or(self.state.metric, |code| code.code == 210) {
             1.0
         } else {
             MM_PER_INCH
         };
-        let e = self.block.letters[usize::from(b'e' - b'a')].take();
-        let axis_words = AXES.iter().any(|&letter| self.block.word(letter).is_some());
-        if e.is_none() && !axis_words && self.block.g[1].is_some_and(|code| code.code <= 30) {
+        let e = self.syntax.block.letters[usize::from(b'e' - b'a')].take();
+        let axis_words = AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
+        if e.is_none() && !axis_words && self.syntax.block.g[1].is_some_and(|code| code.code <= 30)
+        {
             // `G1 F1500`: a feed rate, no move (LinuxCNC would make a move of no length).
-            self.block.g[1] = None;
+            self.syntax.block.g[1] = None;
         }
         if group0 == Some(40) {
             // G4: S seconds, else P milliseconds, else no wait.
-            let s = self.block.letters[usize::from(b's' - b'a')].take();
-            let p = self.block.word(b'p');
+            let s = self.syntax.block.letters[usize::from(b's' - b'a')].take();
+            let p = self.syntax.block.word(b'p');
             let (seconds, word) = match (s, p) {
                 (Some(s), _) => (s.value, s),
                 (None, Some(p)) => (p.value / 1000.0, p),
                 (None, None) => {
-                    let code = self.block.g[0].map_or((0, 1), |code| (code.at, code.end));
+                    let code = self.syntax.block.g[0].map_or((0, 1), |code| (code.at, code.end));
                     (0.0, Word { value: 0.0, at: code.0, end: code.1 })
                 }
             };
-            self.block.letters[usize::from(b'p' - b'a')] = Some(Word { value: seconds, ..word });
+            self.syntax.block.letters[usize::from(b'p' - b'a')] =
+                Some(Word { value: seconds, ..word });
         }
         if let Some(e) = e {
             let value = e.value * factor;
@@ -325,17 +184,18 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
             if group0 == Some(920) {
-                self.e_position = value;
-                if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
+                self.hooks.e_position = value;
+                if AXES.iter().all(|&letter| self.syntax.block.word(letter).is_none()) {
                     return Ok(true);
                 }
-            } else if self.block.g[1].is_some()
+            } else if self.syntax.block.g[1].is_some()
                 || (self.state.motion.is_some()
-                    && AXES.iter().any(|&letter| self.block.word(letter).is_some()))
+                    && AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some()))
             {
-                let delta = if self.e_relative { value } else { value - self.e_position };
-                self.e_position += delta;
-                self.pending_extrude = Some(delta);
+                let delta =
+                    if self.hooks.e_relative { value } else { value - self.hooks.e_position };
+                self.hooks.e_position += delta;
+                self.hooks.pending_extrude = Some(delta);
             }
         }
         Ok(false)
@@ -343,7 +203,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// MakerBot's flavour: an A word is the extruder's E.
     pub(super) fn rename_makerbot_a(&mut self) {
-        let bytes = self.compact.bytes_mut();
+        let bytes = self.syntax.compact.bytes_mut();
         for index in 0..bytes.len() {
             let before = if index == 0 { b'(' } else { bytes[index - 1] };
             let after = bytes.get(index + 1).copied().unwrap_or(0);
@@ -362,13 +222,13 @@ impl<R: BufRead> Interpreter<R> {
     /// power and mode in force.
     pub(super) fn grbl_laser_gate(&mut self, kind: &MotionKind) {
         match kind {
-            MotionKind::LaserOn { .. } | MotionKind::LaserOff => self.laser_rapid_off = false,
-            MotionKind::Rapid { .. } if self.tool_on && !self.laser_rapid_off => {
-                self.laser_rapid_off = true;
+            MotionKind::LaserOn { .. } | MotionKind::LaserOff => self.hooks.laser_rapid_off = false,
+            MotionKind::Rapid { .. } if self.hooks.tool_on && !self.hooks.laser_rapid_off => {
+                self.hooks.laser_rapid_off = true;
                 self.emit(MotionKind::LaserOff);
-                self.laser_rapid_off = true;
+                self.hooks.laser_rapid_off = true;
             }
-            MotionKind::Linear { .. } | MotionKind::Arc { .. } if self.laser_rapid_off => {
+            MotionKind::Linear { .. } | MotionKind::Arc { .. } if self.hooks.laser_rapid_off => {
                 let power = self.state.speed;
                 self.emit(MotionKind::LaserOn { power, dynamic: self.state.spindle == 4 });
             }
@@ -378,9 +238,9 @@ impl<R: BufRead> Interpreter<R> {
 
     /// The tool's event for M3, M4 or M5 (`code`), or for a new S while on.
     pub(super) fn tool_event(&mut self, code: u16) {
-        self.tool_on = code != 5;
+        self.hooks.tool_on = code != 5;
         let speed = self.state.speed;
-        let kind = match (self.tool, code) {
+        let kind = match (self.hooks.tool, code) {
             (Tool::Gripper, 3) => MotionKind::Pick,
             (Tool::Gripper, 4) => MotionKind::Place,
             (Tool::Gripper, _) => MotionKind::GripperOff,
@@ -392,7 +252,7 @@ impl<R: BufRead> Interpreter<R> {
             (Tool::Pen, _) => MotionKind::PenUp,
             (Tool::Extruder, _) => {
                 let name = format!("M{code}");
-                self.summary.count(&name, true);
+                self.hooks.summary.count(&name, true);
                 match CodeName::new(&name) {
                     Some(code) => MotionKind::Code { code },
                     None => return,

@@ -12,11 +12,9 @@
 //! - `$`: the spindle, truncated to an integer: 0, or −1 (all spindles) where rs274 takes it;
 //!   any other number is refused with rs274's message.
 
-use std::io::BufRead;
-
-use super::Interpreter;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use super::Machine;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
 /// rs274's message for a `$` word no code on the line uses.
 const UNUSED_DOLLAR: &str = "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, \
@@ -27,16 +25,16 @@ fn round(value: f64) -> f64 {
     (value + if value < 0.0 { -0.5 } else { 0.5 }).trunc()
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Whether a `$` word is on the line but no code uses it (`check_other_codes`).
     pub(super) fn check_dollar(&self) -> Result<(), Fault> {
-        let Some(dollar) = self.block.extra().and_then(|extra| extra.spindle) else {
+        let Some(dollar) = self.syntax.block.extra().and_then(|extra| extra.spindle) else {
             return Ok(());
         };
-        let m7 = self.block.m[7].is_some_and(|code| matches!(code.code, 3 | 4 | 5 | 19));
-        let m51 = self.block.m[9].is_some_and(|code| code.code == 51);
+        let m7 = self.syntax.block.m[7].is_some_and(|code| matches!(code.code, 3 | 4 | 5 | 19));
+        let m51 = self.syntax.block.m[9].is_some_and(|code| code.code == 51);
         // rs274 names G97 in its message, but does not take `$` for it alone.
-        if m7 || m51 || self.block.word(b's').is_some() {
+        if m7 || m51 || self.syntax.block.word(b's').is_some() {
             Ok(())
         } else {
             Err(self.word_fault(dollar, UNUSED_DOLLAR))
@@ -45,22 +43,24 @@ impl<R: BufRead> Interpreter<R> {
 
     /// The `$` checks of G97, S and M3/M4/M5/M19, in rs274's order, before the block runs.
     pub(super) fn check_spindle_number(&self) -> Result<(), Fault> {
-        let Some(dollar) = self.block.extra().and_then(|extra| extra.spindle) else {
+        let Some(dollar) = self.syntax.block.extra().and_then(|extra| extra.spindle) else {
             return Ok(());
         };
         let number = dollar.value.trunc();
         let valid = number == 0.0 || number == -1.0;
-        if self.block.g[14].is_some() && !valid {
+        if self.syntax.block.g[14].is_some() && !valid {
             return Err(
                 self.word_fault(dollar, "Invalid spindle ($) number in Spindle Mode command")
             );
         }
-        if self.block.word(b's').is_some() && !valid {
+        if self.syntax.block.word(b's').is_some() && !valid {
             return Err(
                 self.word_fault(dollar, "Invalid spindle ($) number in Spindle speed command")
             );
         }
-        if let Some(code) = self.block.m[7].filter(|code| matches!(code.code, 3 | 4 | 5 | 19)) {
+        if let Some(code) =
+            self.syntax.block.m[7].filter(|code| matches!(code.code, 3 | 4 | 5 | 19))
+        {
             let valid = if code.code == 19 { number == 0.0 } else { valid };
             if !valid {
                 return Err(self.word_fault(
@@ -69,7 +69,7 @@ impl<R: BufRead> Interpreter<R> {
                 ));
             }
         }
-        if self.block.m[9].is_some_and(|code| code.code == 51) {
+        if self.syntax.block.m[9].is_some_and(|code| code.code == 51) {
             return Err(self.word_fault(dollar, "Invalid spindle ($) number in M51 command"));
         }
         Ok(())
@@ -77,32 +77,32 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Whether the P word is used by an M-code of this module (`check_other_codes`).
     pub(super) fn io_uses_p(&self) -> bool {
-        self.block.m[9].is_some_and(|code| code.code >= 50)
-            || self.block.m[5].is_some_and(|code| code.code <= 66)
-            || self.block.m[7].is_some_and(|code| code.code == 19)
+        self.syntax.block.m[9].is_some_and(|code| code.code >= 50)
+            || self.syntax.block.m[5].is_some_and(|code| code.code <= 66)
+            || self.syntax.block.m[7].is_some_and(|code| code.code == 19)
     }
 
     /// Whether the Q word is used by an M-code of this module.
     pub(super) fn io_uses_q(&self) -> bool {
-        self.block.m[5].is_some_and(|code| code.code >= 66)
-            || self.block.m[7].is_some_and(|code| code.code == 19)
+        self.syntax.block.m[5].is_some_and(|code| code.code >= 66)
+            || self.syntax.block.m[7].is_some_and(|code| code.code == 19)
     }
 
     /// Whether the E word is used (M66, M67, M68).
     pub(super) fn io_uses_e(&self) -> bool {
-        self.block.m[5].is_some_and(|code| code.code >= 66)
+        self.syntax.block.m[5].is_some_and(|code| code.code >= 66)
     }
 
     /// Whether the L word is used (M66).
     pub(super) fn io_uses_l(&self) -> bool {
-        self.block.m[5].is_some_and(|code| code.code == 66)
+        self.syntax.block.m[5].is_some_and(|code| code.code == 66)
     }
 
     /// M62–M68 (group 5, the first of `convert_m`).
     pub(super) fn io_output(&mut self) -> Result<(), Fault> {
-        let Some(code) = self.block.m[5] else { return Ok(()) };
+        let Some(code) = self.syntax.block.m[5] else { return Ok(()) };
         let at = (code.at, code.end);
-        let word = |letter: u8| self.block.word(letter);
+        let word = |letter: u8| self.syntax.block.word(letter);
         let p = word(b'p').map(|p| round(p.value));
         let e = word(b'e').map(|e| round(e.value));
         match code.code {
@@ -175,7 +175,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// M19: the spindle's orientation (an event; the spindle counts as stopped).
     pub(super) fn orient_spindle(&mut self) -> Result<(), Fault> {
-        let word = |letter: u8| self.block.word(letter);
+        let word = |letter: u8| self.syntax.block.word(letter);
         if let Some(r) = word(b'r')
             && !(0.0..=360.0).contains(&r.value)
         {
@@ -198,7 +198,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// M48–M53: checked, with no effect here.
     pub(super) fn overrides(&self) -> Result<(), Fault> {
-        let Some(code) = self.block.m[9] else { return Ok(()) };
+        let Some(code) = self.syntax.block.m[9] else { return Ok(()) };
         let message = if code.code == 49 {
             "Cannot disable overrides with cutter radius compensation on"
         } else {
@@ -209,7 +209,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// The P word of M19 and of G2/G3 must be an integer (`check_other_codes`).
     pub(super) fn m19_p_integer(&self, p: Word) -> Result<(), Fault> {
-        if self.block.m[7].is_some_and(|code| code.code == 19)
+        if self.syntax.block.m[7].is_some_and(|code| code.code == 19)
             && (round(p.value) - p.value).abs() > 0.001
         {
             return Err(self.word_fault(p, "P value not an integer with M19 G2 or G3"));

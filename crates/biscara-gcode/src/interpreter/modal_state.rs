@@ -11,15 +11,13 @@
 //! path-control mode (G61, G61.1, G64 P Q); cutter compensation back off (back on is refused
 //! as not supported). Not the motion mode. As in rs274, the feed comes back with one decimal
 //! and the speed with none, and an M72 that changes anything loses the rest of its line (see
-//! [`Interpreter::modal_state`]).
-
-use std::io::BufRead;
+//! [`Machine::modal_state`]).
 
 use biscara_motion::Plane;
 
-use super::Interpreter;
-use crate::lexer::Fault;
-use crate::parser::Code;
+use super::Machine;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Code;
 
 /// The modal state M70 saves.
 #[derive(Debug, Clone, Copy)]
@@ -54,7 +52,7 @@ pub(super) struct ModalStack {
     pub auto_restore: bool,
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// M70, M71, M72 or M73. `Ok(true)` when M72 restored a state that differs from the one in
     /// force: rs274 then runs the restoring codes as blocks of their own, read into the place of
     /// the current one, so that the rest of the M72's line (what comes after M70–M73 in the
@@ -111,7 +109,7 @@ impl<R: BufRead> Interpreter<R> {
             && let Some(saved) = stack.saved
         {
             // (The line is the return's: the whole of it is shown.)
-            self.restore_modes(saved, (0, self.lines.line.len().max(1)))?;
+            self.restore_modes(saved, (0, self.syntax.raw_len.max(1)))?;
         }
         Ok(())
     }

@@ -1,10 +1,8 @@
 //! Modes and offsets: path control, units, coordinate systems, G10 L2/L20, G92 and G52.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G61, G61.1 (exact stop) and G64 P… Q… (blending within P of the corners, in the program's
     /// length unit, kept in millimetres; no P, or a negative one, is LinuxCNC's tolerance 0: no
     /// tolerance given).
@@ -21,9 +19,9 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         let scale = if self.state.metric { 1.0 } else { MM_PER_INCH };
-        let p = self.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
+        let p = self.syntax.block.word(b'p').map_or(0.0, |p| p.value.max(0.0));
         self.state.blend = Some(p * scale);
-        let q = self.block.word(b'q').map_or(0.0, |q| q.value);
+        let q = self.syntax.block.word(b'q').map_or(0.0, |q| q.value);
         self.state.naive_cam = (q > 0.0).then_some(q * scale);
         Ok(())
     }
@@ -55,7 +53,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// G10 L2 and L20.
     pub(super) fn set_coordinate_data(&mut self, code: Code) -> Result<(), Fault> {
-        let Some(l) = self.block.word(b'l') else {
+        let Some(l) = self.syntax.block.word(b'l') else {
             return Err(
                 self.code_fault(code, "Line with G10 does not have L0, L1, L10, L11, L2, or L20")
             );
@@ -82,11 +80,11 @@ impl<R: BufRead> Interpreter<R> {
                 );
             }
         }
-        let system = match self.block.word(b'p') {
+        let system = match self.syntax.block.word(b'p') {
             Some(p) if (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0 => p.value as usize,
             // Grbl 1.1 wants P or L (`gc_execute_line`: "P/L word missing"), and its P defaults
             // to 0: the system in force (an OpenBuilds plasma post's `G10 L20 Z-2`).
-            None if self.dialect == Dialect::Grbl => 0,
+            None if self.hooks.dialect == Dialect::Grbl => 0,
             _ => {
                 return Err(self
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));
@@ -98,7 +96,7 @@ impl<R: BufRead> Interpreter<R> {
                 "Cannot change the active coordinate system with cutter radius compensation on",
             )?;
         }
-        let r = self.block.word(b'r');
+        let r = self.syntax.block.word(b'r');
         if let Some(r) = r
             && l_value == 20
         {
@@ -108,7 +106,7 @@ impl<R: BufRead> Interpreter<R> {
         let base = coordinate_system_base(system);
         let rotated_l20 = if l_value == 20 { self.rotated_l20_origin(system) } else { None };
         for (axis, &letter) in AXES.iter().enumerate() {
-            let Some(word) = self.block.word(letter) else { continue };
+            let Some(word) = self.syntax.block.word(letter) else { continue };
             let origin = match rotated_l20 {
                 Some(xy) if axis < 2 => xy[axis],
                 _ if l_value == 2 => word.value,
@@ -135,13 +133,13 @@ impl<R: BufRead> Interpreter<R> {
 
     /// G92: offsets that make the current point have the given coordinates.
     pub(super) fn set_axis_offsets(&mut self, code: Code) -> Result<(), Fault> {
-        if AXES.iter().all(|&letter| self.block.word(letter).is_none()) {
+        if AXES.iter().all(|&letter| self.syntax.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "All axes missing with g52 or g92"));
         }
         let mut offsets = self.state.axis_offset;
         for (axis, &letter) in AXES.iter().enumerate() {
-            if let Some(word) = self.block.word(letter) {
-                self.zeroed_at_start[axis] |= !self.moved;
+            if let Some(word) = self.syntax.block.word(letter) {
+                self.state.zeroed_at_start[axis] |= !self.output.moved;
                 offsets[axis] =
                     self.state.current[axis] + self.state.axis_offset[axis] - word.value;
             }
@@ -160,7 +158,7 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn set_local_offsets(&mut self) {
         let mut offsets = self.state.axis_offset;
         for (axis, &letter) in AXES.iter().enumerate() {
-            if let Some(word) = self.block.word(letter) {
+            if let Some(word) = self.syntax.block.word(letter) {
                 offsets[axis] = word.value;
             }
         }

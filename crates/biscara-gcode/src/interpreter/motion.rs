@@ -1,11 +1,9 @@
 //! Motion: the end point of a block, G28/G30, straight moves and arcs with LinuxCNC's
 //! tolerances, and LinuxCNC's length and turn helpers.
 
-use std::io::BufRead;
-
 use super::*;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// End point of a move (`find_ends`).
     pub(super) fn find_ends(&self, g53: bool) -> [f64; 4] {
         let rotated = (g53 && self.state.rotation != 0.0).then(|| self.rotated_g53_ends());
@@ -17,7 +15,7 @@ impl<R: BufRead> Interpreter<R> {
             {
                 return xy[axis];
             }
-            let word = self.block.word(AXES[axis]).map(|word| word.value);
+            let word = self.syntax.block.word(AXES[axis]).map(|word| word.value);
             let current = if comp {
                 self.state.comp.base(axis, self.state.plane).unwrap_or(self.state.current[axis])
             } else {
@@ -42,14 +40,14 @@ impl<R: BufRead> Interpreter<R> {
         let intermediate = self.find_ends(false);
         self.move_to(intermediate, None);
         let base = if code.code == 280 { G28_HOME } else { G30_HOME };
-        let any = AXES.iter().any(|&letter| self.block.word(letter).is_some());
+        let any = AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
         let mut end = intermediate;
         let home = std::array::from_fn(|axis| {
             self.state.mm_to_program(axis, self.state.params.get(base + axis_slot(axis)))
         });
         let home = self.state.program_of(home);
         for (axis, &letter) in AXES.iter().enumerate() {
-            if any && self.block.word(letter).is_none() {
+            if any && self.syntax.block.word(letter).is_none() {
                 continue;
             }
             end[axis] = home[axis];
@@ -77,7 +75,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         // Marlin moves G0 as G1, at the feed rate in force (its G0_G1; a separate G0 feed rate
         // is a build option, off by default), so a slicer's `G0 F9000` travels at 150 mm/s.
-        if motion == 0 && self.dialect == Dialect::Marlin {
+        if motion == 0 && self.hooks.dialect == Dialect::Marlin {
             self.move_to(end, Some(Feed { mm_per_min: self.state.feed_mm, inverse_time: false }));
             return Ok(());
         }
@@ -86,8 +84,8 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(());
         }
         let feed = if self.state.inverse_time {
-            let Some(f) = self.block.word(b'f') else {
-                let code = self.block.g[1].map_or((0, 1), |code| (code.at, code.end));
+            let Some(f) = self.syntax.block.word(b'f') else {
+                let code = self.syntax.block.g[1].map_or((0, 1), |code| (code.at, code.end));
                 return Err(self.fault_at(
                     code.0,
                     code.1,
@@ -126,10 +124,10 @@ impl<R: BufRead> Interpreter<R> {
     /// G2 (`clockwise`) and G3 (`convert_arc`, `convert_arc2`, `arc_data_ijk`, `arc_data_r`).
     pub(super) fn arc(&mut self, clockwise: bool) -> Result<(), Fault> {
         self.comp_arc_allowed()?;
-        let word = |letter: u8| self.block.word(letter);
+        let word = |letter: u8| self.syntax.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
         // Grbl reads the K word of an XY-plane arc and ignores it.
-        if self.dialect == Dialect::Grbl && self.state.plane == Plane::Xy {
+        if self.hooks.dialect == Dialect::Grbl && self.state.plane == Plane::Xy {
             k = None;
         }
         let ijk = i.is_some() || j.is_some() || k.is_some();
@@ -142,7 +140,7 @@ impl<R: BufRead> Interpreter<R> {
         if r.is_some() && ijk {
             return Err(self.motion_fault("Mixed radius ijk format for arc"));
         }
-        let f = self.block.word(b'f');
+        let f = self.syntax.block.word(b'f');
         if self.state.inverse_time {
             if f.is_none() {
                 return Err(self.motion_fault("F word missing with inverse time arc move"));
@@ -180,7 +178,7 @@ impl<R: BufRead> Interpreter<R> {
                 }
             }
         } else {
-            let has = |axis: usize| self.block.word(AXES[axis]).is_some();
+            let has = |axis: usize| self.syntax.block.word(AXES[axis]).is_some();
             if !has(first) && !has(second) {
                 let message = match plane {
                     Plane::Xy => "X and y words missing for arc in xy plane",
@@ -190,7 +188,7 @@ impl<R: BufRead> Interpreter<R> {
                 return Err(self.motion_fault(message));
             }
         }
-        let turns = match self.block.word(b'p') {
+        let turns = match self.syntax.block.word(b'p') {
             None => 1,
             Some(p) => {
                 // An integer ≥ 1 within 0.001 (`check_other_words`).

@@ -10,31 +10,29 @@
 //! cycles take it as they take X and Y (an incremental cycle's repeats step on in polar
 //! coordinates, as in rs274); a line without `@` or `^` does no work here.
 
-use std::io::BufRead;
-
 use biscara_motion::Plane;
 
-use super::Interpreter;
-use crate::lexer::Fault;
-use crate::parser::Word;
+use super::Machine;
+use crate::syntax::lexer::Fault;
+use crate::syntax::parser::Word;
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// X or Y words with `@` or `^` (read with the line, before its other checks).
     pub(super) fn check_polar_words(&self) -> Result<(), Fault> {
-        let Some(extra) = self.block.extra() else { return Ok(()) };
+        let Some(extra) = self.syntax.block.extra() else { return Ok(()) };
         let Some(polar) = extra.radius.or(extra.theta) else { return Ok(()) };
         // The plane in force when the line is read.
         if self.state.plane != Plane::Xy {
             return Err(self.word_fault(polar, "Cannot use polar coordinate except in G17 plane"));
         }
-        if let Some(x) = self.block.word(b'x') {
+        if let Some(x) = self.syntax.block.word(b'x') {
             return Err(self.word_fault(x, "Cannot specify both polar coordinate and X word"));
         }
-        if let Some(y) = self.block.word(b'y') {
+        if let Some(y) = self.syntax.block.word(b'y') {
             return Err(self.word_fault(y, "Cannot specify both polar coordinate and Y word"));
         }
-        let group0 = self.block.g[0].map(|code| code.code);
-        let g43 = self.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
+        let g43 = self.syntax.block.g[8].is_some_and(|code| matches!(code.code, 431 | 432));
         if matches!(group0, Some(100 | 280 | 300 | 520 | 920)) || g43 {
             return Err(self.word_fault(polar, "Polar coordinates can only be used for motion"));
         }
@@ -43,7 +41,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// The first polar word of the line (for messages), if any.
     pub(super) fn first_polar_word(&self) -> Option<Word> {
-        let extra = self.block.extra()?;
+        let extra = self.syntax.block.extra()?;
         match (extra.radius, extra.theta) {
             (Some(r), Some(t)) => Some(if r.at < t.at { r } else { t }),
             (r, t) => r.or(t),
@@ -54,7 +52,7 @@ impl<R: BufRead> Interpreter<R> {
     /// rs274 applies the `@` and `^` steps again at each repeat (a bolt circle: `G91 G81 ^60
     /// L6`).
     pub(super) fn polar_repeat(&self, [x, y]: [f64; 2]) -> Option<[f64; 2]> {
-        let extra = self.block.extra()?;
+        let extra = self.syntax.block.extra()?;
         if extra.radius.is_none() && extra.theta.is_none() {
             return None;
         }
@@ -65,7 +63,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// Turns `@` and `^` into the block's X and Y words, before its motion (`find_ends`).
     pub(super) fn apply_polar(&mut self, motion: u16, g53: bool) -> Result<(), Fault> {
-        let Some(extra) = self.block.extra().copied() else { return Ok(()) };
+        let Some(extra) = self.syntax.block.extra().copied() else { return Ok(()) };
         let Some(first) = self.first_polar_word() else { return Ok(()) };
         if g53 {
             return Err(self.word_fault(first, "Cannot use polar coordinates with G53"));
@@ -78,8 +76,9 @@ impl<R: BufRead> Interpreter<R> {
             } else {
                 ([b'y', b'z'], "Y and z words missing for arc in yz plane")
             };
-            if letters.iter().all(|&letter| self.block.word(letter).is_none()) {
-                let at = self.block.g[1].map_or((first.at, first.end), |code| (code.at, code.end));
+            if letters.iter().all(|&letter| self.syntax.block.word(letter).is_none()) {
+                let at = self.syntax.block.g[1]
+                    .map_or((first.at, first.end), |code| (code.at, code.end));
                 return Err(self.fault_at(at.0, at.1, message));
             }
         }
@@ -139,7 +138,7 @@ impl<R: BufRead> Interpreter<R> {
                 None => self.state.current[axis],
             };
             let value = if self.state.incremental { end[axis] - start } else { end[axis] };
-            self.block.letters[usize::from(letter - b'a')] =
+            self.syntax.block.letters[usize::from(letter - b'a')] =
                 Some(Word { value, at: first.at, end: first.end });
         }
         Ok(())

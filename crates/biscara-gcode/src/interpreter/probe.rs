@@ -13,14 +13,12 @@
 //! Before the moves comes an event with the code (`G38.2`), so that a time series shows where
 //! the robot probes, and the program's notes count the probe moves.
 
-use std::io::BufRead;
-
 use biscara_motion::{CodeName, Feed, MotionKind};
 
-use super::Interpreter;
+use super::Machine;
 use crate::dialect::{Dialect, g_name};
-use crate::lexer::Fault;
-use crate::params::axis_slot;
+use crate::syntax::lexer::Fault;
+use crate::syntax::params::axis_slot;
 
 /// First of the parameters that receive the probed point (x y z a b c u v w follow).
 const PROBED_POINT: usize = 5061;
@@ -37,7 +35,7 @@ pub(super) fn is_probe(code: u16) -> bool {
     matches!(code, 382..=385 | 310)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G38.2 (`code` 382: toward the work, error on no contact), G38.3 (383: no error), G38.4
     /// (384: away from the work, error on no loss of contact), G38.5 (385: no error) and
     /// Mach3's G31 (310: toward the work, no error).
@@ -71,7 +69,7 @@ impl<R: BufRead> Interpreter<R> {
         if must_move && current == end {
             return Err(self.motion_fault("Start point too close to probe point"));
         }
-        self.summary.count_probe(&name);
+        self.hooks.summary.count_probe(&name);
         if let Some(name) = CodeName::new(&name) {
             self.emit(MotionKind::Code { code: name });
         }
@@ -85,7 +83,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         self.state.params.set(PROBE_TRIPPED, 0.0);
         let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
-        if distance != 0.0 && self.dialect == Dialect::Linuxcnc {
+        if distance != 0.0 && self.hooks.dialect == Dialect::Linuxcnc {
             let backoff = BACKOFF_MM / self.state.factor();
             let mut stop = end;
             for axis in 0..3 {

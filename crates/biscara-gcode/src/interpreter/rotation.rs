@@ -5,21 +5,20 @@
 //! (Z and C are not rotated; the tool length offset is added after the rotation). Arcs in the
 //! XY plane turn with their centre; an arc in the XZ or YZ plane of a rotated system lies in a
 //! tilted plane, which the inter-file (SPEC §5) cannot describe: it runs as straight moves
-//! within 0.001 mm of it ([`Interpreter::tilted_arc`]). Nothing here
+//! within 0.001 mm of it ([`Machine::tilted_arc`]). Nothing here
 //! runs while no system is rotated: [`State::rotation`] is zero and the plain sums are used.
 //!
 //! rs274's own bookkeeping is followed where it differs from that geometry: G10 L2 on the
 //! system in force moves the current point as if no G92 offset were set.
 
 use std::f64::consts::PI;
-use std::io::BufRead;
 
 use biscara_motion::Feed;
 
 use super::motion::find_turn;
 use super::spline::{CHORD_TOLERANCE_MM, MAX_SEGMENTS};
-use super::{Interpreter, State};
-use crate::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
+use super::{Machine, State};
+use crate::syntax::params::{COORDINATE_SYSTEM, G92_ENABLED, axis_slot, coordinate_system_base};
 
 /// The parameter of a system's rotation, after its nine axes.
 const ROTATION_SLOT: usize = 9;
@@ -111,7 +110,7 @@ impl State {
     }
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// Makes `system` the one in force (its origin and rotation from the parameters), keeping
     /// the machine position. `g10`: rs274's G10 L2 on the system in force, which leaves the
     /// G92 offset out of the rotations.
@@ -159,7 +158,8 @@ impl<R: BufRead> Interpreter<R> {
     pub(super) fn rotated_l20_origin(&self, system: usize) -> Option<[f64; 2]> {
         let state = &self.state;
         let turn = state.params.get(rotation_parameter(system));
-        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let given =
+            [b'x', b'y'].map(|letter| self.syntax.block.word(letter).map(|word| word.value));
         if (state.rotation == 0.0 && turn == 0.0) || given.iter().all(Option::is_none) {
             return None;
         }
@@ -177,7 +177,8 @@ impl<R: BufRead> Interpreter<R> {
     /// position of the current point with the given axes replaced, back in the program's
     /// coordinates.
     pub(super) fn rotated_g53_ends(&self) -> Option<[f64; 2]> {
-        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let given =
+            [b'x', b'y'].map(|letter| self.syntax.block.word(letter).map(|word| word.value));
         if given.iter().all(Option::is_none) {
             return None;
         }

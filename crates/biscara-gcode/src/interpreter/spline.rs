@@ -21,12 +21,10 @@
 //! block's line; a block makes at most [`MAX_SEGMENTS`] of them (memory stays bounded), and a
 //! spline that would need more is refused (its control points then lie metres apart).
 
-use std::io::BufRead;
-
 use biscara_motion::{Feed, Plane};
 
-use super::Interpreter;
-use crate::lexer::Fault;
+use super::Machine;
+use crate::syntax::lexer::Fault;
 
 /// How far the straight moves of a spline may be from its curve, mm.
 pub(super) const CHORD_TOLERANCE_MM: f64 = 0.001;
@@ -38,11 +36,11 @@ pub(super) fn is_spline(motion: u16) -> bool {
     matches!(motion, 50 | 51)
 }
 
-impl<R: BufRead> Interpreter<R> {
+impl Machine {
     /// G5 (`motion` 50) or G5.1 (51): the checks of rs274's `convert_spline`, in its order,
     /// then the curve's straight moves.
     pub(super) fn spline(&mut self, motion: u16) -> Result<(), Fault> {
-        let code_at = self.block.g[1].map_or((0, 1), |code| (code.at, code.end));
+        let code_at = self.syntax.block.g[1].map_or((0, 1), |code| (code.at, code.end));
         let fail = |this: &Self, message: &str| this.fault_at(code_at.0, code_at.1, message);
         if self.state.comp.on() {
             return Err(fail(
@@ -52,7 +50,7 @@ impl<R: BufRead> Interpreter<R> {
             ));
         }
         if self.state.inverse_time {
-            if self.block.word(b'f').is_none() {
+            if self.syntax.block.word(b'f').is_none() {
                 return Err(fail(self, "F word missing with inverse time arc move"));
             }
             let (first, last) = self.span(code_at.0, code_at.1);
@@ -72,11 +70,12 @@ impl<R: BufRead> Interpreter<R> {
         if self.state.plane != Plane::Xy {
             return Err(fail(self, "Splines must be in the XY plane: select it with G17"));
         }
-        if let Some(word) = [b'z', b'c'].iter().filter_map(|&letter| self.block.word(letter)).next()
+        if let Some(word) =
+            [b'z', b'c'].iter().filter_map(|&letter| self.syntax.block.word(letter)).next()
         {
             return Err(self.word_fault(word, "Splines may not have motion in Z, A, B, or C"));
         }
-        let value = |letter: u8| self.block.word(letter).map(|word| word.value);
+        let value = |letter: u8| self.syntax.block.word(letter).map(|word| word.value);
         let start = self.state.current;
         let end = self.find_ends(false);
         let (i, j) = (value(b'i'), value(b'j'));

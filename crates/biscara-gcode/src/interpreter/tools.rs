@@ -8,13 +8,11 @@
 //! 0), taken by M6; as in `rs274`, M61 changes the current pocket but not that copy, and a
 //! G10 L1 of the tool in the current pocket updates it.
 
-use std::io::BufRead;
-
 use super::rotation::{rotate, rotation_parameter};
-use super::{AXES, Interpreter};
-use crate::lexer::Fault;
-use crate::params::{G92_ENABLED, axis_slot};
-use crate::parser::Code;
+use super::{AXES, Machine};
+use crate::syntax::lexer::Fault;
+use crate::syntax::params::{G92_ENABLED, axis_slot};
+use crate::syntax::parser::Code;
 use crate::tool_table::{ToolEntry, ToolTable};
 
 /// First of the current tool's parameters: 5400 tool, 5401–5409 offsets (x y z a b c u v w),
@@ -74,7 +72,7 @@ impl Tools {
     }
 
     /// Parameters 5400–5413 from the tool in the spindle (values in mm and degrees).
-    pub(super) fn publish(&self, params: &mut crate::params::Params) {
+    pub(super) fn publish(&self, params: &mut crate::syntax::params::Params) {
         let spindle = &self.spindle;
         params.set(TOOL_PARAMETERS, f64::from(spindle.tool));
         for axis in 0..4 {
@@ -92,24 +90,7 @@ fn not_found(tool: impl std::fmt::Display) -> String {
     format!("Requested tool {tool} not found in the tool table")
 }
 
-impl<R: BufRead> Interpreter<R> {
-    /// Whether the program used G43, G43.2, G10 L1/L10/L11 or M61 while no tool table was
-    /// given (every tool then has zero length and diameter).
-    pub fn tools_without_table(&self) -> bool {
-        self.state.tools.used_without_table
-    }
-
-    /// The tool table as the program has changed it so far (G10 L1, L10, L11): what cutter
-    /// compensation looks diameters up in.
-    pub fn tool_table(&self) -> &ToolTable {
-        &self.state.tools.table
-    }
-
-    /// The tool in the spindle (after M6; zero offsets before any).
-    pub fn current_tool(&self) -> ToolEntry {
-        self.state.tools.spindle
-    }
-
+impl Machine {
     fn note_no_table(&mut self) {
         if !self.state.tools.has_table {
             self.state.tools.used_without_table = true;
@@ -118,7 +99,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// T: selects a tool (LinuxCNC's `convert_tool_select`).
     pub(super) fn select_tool(&mut self) -> Result<(), Fault> {
-        let Some(t) = self.block.word(b't') else { return Ok(()) };
+        let Some(t) = self.syntax.block.word(b't') else { return Ok(()) };
         // Not negative: the reader refuses that; an integer: the reader rounds it.
         let tool = t.value as u32;
         let spindle = self.state.tools.spindle;
@@ -176,7 +157,7 @@ impl<R: BufRead> Interpreter<R> {
     /// ([`Tools::before_m61`]), and the current point is taken back from the last move as the
     /// next line is read, as after M6.
     pub(super) fn set_current_tool(&mut self, code: Code) -> Result<(), Fault> {
-        let q = self.block.word(b'q').filter(|q| q.value >= 0.0);
+        let q = self.syntax.block.word(b'q').filter(|q| q.value >= 0.0);
         let Some(q) = q else {
             return Err(
                 self.code_fault(code, "Need non-negative Q-word to specify tool number with M61")
@@ -207,9 +188,9 @@ impl<R: BufRead> Interpreter<R> {
 
     /// G43, G43.1, G43.2 and G49 (`convert_tool_length_offset`).
     pub(super) fn tool_length_offset(&mut self, code: Code) -> Result<(), Fault> {
-        let h = self.block.word(b'h');
+        let h = self.syntax.block.word(b'h');
         let axes: [Option<f64>; 4] =
-            std::array::from_fn(|axis| self.block.word(AXES[axis]).map(|word| word.value));
+            std::array::from_fn(|axis| self.syntax.block.word(AXES[axis]).map(|word| word.value));
         let any_axis = axes.iter().any(Option::is_some);
         let old = self.state.tool_offset;
         let new = match code.code {
@@ -303,7 +284,8 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         let turn = state.params.get(rotation_parameter(system));
-        let given = [b'x', b'y'].map(|letter| self.block.word(letter).map(|word| word.value));
+        let given =
+            [b'x', b'y'].map(|letter| self.syntax.block.word(letter).map(|word| word.value));
         let old = [0, 1].map(|axis| state.mm_to_program(axis, entry.offset[axis]));
         let xy = match given {
             [None, None] => None,
@@ -330,7 +312,7 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         for axis in [2, 3] {
-            if let Some(word) = self.block.word(AXES[axis]) {
+            if let Some(word) = self.syntax.block.word(AXES[axis]) {
                 entry.offset[axis] = state.to_mm(axis, at[axis] - word.value);
             }
         }
@@ -338,7 +320,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// G10 L1, L10 and L11: writes tool P's entry (`convert_setup_tool`).
     pub(super) fn set_tool_data(&mut self, code: Code, l: i64) -> Result<(), Fault> {
-        let p = self.block.word(b'p').filter(|p| p.value > 0.0);
+        let p = self.syntax.block.word(b'p').filter(|p| p.value > 0.0);
         let Some(p) = p else {
             return Err(self.code_fault(code, format!("P value out of range with G10 L{l}")));
         };
@@ -347,29 +329,29 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.word_fault(p, not_found(tool)));
         };
         let words = [b'x', b'y', b'z', b'c', b'r', b'i', b'j', b'q'];
-        if words.iter().all(|&letter| self.block.word(letter).is_none()) {
+        if words.iter().all(|&letter| self.syntax.block.word(letter).is_none()) {
             return Err(self.code_fault(code, "G10 L1 without offsets has no effect"));
         }
         self.note_no_table();
         if l == 1 {
             for (axis, &letter) in AXES.iter().enumerate() {
-                if let Some(word) = self.block.word(letter) {
+                if let Some(word) = self.syntax.block.word(letter) {
                     entry.offset[axis] = self.state.to_mm(axis, word.value);
                 }
             }
         } else {
             self.offsets_from_position(&mut entry, l);
         }
-        if let Some(r) = self.block.word(b'r') {
+        if let Some(r) = self.syntax.block.word(b'r') {
             entry.diameter = 2.0 * self.state.to_mm(0, r.value);
         }
-        if let Some(i) = self.block.word(b'i') {
+        if let Some(i) = self.syntax.block.word(b'i') {
             entry.front_angle = i.value;
         }
-        if let Some(j) = self.block.word(b'j') {
+        if let Some(j) = self.syntax.block.word(b'j') {
             entry.back_angle = j.value;
         }
-        if let Some(q) = self.block.word(b'q') {
+        if let Some(q) = self.syntax.block.word(b'q') {
             entry.orientation = q.value as i32;
         }
         let tools = &mut self.state.tools;

@@ -142,6 +142,7 @@ fn endless_loops_without_motion_stop_at_the_bound() {
     let err = refused(program, &bounded);
     let message = err.to_string();
     assert!(message.starts_with("6:1: the loop at line 3 has jumped back 50 times"), "{message}");
+    assert_eq!(err.setting(), Some(biscara_gcode::Setting::MaxIdleJumps));
     // The same loop read from standard input (its lines kept while it runs).
     let err = interpret(program.as_bytes(), &bounded).find_map(Result::err).expect("an error");
     assert!(err.to_string().contains("the loop at line 3"), "{err}");

@@ -7,6 +7,7 @@ mod features;
 mod memory;
 mod no_panic;
 mod owords;
+#[cfg(feature = "python")]
 mod python;
 mod rs274_record;
 mod splines;

@@ -7,8 +7,11 @@
 use std::fs::File;
 use std::io::{BufReader, Cursor, Write};
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use biscara_gcode::{Config, Dialect, GcodeError, interpret, interpret_seekable};
+use biscara_gcode::{
+    Config, Dialect, GcodeError, InMemory, Setting, interpret, interpret_seekable,
+};
 use biscara_motion::{Motion, MotionKind};
 
 use crate::memory::{in_a_process_of_its_own, resident_kib};
@@ -114,39 +117,45 @@ fn temp_folder(name: &str) -> PathBuf {
 
 #[test]
 fn file_subroutines_are_found_beside_the_program_then_on_the_path() {
-    let dir = temp_folder("files");
-    let library = dir.join("library");
-    std::fs::create_dir_all(&library).expect("mkdir");
-    let write = |path: PathBuf, text: &str| std::fs::write(path, text).expect("write");
-    write(dir.join("beside.ngc"), "o<beside> sub\nG0 X#1\no<beside> endsub [7]\nM2\n");
-    write(
-        library.join("far.ngc"),
-        "%\no<far> sub\nG0 Y#1\no<deep> call [#1 + 1]\no<far> endsub\n%\n",
+    let files = Arc::new(
+        InMemory::new()
+            .with_file("prog/beside.ngc", "o<beside> sub\nG0 X#1\no<beside> endsub [7]\nM2\n")
+            .with_file(
+                "library/far.ngc",
+                "%\no<far> sub\nG0 Y#1\no<deep> call [#1 + 1]\no<far> endsub\n%\n",
+            )
+            .with_file("library/deep.ngc", "o<deep> sub\no<deep> endsub\n"),
     );
-    write(library.join("deep.ngc"), "o<deep> sub\no<deep> endsub\n");
-    let program = dir.join("main.ngc");
-    write(program.clone(), "o<beside> call [3]\no<far> call [#<_value>]\nG0 Z1\nM2\n");
-    let run = |dirs: Vec<PathBuf>| -> Result<Vec<Motion>, GcodeError> {
-        let file = BufReader::new(File::open(&program).expect("open"));
-        interpret_seekable(file, &Config::default())
+    let program = PathBuf::from("prog/main.ngc");
+    let run = |text: &str, dirs: Vec<PathBuf>| -> Result<Vec<Motion>, GcodeError> {
+        interpret_seekable(Cursor::new(text.to_owned()), &Config::default())
             .with_subroutines(Some(program.clone()), dirs)
+            .with_environment(files.clone())
             .collect()
     };
+    let main = "o<beside> call [3]\no<far> call [#<_value>]\nG0 Z1\nM2\n";
     // Without the path, `far` is looked for in the program itself, to its end.
-    let err = run(Vec::new()).expect_err("far.ngc is not beside the program");
+    let err = run(main, Vec::new()).expect_err("far.ngc is not beside the program");
     assert!(err.to_string().contains("seeking o-word: o<far> from line: 2"), "{err}");
     // A subroutine file may call another one, and `%` lines in it do not end the program.
-    let motions = run(vec![library.clone()]).unwrap_or_else(|err| panic!("{err}"));
+    let library = PathBuf::from("library");
+    let motions = run(main, vec![library.clone()]).unwrap_or_else(|err| panic!("{err}"));
     let ends = ends(&motions);
     assert_eq!(ends[0][0], 3.0);
     assert_eq!(ends[1][1], 7.0);
     assert_eq!(ends[2][2], 1.0);
     assert_eq!(motions[1].line, 3, "the line in far.ngc");
     // A name with a path in it is refused, not looked up.
-    write(program.clone(), "o<../main> call\nM2\n");
-    let err = run(vec![library]).expect_err("a name with ..");
+    let err = run("o<../main> call\nM2\n", vec![library.clone()]).expect_err("a name with ..");
     assert!(err.to_string().contains("a subroutine name with '/' or '..' is refused"), "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
+    assert!(!err.to_string().contains("--"), "no command-line flag in the library: {err}");
+    assert_eq!(err.setting(), Some(Setting::SubroutinePath));
+    // Without an environment there are no files: the subroutine is looked for in the program.
+    let alone = interpret_seekable(Cursor::new(main.to_owned()), &Config::default())
+        .with_subroutines(Some(program.clone()), vec![library])
+        .collect::<Result<Vec<Motion>, GcodeError>>();
+    let err = alone.expect_err("no files without an environment");
+    assert!(err.to_string().contains("seeking o-word: o<beside> from line: 1"), "{err}");
 }
 
 #[test]

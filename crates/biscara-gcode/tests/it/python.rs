@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
-use biscara_gcode::{Config, GcodeError, IniFile, interpret};
+use biscara_files::FileSystem;
+use biscara_gcode::{Config, GcodeError, InMemory, IniFile, Interpreter, Setting, interpret};
 use biscara_motion::{Motion, MotionKind};
 
 use crate::memory::in_a_process_of_its_own;
@@ -44,8 +45,13 @@ fn folder_with(name: &str, files: &[(&str, &str)]) -> PathBuf {
 
 /// The configuration with the INI file `name` of `dir`.
 fn config_with_ini(dir: &Path, name: &str) -> Config {
-    let ini = IniFile::read(&dir.join(name)).expect("read the INI file");
+    let ini = IniFile::read(&FileSystem, &dir.join(name)).expect("read the INI file");
     Config { ini: Some(Arc::new(ini)), ..Config::default() }
+}
+
+/// `program` interpreted with `config` in the file system, where `python3` runs.
+fn run<'a>(program: &'a str, config: &Config) -> Interpreter<&'a [u8]> {
+    interpret(program.as_bytes(), config).with_environment(Arc::new(FileSystem))
 }
 
 const INI: &str = "[PYTHON]\nPATH_PREPEND = .\nTOPLEVEL = toplevel.py\n";
@@ -74,7 +80,7 @@ fn a_python_subroutine_moves_between_the_programs_moves() {
     let dir =
         folder_with("moves", &[("test.ini", INI), ("toplevel.py", TOPLEVEL), ("oword.py", OWORD)]);
     let program = "G21 F600\nG0 X-1\no<zigzag> call [3] [2]\nG1 Y#<_value>\nM2\n";
-    let motions: Vec<Motion> = interpret(program.as_bytes(), &config_with_ini(&dir, "test.ini"))
+    let motions: Vec<Motion> = run(program, &config_with_ini(&dir, "test.ini"))
         .collect::<Result<_, _>>()
         .unwrap_or_else(|err| panic!("{err}"));
     assert_eq!(
@@ -109,7 +115,7 @@ fn python_errors_point_at_the_line_that_ran_it() {
     );
     let error = |ini: &str, program: &str| {
         let result: Result<Vec<Motion>, GcodeError> =
-            interpret(program.as_bytes(), &config_with_ini(&dir, ini)).collect();
+            run(program, &config_with_ini(&dir, ini)).collect();
         result.expect_err("an error").to_string()
     };
     let canon = error("test.ini", "G0 X1\no<missing_canon> call\nM2\n");
@@ -138,14 +144,35 @@ fn a_programs_python_is_refused_without_a_python_section() {
     for program in [";py,print('hello')\nM2\n", "G0 X1 (py,x = 1)\nM2\n", "(pyreload)\nM2\n"] {
         let result: Result<Vec<Motion>, GcodeError> =
             interpret(program.as_bytes(), &Config::default()).collect();
-        let message = result.expect_err("refused").to_string();
+        let err = result.expect_err("refused");
+        assert_eq!(err.setting(), Some(Setting::Ini));
+        let message = err.to_string();
         assert!(message.contains("runs only with LinuxCNC's Python plug-ins"), "{message}");
+        assert!(!message.contains("--"), "no command-line flag in the library: {message}");
     }
     // Not Python: `;PY,` (LinuxCNC's check is case-sensitive), `; py,` and `(pyx)`.
     let program = ";PY,print('hello')\n; py,x\nG0 X1 (pyx)\nM2\n";
     let motions: Result<Vec<Motion>, GcodeError> =
         interpret(program.as_bytes(), &Config::default()).collect();
     assert_eq!(motions.map(|motions| motions.len()).ok(), Some(2));
+}
+
+#[test]
+fn python_needs_an_environment_that_starts_it() {
+    // No python3 needed: the environment has none (the library never starts a process itself).
+    let ini = IniFile::read(&InMemory::new().with_file("m.ini", INI), Path::new("m.ini"))
+        .expect("read the INI file from memory");
+    let config = Config { ini: Some(Arc::new(ini)), ..Config::default() };
+    let program = "G0 X1\n;py,x = 1\nM2\n";
+    let result: Result<Vec<Motion>, GcodeError> = interpret(program.as_bytes(), &config)
+        .with_environment(Arc::new(InMemory::new()))
+        .collect();
+    let message = result.expect_err("refused").to_string();
+    assert_eq!(
+        message,
+        "2:1: the INI file's Python plug-ins ([PYTHON]) cannot be loaded: cannot run python3 for \
+         them: no Python in this environment"
+    );
 }
 
 #[test]
@@ -161,7 +188,7 @@ fn a_python_subroutines_moves_stream_in_flat_memory() {
     // 200,000 moves held take some 25 MiB (measured with the pause taken out); streamed, none.
     let program = "G21 F600\no<zigzag> call [200000] [0.001]\nM2\n";
     let config = config_with_ini(&dir, "test.ini");
-    let count = count_in_flat_memory(interpret(program.as_bytes(), &config));
+    let count = count_in_flat_memory(run(program, &config));
     assert_eq!(count, 200_001);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -182,7 +209,7 @@ fn pyrun_runs_a_file_and_pyreload_runs_toplevel_again() {
          ;py,interpreter.this.params['_loads'] = loads\nG0 Y#<_loads>\nM2\n",
         dir.join("extra.py").display()
     );
-    let motions: Vec<Motion> = interpret(program.as_bytes(), &config_with_ini(&dir, "test.ini"))
+    let motions: Vec<Motion> = run(&program, &config_with_ini(&dir, "test.ini"))
         .collect::<Result<_, _>>()
         .unwrap_or_else(|err| panic!("{err}"));
     assert_eq!(ends(&motions), [[3.5, 0.0, 0.0, 0.0], [3.5, 2.0, 0.0, 0.0]]);

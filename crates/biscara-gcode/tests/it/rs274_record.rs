@@ -11,6 +11,7 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
+use biscara_files::FileSystem;
 use biscara_gcode::{Config, GcodeError, IniFile, Interpreter, ToolTable, interpret_seekable};
 use biscara_motion::{Motion, MotionKind};
 
@@ -38,7 +39,7 @@ pub fn own_table(program: &Path) -> Option<ToolTable> {
     let own = program.with_extension("tbl");
     let folder = program.parent().map(|folder| folder.join("test.tbl"));
     let path = std::iter::once(own).chain(folder).find(|path| path.exists())?;
-    Some(ToolTable::read(&path).expect("read the program's tool table"))
+    Some(ToolTable::read(&FileSystem, &path).expect("read the program's tool table"))
 }
 
 /// The INI file rs274 is given (`-i`) for `program`: `NAME.ini` beside `NAME.ngc`, else the
@@ -53,7 +54,7 @@ pub fn own_ini(program: &Path) -> Option<std::path::PathBuf> {
 /// no tolerance, where `interpret` starts in exact stop), and the program's own tool table
 /// (`NAME.tbl`) and INI file (`NAME.ini`) when it has them.
 pub fn config(path: &Path) -> Config {
-    let ini = own_ini(path).map(|ini| IniFile::read(&ini).expect("read the INI file"));
+    let ini = own_ini(path).map(|ini| IniFile::read(&FileSystem, &ini).expect("read the INI file"));
     Config {
         tool_table: own_table(path).map(std::sync::Arc::new),
         ini: ini.map(std::sync::Arc::new),
@@ -68,6 +69,7 @@ pub fn interpreter(path: &Path) -> Interpreter<BufReader<File>> {
     let file = File::open(path).unwrap_or_else(|err| panic!("{}: {err}", path.display()));
     interpret_seekable(BufReader::new(file), &config(path))
         .with_subroutines(Some(path.to_path_buf()), Vec::new())
+        .with_environment(std::sync::Arc::new(FileSystem))
 }
 
 /// Our motions for `path`.

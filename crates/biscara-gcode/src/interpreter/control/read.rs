@@ -1,65 +1,76 @@
 //! Reading an O-word line, `M98`/`M99` or Mach4's `G65` into an [`OBlock`] (LinuxCNC's
 //! `read_o` and the end of `read_items`).
 
-use std::io::BufRead;
 use std::rc::Rc;
 
 use super::*;
+use crate::interpreter::Machine;
 
-impl<R: BufRead> Interpreter<R> {
+impl Control {
     /// Reads an O-word line (`read_o` and the end of `read_items`); `None` when LinuxCNC stops
     /// reading it (a line skipped over).
     pub(super) fn read_o(
         &mut self,
+        machine: &mut Machine,
         at: usize,
         m_number: Option<i64>,
     ) -> Result<Option<OBlock>, Fault> {
-        let raw_len = self.lines.line.len();
-        let level = self.control.level();
+        let raw_len = machine.syntax.raw_len;
+        let level = self.level();
         let mut block = OBlock::new(OType::None, CallType::None);
         let mut pos;
         let bare: String;
         if m_number == Some(98) {
             block.kind = OType::M98;
             // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &machine.syntax.compact,
+                raw_len,
+                &machine.state.params,
+                &machine.state,
+            );
             let m_end = {
                 reader.set_position(at + 1);
                 reader.read_integer_value()?;
                 reader.position()
             };
             reader.set_position(m_end);
-            let words = &mut self.block;
+            let words = &mut machine.syntax.block;
             words.clear();
-            let bytes = self.compact.bytes();
+            let bytes = machine.syntax.compact.bytes();
             while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
                 reader.read_item(words)?;
             }
             let Some(p) = words.word(b'p') else {
-                return Err(self.line_fault("Found 'm98' code with no P-word"));
+                return Err(machine.line_fault("Found 'm98' code with no P-word"));
             };
             let mut number = p.value.floor();
             if p.value - number > 0.9999 {
                 number = p.value.ceil();
             } else if p.value - number > 0.0001 {
-                let (first, last) = self.span(p.at, p.end);
+                let (first, last) = machine.span(p.at, p.end);
                 return Err(Fault::syntax(first, last, "Non integer value for integer"));
             }
             bare = format!("{}", number as i32);
             block.l = words.word(b'l').map(|word| word.value);
             pos = bytes.len();
         } else if m_number == Some(99) {
-            if self.control.defining_sub {
-                return Err(self.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
+            if self.defining_sub {
+                return Err(machine.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
             }
             block.kind = OType::M99;
-            let mut reader = Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+            let mut reader = Reader::new(
+                &machine.syntax.compact,
+                raw_len,
+                &machine.state.params,
+                &machine.state,
+            );
             reader.set_position(at + 1);
             reader.read_integer_value()?;
             pos = reader.position();
-            bare = self.control.frames[level].name.as_deref().unwrap_or("").to_owned();
+            bare = self.frames[level].name.as_deref().unwrap_or("").to_owned();
         } else {
-            let bytes = self.compact.bytes();
+            let bytes = machine.syntax.compact.bytes();
             pos = at + 1;
             if bytes.get(pos) == Some(&b'<') {
                 let start = pos + 1;
@@ -76,8 +87,12 @@ impl<R: BufRead> Interpreter<R> {
                     }
                 }
             } else {
-                let mut reader =
-                    Reader::new(&self.compact, raw_len, &self.state.params, &self.state);
+                let mut reader = Reader::new(
+                    &machine.syntax.compact,
+                    raw_len,
+                    &machine.state.params,
+                    &machine.state,
+                );
                 reader.set_position(pos);
                 let number = reader.read_integer_value()?;
                 pos = reader.position();
@@ -103,9 +118,9 @@ impl<R: BufRead> Interpreter<R> {
             | OType::M99 => Rc::from(bare),
             _ => {
                 let scope = if level > 0 {
-                    self.control.frames[level].name.clone()
-                } else if self.control.defining_sub {
-                    self.control.sub_name.clone()
+                    self.frames[level].name.clone()
+                } else if self.defining_sub {
+                    self.sub_name.clone()
                 } else {
                     None
                 };
@@ -113,41 +128,43 @@ impl<R: BufRead> Interpreter<R> {
             }
         };
         let skipping_other =
-            self.control.skipping_o.as_ref().is_some_and(|skipping| **skipping != *block.name);
+            self.skipping_o.as_ref().is_some_and(|skipping| **skipping != *block.name);
         match block.kind {
             OType::Sub | OType::Fanuc => {
-                if self.control.defining_sub {
-                    return Err(self.line_fault("Nested subroutine definition"));
+                if self.defining_sub {
+                    return Err(machine.line_fault("Nested subroutine definition"));
                 }
             }
             OType::EndSub | OType::Return | OType::M99 => {
                 if skipping_other {
                     return Ok(None);
                 }
-                if block.kind != OType::M99 && self.compact.bytes().get(pos) == Some(&b'[') {
-                    let value = self.expression(&mut pos)?;
-                    self.state.owords.value = value;
-                    self.state.owords.returned = true;
+                if block.kind != OType::M99
+                    && machine.syntax.compact.bytes().get(pos) == Some(&b'[')
+                {
+                    let value = machine.expression(&mut pos)?;
+                    machine.state.owords.value = value;
+                    machine.state.owords.returned = true;
                 } else {
-                    self.state.owords.value = 0.0;
-                    self.state.owords.returned = false;
+                    machine.state.owords.value = 0.0;
+                    machine.state.owords.returned = false;
                 }
             }
-            _ if self.control.defining_sub => block.kind = OType::None,
+            _ if self.defining_sub => block.kind = OType::None,
             OType::Call => {
-                if self.control.skipping_o.is_some() {
+                if self.skipping_o.is_some() {
                     return Ok(None);
                 }
                 block.call_type = CallType::Oword;
                 let mut count = 0;
-                while let Some(&byte) = self.compact.bytes().get(pos) {
+                while let Some(&byte) = machine.syntax.compact.bytes().get(pos) {
                     match byte {
                         b'(' => pos += 1,
                         b'[' => {
                             if count >= SUB_PARAMS {
-                                return Err(self.line_fault("Too many subroutine parameters"));
+                                return Err(machine.line_fault("Too many subroutine parameters"));
                             }
-                            block.params[count] = self.expression(&mut pos)?;
+                            block.params[count] = machine.expression(&mut pos)?;
                             count += 1;
                         }
                         _ => break,
@@ -160,13 +177,13 @@ impl<R: BufRead> Interpreter<R> {
                 if skipping_other {
                     return Ok(None);
                 }
-                if self.compact.bytes().get(pos) != Some(&b'[') {
-                    return Err(self.line_fault(format!(
+                if machine.syntax.compact.bytes().get(pos) != Some(&b'[') {
+                    return Err(machine.line_fault(format!(
                         "Left bracket missing after '{}'",
                         block.kind.name()
                     )));
                 }
-                self.control.test_value = self.expression(&mut pos)?;
+                self.test_value = machine.expression(&mut pos)?;
             }
             OType::Do
             | OType::Else
@@ -175,39 +192,41 @@ impl<R: BufRead> Interpreter<R> {
             | OType::Continue
             | OType::EndWhile
             | OType::EndRepeat => {}
-            OType::None => return Err(self.line_fault("Unknown control command in o word")),
+            OType::None => return Err(machine.line_fault("Unknown control command in o word")),
         }
-        if self.control.skipping_o.is_some() {
+        if self.skipping_o.is_some() {
             return Ok(Some(block));
         }
         // After `if [...]` and the like, nothing but comments.
-        let bytes = self.compact.bytes();
+        let bytes = machine.syntax.compact.bytes();
         while let Some(&byte) = bytes.get(pos) {
             match byte {
                 b'(' => pos += 1,
                 b';' => break,
                 _ => {
-                    let (first, last) = self.span(pos, bytes.len());
+                    let (first, last) = machine.span(pos, bytes.len());
                     return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
                 }
             }
         }
         Ok(Some(block))
     }
+}
 
+impl Machine {
     /// Mach4's `G65 P… L… A… …` at compact index `at`: a call of subprogram P (L times) with
     /// its letters as the subprogram's own parameters (unset ones 0, as in an `o… call`).
     pub(super) fn read_g65(&mut self, at: usize) -> Result<OBlock, Fault> {
         let mut block = OBlock::new(OType::M98, CallType::G65);
         let digits =
-            self.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+            self.syntax.compact.bytes()[at + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
         let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+            Reader::new(&self.syntax.compact, self.syntax.raw_len, &self.state.params, &self.state);
         reader.set_position(at + 1 + digits);
         let mut program = None;
         loop {
             let pos = reader.position();
-            let Some(&letter) = self.compact.bytes().get(pos) else { break };
+            let Some(&letter) = self.syntax.compact.bytes().get(pos) else { break };
             if letter == b';' {
                 break;
             }
@@ -250,12 +269,55 @@ impl<R: BufRead> Interpreter<R> {
     /// A `[ … ]` expression at compact index `pos` (moved past it).
     pub(super) fn expression(&self, pos: &mut usize) -> Result<f64, Fault> {
         let mut reader =
-            Reader::new(&self.compact, self.lines.line.len(), &self.state.params, &self.state);
+            Reader::new(&self.syntax.compact, self.syntax.raw_len, &self.state.params, &self.state);
         reader.set_position(*pos);
         let value = reader.read_expression()?;
         *pos = reader.position();
         Ok(value)
     }
+}
+
+/// Whether a line's significant characters may be an O-word line, `M98` or `M99`: the only
+/// look at an ordinary line.
+#[inline]
+pub(in crate::interpreter) fn may_control(bytes: &[u8]) -> bool {
+    let mut at = usize::from(bytes.first() == Some(&b'/'));
+    if bytes.get(at) == Some(&b'n') {
+        at += 1;
+        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
+            at += 1;
+        }
+    }
+    match bytes.get(at) {
+        Some(b'o') => true,
+        Some(b'm') => !matches!(bytes.get(at + 1), Some(b'1'..=b'8')),
+        _ => false,
+    }
+}
+
+/// Whether a line's first item is G65 (`g65`, `g065`, not `g65.1`): Mach4's macro call, looked
+/// for only in the Mach3 dialect.
+pub(in crate::interpreter) fn may_call_g65(bytes: &[u8]) -> bool {
+    let at = first_item(bytes);
+    let Some(item) = bytes.get(at..).filter(|item| item.first() == Some(&b'g')) else {
+        return false;
+    };
+    let digits = item[1..].iter().take_while(|b| b.is_ascii_digit()).count();
+    let number = &item[1..1 + digits];
+    let number = &number[number.iter().take_while(|&&b| b == b'0').count()..];
+    number == b"65" && item.get(1 + digits) != Some(&b'.')
+}
+
+/// Where the first item of a line starts (after `/` and the N number).
+pub(in crate::interpreter) fn first_item(bytes: &[u8]) -> usize {
+    let mut at = usize::from(bytes.first() == Some(&b'/'));
+    if bytes.get(at) == Some(&b'n') {
+        at += 1;
+        while matches!(bytes.get(at), Some(b'0'..=b'9' | b'.')) {
+            at += 1;
+        }
+    }
+    at
 }
 
 /// Fanuc's argument specification I: the local parameter a G65 letter sets.

@@ -1,9 +1,9 @@
 //! Blocks: the words of one line, with parameters and expressions evaluated as LinuxCNC reads
 //! them (`read_items`, `read_real_value`, `read_real_expression`).
 
-use crate::degrees;
-use crate::lexer::{Compact, Fault};
-use crate::params::{MAX_PARAMETERS, Params};
+use crate::syntax::degrees;
+use crate::syntax::lexer::{Compact, Fault};
+use crate::syntax::params::{MAX_PARAMETERS, Params};
 
 /// LinuxCNC's modal groups of G and M codes, and what is implemented here.
 mod groups;
@@ -369,7 +369,7 @@ impl<'a> Reader<'a> {
                 return Err(Fault {
                     start: first,
                     end: last,
-                    kind: crate::lexer::FaultKind::ForeignAxis(
+                    kind: crate::syntax::lexer::FaultKind::ForeignAxis(
                         char::from(letter).to_ascii_uppercase(),
                     ),
                     message: String::new(),

@@ -68,6 +68,7 @@ impl Params {
     }
 
     /// The named parameters set, sorted: the global ones (`_…`) or the local ones.
+    #[cfg_attr(not(feature = "python"), allow(dead_code))]
     pub(crate) fn names(&self, global: bool) -> Vec<String> {
         let mut names: Vec<String> = self
             .named

@@ -6,9 +6,7 @@
 //! original line (for error messages). A `( … )` comment becomes one `(` byte, so that it still
 //! separates what stands on either side of it, as it does in LinuxCNC.
 
-use std::fs::File;
 use std::io::{self, BufRead, BufReader, Read, Seek};
-use std::path::Path;
 
 /// LinuxCNC refuses lines longer than this ("Command too long").
 pub(crate) const MAX_LINE: usize = 252;
@@ -36,6 +34,7 @@ pub(crate) enum FaultKind {
     NotSupported { code: String, note: &'static str },
     Cannot { code: String, reason: &'static str },
     ForeignAxis(char),
+    Needs(crate::error::Setting),
 }
 
 impl Fault {
@@ -208,13 +207,22 @@ impl Tape {
     }
 }
 
+/// A file subroutine's input (as the [`crate::Environment`] opened it).
+pub(crate) struct SubroutineFile(Box<dyn Seekable>);
+
+impl std::fmt::Debug for SubroutineFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SubroutineFile")
+    }
+}
+
 /// Reads lines into one reused buffer, never holding more than `max + 1` bytes of a line
 /// (`biscara_text::read_capped_line` with the dialect's cap).
 #[derive(Debug)]
 pub(crate) struct LineReader<R> {
     reader: Prefixed<R>,
     /// A file subroutine being read instead of the main input.
-    file: Option<BufReader<File>>,
+    file: Option<SubroutineFile>,
     /// Byte offset of the current line's start in the input being read (main or file).
     pub start: u64,
     /// Byte offset of the next line.
@@ -281,15 +289,13 @@ impl<R: BufRead> LineReader<R> {
         self.file.is_some()
     }
 
-    /// Reads `path` (a file subroutine) from its start instead of the current input.
-    pub(crate) fn open_file(&mut self, path: &Path) -> io::Result<()> {
-        let file = BufReader::new(File::open(path)?);
+    /// Reads `file` (a file subroutine, from its start) instead of the current input.
+    pub(crate) fn open_file(&mut self, file: Box<dyn Seekable>) {
         if self.file.is_none() {
             self.main_next = self.next;
         }
-        self.file = Some(file);
+        self.file = Some(SubroutineFile(file));
         self.next = 0;
-        Ok(())
     }
 
     /// Goes back to reading the main input where it was left.
@@ -303,7 +309,7 @@ impl<R: BufRead> LineReader<R> {
     pub(crate) fn seek(&mut self, to: u64) -> io::Result<()> {
         if to != self.next {
             match (&mut self.file, self.jump) {
-                (Some(file), _) => file.jump(self.next, to)?,
+                (Some(file), _) => file.0.jump(self.next, to)?,
                 (None, Some(jump)) => self.reader.jump(jump, self.next, to)?,
                 (None, None) => self.tape_seek(to)?,
             }
@@ -406,7 +412,7 @@ impl<R: BufRead> LineReader<R> {
         }
         let read = match &mut self.file {
             Some(file) => {
-                let mut counted = Counted { inner: file, count: 0 };
+                let mut counted = Counted { inner: &mut file.0, count: 0 };
                 let read = biscara_text::read_capped_line(&mut counted, &mut self.line, self.max);
                 self.next += counted.count;
                 read
