@@ -19,7 +19,9 @@
 use std::f64::consts::PI;
 use std::hint::black_box;
 
-use biscara::kinematics::{BatchSolution, Dispatch, Joints, Kinematics, Pose};
+use biscara::kinematics::{
+    BatchSolution, BatchStatus, Dispatch, Joints, Kinematics, Pose, PoseColumns, SolutionColumns,
+};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 const POSES: usize = 1_000_000;
@@ -146,6 +148,27 @@ fn kinematics(c: &mut Criterion) {
             b.iter(|| {
                 model.inverse_batch_with(dispatch, black_box(&poses), &mut solved);
                 solved.iter().map(|s| s.joints.theta1).sum::<f64>()
+            });
+        });
+    }
+    // The same, the poses given and the solutions written as columns (no gathering into lanes).
+    let column = |f: fn(&Pose) -> f64| poses.iter().map(f).collect::<Vec<f64>>();
+    let (xs, ys, zs, phis) = (column(|p| p.x), column(|p| p.y), column(|p| p.z), column(|p| p.phi));
+    let mut q = [(); 4].map(|()| vec![0.0; POSES]);
+    let mut status = vec![BatchStatus::Ok; POSES];
+    for (name, dispatch) in [
+        ("ik_columns_checked_dispatch", Dispatch::Detect),
+        ("ik_columns_checked_portable", Dispatch::Portable),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let [theta1, theta2, theta3, d4] = &mut q;
+                model.inverse_columns_with(
+                    dispatch,
+                    PoseColumns { x: black_box(&xs), y: &ys, z: &zs, phi: &phis },
+                    SolutionColumns { theta1, theta2, theta3, d4, status: &mut status },
+                );
+                q[0].iter().sum::<f64>()
             });
         });
     }
