@@ -154,7 +154,7 @@ fn kinematics(c: &mut Criterion) {
     // The same, the poses given and the solutions written as columns (no gathering into lanes).
     let column = |f: fn(&Pose) -> f64| poses.iter().map(f).collect::<Vec<f64>>();
     let (xs, ys, zs, phis) = (column(|p| p.x), column(|p| p.y), column(|p| p.z), column(|p| p.phi));
-    let mut q = [(); 4].map(|()| vec![0.0; POSES]);
+    let mut q = [(); 5].map(|()| vec![0.0; POSES]);
     let mut status = vec![BatchStatus::Ok; POSES];
     for (name, dispatch) in [
         ("ik_columns_checked_dispatch", Dispatch::Detect),
@@ -162,11 +162,18 @@ fn kinematics(c: &mut Criterion) {
     ] {
         group.bench_function(name, |b| {
             b.iter(|| {
-                let [theta1, theta2, theta3, d4] = &mut q;
+                let [theta1, theta2, theta3, d4, distal_rotation] = &mut q;
                 model.inverse_columns_with(
                     dispatch,
                     PoseColumns { x: black_box(&xs), y: &ys, z: &zs, phi: &phis },
-                    SolutionColumns { theta1, theta2, theta3, d4, status: &mut status },
+                    SolutionColumns {
+                        theta1,
+                        theta2,
+                        theta3,
+                        d4,
+                        distal_rotation,
+                        status: &mut status,
+                    },
                 );
                 q[0].iter().sum::<f64>()
             });

@@ -1,18 +1,19 @@
 //! Inverse kinematics and reachability over many poses at once, vectorised with runtime CPU
 //! dispatch.
 //!
-//! The poses are solved in blocks of [`LANES`], copied into struct-of-arrays form and solved
-//! with no branches as vectors of pulp's [`Simd`] trait. [`pulp::Arch`] detects the CPU once per
-//! call and runs the code compiled for x86-64-v3 (AVX2 + FMA, four lanes) when the CPU has it,
-//! one lane at a time elsewhere: the same source, and no `unsafe` here (pulp holds it).
+//! The poses are solved in blocks of [`LANES`] with no branches, as vectors of pulp's [`Simd`]
+//! trait: from columns ([`Kinematics::inverse_columns`]) as they are, from [`Pose`]s
+//! ([`Kinematics::inverse_batch`]) copied into columns first. [`pulp::Arch`] detects the CPU
+//! once per call and runs the code compiled for x86-64-v4 (AVX-512, eight lanes) or x86-64-v3
+//! (AVX2 + FMA, four lanes) when the CPU has it, one lane at a time elsewhere: the same source,
+//! and no `unsafe` here (pulp holds it).
 //!
-//! The formulas are the scalar path's ([`Kinematics::inverse`] and its checks), operation for
-//! operation, so the elbows, and with them the reach, assembly-mode and singularity verdicts,
-//! are the same bits (a grid point at a chain's full stretch stays exactly at it); only `atan2`,
-//! which the scalar path takes from libm and which does not vectorise, is the branch-free
-//! [`atan2`] here, within two units in the last place of libm's. Joint angles agree with the
-//! scalar path's within 1e-12 rad (tested on grids and random poses in every working and
-//! assembly mode).
+//! The results are the scalar path's, bit for bit ([`Kinematics::inverse`] and its checks;
+//! tested on grids and random poses in every working and assembly mode, with every dispatch):
+//! the formulas are the same operation for operation, and `atan2`, which the scalar path takes
+//! from libm, is libm's algorithm in lanes ([`atan2`]: the same reduction, constants and
+//! operations, no fused multiply-add). A lane on which libm takes one of its special cases
+//! (a zero or a ratio of the arguments past 2⁶²) is solved again by the scalar path.
 //!
 //! Reachability ([`Kinematics::reachable_batch`]) tests θ1's and θ2's limits on the directions
 //! of the proximal links (a dot product against the limits' arc, no `atan2`), and falls back to
@@ -27,7 +28,8 @@ use pulp::{Simd, WithSimd};
 
 use crate::{Joints, Kinematics, KinematicsError, Pose};
 
-/// How many poses one block of the batch loops solves together.
+/// How many poses one block of the batch loops solves together: enough vectors for the CPU to
+/// overlap their long chains of dependent steps.
 pub const LANES: usize = 32;
 
 /// The outcome of one pose of [`Kinematics::inverse_batch`]: the first check of
@@ -286,7 +288,7 @@ impl Lanes {
         &self,
         s: S,
         pose: [&[f64; LANES]; 4],
-        joints: [&mut [f64; LANES]; 4],
+        joints: [&mut [f64; LANES]; 5],
         status: &mut [f64; LANES],
         scratch: &mut Scratch,
     ) -> bool {
@@ -316,7 +318,8 @@ impl Lanes {
             }
         }
         let angles = S::as_simd_f64s(angle_y).0;
-        let [q0, q1, q2, q3] = joints;
+        let [q0, q1, q2, q3, q4] = joints;
+        let q4 = S::as_mut_simd_f64s(q4).0;
         let mut any_other = s.less_than_f64s(s.splat_f64s(1.0), s.splat_f64s(0.0));
         let (q0, q1) = (S::as_mut_simd_f64s(q0).0, S::as_mut_simd_f64s(q1).0);
         let (q2, q3) = (S::as_mut_simd_f64s(q2).0, S::as_mut_simd_f64s(q3).0);
@@ -361,7 +364,7 @@ impl Lanes {
             let other = s.and_m64s(solvable, s.not_m64s(s.equal_f64s(sum, sum)));
             any_other = s.or_m64s(any_other, other);
             codes[v] = s.select_f64s(other, code(s, SCALAR), status);
-            (q0[v], q1[v], q2[v], q3[v]) = (q[0], q[1], q[2], q[3]);
+            (q0[v], q1[v], q2[v], q3[v], q4[v]) = (q[0], q[1], q[2], q[3], rotation);
         }
         s.first_true_m64s(any_other) < S::F64_LANES
     }
@@ -469,6 +472,9 @@ pub struct SolutionColumns<'a> {
     pub theta3: &'a mut [f64],
     /// d4, mm.
     pub d4: &'a mut [f64],
+    /// The distal rotation ψ1 − ψ1_home in (−π, π] ([`crate::IkSolution::distal_rotation`]),
+    /// radians: what [`crate::Theta3Unwrapper::theta3`] reads.
+    pub distal_rotation: &'a mut [f64],
     /// Whether the robot can take the pose, or the first reason it cannot.
     pub status: &'a mut [BatchStatus],
 }
@@ -520,9 +526,10 @@ impl Kinematics {
     ) {
         let n = poses.x.len();
         let lengths = [poses.y.len(), poses.z.len(), poses.phi.len(), out.theta1.len()];
-        let more = [out.theta2.len(), out.theta3.len(), out.d4.len(), out.status.len()];
+        let more = [out.theta2.len(), out.theta3.len(), out.d4.len(), out.distal_rotation.len()];
+        let more = more.into_iter().chain([out.status.len()]);
         assert!(
-            lengths.iter().chain(&more).all(|&length| length == n),
+            lengths.into_iter().chain(more).all(|length| length == n),
             "inverse_columns: the columns differ in length"
         );
         dispatch.arch().dispatch(ColumnsOp { model: self, lanes: Lanes::new(self), poses, out });
@@ -550,11 +557,13 @@ impl Kinematics {
     /// One pose the scalar way, for the lanes the vector code leaves to libm's `atan2`.
     #[cold]
     #[inline(never)]
-    fn solve_scalar(&self, pose: &Pose) -> BatchSolution {
+    fn solve_scalar(&self, pose: &Pose) -> (BatchSolution, f64) {
         let solution = match self.inverse(pose) {
             Ok(solution) => solution,
-            Err(KinematicsError::NotFinite { .. }) => return failure(BatchStatus::NotFinite),
-            Err(_) => return failure(BatchStatus::Unreachable),
+            Err(KinematicsError::NotFinite { .. }) => {
+                return (failure(BatchStatus::NotFinite), 0.0);
+            }
+            Err(_) => return (failure(BatchStatus::Unreachable), 0.0),
         };
         let status = if self.check_assembly(&solution).is_err() {
             BatchStatus::BeyondType2
@@ -565,7 +574,7 @@ impl Kinematics {
         } else {
             BatchStatus::Ok
         };
-        BatchSolution { joints: solution.joints, status }
+        (BatchSolution { joints: solution.joints, status }, solution.distal_rotation)
     }
 
     /// [`Kinematics::reachable_batch`] for one point the scalar way (see
@@ -619,21 +628,22 @@ impl WithSimd for InverseOp<'_> {
         // Struct of arrays; a short last block is padded with the previous block's poses (and
         // dropped).
         let mut pose = [[0.0; LANES]; 4];
-        let mut q = [[0.0; LANES]; 4];
+        let mut q = [[0.0; LANES]; 5];
         let mut status = [0.0; LANES];
         for (poses, out) in self.poses.chunks(LANES).zip(self.out.chunks_mut(LANES)) {
             for (k, p) in poses.iter().enumerate() {
                 (pose[0][k], pose[1][k], pose[2][k], pose[3][k]) = (p.x, p.y, p.z, p.phi);
             }
             let [x, y, z, phi] = &pose;
-            let [q0, q1, q2, q3] = &mut q;
-            self.lanes.solve_block(s, [x, y, z, phi], [q0, q1, q2, q3], &mut status, &mut scratch);
+            let [q0, q1, q2, q3, rotation] = &mut q;
+            let joints = [q0, q1, q2, q3, rotation];
+            self.lanes.solve_block(s, [x, y, z, phi], joints, &mut status, &mut scratch);
             for (k, solution) in out.iter_mut().enumerate() {
                 // Field by field: a whole `BatchSolution` was built on the stack and copied
                 // with its padding, a load over the status byte just stored that waited for it
                 // (29 % of the time, 20 → 14 ns per pose).
                 match status[k] as u8 {
-                    SCALAR => *solution = self.model.solve_scalar(&poses[k]),
+                    SCALAR => *solution = self.model.solve_scalar(&poses[k]).0,
                     code => {
                         solution.joints = Joints::new(q[0][k], q[1][k], q[2][k], q[3][k]);
                         solution.status = status_of(code);
@@ -658,34 +668,40 @@ impl WithSimd for ColumnsOp<'_> {
     #[inline(always)]
     fn with_simd<S: Simd>(self, s: S) {
         let PoseColumns { x, y, z, phi } = self.poses;
-        let SolutionColumns { theta1, theta2, theta3, d4, status } = self.out;
+        let SolutionColumns { theta1, theta2, theta3, d4, distal_rotation, status } = self.out;
         let columns = x.chunks(LANES).zip(y.chunks(LANES)).zip(z.chunks(LANES));
         let columns = columns.zip(phi.chunks(LANES)).zip(theta1.chunks_mut(LANES));
         let columns = columns.zip(theta2.chunks_mut(LANES)).zip(theta3.chunks_mut(LANES));
-        let columns = columns.zip(d4.chunks_mut(LANES)).zip(status.chunks_mut(LANES));
+        let columns = columns.zip(d4.chunks_mut(LANES)).zip(distal_rotation.chunks_mut(LANES));
+        let columns = columns.zip(status.chunks_mut(LANES));
         // A short last block is padded with the origin (and dropped).
         let mut padding = [[0.0; LANES]; 4];
         let mut scratch = Scratch::new();
         let mut codes = [0.0; LANES];
-        let mut tail = [[0.0; LANES]; 4];
-        for ((((((((x, y), z), phi), theta1), theta2), theta3), d4), status) in columns {
+        let mut tail = [[0.0; LANES]; 5];
+        for (((((((((x, y), z), phi), theta1), theta2), theta3), d4), distal_rotation), status) in
+            columns
+        {
             let [px, py, pz, pphi] = &mut padding;
             let pose = [block(x, px), block(y, py), block(z, pz), block(phi, pphi)];
-            let joints = [&mut *theta1, &mut *theta2, &mut *theta3, &mut *d4];
+            let joints =
+                [&mut *theta1, &mut *theta2, &mut *theta3, &mut *d4, &mut *distal_rotation];
             let other = match joints.map(<&mut [f64; LANES]>::try_from) {
                 // A whole block: the joints written in place.
-                [Ok(q0), Ok(q1), Ok(q2), Ok(q3)] => {
-                    self.lanes.solve_block(s, pose, [q0, q1, q2, q3], &mut codes, &mut scratch)
+                [Ok(q0), Ok(q1), Ok(q2), Ok(q3), Ok(q4)] => {
+                    let joints = [q0, q1, q2, q3, q4];
+                    self.lanes.solve_block(s, pose, joints, &mut codes, &mut scratch)
                 }
                 _ => {
-                    let [q0, q1, q2, q3] = &mut tail;
-                    let other =
-                        self.lanes.solve_block(s, pose, [q0, q1, q2, q3], &mut codes, &mut scratch);
+                    let [q0, q1, q2, q3, q4] = &mut tail;
+                    let joints = [q0, q1, q2, q3, q4];
+                    let other = self.lanes.solve_block(s, pose, joints, &mut codes, &mut scratch);
                     let n = status.len();
                     theta1.copy_from_slice(&tail[0][..n]);
                     theta2.copy_from_slice(&tail[1][..n]);
                     theta3.copy_from_slice(&tail[2][..n]);
                     d4.copy_from_slice(&tail[3][..n]);
+                    distal_rotation.copy_from_slice(&tail[4][..n]);
                     other
                 }
             };
@@ -696,8 +712,9 @@ impl WithSimd for ColumnsOp<'_> {
                 for (k, &code) in codes[..status.len()].iter().enumerate() {
                     if code as u8 == SCALAR {
                         let pose = Pose::new(pose[0][k], pose[1][k], pose[2][k], pose[3][k]);
-                        let solution = self.model.solve_scalar(&pose);
+                        let (solution, rotation) = self.model.solve_scalar(&pose);
                         [theta1[k], theta2[k], theta3[k], d4[k]] = solution.joints.to_array();
+                        distal_rotation[k] = rotation;
                         status[k] = solution.status;
                     }
                 }
@@ -940,21 +957,31 @@ mod tests {
             let ys: Vec<f64> = poses.iter().map(|p| p.y).collect();
             let mut reachable = vec![false; poses.len()];
             model.reachable_batch_with(dispatch, &xs, &ys, &mut reachable);
-            let mut columns = [(); 4].map(|()| vec![0.0; poses.len()]);
+            let mut columns = [(); 5].map(|()| vec![0.0; poses.len()]);
             let mut status = vec![BatchStatus::Ok; poses.len()];
             let phis: Vec<f64> = poses.iter().map(|p| p.phi).collect();
             let zs: Vec<f64> = poses.iter().map(|p| p.z).collect();
-            let [theta1, theta2, theta3, d4] = &mut columns;
+            let [theta1, theta2, theta3, d4, distal_rotation] = &mut columns;
             model.inverse_columns_with(
                 dispatch,
                 PoseColumns { x: &xs, y: &ys, z: &zs, phi: &phis },
-                SolutionColumns { theta1, theta2, theta3, d4, status: &mut status },
+                SolutionColumns {
+                    theta1,
+                    theta2,
+                    theta3,
+                    d4,
+                    distal_rotation,
+                    status: &mut status,
+                },
             );
             for (k, solution) in out.iter().enumerate() {
                 assert_eq!(status[k], solution.status, "{:?} {dispatch:?}", poses[k]);
                 let joints = solution.joints.to_array();
                 for (column, value) in columns.iter().zip(joints) {
                     assert!(same(column[k], value), "{:?} {dispatch:?}", poses[k]);
+                }
+                if let Ok(ik) = model.inverse(&poses[k]) {
+                    assert!(same(columns[4][k], ik.distal_rotation), "{:?}", poses[k]);
                 }
             }
             for ((pose, solution), reachable) in poses.iter().zip(&out).zip(&reachable) {
