@@ -11,8 +11,12 @@
 //! Measured 2026-11-26 on the 2-core development machine of that day (AMD EPYC, AVX2 and
 //! AVX-512, shared with other builds), per pose: reference 83.8 ns, `inverse` 77.0 ns,
 //! `inverse_checked` 91.3 ns, the batch path (`inverse_batch`, the same checks) 23.0 ns with
-//! run-time dispatch (x86-64-v3) and 42.2 ns forced portable, `forward` 81.7 ns. The README's
-//! table quotes these.
+//! run-time dispatch (x86-64-v3) and 42.2 ns forced portable, `forward` 81.7 ns.
+//!
+//! Measured 2026-11-27, same machine kind, at a load of about 2: reference 82.6 ns, `inverse`
+//! 73.0 ns, `inverse_checked` 82.5 ns, the batch path (now the scalar path's bits, AVX-512)
+//! 16.9 ns through `inverse_batch` and 15.5 ns through `inverse_columns` (52.0 and 44.8 ns
+//! forced portable), `forward` 81.2 ns. docs/performance.md quotes these.
 
 #![allow(missing_docs)]
 

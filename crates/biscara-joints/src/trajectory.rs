@@ -300,12 +300,14 @@ mod tests {
 
     use super::*;
 
+    /// A row: t, line and the bits of the joints.
+    type Row = (f64, usize, [u64; 4]);
+    /// The rows of a trajectory and the error it ends with.
+    type Outcome = (Vec<Row>, Option<String>);
+
     /// The trajectory one sample at a time, as before batches: each sample by
     /// [`JointSolver::solve`], stopping at the first error, the input's included.
-    fn one_at_a_time(
-        samples: &[Result<CartesianSample, String>],
-        model: Kinematics,
-    ) -> (Vec<(f64, usize, [u64; 4])>, Option<String>) {
+    fn one_at_a_time(samples: &[Result<CartesianSample, String>], model: Kinematics) -> Outcome {
         let mut solver = JointSolver::new(model);
         let mut rows = Vec::new();
         for sample in samples {
@@ -328,7 +330,7 @@ mod tests {
         samples: &[Result<CartesianSample, String>],
         model: Kinematics,
         derivatives: bool,
-    ) -> (Vec<(f64, usize, [u64; 4])>, Option<String>) {
+    ) -> Outcome {
         let trajectory = JointTrajectory::new(samples.iter().cloned(), model);
         let mut trajectory =
             if derivatives { trajectory } else { trajectory.without_derivatives() };
