@@ -8,8 +8,9 @@ use crate::differences::{central_differences, slope};
 use crate::solver::{JointSolver, PreparedSamples, SampleError};
 
 /// How many Cartesian samples [`JointTrajectory`] reads ahead and solves together by batch IK
-/// ([`JointSolver::prepare`]).
-pub const BATCH_SAMPLES: usize = 64;
+/// ([`JointSolver::prepare`]): `joints` on the 20,000-line engraving program counts 0.6 % fewer
+/// instructions than with 64.
+pub const BATCH_SAMPLES: usize = 256;
 
 /// One row of the joint trajectory: radians and millimetres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -356,7 +357,7 @@ mod tests {
         #[test]
         fn batches_give_the_rows_and_the_error_of_one_sample_at_a_time(
             steps in prop::collection::vec(
-                (-8.0..8.0f64, -8.0..8.0f64, -5.0..5.0f64, -40.0..40.0f64, 0u8..100), 1..400),
+                (-8.0..8.0f64, -8.0..8.0f64, -5.0..5.0f64, -40.0..40.0f64, 0u16..1500), 1..800),
             derivatives in any::<bool>(),
         ) {
             let mut pose = [0.0, 400.0, 50.0, 0.0];
