@@ -11,15 +11,21 @@
 //! Measured 2026-11-26 on the 2-core development machine of that day (AMD EPYC, AVX2 and
 //! AVX-512, shared with other builds), per pose: reference 83.8 ns, `inverse` 77.0 ns,
 //! `inverse_checked` 91.3 ns, the batch path (`inverse_batch`, the same checks) 23.0 ns with
-//! run-time dispatch (x86-64-v3) and 42.2 ns forced portable, `forward` 81.7 ns. The README's
-//! table quotes these.
+//! run-time dispatch (x86-64-v3) and 42.2 ns forced portable, `forward` 81.7 ns.
+//!
+//! Measured 2026-11-27, same machine kind, at a load of about 2: reference 82.6 ns, `inverse`
+//! 73.0 ns, `inverse_checked` 82.5 ns, the batch path (now the scalar path's bits, AVX-512)
+//! 16.9 ns through `inverse_batch` and 15.5 ns through `inverse_columns` (52.0 and 44.8 ns
+//! forced portable), `forward` 81.2 ns. docs/performance.md quotes these.
 
 #![allow(missing_docs)]
 
 use std::f64::consts::PI;
 use std::hint::black_box;
 
-use biscara::kinematics::{BatchSolution, Dispatch, Joints, Kinematics, Pose};
+use biscara::kinematics::{
+    BatchSolution, BatchStatus, Dispatch, Joints, Kinematics, Pose, PoseColumns, SolutionColumns,
+};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 const POSES: usize = 1_000_000;
@@ -146,6 +152,34 @@ fn kinematics(c: &mut Criterion) {
             b.iter(|| {
                 model.inverse_batch_with(dispatch, black_box(&poses), &mut solved);
                 solved.iter().map(|s| s.joints.theta1).sum::<f64>()
+            });
+        });
+    }
+    // The same, the poses given and the solutions written as columns (no gathering into lanes).
+    let column = |f: fn(&Pose) -> f64| poses.iter().map(f).collect::<Vec<f64>>();
+    let (xs, ys, zs, phis) = (column(|p| p.x), column(|p| p.y), column(|p| p.z), column(|p| p.phi));
+    let mut q = [(); 5].map(|()| vec![0.0; POSES]);
+    let mut status = vec![BatchStatus::Ok; POSES];
+    for (name, dispatch) in [
+        ("ik_columns_checked_dispatch", Dispatch::Detect),
+        ("ik_columns_checked_portable", Dispatch::Portable),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let [theta1, theta2, theta3, d4, distal_rotation] = &mut q;
+                model.inverse_columns_with(
+                    dispatch,
+                    PoseColumns { x: black_box(&xs), y: &ys, z: &zs, phi: &phis },
+                    SolutionColumns {
+                        theta1,
+                        theta2,
+                        theta3,
+                        d4,
+                        distal_rotation,
+                        status: &mut status,
+                    },
+                );
+                q[0].iter().sum::<f64>()
             });
         });
     }

@@ -5,7 +5,8 @@
 //! [`JointTrajectory`] turns an iterator of [`CartesianSample`]s into an iterator of
 //! [`JointSample`]s and fails at the first sample the robot cannot take, naming its line and time.
 //! [`JointSpeedLimit`] is the interpolator's [`biscara_interpolate::SpeedLimit`] from the joint
-//! velocity limits. It streams: at most three samples are held.
+//! velocity limits. It streams: a batch of samples read ahead (solved together by batch IK) and
+//! three solved samples are held.
 //!
 //! ```
 //! use biscara_interpolate::CartesianSample;
@@ -34,5 +35,5 @@ pub use csv::{
 };
 pub use differences::{central_differences, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};
-pub use solver::{JointSolver, LimitViolation, SampleError};
-pub use trajectory::{JointSample, JointTrajectory, JointsError};
+pub use solver::{JointSolver, LimitViolation, PreparedSamples, SampleError};
+pub use trajectory::{BATCH_SAMPLES, JointSample, JointTrajectory, JointsError};

@@ -2,7 +2,8 @@
 
 use biscara_interpolate::CartesianSample;
 use biscara_kinematics::{
-    IkSolution, Joint, Joints, Kinematics, KinematicsError, Pose, Theta3Unwrapper,
+    BatchStatus, IkSolution, Joint, Joints, Kinematics, KinematicsError, Pose, PoseColumns,
+    SolutionColumns, Theta3Unwrapper,
 };
 use biscara_motion::Position;
 
@@ -96,6 +97,55 @@ impl JointSolver {
         Ok(solution)
     }
 
+    /// Solves `samples` ahead by batch IK ([`Kinematics::inverse_columns`]) into `batch`, for
+    /// [`JointSolver::solve_prepared`] to take one at a time, in order. The solver is not
+    /// changed.
+    pub fn prepare(&self, samples: &[CartesianSample], batch: &mut PreparedSamples) {
+        batch.resize(samples.len());
+        for (k, sample) in samples.iter().enumerate() {
+            let [x, y, z, c] = sample.pose;
+            let pose = Pose::from_degrees(x, y, z, c);
+            (batch.x[k], batch.y[k], batch.z[k], batch.phi[k]) = (pose.x, pose.y, pose.z, pose.phi);
+        }
+        let [theta1, theta2, theta3, d4, distal_rotation] = &mut batch.solved;
+        self.model.inverse_columns(
+            PoseColumns { x: &batch.x, y: &batch.y, z: &batch.z, phi: &batch.phi },
+            SolutionColumns {
+                theta1,
+                theta2,
+                theta3,
+                d4,
+                distal_rotation,
+                status: &mut batch.status,
+            },
+        );
+    }
+
+    /// [`JointSolver::solve`] of `sample`, the sample `k` of the last [`JointSolver::prepare`]
+    /// into `batch`, the samples before it taken in order: the same joints, bit for bit, or the
+    /// same error. A pose the batch found clean needs only θ3 made continuous and the limits
+    /// tested on it; any other is solved again by [`JointSolver::solve`], which gives the
+    /// error (or, when only the batch's θ3 was outside its limits, the joints).
+    #[inline(always)]
+    pub fn solve_prepared(
+        &mut self,
+        sample: &CartesianSample,
+        batch: &PreparedSamples,
+        k: usize,
+    ) -> Result<Joints, SampleError> {
+        if batch.status[k] == BatchStatus::Ok {
+            let [theta1, theta2, theta3, d4, rotation] = batch.solved.each_ref().map(|q| q[k]);
+            let mut unwrapper = self.theta3;
+            let theta3 = unwrapper.theta3(batch.phi[k], rotation, theta3);
+            let joints = Joints::new(theta1, theta2, theta3, d4);
+            if self.model.within_limits(&joints) {
+                self.theta3 = unwrapper;
+                return Ok(joints);
+            }
+        }
+        self.solve(sample).map(|solution| solution.joints)
+    }
+
     /// Every joint of `joints` outside its limits, in the robot file's units.
     pub fn limit_violations(&self, joints: &Joints) -> impl Iterator<Item = LimitViolation> {
         let model = self.model;
@@ -109,6 +159,32 @@ impl JointSolver {
             let user = |v: f64| if joint.is_revolute() { v.to_degrees() } else { v };
             Some(LimitViolation { joint, value: user(value), limits: [user(min), user(max)] })
         })
+    }
+}
+
+/// Samples solved ahead by [`JointSolver::prepare`]: the poses and their batch solutions, as
+/// columns. Reused from one batch to the next.
+#[derive(Debug, Clone, Default)]
+pub struct PreparedSamples {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    phi: Vec<f64>,
+    /// θ1, θ2, θ3 (fitted as [`Kinematics::inverse`] does), d4 and the distal rotation.
+    solved: [Vec<f64>; 5],
+    status: Vec<BatchStatus>,
+}
+
+impl PreparedSamples {
+    /// Room for `n` samples.
+    fn resize(&mut self, n: usize) {
+        for column in [&mut self.x, &mut self.y, &mut self.z, &mut self.phi] {
+            column.resize(n, 0.0);
+        }
+        for column in &mut self.solved {
+            column.resize(n, 0.0);
+        }
+        self.status.resize(n, BatchStatus::Ok);
     }
 }
 

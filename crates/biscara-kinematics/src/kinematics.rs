@@ -330,6 +330,17 @@ impl Kinematics {
         }
     }
 
+    /// Whether every joint of `joints` is inside its limits ([`Kinematics::check_limits`]
+    /// without the error).
+    #[inline]
+    pub fn within_limits(&self, joints: &Joints) -> bool {
+        let inside = |value: f64, [min, max]: [f64; 2]| min <= value && value <= max;
+        inside(joints.theta1, self.limits[0])
+            && inside(joints.theta2, self.limits[1])
+            && inside(joints.theta3, self.limits[2])
+            && inside(joints.d4, self.limits[3])
+    }
+
     /// Fails with [`KinematicsError::JointLimit`] for the first joint outside its limits.
     pub fn check_limits(&self, joints: &Joints) -> Result<(), KinematicsError> {
         for joint in Joint::ALL {

@@ -37,7 +37,9 @@ mod unwrap;
 
 pub use nalgebra as na;
 
-pub use batch::{BatchSolution, BatchStatus, Dispatch, LANES, atan2 as batch_atan2};
+pub use batch::{
+    BatchSolution, BatchStatus, Dispatch, LANES, PoseColumns, SolutionColumns, atan2 as batch_atan2,
+};
 pub use error::{KinematicsError, Shortfall, SingularityKind};
 pub use jacobian::PlanarJacobian;
 pub use kinematics::{

@@ -64,21 +64,30 @@ impl Theta3Unwrapper {
     /// The first solution keeps the θ3 [`crate::Kinematics::inverse`] gave it (shifted by a turn
     /// into the limits when only that makes it fit), so that a path starts where `ik` says.
     pub fn apply(&mut self, solution: &mut IkSolution) {
-        let raw = solution.distal_rotation;
+        solution.joints.theta3 =
+            self.theta3(solution.pose.phi, solution.distal_rotation, solution.joints.theta3);
+    }
+
+    /// [`Theta3Unwrapper::apply`] on the parts of a solution it reads: the pose's φ, the
+    /// solution's distal rotation and θ3; returns the continuous θ3.
+    #[inline]
+    pub fn theta3(&mut self, phi: f64, distal_rotation: f64, theta3: f64) -> f64 {
+        let raw = distal_rotation;
         if self.distal_rotation.previous.is_some() {
             let rotation = self.distal_rotation.unwrap(raw);
-            solution.joints.theta3 = solution.pose.phi - rotation;
+            phi - rotation
         } else {
             // The single-pose θ3 is `φ − raw` or a turn from it: the rotation starts at that turn.
-            let unshifted = solution.pose.phi - raw;
-            let rotation = if solution.joints.theta3 > unshifted + PI {
+            let unshifted = phi - raw;
+            let rotation = if theta3 > unshifted + PI {
                 raw - TAU
-            } else if solution.joints.theta3 < unshifted - PI {
+            } else if theta3 < unshifted - PI {
                 raw + TAU
             } else {
                 raw
             };
             self.distal_rotation.previous = Some((rotation, raw));
+            theta3
         }
     }
 }

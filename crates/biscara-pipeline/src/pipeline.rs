@@ -337,7 +337,7 @@ impl Samples {
 
 /// A program's joint samples, errors located (see [`Pipeline::joints`]).
 pub struct JointSamples {
-    trajectory: JointTrajectory<Samples>,
+    trajectory: JointTrajectory<Samples, PipelineError>,
     file: String,
 }
 

@@ -287,9 +287,10 @@ impl Iterator for Stashed {
 }
 
 /// A program's joint samples with the tool's state at each (see
-/// [`crate::Pipeline::tool_joints`]); the solver holds at most three samples, so do the states.
+/// [`crate::Pipeline::tool_joints`]); the solver holds a batch of samples and three more, so do
+/// the states.
 pub struct ToolJointSamples {
-    trajectory: JointTrajectory<Stashed>,
+    trajectory: JointTrajectory<Stashed, PipelineError>,
     states: Stash,
     tool: Tool,
     file: String,
