@@ -1,4 +1,4 @@
-//! Dialects: the firmware a program was written for (SPEC §4.3), and what each reads
+//! Dialects: the firmware a program was written for (docs/gcode.md), and what each reads
 //! differently from LinuxCNC.
 //!
 //! The interpreter is LinuxCNC's; a dialect only adds hooks around it: lines it reads before
@@ -17,7 +17,7 @@ use std::str::FromStr;
 pub enum Dialect {
     /// Decide from the program's content (see [`detect_dialect`]).
     Auto,
-    /// LinuxCNC's RS274/NGC, exactly (SPEC §4.2): conformance with `rs274` holds here.
+    /// LinuxCNC's RS274/NGC, exactly (docs/gcode.md): conformance with `rs274` holds here.
     Linuxcnc,
     /// Grbl 1.1 (also for LaserGRBL, LightBurn, LaserWeb, bCNC output).
     Grbl,
@@ -161,9 +161,9 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// Decides the dialect of a program from its first bytes (`auto`): the first generator comment
 /// that names a firmware or a program written for one wins; otherwise the first line only one
 /// dialect can read (E words or printer M-codes → Marlin, `$` lines or K in an XY arc → Grbl,
-/// nested comments, an `O0001` program number or G41/G42 with a P word → Mach3, LinuxCNC's O-words or named parameters
-/// → LinuxCNC). Only complete lines are looked at (all of them when `complete` says the text is
-/// the whole program). `None` when nothing decides.
+/// nested comments, an `O0001` program number or G41/G42 with a P word → Mach3, LinuxCNC's O-words
+/// or named parameters → LinuxCNC). Only complete lines are looked at (all of them when `complete`
+/// says the text is the whole program). `None` when nothing decides.
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
     let end = if complete {

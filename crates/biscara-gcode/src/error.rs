@@ -96,7 +96,7 @@ pub enum GcodeError {
         note: &'static str,
     },
     /// Occurs for a code of LinuxCNC's language this robot cannot do: lathe modes and cycles,
-    /// spindle-synchronised motion (SPEC §4.2).
+    /// spindle-synchronised motion (docs/gcode.md).
     #[error("{at}: {code} is refused: {reason}")]
     CannotRun {
         /// Where.

@@ -33,7 +33,7 @@ mod canned;
 mod checks;
 /// Comments LinuxCNC executes (ABORT, Python).
 mod comments;
-/// O-word control flow: subroutines, conditions and loops (SPEC §4.2 tier 3).
+/// O-word control flow: subroutines, conditions and loops (docs/gcode.md tier 3).
 mod control;
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
@@ -41,7 +41,8 @@ mod cutter_comp;
 mod execute;
 /// The Fanuc/Haas dialect: Macro B control flow, M97, machine M-codes, look-ahead codes.
 mod fanuc;
-/// The dialects' and the tool's hooks (SPEC §4.3, §1.6), kept apart from LinuxCNC's execution.
+/// The dialects' and the tool's hooks (docs/gcode.md, docs/motion.md), kept apart from LinuxCNC's
+/// execution.
 mod hooks;
 /// M19, M48–M53, M62–M68 and the `$` word.
 mod io_codes;
@@ -109,14 +110,15 @@ pub struct Config {
     /// LinuxCNC's block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC.
     pub block_delete: bool,
-    /// Whose G-code the program is (SPEC §4.3). [`Dialect::Linuxcnc`] by default: exactly
+    /// Whose G-code the program is (docs/gcode.md). [`Dialect::Linuxcnc`] by default: exactly
     /// LinuxCNC's reading. [`Dialect::Auto`] decides from the program (see
     /// [`Interpreter::detection`]).
     pub dialect: Dialect,
-    /// What the robot carries: what M3, M4, M5 and S mean (SPEC §1.6). The gripper by default.
+    /// What the robot carries: what M3, M4, M5 and S mean (docs/motion.md). The gripper by default.
     pub tool: Tool,
-    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES) ([`crate::infer_tool`]);
-    /// `tool` is kept when nothing tells. See [`Interpreter::tool_inference`].
+    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES)
+    /// ([`crate::infer_tool`]); `tool` is kept when nothing tells. See
+    /// [`Interpreter::tool_inference`].
     pub infer_tool: bool,
     /// The path-control mode before the program says one (`--blend`): `None`, exact stop, by
     /// default; `Some(p)` as if the program began with `G64 P{p}`. See [`Motion::blend`].
@@ -228,8 +230,9 @@ impl<R: BufRead> Interpreter<R> {
         &self.machine.hooks.summary
     }
 
-    /// The tool the program was found to be written for, when [`Config::infer_tool`](crate::Config::infer_tool)
-    /// asked and something told (known once the first motion is read).
+    /// The tool the program was found to be written for, when
+    /// [`Config::infer_tool`](crate::Config::infer_tool) asked and something told (known once the
+    /// first motion is read).
     pub fn tool_inference(&self) -> Option<&ToolInference> {
         self.machine.hooks.tool_inference.as_ref()
     }

@@ -1,14 +1,14 @@
 //! LinuxCNC's RS274/NGC G-code for a robot with the axes X Y Z C, interpreted into
 //! [`Motion`](biscara_motion::Motion)s: the paper's `gcodeInterpreter`, made a real
-//! interpreter (SPEC §4.2).
+//! interpreter (docs/gcode.md).
 //!
 //! It reads programs exactly as LinuxCNC's interpreter reads them — words and blocks, modal
 //! groups and their checks, the order of execution within a block, numbered and named
 //! parameters, expressions with LinuxCNC's operators, precedence and functions, arcs in the
 //! I J K and R forms with LinuxCNC's tolerances, G20 inches, the G54–G59.3, G92 and G53
-//! offsets, G28/G30, G93 inverse time, cutter radius compensation — and emits every move as absolute millimetres and
-//! degrees in the robot's base frame. It streams: the interpreter is an iterator over an
-//! [`std::io::BufRead`] that holds one line at a time.
+//! offsets, G28/G30, G93 inverse time, cutter radius compensation — and emits every move as
+//! absolute millimetres and degrees in the robot's base frame. It streams: the interpreter is an
+//! iterator over an [`std::io::BufRead`] that holds one line at a time.
 //!
 //! It deliberately does not: know the robot (no kinematics; the home pose is a plain number),
 //! print, or guess. Of tier 3 it reads tool offsets with a LinuxCNC tool table
@@ -53,11 +53,11 @@
 //!   `PROGRAM_END`); M2 and M30 do.
 //!
 //! Programs written for other firmware are read as that firmware reads them when
-//! [`Config::dialect`] says so ([`Dialect`]: Grbl, Marlin, Mach3; SPEC §4.3), or when it is
+//! [`Config::dialect`] says so ([`Dialect`]: Grbl, Marlin, Mach3; docs/gcode.md), or when it is
 //! [`Dialect::Auto`]: the interpreter then reads the first [`LOOKAHEAD_BYTES`] ahead and decides
 //! from them ([`detect_dialect`]), and reports its choice and reason as a value
 //! ([`Interpreter::detection`]), with the no-motion codes it recorded ([`Interpreter::summary`]).
-//! What M3, M4, M5 and S mean depends on [`Config::tool`] ([`Tool`], SPEC §1.6). The library's
+//! What M3, M4, M5 and S mean depends on [`Config::tool`] ([`Tool`], docs/motion.md). The library's
 //! default is [`Dialect::Linuxcnc`], which has none of the dialects' hooks.
 //!
 //! ```

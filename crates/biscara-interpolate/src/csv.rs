@@ -1,4 +1,4 @@
-//! The path CSV (SPEC §6): `t_s,x_mm,y_mm,z_mm,c_deg[,gripper]`.
+//! The path CSV (docs/motion.md): `t_s,x_mm,y_mm,z_mm,c_deg[,gripper]`.
 
 use std::io::{self, BufRead, Write};
 
@@ -9,8 +9,8 @@ use crate::CartesianSample;
 /// The header of a path CSV, without and with the gripper column.
 pub const PATH_HEADER: &str = "t_s,x_mm,y_mm,z_mm,c_deg";
 
-/// Writes samples as a path CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`] bytes and at
-/// [`PathCsvWriter::finish`], which must be called.
+/// Writes samples as a path CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`]
+/// bytes and at [`PathCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct PathCsvWriter<W: Write> {
     out: W,
@@ -30,8 +30,8 @@ impl<W: Write> PathCsvWriter<W> {
     }
 
     /// A writer with `decimals` decimals and the extra columns `columns` after the pose (the
-    /// tool's, SPEC §6 `--events`), whose values [`PathCsvWriter::write_with`] takes; writes the
-    /// header at once.
+    /// tool's, docs/motion.md `--events`), whose values [`PathCsvWriter::write_with`] takes; writes
+    /// the header at once.
     pub fn with_columns(mut out: W, decimals: usize, columns: &[&str]) -> io::Result<Self> {
         out.write_all(PATH_HEADER.as_bytes())?;
         for column in columns {

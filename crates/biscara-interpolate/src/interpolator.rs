@@ -7,7 +7,7 @@ use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal};
 use crate::chain::{Chain, ChainBounds};
 use crate::{Profile, Segment, Timing};
 
-/// Cartesian motion limits (SPEC §1.3 `motion`), in mm, degrees and seconds.
+/// Cartesian motion limits (docs/kinematics.md `motion`), in mm, degrees and seconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CartesianLimits {
     /// Speed of G0 moves along the XYZ path, mm/s.
@@ -248,7 +248,7 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
     }
 }
 
-/// Turns motions into Cartesian samples at a fixed time step (SPEC §6).
+/// Turns motions into Cartesian samples at a fixed time step (docs/motion.md).
 ///
 /// The first sample is the start pose at t = 0; every programmed end point is hit exactly by a
 /// sample. Memory does not depend on the program length. `on_slow` hears of every motion that

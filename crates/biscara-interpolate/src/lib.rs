@@ -1,20 +1,21 @@
-//! Cartesian interpolation (SPEC §6): turns a stream of [`Motion`]s into a stream of
+//! Cartesian interpolation (docs/motion.md): turns a stream of [`Motion`]s into a stream of
 //! [`CartesianSample`]s at a fixed time step, as the paper's `interpolation` did, and writes and
 //! reads the path CSV.
 //!
 //! Lines, true arcs and helices ([`Segment`]); C in proportion to the path parameter; three
 //! velocity profiles ([`Profile`]): the paper's constant speed, a trapezoid with an exact stop
 //! at every corner, and the time-optimal one under the joints' velocity and acceleration limits
-//! (TOPP-RA, from `biscara-timing`), also from rest to rest. Every programmed end point is hit exactly by a sample, because each motion's
-//! duration is rounded up to whole steps (its speed lowered, never raised). A [`SpeedLimit`]
-//! lets a later stage (the joint velocities) slow a move down.
+//! (TOPP-RA, from `biscara-timing`), also from rest to rest. Every programmed end point is hit
+//! exactly by a sample, because each motion's duration is rounded up to whole steps (its speed
+//! lowered, never raised). A [`SpeedLimit`] lets a later stage (the joint velocities) slow a move
+//! down.
 //!
 //! It knows nothing of G-code text or of kinematics: motions come from any iterator, and joint
 //! limits arrive through [`SpeedLimit`]. It streams: memory does not grow with the program.
 //!
 //! ```
-//! use biscara_interpolate::{CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit, Profile};
-//! use biscara_motion::{Feed, Motion, MotionKind};
+//! use biscara_interpolate::{CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit,
+//! Profile}; use biscara_motion::{Feed, Motion, MotionKind};
 //!
 //! let config = InterpolationConfig {
 //!     dt: 0.1,

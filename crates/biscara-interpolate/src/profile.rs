@@ -1,6 +1,6 @@
 //! Velocity profiles in path-parameter space: how s ∈ [0, 1] advances with time.
 
-/// How a motion's speed varies along it (SPEC §6).
+/// How a motion's speed varies along it (docs/motion.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Profile {
     /// The paper's: constant speed from the first sample to the last, velocity jumps at corners.
@@ -12,7 +12,7 @@ pub enum Profile {
     /// from rest to rest (TOPP-RA, `biscara-timing`). Not a closed form: the interpolator plans
     /// it; [`Timing`] times it as a trapezoid.
     ///
-    /// The default (SPEC §6).
+    /// The default (docs/motion.md).
     ///
     /// [`SpeedLimit`]: crate::SpeedLimit
     #[default]

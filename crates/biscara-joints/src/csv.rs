@@ -1,4 +1,4 @@
-//! The joint CSV (SPEC §7).
+//! The joint CSV (docs/motion.md).
 
 use std::io::{self, BufRead, Write};
 
@@ -49,8 +49,8 @@ impl JointCsvFormat {
     }
 }
 
-/// Writes joint samples as CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`] bytes and at
-/// [`JointCsvWriter::finish`], which must be called.
+/// Writes joint samples as CSV; rows reach the output in chunks of [`biscara_text::FLUSH_AT`] bytes
+/// and at [`JointCsvWriter::finish`], which must be called.
 #[derive(Debug)]
 pub struct JointCsvWriter<W: Write> {
     out: W,
@@ -67,8 +67,8 @@ impl<W: Write> JointCsvWriter<W> {
     }
 
     /// A writer in `format` with the extra columns `columns` after the joints (the tool's,
-    /// `joints --events`, SPEC §1.6), whose values [`JointCsvWriter::write_with`] takes; writes
-    /// the header at once.
+    /// `joints --events`, docs/motion.md), whose values [`JointCsvWriter::write_with`] takes;
+    /// writes the header at once.
     pub fn with_columns(mut out: W, format: JointCsvFormat, columns: &[&str]) -> io::Result<Self> {
         write!(out, "{}", format.header())?;
         for column in columns {
@@ -119,7 +119,7 @@ impl<W: Write> JointCsvWriter<W> {
     }
 }
 
-/// The tool columns `joints --events` may add after the joints (SPEC §1.6), which the reader
+/// The tool columns `joints --events` may add after the joints (docs/motion.md), which the reader
 /// reads past.
 pub const TOOL_COLUMNS: [&str; 5] =
     ["gripper", "laser_power", "spindle_rpm", "extruded_mm", "pen_down"];

@@ -1,6 +1,7 @@
-//! Joint trajectories (SPEC §7), the paper's `trajectoryJoint`: every Cartesian sample solved by
-//! inverse kinematics in the robot's working and assembly mode, θ3 kept continuous, velocities and
-//! accelerations from finite differences, written as the joint CSV a virtual or real robot follows.
+//! Joint trajectories (docs/motion.md), the paper's `trajectoryJoint`: every Cartesian sample
+//! solved by inverse kinematics in the robot's working and assembly mode, θ3 kept continuous,
+//! velocities and accelerations from finite differences, written as the joint CSV a virtual or real
+//! robot follows.
 //!
 //! [`JointTrajectory`] turns an iterator of [`CartesianSample`]s into an iterator of
 //! [`JointSample`]s and fails at the first sample the robot cannot take, naming its line and time.
@@ -14,9 +15,9 @@
 //! use biscara_kinematics::Kinematics;
 //!
 //! let home = [0.0, 460.798724079689, 100.0, 0.0];
-//! let samples = [Ok::<_, std::convert::Infallible>(CartesianSample { t: 0.0, pose: home, line: 0, gripper: false })];
-//! let rows: Vec<_> = JointTrajectory::new(samples.into_iter(), Kinematics::default())
-//!     .collect::<Result<_, _>>()?;
+//! let samples = [Ok::<_, std::convert::Infallible>(CartesianSample { t: 0.0, pose: home, line: 0,
+//! gripper: false })]; let rows: Vec<_> = JointTrajectory::new(samples.into_iter(),
+//! Kinematics::default())     .collect::<Result<_, _>>()?;
 //! assert!(rows[0].joints.theta1.abs() < 1e-9);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -1,4 +1,4 @@
-//! Slowing moves down so that no joint exceeds its velocity limit (SPEC §6, §7).
+//! Slowing moves down so that no joint exceeds its velocity limit (docs/motion.md).
 
 use biscara_interpolate::{CartesianLimits, JointBound, RateLimit, Segment, SpeedLimit};
 use biscara_kinematics::{Joint, Kinematics, PlanarConfiguration, Robot};

@@ -49,8 +49,8 @@ impl LimitViolation {
 }
 
 /// Solves the samples of one path in order: IK in the robot's working mode, the assembly-mode
-/// check (SPEC §1.2), θ3 kept continuous ([`Theta3Unwrapper`]), then the joint limits and the
-/// singularity margin on the unwrapped values.
+/// check (docs/kinematics.md), θ3 kept continuous ([`Theta3Unwrapper`]), then the joint limits and
+/// the singularity margin on the unwrapped values.
 ///
 /// Every consumer of samples uses it: `joints` ([`crate::JointTrajectory`]) stops at the first
 /// error, `check` collects them all, the pictures skip what cannot be drawn. A failed sample does

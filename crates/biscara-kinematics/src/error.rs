@@ -13,7 +13,7 @@ pub enum Shortfall {
     TooClose,
 }
 
-/// The two kinds of singularity of the five-bar (SPEC §1.2).
+/// The two kinds of singularity of the five-bar (docs/kinematics.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SingularityKind {
     /// Type 1 (serial): the chain is stretched or folded.

@@ -1,4 +1,4 @@
-//! Inverse and forward kinematics of the five-bar + Z + rotary robot (SPEC §1.1–§1.4).
+//! Inverse and forward kinematics of the five-bar + Z + rotary robot (docs/kinematics.md–§1.4).
 
 use std::f64::consts::{PI, TAU};
 
@@ -51,7 +51,7 @@ impl PlanarConfiguration {
         libm::atan2(link.y, link.x)
     }
 
-    /// How far this configuration is from each singularity (SPEC §1.2).
+    /// How far this configuration is from each singularity (docs/kinematics.md).
     pub fn singularity(&self) -> SingularityAngles {
         let type1 = |chain| line_angle(self.proximal(chain), self.distal(chain));
         SingularityAngles {
@@ -248,8 +248,8 @@ impl Kinematics {
     /// Inverse kinematics in the robot's working mode, without limit, assembly-mode or
     /// singularity checks: fails only when a chain cannot reach the point.
     ///
-    /// Each chain's root is chosen by its σ_i (SPEC §1.2). The solution reports its assembly mode;
-    /// use [`Kinematics::inverse_checked`] to refuse poses the robot cannot take.
+    /// Each chain's root is chosen by its σ_i (docs/kinematics.md). The solution reports its
+    /// assembly mode; use [`Kinematics::inverse_checked`] to refuse poses the robot cannot take.
     // Inlined so that the solution, returned in a `Result`, is not stored and loaded back:
     // `joints` on the engraving program 0.456 → 0.425 s.
     #[inline(always)]
@@ -444,9 +444,9 @@ impl Kinematics {
         self.forward(&Joints::default()).map(|fk| fk.pose).unwrap_or_default()
     }
 
-    /// Solves `A cos θ + B sin θ = C` for one chain (SPEC §1.4, the corrected eq. (7)), picking the
-    /// root whose bend matches the working mode. Returns `(cos θ, sin θ)` times the reach `R`
-    /// (θ is its `atan2`, in (−π, π]) and the elbow.
+    /// Solves `A cos θ + B sin θ = C` for one chain (docs/kinematics.md, the corrected eq. (7)),
+    /// picking the root whose bend matches the working mode. Returns `(cos θ, sin θ)` times the
+    /// reach `R` (θ is its `atan2`, in (−π, π]) and the elbow.
     #[inline(always)]
     fn chain_inverse(
         &self,

@@ -1,4 +1,4 @@
-//! Signs, working modes and assembly modes (SPEC §1.2).
+//! Signs, working modes and assembly modes (docs/kinematics.md).
 
 use std::fmt;
 use std::str::FromStr;

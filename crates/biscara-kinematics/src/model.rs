@@ -44,7 +44,7 @@ impl RobotModel {
 }
 
 impl Default for RobotModel {
-    /// The built-in robot of SPEC §1.3.
+    /// The built-in robot of docs/kinematics.md.
     fn default() -> RobotModel {
         RobotModel { robot: Robot::default(), kinematics: Kinematics::default() }
     }

@@ -1,4 +1,4 @@
-//! One pose's solution as `biscara ik` and `biscara fk` print it (SPEC §9).
+//! One pose's solution as `biscara ik` and `biscara fk` print it (README.md).
 
 use biscara_text::fixed;
 use serde::Serialize;

@@ -1,4 +1,4 @@
-//! The robot description, `robot.json` (SPEC §1.3): reading, validation, defaults.
+//! The robot description, `robot.json` (docs/kinematics.md): reading, validation, defaults.
 
 use serde::{Deserialize, Serialize};
 
@@ -37,11 +37,11 @@ pub struct Robot {
     pub singularity_margin: f64,
     /// Body dimensions used by the virtual robot (collisions, pictures).
     pub geometry: Geometry,
-    /// The end effector (SPEC §1.6): what the program's M3, M4, M5, S and E words drive.
+    /// The end effector (docs/motion.md): what the program's M3, M4, M5, S and E words drive.
     pub tool: ToolSpec,
 }
 
-/// The end effector the robot carries (SPEC §1.6).
+/// The end effector the robot carries (docs/motion.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ToolSpec {
@@ -139,7 +139,8 @@ pub struct Geometry {
 }
 
 impl Default for Robot {
-    /// The robot of SPEC §1.3: the paper's link lengths and Z stroke, our base, limits and geometry.
+    /// The robot of docs/kinematics.md: the paper's link lengths and Z stroke, our base, limits and
+    /// geometry.
     fn default() -> Self {
         Robot {
             name: "BiSCARA 4-axis (FME Transactions 50, 2022)".to_owned(),

@@ -44,8 +44,8 @@ impl AngleUnwrapper {
     }
 }
 
-/// Makes θ3 continuous along a path (SPEC §1.1): `θ3 = φ − (ψ1 − ψ1_home)` with ψ1 unwrapped,
-/// never wrapped into (−180°, 180°].
+/// Makes θ3 continuous along a path (docs/kinematics.md): `θ3 = φ − (ψ1 − ψ1_home)` with ψ1
+/// unwrapped, never wrapped into (−180°, 180°].
 ///
 /// Feed it the IK solutions of a path in order.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

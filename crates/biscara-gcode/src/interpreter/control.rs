@@ -1,4 +1,4 @@
-//! O-word control flow (SPEC §4.2 tier 3) as LinuxCNC's rs274 runs it — `read_o`,
+//! O-word control flow (docs/gcode.md tier 3) as LinuxCNC's rs274 runs it — `read_o`,
 //! `convert_control_functions`, `control_back_to`, `execute_call`, `execute_return` — with
 //! its quirks: one global "skipping to" label, labels remembered by name (`sub#label` for
 //! the local ones), conditions not evaluated while skipping, #1–#30 saved and restored around

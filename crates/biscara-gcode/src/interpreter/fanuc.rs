@@ -1,4 +1,4 @@
-//! The Fanuc/Haas dialect's line hook (SPEC §4.3): what a Fanuc or Haas control reads that
+//! The Fanuc/Haas dialect's line hook (docs/gcode.md): what a Fanuc or Haas control reads that
 //! LinuxCNC does not, turned into what the interpreter runs, before the O-word control flow
 //! and the block reader see the line.
 //!

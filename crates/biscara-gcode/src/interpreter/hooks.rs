@@ -1,4 +1,4 @@
-//! The dialects' hooks around LinuxCNC's execution (SPEC §4.3) and the tool's events (§1.6),
+//! The dialects' hooks around LinuxCNC's execution (docs/gcode.md) and the tool's events (§1.6),
 //! on the machine: their state (`Hooks`), what a dialect makes of a block after the block
 //! reader, and what M3/M4/M5/S emit for each tool. None of them runs in [`Dialect::Linuxcnc`]
 //! except [`Machine::tool_event`] (the gripper's pick, place, off). The hooks that read the

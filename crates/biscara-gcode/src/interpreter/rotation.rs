@@ -4,7 +4,7 @@
 //! is in force: a point `p` of the program is, on the machine, `rot(p + g92) + origin` in XY
 //! (Z and C are not rotated; the tool length offset is added after the rotation). Arcs in the
 //! XY plane turn with their centre; an arc in the XZ or YZ plane of a rotated system lies in a
-//! tilted plane, which the inter-file (SPEC §5) cannot describe: it runs as straight moves
+//! tilted plane, which the inter-file (docs/motion.md) cannot describe: it runs as straight moves
 //! within 0.001 mm of it ([`Machine::tilted_arc`]). Nothing here
 //! runs while no system is rotated: [`State::rotation`] is zero and the plain sums are used.
 //!
@@ -195,7 +195,7 @@ impl Machine {
     /// An arc in the XZ or YZ plane of a rotated system, from `start` to `end` (program
     /// coordinates) about `center` (the plane's two axes), `turns` times round: LinuxCNC's canon
     /// turns the arc's basis vectors with the system, so the arc lies in a tilted plane, which
-    /// the inter-file (SPEC §5) cannot describe. It runs as straight moves within
+    /// the inter-file (docs/motion.md) cannot describe. It runs as straight moves within
     /// [`CHORD_TOLERANCE_MM`] of it: equal steps of the angle, the radius going from the start's
     /// to the end's (LinuxCNC's arcs may end a little off their radius), the normal axis and C
     /// in proportion (a helix's chords leave it only in the plane). `Err` with the message when

@@ -1,6 +1,6 @@
 //! Tools: T, M6, M61, the tool length offset (G43, G43.1, G43.2, G49), G10 L1/L10/L11 and the
 //! tool parameters (5400–5413, `#<_current_tool>`, …), as LinuxCNC's standalone `rs274` does
-//! them (SPEC §4.2 tier 3).
+//! them (docs/gcode.md tier 3).
 //!
 //! The table is LinuxCNC's `.tbl` ([`ToolTable`], millimetres). Without one, every tool exists
 //! with zero offsets and diameter, and [`Interpreter::tools_without_table`] says whether the

@@ -9,7 +9,7 @@ pub(crate) enum Support {
     /// Part of LinuxCNC's language, refused with "… is not supported yet".
     No(&'static str),
     /// Part of LinuxCNC's language that this robot cannot do (lathe, spindle-synchronised
-    /// motion; SPEC §4.2): refused, with why.
+    /// motion; docs/gcode.md): refused, with why.
     Cannot(&'static str),
 }
 
