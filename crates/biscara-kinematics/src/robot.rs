@@ -599,7 +599,7 @@ mod tests {
         assert_eq!(err.to_string(), "2:28: meshes.tool.scale: must be positive (got -1)");
         assert_eq!(
             Robot::locate_key("{\n  \"meshes\": {\"tool\": \"t.stl\"}}", "meshes.tool"),
-            Some((2, 15))
+            Some((2, 14))
         );
     }
 
