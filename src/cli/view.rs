@@ -17,7 +17,9 @@ use super::args::{
 };
 use super::diag::located;
 use super::diag::{Level, report};
-use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
+use super::files::{
+    FileSource, display_path, file_name, load_meshes, load_scene, open_input, write_output,
+};
 
 /// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
@@ -99,6 +101,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let title =
         format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
     let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
+    load_meshes(model.robot(), &mut viewer)?;
     for row in read_joint_csv(open_input(&args.traj)?) {
         let row = row.map_err(|err| located(&args.traj, err))?;
         viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;
