@@ -80,7 +80,10 @@ pub enum StlError {
 pub fn read_stl(mut input: impl BufRead, max_triangles: usize) -> Result<StlMesh, StlError> {
     let mut header = Vec::with_capacity(84);
     (&mut input).take(84).read_to_end(&mut header).map_err(|err| binary_io(0, err))?;
-    let text = header.iter().all(|&b| b >= 0x20 && b != 0x7f || matches!(b, b'\t' | b'\n' | b'\r'));
+    // Text: UTF-8 (a character cut by the 84th byte allowed), no control bytes but whitespace.
+    let utf8 = std::str::from_utf8(&header).map_or_else(|err| err.error_len().is_none(), |_| true);
+    let text = utf8
+        && header.iter().all(|&b| b >= 0x20 && b != 0x7f || matches!(b, b'\t' | b'\n' | b'\r'));
     let starts_solid =
         header.trim_ascii_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
     if text && starts_solid {
