@@ -26,7 +26,8 @@ use super::files::{
 /// A WebGL scene (three.js, inlined): the base, the proximal and distal links (the passive
 /// joints from forward kinematics), the Z column, the rotary axis and the tool by its kind
 /// (gripper jaws opening and closing, spindle, laser with its beam while on, nozzle, pen), the
-/// work surface, the scene's boxes and the tool's trace. With --program: the programmed path,
+/// work surface, the scene's boxes and the tool's trace; parts for which robot.json names an STL
+/// mesh (`meshes`) are drawn with it. With --program: the programmed path,
 /// the pick (M3) and place (M4) points, the objects (each pick takes the object standing at its
 /// pose, carries it, leaves it at the place), the program line being executed, and for a laser,
 /// an extruder, a pen or a spindle the work done so far (the burnt trace, darker for more
