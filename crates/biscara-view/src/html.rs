@@ -738,6 +738,39 @@ mod tests {
     }
 
     #[test]
+    fn meshes_are_placed_in_their_parts_frame_and_refused_when_unknown_twice_or_too_big() {
+        let ascii = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.001 0 0\n\
+                     vertex 0 0.002 0\nendloop\nendfacet\nendsolid t\n";
+        let mesh = crate::read_stl(ascii.as_bytes(), 10).unwrap();
+        let mut viewer =
+            Viewer::new(&RobotModel::default(), Scene::default(), ViewerOptions::default());
+        let spec = MeshSpec {
+            scale: 1000.0,
+            offset: [5.0, 0.0, 1.0],
+            rotation: [0.0, 0.0, 90.0],
+            ..MeshSpec::new("t.stl")
+        };
+        viewer.add_mesh("distal2", &spec, &mesh).unwrap();
+        let corners = &viewer.meshes[0].1;
+        // (1, 0, 0) mm turned to (0, 1, 0), (0, 2, 0) to (-2, 0, 0), then moved by the offset.
+        let expected = [5.0, 0.0, 1.0, 5.0, 1.0, 1.0, 3.0, 0.0, 1.0];
+        assert!(corners.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-5), "{corners:?}");
+        assert_eq!(viewer.mesh_triangles(), 1);
+        for (part, message) in [("distal2", "has a mesh already"), ("elbow", "no part `elbow`")] {
+            let err = viewer.add_mesh(part, &spec, &mesh).unwrap_err();
+            assert!(err.to_string().contains(message), "{err}");
+        }
+        let big = StlMesh::from_positions(vec![0.0; 9 * MAX_MESH_TRIANGLES]);
+        let err = viewer.add_mesh("tool", &spec, &big).unwrap_err();
+        assert!(err.to_string().contains("more than 200000 triangles"), "{err}");
+        viewer.push_row(&row(0.0, 0.0)).unwrap();
+        let mut page = Vec::new();
+        viewer.write_html(&mut page).unwrap();
+        let page = String::from_utf8(page).unwrap();
+        assert!(page.contains("\"meshes\":[{\"part\":\"distal2\",\"triangles\":1,\"data\":\""));
+    }
+
+    #[test]
     fn base64_matches_the_standard_alphabet_and_padding() {
         for (bytes, expected) in [
             (&b""[..], ""),

@@ -28,6 +28,13 @@ impl StlMesh {
         self.positions.len() / 9
     }
 
+    /// A mesh of the given corners (nine numbers per triangle; a trailing partial triangle is
+    /// dropped).
+    pub fn from_positions(mut positions: Vec<f32>) -> StlMesh {
+        positions.truncate(positions.len() / 9 * 9);
+        StlMesh { positions }
+    }
+
     /// The corners, nine numbers per triangle (x, y, z of each corner), in the file's units.
     pub fn positions(&self) -> &[f32] {
         &self.positions
