@@ -6,9 +6,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use biscara::gcode::{Environment, Seekable};
+use biscara::kinematics::Robot;
 use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::Scene;
-use biscara::view::ImageFormat;
+use biscara::view::{ImageFormat, MAX_MESH_TRIANGLES, Viewer, read_stl};
 pub(crate) use biscara_files::{display_path, file_name};
 
 use super::args::InputKind;
@@ -100,4 +101,53 @@ fn io_error(err: biscara_files::FileError) -> io::Error {
         biscara_files::FileError::Read { source, .. } => source,
         other => io::Error::other(other),
     }
+}
+
+/// Makes the robot's mesh files absolute, each relative to the robot file's folder (the current
+/// folder for standard input), so that the robot in force names them wherever it is used or
+/// written; a file that cannot be found is an error at its key: `ROBOT:LINE:COL: meshes.PART: …`.
+pub(crate) fn resolve_meshes(robot: &mut Robot, path: &Path, text: &str) -> anyhow::Result<()> {
+    let folder = match path.parent() {
+        Some(folder) if path != Path::new("-") => folder.to_owned(),
+        _ => PathBuf::new(),
+    };
+    for (part, spec) in robot.meshes.parts_mut() {
+        let key = format!("meshes.{part}");
+        let file = folder.join(&spec.file);
+        let resolved = file.canonicalize().and_then(|resolved| {
+            if resolved.is_file() { Ok(resolved) } else { Err(io::Error::other("not a file")) }
+        });
+        match resolved {
+            Ok(resolved) => spec.file = resolved.to_string_lossy().into_owned(),
+            Err(err) => {
+                let at = Robot::locate_key(text, &key)
+                    .map_or_else(String::new, |(line, column)| format!("{line}:{column}: "));
+                return Err(anyhow::anyhow!(
+                    "{}:{at}{key}: cannot read the STL file {}: {err}",
+                    display_path(path),
+                    file.display()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Reads the robot's mesh files (already resolved by [`resolve_meshes`]) into the viewer;
+/// errors as `STL_FILE:LINE:COL: …` or `STL_FILE: byte N: …`.
+pub(crate) fn load_meshes(robot: &Robot, viewer: &mut Viewer) -> anyhow::Result<()> {
+    for (part, spec) in robot.meshes.parts() {
+        let path = Path::new(&spec.file);
+        let mesh = read_stl(open_input(path)?, MAX_MESH_TRIANGLES).map_err(|err| {
+            // Binary errors say `byte N:`; a space after the name reads better there.
+            let err = err.to_string();
+            if err.starts_with("byte ") {
+                located(path, format!(" {err}"))
+            } else {
+                located(path, err)
+            }
+        })?;
+        viewer.add_mesh(part, spec, &mesh).map_err(|err| located(path, format!(" {err}")))?;
+    }
+    Ok(())
 }

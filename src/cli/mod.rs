@@ -23,7 +23,7 @@ use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use biscara::kinematics::RobotModel;
+use biscara::kinematics::{Robot, RobotModel};
 use clap::{Parser, Subcommand};
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
@@ -133,7 +133,9 @@ fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
         return Ok(RobotModel::default());
     };
     let text = biscara_files::read_text(path)?;
-    RobotModel::from_json(&text).map_err(|err| diag::located(path, err))
+    let mut robot = Robot::from_json(&text).map_err(|err| diag::located(path, err))?;
+    files::resolve_meshes(&mut robot, path, &text)?;
+    RobotModel::new(robot).map_err(|err| diag::located(path, err))
 }
 
 fn is_broken_pipe(err: &anyhow::Error) -> bool {

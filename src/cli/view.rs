@@ -17,14 +17,17 @@ use super::args::{
 };
 use super::diag::located;
 use super::diag::{Level, report};
-use super::files::{FileSource, display_path, file_name, load_scene, open_input, write_output};
+use super::files::{
+    FileSource, display_path, file_name, load_meshes, load_scene, open_input, write_output,
+};
 
 /// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
 /// A WebGL scene (three.js, inlined): the base, the proximal and distal links (the passive
 /// joints from forward kinematics), the Z column, the rotary axis and the tool by its kind
 /// (gripper jaws opening and closing, spindle, laser with its beam while on, nozzle, pen), the
-/// work surface, the scene's boxes and the tool's trace. With --program: the programmed path,
+/// work surface, the scene's boxes and the tool's trace; parts for which robot.json names an STL
+/// mesh (`meshes`) are drawn with it. With --program: the programmed path,
 /// the pick (M3) and place (M4) points, the objects (each pick takes the object standing at its
 /// pose, carries it, leaves it at the place), the program line being executed, and for a laser,
 /// an extruder, a pen or a spindle the work done so far (the burnt trace, darker for more
@@ -99,6 +102,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let title =
         format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
     let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
+    load_meshes(model.robot(), &mut viewer)?;
     for row in read_joint_csv(open_input(&args.traj)?) {
         let row = row.map_err(|err| located(&args.traj, err))?;
         viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;

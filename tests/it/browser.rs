@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::util::{biscara, skip_or_fail, temp_dir};
+use crate::view_cli::write_box_stl;
 
 const WIDTH: u32 = 1400;
 const HEIGHT: u32 = 860;
@@ -345,4 +346,47 @@ fn a_million_samples_load_and_answer_the_probe() {
     assert!((answer["t"].as_f64().expect("t") - 700.0005).abs() < 1e-3, "{answer}");
     let tool = point(&answer["tool"]);
     assert!(tool[0].is_finite() && tool[1] > 100.0, "{answer}");
+}
+
+/// Meshes from robot.json (issue 28): an ASCII box for proximal link 1 and a binary box in
+/// metres for the tool, through the demo. At 12 moments the page loads without console errors,
+/// the tool point from the scene graph still matches FK (≤ 0.5 mm), and each mesh is drawn on
+/// its part's frame: the link's box centred halfway along the link at link_height, the tool's
+/// box centred 20 mm above the tool point (its 30 mm height halved plus its 5 mm offset).
+#[test]
+fn the_view_hangs_robot_file_meshes_on_the_parts_frames() {
+    let Some(binary) = chromium_or_skip() else { return };
+    let dir = temp_dir("browser-meshes");
+    let (l1, b1x, height) = (210.0, 100.0, 250.0);
+    write_box_stl(&dir.join("arm.stl"), [0.0, -12.0, -6.0], [l1, 12.0, 6.0], true);
+    write_box_stl(&dir.join("tool.stl"), [-0.015, -0.015, 0.0], [0.015, 0.015, 0.03], false);
+    let robot = r#"{"meshes": {"proximal1": "arm.stl",
+        "tool": {"file": "tool.stl", "scale": 1000, "offset": [0, 0, 5]}}}"#;
+    std::fs::write(dir.join("robot.json"), robot).expect("write robot");
+    biscara(&dir, &["--robot", "robot.json", "demo", "out"]).success();
+    let page = dir.join("out/view.html").canonicalize().expect("view.html");
+    // FK: t, θ1 (rad), θ2, θ3, d4, elbow1, elbow2, x, y, z (m), φ.
+    let fk = csv_rows(&dir.join("out/robot.traj.csv"));
+    let times: Vec<f64> = (0..12).map(|k| fk[k * (fk.len() - 1) / 11][0]).collect();
+    let answer = probe(&binary, &page, times[5], &times);
+    assert_eq!(answer["webgl"], true, "{answer}");
+    for (sample, &t) in answer["samples"].as_array().expect("samples").iter().zip(&times) {
+        let row = fk.iter().find(|row| row[0] == t).expect("row");
+        let tool = [row[7] * 1000.0, row[8] * 1000.0, row[9] * 1000.0];
+        let scene = point(&sample["tool"]);
+        assert!(distance(scene, tool) <= 0.5, "t = {t}: scene {scene:?}, FK {tool:?}");
+        let meshes = sample["meshes"].as_array().expect("meshes");
+        let parts: Vec<(&str, u64)> = meshes
+            .iter()
+            .map(|m| (m["part"].as_str().expect("part"), m["triangles"].as_u64().expect("count")))
+            .collect();
+        assert_eq!(parts, [("proximal1", 12), ("tool", 12)], "{sample}");
+        let half = l1 / 2.0;
+        let link = [b1x + half * row[1].cos(), half * row[1].sin(), height];
+        let centre = point(&meshes[0]["centre"]);
+        assert!(distance(centre, link) <= 0.5, "t = {t}: link mesh at {centre:?}, not {link:?}");
+        let above = [tool[0], tool[1], tool[2] + 20.0];
+        let centre = point(&meshes[1]["centre"]);
+        assert!(distance(centre, above) <= 0.5, "t = {t}: tool mesh at {centre:?}, not {above:?}");
+    }
 }

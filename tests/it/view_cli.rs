@@ -268,3 +268,132 @@ fn view_takes_the_object_size_and_rejects_malformed_ones() {
         assert!(!dir.join("v.html").exists(), "{bad}");
     }
 }
+
+/// The twelve triangles of the box from `min` to `max`, outward winding.
+fn box_triangles(min: [f64; 3], max: [f64; 3]) -> Vec<[[f64; 3]; 3]> {
+    let corner = |k: usize| {
+        [
+            if k & 4 == 0 { min[0] } else { max[0] },
+            if k & 2 == 0 { min[1] } else { max[1] },
+            if k & 1 == 0 { min[2] } else { max[2] },
+        ]
+    };
+    let faces = [
+        [0, 1, 3],
+        [0, 3, 2],
+        [4, 6, 7],
+        [4, 7, 5],
+        [0, 4, 5],
+        [0, 5, 1],
+        [2, 3, 7],
+        [2, 7, 6],
+        [0, 2, 6],
+        [0, 6, 4],
+        [1, 5, 7],
+        [1, 7, 3],
+    ];
+    faces.iter().map(|face| face.map(corner)).collect()
+}
+
+/// Writes the box from `min` to `max` as an STL file: ASCII, or binary with a header that
+/// begins with `solid` as some CAD programs write it.
+pub(crate) fn write_box_stl(path: &std::path::Path, min: [f64; 3], max: [f64; 3], ascii: bool) {
+    let triangles = box_triangles(min, max);
+    let bytes = if ascii {
+        let mut text = String::from("solid box\n");
+        for triangle in &triangles {
+            text.push_str(" facet normal 0 0 0\n  outer loop\n");
+            for [x, y, z] in triangle {
+                text.push_str(&format!("   vertex {x} {y} {z}\n"));
+            }
+            text.push_str("  endloop\n endfacet\n");
+        }
+        text.push_str("endsolid box\n");
+        text.into_bytes()
+    } else {
+        let mut bytes = format!("{:<80}", "solid box, binary").into_bytes();
+        bytes.extend(u32::try_from(triangles.len()).expect("count").to_le_bytes());
+        for triangle in &triangles {
+            bytes.extend([0u8; 12]);
+            for value in triangle.iter().flatten() {
+                bytes.extend((*value as f32).to_le_bytes());
+            }
+            bytes.extend([0u8; 2]);
+        }
+        bytes
+    };
+    std::fs::write(path, bytes).expect("write STL");
+}
+
+/// A trajectory of two rows the default robot takes.
+const TWO_ROWS: &str =
+    "t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm\n0,0,0,0,10\n0.001,0.01,0,0,10\n";
+
+/// Meshes named by robot.json: read from the robot file's folder (binary and ASCII, a scale),
+/// embedded in the page; a missing file, an unknown part and malformed STL are located errors
+/// with exit 1 and no page written.
+#[test]
+fn view_embeds_the_robot_files_meshes_and_rejects_bad_ones() {
+    let dir = temp_dir("view-meshes");
+    std::fs::create_dir_all(dir.join("robot/parts")).expect("mkdir");
+    std::fs::write(dir.join("traj.csv"), TWO_ROWS).expect("write traj");
+    write_box_stl(&dir.join("robot/parts/arm.stl"), [0.0, -10.0, -5.0], [210.0, 10.0, 5.0], true);
+    write_box_stl(&dir.join("robot/tool.stl"), [-0.01, -0.01, 0.0], [0.01, 0.01, 0.03], false);
+    let robot = "{\n  \"meshes\": {\n    \"proximal1\": \"parts/arm.stl\",\n    \
+                 \"tool\": {\"file\": \"tool.stl\", \"scale\": 1000}\n  }\n}\n";
+    std::fs::write(dir.join("robot/robot.json"), robot).expect("write robot");
+    let view = ["--robot", "robot/robot.json", "view", "traj.csv", "-o", "view.html"];
+    biscara(&dir, &view).success();
+    let page = std::fs::read_to_string(dir.join("view.html")).expect("page");
+    assert!(page.contains("\"meshes\":[{\"part\":\"proximal1\",\"triangles\":12,\"data\":\""));
+    assert!(page.contains("{\"part\":\"tool\",\"triangles\":12,\"data\":\""));
+    std::fs::remove_file(dir.join("view.html")).expect("rm");
+
+    let cases: [(&str, &str, &[u8], &str); 6] = [
+        (
+            "\"proximal1\": \"parts/missing.stl\"",
+            "arm.stl",
+            b"",
+            "robot.json:3:5: meshes.proximal1: cannot read the STL file",
+        ),
+        (
+            "\"elbow\": \"parts/arm.stl\"",
+            "arm.stl",
+            b"",
+            "robot.json:3:11: meshes.elbow: unknown field `elbow`",
+        ),
+        (
+            "\"proximal1\": \"parts/bad.stl\"",
+            "bad.stl",
+            b"solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 nan\n",
+            "bad.stl:4:15: the vertex's z = NaN is not a finite number",
+        ),
+        (
+            "\"proximal1\": \"parts/bad.stl\"",
+            "bad.stl",
+            b"solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0",
+            "bad.stl:4:14: the file ends where the vertex's z should be",
+        ),
+        (
+            "\"proximal1\": \"parts/bad.stl\"",
+            "bad.stl",
+            &[7u8; 100],
+            "bad.stl: byte 80: the header announces 117901063 triangles: more than 200000",
+        ),
+        (
+            "\"proximal1\": \"parts/bad.stl\"",
+            "bad.stl",
+            b"\x89PNG\r\n",
+            "bad.stl: byte 6: not an STL file",
+        ),
+    ];
+    for (entry, file, bytes, expected) in cases {
+        if !bytes.is_empty() {
+            std::fs::write(dir.join("robot/parts").join(file), bytes).expect("write STL");
+        }
+        let robot = format!("{{\n  \"meshes\": {{\n    {entry}\n  }}\n}}\n");
+        std::fs::write(dir.join("robot/robot.json"), robot).expect("write robot");
+        biscara(&dir, &view).expect_code(1).stderr_has(expected);
+        assert!(!dir.join("view.html").exists(), "{expected}: a page was written");
+    }
+}

@@ -28,6 +28,7 @@ mod batch;
 mod error;
 mod jacobian;
 mod kinematics;
+mod meshes;
 mod mode;
 mod model;
 mod pose;
@@ -46,6 +47,7 @@ pub use kinematics::{
     FkSolution, IkSolution, Kinematics, PassiveJoints, PlanarConfiguration, SingularityAngles,
     wrap_angle,
 };
+pub use meshes::{MeshSpec, Meshes};
 pub use mode::{AssemblyMode, ParseModeError, Sign, WorkingMode};
 pub use model::RobotModel;
 pub use pose::{Chain, Joint, Joints, Pose};

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{AssemblyMode, WorkingMode};
+use crate::{AssemblyMode, Meshes, WorkingMode};
 
 /// A robot as described by `robot.json`, in the file's units: millimetres and degrees
 /// (velocities per second, accelerations per second squared).
@@ -39,6 +39,9 @@ pub struct Robot {
     pub geometry: Geometry,
     /// The end effector (docs/motion.md): what the program's M3, M4, M5, S and E words drive.
     pub tool: ToolSpec,
+    /// STL files drawn by the viewer in place of the parts' boxes and cylinders (none by default).
+    #[serde(skip_serializing_if = "Meshes::is_empty")]
+    pub meshes: Meshes,
 }
 
 /// The end effector the robot carries (docs/motion.md).
@@ -166,6 +169,7 @@ impl Default for Robot {
             singularity_margin: 5.0,
             geometry: Geometry::default(),
             tool: ToolSpec::default(),
+            meshes: Meshes::default(),
         }
     }
 }
@@ -376,6 +380,18 @@ impl Robot {
         positive("geometry.link_height", self.geometry.link_height)?;
         positive("geometry.gripper_radius", self.geometry.gripper_radius)?;
         positive("geometry.gripper_length", self.geometry.gripper_length)?;
+        for (part, mesh) in self.meshes.parts() {
+            let key = format!("meshes.{part}");
+            if mesh.file.trim().is_empty() {
+                return Err(invalid(&key, "names no file: write the STL file's path".to_owned()));
+            }
+            positive(&format!("{key}.scale"), mesh.scale)?;
+            for (name, values) in [("offset", mesh.offset), ("rotation", mesh.rotation)] {
+                for value in values {
+                    finite(&format!("{key}.{name}"), value)?;
+                }
+            }
+        }
         Ok(())
     }
 }
@@ -421,6 +437,15 @@ fn range(key: &str, [min, max]: [f64; 2]) -> Result<(), RobotError> {
             key,
             format!("the range [{min}, {max}] is empty: write [min, max] with min < max"),
         ))
+    }
+}
+
+impl Robot {
+    /// The 1-based line and column of the dotted key `a.b.c` in the text of a robot file (`None`
+    /// when the key is not written): where a caller points the user at a value it found wrong
+    /// later, such as a mesh file that cannot be read.
+    pub fn locate_key(text: &str, dotted_key: &str) -> Option<(usize, usize)> {
+        locate_key(text, dotted_key)
     }
 }
 
@@ -525,6 +550,58 @@ mod tests {
         check_rejected(r#"{"links": {"l1": 1, "l1": 2}}"#, "links", "duplicate field `l1`");
         check_rejected("", ".", "EOF");
         check_rejected(r#"{"lp": 100} x"#, ".", "trailing characters");
+    }
+
+    #[test]
+    fn meshes_name_parts_files_and_placements() {
+        let json = r#"{"meshes": {"base": "base.stl",
+            "proximal1": {"file": "arm.stl", "scale": 1000, "offset": [0, 0, -5], "rotation": [0, 0, 90]}}}"#;
+        let robot = Robot::from_json(json).unwrap();
+        let parts: Vec<&str> = robot.meshes.parts().map(|(name, _)| name).collect();
+        assert_eq!(parts, ["base", "proximal1"]);
+        assert_eq!(robot.meshes.base, Some(crate::MeshSpec::new("base.stl")));
+        let arm = robot.meshes.proximal1.as_ref().unwrap();
+        assert_eq!(
+            (arm.scale, arm.offset, arm.rotation),
+            (1000.0, [0.0, 0.0, -5.0], [0.0, 0.0, 90.0])
+        );
+        assert_eq!(Robot::from_json(&robot.to_json_pretty()).unwrap(), robot);
+        assert!(!Robot::default().to_json_pretty().contains("meshes"), "no meshes, no key");
+    }
+
+    #[test]
+    fn bad_meshes_are_located_and_named() {
+        let err = Robot::from_json("{\"meshes\": {\n  \"elbow\": \"e.stl\"}}").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("2:9: meshes.elbow: unknown field `elbow`, expected one of `base`"),
+            "{err}"
+        );
+        let err =
+            Robot::from_json("{\"meshes\": {\"tool\": {\"file\": \"t.stl\", \"units\": \"m\"}}}")
+                .unwrap_err();
+        assert!(err.to_string().contains("meshes.tool"), "{err}");
+        assert!(err.to_string().contains("unknown field `units`"), "{err}");
+        check_rejected(r#"{"meshes": {"tool": 5}}"#, "meshes.tool", "an STL file name");
+        check_rejected(
+            r#"{"meshes": {"tool": {"scale": 2}}}"#,
+            "meshes.tool",
+            "missing field `file`",
+        );
+        check_rejected(r#"{"meshes": {"tool": ""}}"#, "meshes.tool", "names no file");
+        check_rejected(
+            r#"{"meshes": {"column": {"file": "c.stl", "scale": 0}}}"#,
+            "meshes.column.scale",
+            "must be positive",
+        );
+        let err =
+            Robot::from_json("{\"meshes\": {\n \"tool\": {\"file\": \"t.stl\", \"scale\": -1}}}")
+                .unwrap_err();
+        assert_eq!(err.to_string(), "2:28: meshes.tool.scale: must be positive (got -1)");
+        assert_eq!(
+            Robot::locate_key("{\n  \"meshes\": {\"tool\": \"t.stl\"}}", "meshes.tool"),
+            Some((2, 14))
+        );
     }
 
     #[test]

@@ -23,6 +23,14 @@ pub enum ViewError {
     /// Occurs when writing the output fails.
     #[error(transparent)]
     Io(#[from] io::Error),
+    /// Occurs when a mesh is given for a part the viewer does not draw (see
+    /// [`biscara_kinematics::Meshes::PART_NAMES`]), or the meshes together hold more than
+    /// [`crate::MAX_MESH_TRIANGLES`] triangles.
+    #[error("{message}")]
+    Mesh {
+        /// What is wrong.
+        message: String,
+    },
     /// Occurs when a plot cannot be drawn (the plotting backend failed).
     #[error("cannot draw the plot: {message}")]
     Plot {

@@ -6,9 +6,9 @@ use std::io::BufRead;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Kinematics, Robot, RobotModel};
+use biscara_kinematics::{Kinematics, MeshSpec, Meshes, Robot, RobotModel};
 
-use crate::{Scene, ViewError};
+use crate::{MAX_MESH_TRIANGLES, Scene, StlMesh, ViewError};
 
 /// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data,
 /// `/*BISCARA_FRAMES*/` by the frames (base64 of little-endian `f32`s) and `/*BISCARA_THREE*/`
@@ -242,6 +242,8 @@ pub struct Viewer {
     problems: Vec<(f64, String, String)>,
     /// The objects' size (width x, length y, height z; mm), when given.
     object: Option<[f64; 3]>,
+    /// The parts' meshes: part name and its triangles' corners in the part's frame (mm).
+    meshes: Vec<(&'static str, Vec<f32>)>,
 }
 
 impl Viewer {
@@ -264,7 +266,54 @@ impl Viewer {
             previous_t: None,
             problems: Vec::new(),
             object: None,
+            meshes: Vec::new(),
         }
+    }
+
+    /// Draws `mesh` in place of the box or cylinder of `part` (one of
+    /// [`Meshes::PART_NAMES`]), placed in the part's frame by `spec` (scale, rotation, offset;
+    /// the file is not read here). Fails for an unknown part, a part given twice, or when the
+    /// meshes together would hold more than [`MAX_MESH_TRIANGLES`] triangles.
+    pub fn add_mesh(
+        &mut self,
+        part: &str,
+        spec: &MeshSpec,
+        mesh: &StlMesh,
+    ) -> Result<(), ViewError> {
+        let Some(&name) = Meshes::PART_NAMES.iter().find(|&&name| name == part) else {
+            return Err(ViewError::Mesh {
+                message: format!(
+                    "no part `{part}` to draw a mesh for; the parts are {}",
+                    Meshes::PART_NAMES.join(", ")
+                ),
+            });
+        };
+        if self.meshes.iter().any(|(other, _)| *other == name) {
+            return Err(ViewError::Mesh { message: format!("part `{part}` has a mesh already") });
+        }
+        if self.mesh_triangles() + mesh.triangles() > MAX_MESH_TRIANGLES {
+            return Err(ViewError::Mesh {
+                message: format!(
+                    "the meshes hold more than {MAX_MESH_TRIANGLES} triangles, what the viewer \
+                     takes: simplify them first"
+                ),
+            });
+        }
+        let m = spec.transform();
+        let mut corners = Vec::with_capacity(mesh.positions().len());
+        for corner in mesh.positions().chunks_exact(3) {
+            let v = [0, 1, 2].map(|k| f64::from(corner[k]));
+            for row in &m {
+                corners.push((row[0] * v[0] + row[1] * v[1] + row[2] * v[2] + row[3]) as f32);
+            }
+        }
+        self.meshes.push((name, corners));
+        Ok(())
+    }
+
+    /// The triangles of the meshes added so far.
+    pub fn mesh_triangles(&self) -> usize {
+        self.meshes.iter().map(|(_, corners)| corners.len() / 9).sum()
     }
 
     /// The size of the objects picked (width along x, length along y, height; mm). Without it
@@ -500,7 +549,22 @@ impl Viewer {
             }
             None => json.push_str("null"),
         }
-        json.push_str(",\"scene\":[");
+        json.push_str(",\"meshes\":[");
+        for (index, (part, corners)) in self.meshes.iter().enumerate() {
+            if index > 0 {
+                json.push(',');
+            }
+            let bytes: Vec<u8> = corners.iter().flat_map(|value| value.to_le_bytes()).collect();
+            let mut text = Vec::with_capacity(bytes.len() / 3 * 4 + 4);
+            base64(&bytes, &mut text);
+            let _ = write!(
+                json,
+                "{{\"part\":\"{part}\",\"triangles\":{},\"data\":\"{}\"}}",
+                corners.len() / 9,
+                String::from_utf8_lossy(&text)
+            );
+        }
+        json.push_str("],\"scene\":[");
         for (index, scene_box) in self.scene.boxes.iter().enumerate() {
             if index > 0 {
                 json.push(',');
@@ -671,6 +735,39 @@ mod tests {
         assert!(process.points.len() <= 101, "{}", process.points.len());
         assert!(process.points.iter().any(|p| p.start && p.t > 90_000.0));
         assert!(process.changes.len() <= 10);
+    }
+
+    #[test]
+    fn meshes_are_placed_in_their_parts_frame_and_refused_when_unknown_twice_or_too_big() {
+        let ascii = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.001 0 0\n\
+                     vertex 0 0.002 0\nendloop\nendfacet\nendsolid t\n";
+        let mesh = crate::read_stl(ascii.as_bytes(), 10).unwrap();
+        let mut viewer =
+            Viewer::new(&RobotModel::default(), Scene::default(), ViewerOptions::default());
+        let spec = MeshSpec {
+            scale: 1000.0,
+            offset: [5.0, 0.0, 1.0],
+            rotation: [0.0, 0.0, 90.0],
+            ..MeshSpec::new("t.stl")
+        };
+        viewer.add_mesh("distal2", &spec, &mesh).unwrap();
+        let corners = &viewer.meshes[0].1;
+        // (1, 0, 0) mm turned to (0, 1, 0), (0, 2, 0) to (-2, 0, 0), then moved by the offset.
+        let expected = [5.0, 0.0, 1.0, 5.0, 1.0, 1.0, 3.0, 0.0, 1.0];
+        assert!(corners.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-5), "{corners:?}");
+        assert_eq!(viewer.mesh_triangles(), 1);
+        for (part, message) in [("distal2", "has a mesh already"), ("elbow", "no part `elbow`")] {
+            let err = viewer.add_mesh(part, &spec, &mesh).unwrap_err();
+            assert!(err.to_string().contains(message), "{err}");
+        }
+        let big = StlMesh::from_positions(vec![0.0; 9 * MAX_MESH_TRIANGLES]);
+        let err = viewer.add_mesh("tool", &spec, &big).unwrap_err();
+        assert!(err.to_string().contains("more than 200000 triangles"), "{err}");
+        viewer.push_row(&row(0.0, 0.0)).unwrap();
+        let mut page = Vec::new();
+        viewer.write_html(&mut page).unwrap();
+        let page = String::from_utf8(page).unwrap();
+        assert!(page.contains("\"meshes\":[{\"part\":\"distal2\",\"triangles\":1,\"data\":\""));
     }
 
     #[test]

@@ -9,7 +9,9 @@
 //! tool pose FK expects). [`Viewer`] gathers a trajectory (every sample up to 1 048 576, packed
 //! as binary), the programmed path, the tool's work, `check`'s problems and a [`Scene`], and
 //! writes one HTML file with its data, three.js (bundled by `scripts/bundle-three.sh`) and the
-//! page's JavaScript inside: a WebGL scene, no network, no other files.
+//! page's JavaScript inside: a WebGL scene, no network, no other files. [`read_stl`] reads the
+//! STL meshes `robot.json` may name for the robot's parts (from a reader the caller opened);
+//! [`Viewer::add_mesh`] draws one in place of its part's box or cylinder.
 //!
 //! ```
 //! use biscara_kinematics::RobotModel;
@@ -25,6 +27,7 @@ mod error;
 mod html;
 mod mjcf;
 mod plot;
+mod stl;
 mod trace;
 
 pub use biscara_robot::{Scene, SceneBox};
@@ -35,4 +38,5 @@ pub use plot::{
     ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, ProcessStroke, ProcessStrokes,
     TopView, draw_atlas, draw_joints, draw_top_view, draw_workspace, zoom_region,
 };
+pub use stl::{MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
 pub use trace::ProgramTrace;
