@@ -9,7 +9,7 @@ use biscara_kinematics::{Joint, Joints, KinematicsError, RobotModel, Shortfall};
 use crate::collision::{scene_collisions, self_collisions};
 use crate::{Scene, VirtualRobot};
 
-/// The kinds of problem of SPEC §8.1, in the order reports list them at equal times.
+/// The kinds of problem of docs/virtual-robot.md, in the order reports list them at equal times.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ProblemKind {
     /// A pose no configuration of the robot reaches (or only beyond a type-2 singularity).
@@ -26,13 +26,13 @@ pub enum ProblemKind {
     SelfCollision,
     /// A part of the body inside a box of the scene.
     SceneCollision,
-    /// What only the tool can get wrong (SPEC §1.6): a laser burning during a rapid (G0)
+    /// What only the tool can get wrong (docs/motion.md): a laser burning during a rapid (G0)
     /// move.
     Tool,
 }
 
 impl ProblemKind {
-    /// The `kind` string of `check --json` (SPEC §9).
+    /// The `kind` string of `check --json` (README.md).
     pub fn name(self) -> &'static str {
         match self {
             ProblemKind::Unreachable => "unreachable",
@@ -118,7 +118,7 @@ pub struct Peak {
 /// The smallest singularity angle met along the program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SingularityDistance {
-    /// The angle of SPEC §1.2, degrees (0 at the singularity).
+    /// The angle of docs/kinematics.md, degrees (0 at the singularity).
     pub angle_deg: f64,
     /// Which singularity (`type-2 singularity`, `type-1 singularity of chain 1`).
     pub kind: String,
@@ -189,10 +189,10 @@ struct Solved {
     q: [f64; 4],
 }
 
-/// Runs samples on the virtual robot and collects every problem (SPEC §8.1), without stopping at
-/// the first: unreachable poses, joint position, velocity and acceleration limits, near-singular
-/// poses, self-collisions and collisions with the scene. Consecutive samples with the same
-/// problem on the same subject become one [`Problem`] with its time span.
+/// Runs samples on the virtual robot and collects every problem (docs/virtual-robot.md), without
+/// stopping at the first: unreachable poses, joint position, velocity and acceleration limits,
+/// near-singular poses, self-collisions and collisions with the scene. Consecutive samples with the
+/// same problem on the same subject become one [`Problem`] with its time span.
 ///
 /// Feed the samples in order with [`Checker::push`], then call [`Checker::finish`]. Memory holds
 /// three samples and the open problems, not the trajectory.
@@ -307,7 +307,7 @@ impl Checker {
         });
     }
 
-    /// Reports a tool problem (SPEC §1.6) at the sample last [`Checker::push`]ed: `subject`
+    /// Reports a tool problem (docs/motion.md) at the sample last [`Checker::push`]ed: `subject`
     /// names it (`laser on during a rapid move`), `detail` gives its numbers, `severity` ranks
     /// the samples of one run (the worst is shown).
     pub fn push_tool_problem(

@@ -1,4 +1,4 @@
-//! Collision tests of the body against itself and against the scene (SPEC §8.1).
+//! Collision tests of the body against itself and against the scene (docs/virtual-robot.md).
 
 use std::fmt;
 

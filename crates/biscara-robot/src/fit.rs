@@ -177,7 +177,7 @@ impl Fit {
     }
 }
 
-/// The offset that centres `bounds` in `rectangle` (SPEC §4.2 `--fit`), turning the program by
+/// The offset that centres `bounds` in `rectangle` (docs/gcode.md `--fit`), turning the program by
 /// 90° about Z only when it fits that way and not as programmed; fails when it fits neither
 /// way, saying by how much in each orientation.
 pub fn fit(bounds: &Bounds, rectangle: &Rectangle) -> Result<Fit, VirtualRobotError> {

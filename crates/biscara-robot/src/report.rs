@@ -1,4 +1,4 @@
-//! The report of `check` as the user reads it: JSON (SPEC §9) and text.
+//! The report of `check` as the user reads it: JSON (README.md) and text.
 
 use biscara_kinematics::Joint;
 use biscara_text::{fixed, round_to};
@@ -37,7 +37,7 @@ fn problem_json(problem: &Problem) -> Value {
 }
 
 impl Report {
-    /// The report as SPEC §9's `{"ok":…,"problems":[…],"summary":{…}}` (`check --json`).
+    /// The report as README.md's `{"ok":…,"problems":[…],"summary":{…}}` (`check --json`).
     pub fn to_json(&self) -> Value {
         let report = self;
         let summary = &report.summary;
@@ -156,7 +156,7 @@ struct RectangleJson {
 }
 
 impl Workspace {
-    /// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (SPEC §9).
+    /// `{"area_mm2":…,"step_mm":…,"rectangle":{"min":[x,y],"max":[x,y]}}` (README.md).
     pub fn to_json(&self, rectangle: &Rectangle) -> String {
         let workspace = self;
         let r = |v: f64| round_to(v, 6);

@@ -1,4 +1,4 @@
-//! The scene: boxes around the robot that no part of it may touch (SPEC §8.1).
+//! The scene: boxes around the robot that no part of it may touch (docs/virtual-robot.md).
 
 use biscara_text::strip_position;
 use serde::{Deserialize, Serialize};

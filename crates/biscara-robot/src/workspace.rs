@@ -1,4 +1,5 @@
-//! The reachable region in the XY plane (SPEC §8.2) and the largest rectangle inside it.
+//! The reachable region in the XY plane (docs/virtual-robot.md) and the largest rectangle inside
+//! it.
 
 use biscara_kinematics::{Joint, Joints, Kinematics, Pose};
 

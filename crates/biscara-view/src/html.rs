@@ -1,4 +1,4 @@
-//! The self-contained HTML viewer (`biscara view`, SPEC §8.3).
+//! The self-contained HTML viewer (`biscara view`, docs/virtual-robot.md).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -117,7 +117,7 @@ struct ProcessPoint {
     start: bool,
 }
 
-/// The tool's work (SPEC §1.6) as strokes of points at least `spacing` apart (doubled, and
+/// The tool's work (docs/motion.md) as strokes of points at least `spacing` apart (doubled, and
 /// every other inner point dropped, when full), and the times its state changes.
 #[derive(Debug)]
 struct Process {
@@ -322,7 +322,7 @@ impl Viewer {
         self.object = Some(size);
     }
 
-    /// Adds one of `check`'s problems (SPEC §9's `check --json`): its time (s), kind and
+    /// Adds one of `check`'s problems (README.md's `check --json`): its time (s), kind and
     /// message. The page marks it in the scene, where the tool is at that time, and on the
     /// timeline. At most `max_events` are kept.
     pub fn add_problem(&mut self, t: f64, kind: &str, message: &str) {
@@ -373,7 +373,7 @@ impl Viewer {
         self.gripper = gripper;
     }
 
-    /// Names the tool whose work the page shows (SPEC §1.6: `laser`, `extruder`, `pen`,
+    /// Names the tool whose work the page shows (docs/motion.md: `laser`, `extruder`, `pen`,
     /// `spindle`) and the legend of its work; without it the page shows no process.
     pub fn set_tool(&mut self, tool: &str, label: &str) {
         self.process.tool = Some((tool.to_owned(), label.to_owned()));

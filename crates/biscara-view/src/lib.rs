@@ -1,17 +1,18 @@
-//! Pictures of the BiSCARA in motion (SPEC §8.3): a self-contained HTML viewer of a joint
-//! trajectory (`biscara view`), a MuJoCo model of the robot (`biscara mjcf`), and SVG/PNG plots
-//! (`biscara plot`, `workspace --svg/--png`).
+//! Pictures of the BiSCARA in motion (docs/virtual-robot.md): a self-contained HTML viewer of a
+//! joint trajectory (`biscara view`), a MuJoCo model of the robot (`biscara mjcf`), and SVG/PNG
+//! plots (`biscara plot`, `workspace --svg/--png`).
 //!
 //! All are built from the robot description, forward kinematics and the virtual robot's bodies
 //! and workspace; none reads files or prints. [`draw_top_view`], [`draw_joints`] and
-//! [`draw_workspace`] return SVG or PNG bytes (plotters; DejaVu Sans embedded for PNG text). [`write_mjcf`] writes the model, [`QposWriter`] the companion file that plays a
-//! joint trajectory on it (the model's joints in MuJoCo's units, the elbows from our FK, and the
-//! tool pose FK expects). [`Viewer`] gathers a trajectory (every sample up to 1 048 576, packed
-//! as binary), the programmed path, the tool's work, `check`'s problems and a [`Scene`], and
-//! writes one HTML file with its data, three.js (bundled by `scripts/bundle-three.sh`) and the
-//! page's JavaScript inside: a WebGL scene, no network, no other files. [`read_stl`] reads the
-//! STL meshes `robot.json` may name for the robot's parts (from a reader the caller opened);
-//! [`Viewer::add_mesh`] draws one in place of its part's box or cylinder.
+//! [`draw_workspace`] return SVG or PNG bytes (plotters; DejaVu Sans embedded for PNG text).
+//! [`write_mjcf`] writes the model, [`QposWriter`] the companion file that plays a joint trajectory
+//! on it (the model's joints in MuJoCo's units, the elbows from our FK, and the tool pose FK
+//! expects). [`Viewer`] gathers a trajectory (every sample up to 1 048 576, packed as binary), the
+//! programmed path, the tool's work, `check`'s problems and a [`Scene`], and writes one HTML file
+//! with its data, three.js (bundled by `scripts/bundle-three.sh`) and the page's JavaScript inside:
+//! a WebGL scene, no network, no other files. [`read_stl`] reads the STL meshes `robot.json` may
+//! name for the robot's parts (from a reader the caller opened); [`Viewer::add_mesh`] draws one in
+//! place of its part's box or cylinder.
 //!
 //! ```
 //! use biscara_kinematics::RobotModel;

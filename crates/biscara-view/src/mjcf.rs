@@ -75,7 +75,8 @@ fn escape(text: &str) -> String {
     escaped
 }
 
-/// Writes the MJCF model of `robot` with the `scene`'s boxes as static geoms (SPEC §8.3).
+/// Writes the MJCF model of `robot` with the `scene`'s boxes as static geoms
+/// (docs/virtual-robot.md).
 ///
 /// Names: hinges `theta1`, `theta2`, `theta3`, slide `d4` (radians, metres), each driven by a
 /// position actuator of the same name with the joint's limits as its control range; passive hinges
@@ -104,7 +105,7 @@ pub fn write_mjcf(
     let mut x = String::new();
     // Writing to a String cannot fail.
     let _ = (|| -> std::fmt::Result {
-        writeln!(x, "<!-- The BiSCARA as a MuJoCo model, written by `biscara mjcf` (SPEC §8.3).")?;
+        writeln!(x, "<!-- The BiSCARA as a MuJoCo model, written by `biscara mjcf` (docs/virtual-robot.md).")?;
         writeln!(x, "     Robot: {}. Units: metres, radians, kilograms.", escape(&robot.name))?;
         writeln!(x, "     Open it: python -m mujoco.viewer --mjcf robot.xml -->")?;
         writeln!(x, "<mujoco model=\"biscara\">")?;

@@ -1,5 +1,5 @@
-//! Pictures (SPEC §8.3): the workspace, the programmed path and the robot in top view, and the
-//! joint curves against time, as SVG or PNG, drawn with plotters.
+//! Pictures (docs/virtual-robot.md): the workspace, the programmed path and the robot in top view,
+//! and the joint curves against time, as SVG or PNG, drawn with plotters.
 //!
 //! PNG text is rendered with DejaVu Sans embedded in the library (plotters' `ab_glyph`
 //! backend), so pictures come out the same on machines without system fonts.
@@ -47,7 +47,7 @@ pub struct TopView<'a> {
     pub rectangle: Option<&'a WorkspaceRectangle>,
     /// The programmed path in XY, millimetres (a polyline).
     pub path: &'a [[f64; 2]],
-    /// What the tool did (SPEC §1.6): the laser's burnt trace, the extruded track, the pen's
+    /// What the tool did (docs/motion.md): the laser's burnt trace, the extruded track, the pen's
     /// strokes, the cut; drawn over the path, which then shows the travel. Empty for the
     /// gripper.
     pub process: &'a [ProcessStroke],

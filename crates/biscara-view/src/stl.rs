@@ -8,7 +8,7 @@
 
 use std::io::{self, BufRead, Read};
 
-use biscara_text::{LineReader, ReadError};
+use biscara_text::{LineError, LineReader, Located};
 
 /// Most triangles the viewer takes, all meshes together (each is 48 bytes of the page: a
 /// 200 000-triangle robot adds about 10 MB). Larger meshes are refused, not thinned: simplify
@@ -48,7 +48,7 @@ impl StlMesh {
 pub enum StlError {
     /// Occurs when the file cannot be read, or an ASCII line is not text or too long.
     #[error(transparent)]
-    Read(#[from] ReadError),
+    Read(#[from] Located<LineError>),
     /// Occurs when an ASCII STL is not written as `solid … facet normal … outer loop vertex …
     /// endloop endfacet … endsolid`, a vertex is not a finite number, or it holds too many
     /// triangles.
@@ -236,7 +236,7 @@ impl<R: BufRead> Words<R> {
                     self.pending = words;
                 }
                 Ok(None) => return Ok(None),
-                Err((line, err)) => return Err(ReadError::new("STL", line, err).into()),
+                Err(err) => return Err(err.into()),
             }
         }
     }
