@@ -105,7 +105,10 @@ pub fn write_mjcf(
     let mut x = String::new();
     // Writing to a String cannot fail.
     let _ = (|| -> std::fmt::Result {
-        writeln!(x, "<!-- The BiSCARA as a MuJoCo model, written by `biscara mjcf` (docs/virtual-robot.md).")?;
+        writeln!(
+            x,
+            "<!-- The BiSCARA as a MuJoCo model, written by `biscara mjcf` (docs/virtual-robot.md)."
+        )?;
         writeln!(x, "     Robot: {}. Units: metres, radians, kilograms.", escape(&robot.name))?;
         writeln!(x, "     Open it: python -m mujoco.viewer --mjcf robot.xml -->")?;
         writeln!(x, "<mujoco model=\"biscara\">")?;
