@@ -14,8 +14,8 @@
 //! limits arrive through [`SpeedLimit`]. It streams: memory does not grow with the program.
 //!
 //! ```
-//! use biscara_interpolate::{CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit,
-//! Profile}; use biscara_motion::{Feed, Motion, MotionKind};
+//! use biscara_interpolate::{CartesianLimits, InterpolationConfig, Interpolator, NoSpeedLimit, Profile};
+//! use biscara_motion::{Feed, Motion, MotionKind};
 //!
 //! let config = InterpolationConfig {
 //!     dt: 0.1,

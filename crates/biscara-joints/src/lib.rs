@@ -15,9 +15,9 @@
 //! use biscara_kinematics::Kinematics;
 //!
 //! let home = [0.0, 460.798724079689, 100.0, 0.0];
-//! let samples = [Ok::<_, std::convert::Infallible>(CartesianSample { t: 0.0, pose: home, line: 0,
-//! gripper: false })]; let rows: Vec<_> = JointTrajectory::new(samples.into_iter(),
-//! Kinematics::default())     .collect::<Result<_, _>>()?;
+//! let samples = [Ok::<_, std::convert::Infallible>(CartesianSample { t: 0.0, pose: home, line: 0, gripper: false })];
+//! let rows: Vec<_> = JointTrajectory::new(samples.into_iter(), Kinematics::default())
+//!     .collect::<Result<_, _>>()?;
 //! assert!(rows[0].joints.theta1.abs() < 1e-9);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -9,10 +9,10 @@
 //! - [`self_collisions`] and [`scene_collisions`]: links as capsules `link_width` wide at
 //!   `link_height`, gripper and Z column as vertical cylinders.
 //! - [`Checker`]: every sample of a program checked for every problem of docs/virtual-robot.md
-//! without   stopping, grouped into [`Problem`]s with their time spans, and a [`Summary`].
+//!   without stopping, grouped into [`Problem`]s with their time spans, and a [`Summary`].
 //! - [`Workspace`]: the reachable XY grid of docs/virtual-robot.md, its area and the largest
-//! axis-aligned   [`Rectangle`] inside it; [`Bounds`] and [`fit`]: a program's XY extent (arcs
-//! included) and   the offset that centres it in that rectangle.
+//!   axis-aligned [`Rectangle`] inside it; [`Bounds`] and [`fit`]: a program's XY extent (arcs
+//!   included) and the offset that centres it in that rectangle.
 //!
 //! It is sans-IO: it takes samples, motions and bytes, and returns values; it never prints
 //! or opens files. It knows nothing of G-code text.
@@ -25,8 +25,8 @@
 //! let mut checker = Checker::new(&RobotModel::default(), Scene::new());
 //! for step in 0..=100 {
 //!     let t = f64::from(step) * 0.01;
-//!     checker.push(&CartesianSample { t, pose: [t * 10.0, 400.0, 50.0, 0.0], line: 1, gripper:
-//! false }); }
+//!     checker.push(&CartesianSample { t, pose: [t * 10.0, 400.0, 50.0, 0.0], line: 1, gripper: false });
+//! }
 //! let report = checker.finish();
 //! assert!(report.ok());
 //! assert!((report.summary.path_length_mm - 10.0).abs() < 1e-9);
