@@ -183,13 +183,8 @@ impl GcodeError {
             | GcodeError::NoProgramEnd { line }
             | GcodeError::NoBlockNumber { line, .. }
             | GcodeError::NoClosingPercent { line } => *line,
-            GcodeError::LineTooLong { at, .. }
-            | GcodeError::Syntax { at, .. }
-            | GcodeError::Invalid { at, .. }
-            | GcodeError::NotSupported { at, .. }
-            | GcodeError::CannotRun { at, .. }
-            | GcodeError::ForeignAxis { at, .. }
-            | GcodeError::NeedsSetting { at, .. } => at.line,
+            // Every other error points into its line.
+            _ => self.location().map_or(0, |at| at.line),
         }
     }
 
