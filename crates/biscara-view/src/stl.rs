@@ -52,15 +52,8 @@ pub enum StlError {
     /// Occurs when an ASCII STL is not written as `solid … facet normal … outer loop vertex …
     /// endloop endfacet … endsolid`, a vertex is not a finite number, or it holds too many
     /// triangles.
-    #[error("{line}:{column}: {message}")]
-    Ascii {
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
+    #[error("{0}")]
+    Ascii(Located<String>),
     /// Occurs when a binary STL is shorter or longer than its header's triangle count says, a
     /// vertex is not a finite number, it holds too many triangles, or the file is no STL at all.
     #[error("byte {byte}: {message}")]
@@ -97,11 +90,8 @@ pub fn read_stl(mut input: impl BufRead, max_triangles: usize) -> Result<StlMesh
         return read_ascii(io::Cursor::new(header).chain(input), max_triangles);
     }
     if text && !header.is_empty() {
-        return Err(StlError::Ascii {
-            line: 1,
-            column: 1,
-            message: "not an STL file: text that does not begin with `solid`".to_owned(),
-        });
+        let message = "not an STL file: text that does not begin with `solid`".to_owned();
+        return Err(StlError::Ascii(Located::at(1, 1, message)));
     }
     if header.len() < 84 {
         return Err(binary(
@@ -247,7 +237,7 @@ impl<R: BufRead> Words<R> {
     }
 
     fn error(&self, line: usize, column: usize, message: String) -> StlError {
-        StlError::Ascii { line, column, message }
+        StlError::Ascii(Located::at(line, column, message))
     }
 
     /// The next word, which must be `keyword` (any case).
