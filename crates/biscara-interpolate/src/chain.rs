@@ -31,6 +31,10 @@ use crate::{
 /// The longest time an interval of a chain's grid takes at the programmed speed, s.
 const GRID_SECONDS: f64 = 0.01;
 
+/// The shortest piece timed inside a chain, mm: a shorter one is passed over (see
+/// [`ChainBounds::pull`]).
+const SHORTEST_PIECE_MM: f64 = 1e-9;
+
 /// One piece of the chain with where it starts along the chain.
 #[derive(Debug, Clone, Copy)]
 struct ChainPiece {
@@ -266,10 +270,21 @@ where
     L: SpeedLimit,
 {
     /// Pulls the piece after the last one held; `false` when there is none.
+    ///
+    /// A piece shorter than [`SHORTEST_PIECE_MM`] inside the chain (what two fillets leave of
+    /// an arc between them) is passed over: the pieces on either side meet within its length,
+    /// and its own grid could not be told apart from its start along a long chain.
     fn pull(&mut self) -> bool {
         let last = self.chain.pieces[self.chain.pieces.len() - 1];
         let start = last.start + last.length;
-        match self.source.next() {
+        let next = loop {
+            match self.source.next() {
+                Some(Ok(Blended::Piece(piece)))
+                    if !piece.ends_chain && piece.length() < SHORTEST_PIECE_MM => {}
+                next => break next,
+            }
+        };
+        match next {
             Some(Ok(Blended::Piece(piece))) => match self.chain.push(piece, start, self.limits) {
                 Ok(()) => true,
                 Err(err) => {

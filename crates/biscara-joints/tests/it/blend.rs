@@ -290,3 +290,17 @@ proptest! {
         check_blended(&blended, &robot, tolerance)?;
     }
 }
+
+/// A small arc between two corners whose fillets take all of it but 1e-15 mm: the chain passes
+/// over what is left (a piece its grid could not resolve) and runs through.
+#[test]
+fn an_arc_its_fillets_consume_whole_runs_through() {
+    let vertices: Vec<Vertex> = vec![
+        (98.00113574193051, 24.284170142099217, 0.0, 0.0, 300.0, false),
+        (-4.436543215376718, 0.49614601592648083, 0.0, 0.0, 300.0, false),
+        (44.22828765120226, 1.3087760632724554, 0.0, 0.0, 300.0, false),
+    ];
+    let bulges = [-20.0, -88.75798837714049];
+    check_blended(&line_arcs(&vertices, &bulges, Some(0.0)), &robot(false), 0.0)
+        .expect("the blended program runs within the limits and the tolerance");
+}
