@@ -147,16 +147,18 @@ pub enum InterpolateError<E> {
 /// Below this, a length (mm) or rotation (degrees) counts as no movement.
 const NO_MOVEMENT: f64 = 1e-12;
 
-/// The optimal profile's grid along a move: an interval per 0.5 mm of path and per 10° the path
-/// turns, and at least [`MIN_INTERVALS`]. C needs none: it moves in proportion to s, so it adds a
-/// constant to θ3's q′ and nothing to any q″. TOPP-RA keeps every bound at the grid points;
-/// between them a joint's q′ and q″ change by a little, which the margins of the [`SpeedLimit`]
-/// cover (see the property tests of `biscara-joints`). Over 2,000 random programs of those tests
-/// (tight arcs of 2–20 mm radius among them) the joints' accelerations peaked at 0.9932 of their
-/// limits with 10° (against 0.9909 with 6° and 0.9959 with 15°; the margin is 0.99), at a third
-/// of the planning cost of 2° on the arcs of 1 mm radius of `scripts/gen-program.sh mixed`.
+/// The optimal profile's grid along a move: an interval per 0.5 mm of path and per 7.5° the
+/// path turns, and at least [`MIN_INTERVALS`]. C needs none: it moves in proportion to s, so it
+/// adds a constant to θ3's q′ and nothing to any q″. TOPP-RA keeps every bound at the grid
+/// points; between them a joint's q′ and q″ change by a little, which the margins of the
+/// [`SpeedLimit`] cover (see the property tests of `biscara-joints`). The excess inside an
+/// interval grows with the square of the turn it spans, largest where the robot brakes hard on
+/// a tight arc (q″'s change times the change of ṡ²): on such an arc, braking to rest on the weak
+/// robot, an interval per 10° reached 1.01 % over the planned bound (above the 1 % margin), per
+/// 7.5° 0.57 %. On the arcs of 1 mm radius of `scripts/gen-program.sh mixed`, 7.5° costs `joints`
+/// 3.5 % more instructions than 10° (2,000 lines, callgrind); lines are unchanged.
 pub(crate) const GRID_MM: f64 = 0.5;
-pub(crate) const GRID_TURN_DEGREES: f64 = 10.0;
+pub(crate) const GRID_TURN_DEGREES: f64 = 7.5;
 const MIN_INTERVALS: f64 = 2.0;
 /// The refined grid's ratio and most points (see [`optimal_grid`]).
 pub(crate) const REFINE_RATIO: f64 = 0.7;

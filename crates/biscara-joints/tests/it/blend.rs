@@ -304,3 +304,21 @@ fn an_arc_its_fillets_consume_whole_runs_through() {
     check_blended(&line_arcs(&vertices, &bulges, Some(0.0)), &robot(false), 0.0)
         .expect("the blended program runs within the limits and the tolerance");
 }
+
+/// Braking to rest on a small arc (0.14 mm radius, 100° in an interval per 7.5°) at the end of
+/// a chain of tight arcs and fillets on the weak robot: θ2's acceleration stays within its limit.
+/// (With an interval per 10° it peaked 1 % over the planned bound, above the margin.)
+#[test]
+fn braking_on_a_tight_arc_keeps_the_acceleration_limit() {
+    let vertices: Vec<Vertex> = vec![
+        (-165.04717662612882, 18.63520041974515, 0.0, 0.0, 6086.49167757042, false),
+        (175.95555096403714, 1.7872737738313234, 0.0, 0.0, 300.0, false),
+        (-1.9233410405337348, 22.22919768635806, 0.0, 0.0, 300.0, false),
+        (1.2000686745501927, 2.0, 0.0, 0.0, 300.0, false),
+        (-101.76747028976403, 0.2, 0.0, 0.0, 300.0, false),
+        (-110.53809833290468, 0.2596276683341711, 0.0, 0.0, 300.0, false),
+    ];
+    let bulges = [0.0, 116.48549635571051, 0.0, 0.0, -149.11463312412388, 130.27868455235708];
+    check_blended(&line_arcs(&vertices, &bulges, Some(0.05)), &robot(true), 0.05)
+        .expect("the blended program runs within the limits and the tolerance");
+}
