@@ -174,6 +174,17 @@ pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interprete
     interpreter
 }
 
+/// What the reader does after a step of a line ([`Interpreter::step`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Flow {
+    /// The line goes on to the next step.
+    Go,
+    /// The line is done with: read the next one.
+    Next,
+    /// Motions are ready, or the program has ended: give them.
+    Yield,
+}
+
 /// The iterator returned by [`interpret`]: the line reader, generic over the input, with the
 /// O-word control flow and the Python plug-ins that move in it, and the machine that executes
 /// the blocks read.
@@ -333,144 +344,171 @@ impl<R: BufRead> Interpreter<R> {
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             self.machine.syntax.raw_len = self.lines.line.len();
             if !more {
-                if let Some(err) = self.control_end() {
-                    return Err(err);
-                }
-                if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
-                    return Err(GcodeError::NoBlockNumber { line, target });
-                }
-                if !self.machine.hooks.dialect.needs_program_end() {
-                    self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
-                }
-                return self.end_of_input();
+                return self.input_ended();
             }
-            if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
-                self.long_line_decides()?;
+            let mut flow = self.frame_line()?;
+            if flow == Flow::Go {
+                flow = self.significant_line()?;
             }
-            if self.lines.too_long {
-                let max = self.lines.max;
-                return Err(GcodeError::LineTooLong {
-                    at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
-                    max,
-                });
+            if flow == Flow::Go {
+                flow = self.control_flow_line()?;
             }
-            let trimmed = self.lines.line.trim_ascii();
-            if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
-                continue;
+            if flow == Flow::Go {
+                flow = self.block_line()?;
             }
-            if self.machine.syntax.percent == Percent::Unknown {
-                if trimmed.first() == Some(&b'%') {
-                    self.machine.syntax.percent = Percent::Open;
-                    continue;
-                }
-                self.machine.syntax.percent = Percent::Absent;
-            } else if self.machine.syntax.percent == Percent::Open
-                && trimmed == b"%"
-                && !self.lines.in_file()
-            {
-                if let Some(err) = self.control_percent() {
-                    return Err(err);
-                }
-                // rs274 never sends the motions cutter compensation holds at a closing `%`.
-                self.machine.state.comp.discard();
-                self.machine.output.finished = true;
-                return Ok(());
-            }
-            self.machine.state.line = self.lines.number;
-            if self.machine.state.resync {
-                self.machine.resync_position();
-            }
-            if self.machine.hooks.dialect.has_prelude() && self.dialect_prelude()? {
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let inner = self.machine.hooks.dialect.inner_paren();
-            if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
-                if self.fanuc_seeking() {
-                    continue;
-                }
-                // Closed at the end of its line, the line is read.
-                if !self.machine.hooks.dialect.closes_comment_at_line_end()
-                    || fault.message != UNCLOSED_COMMENT
-                {
-                    return Err(self.error(fault));
-                }
-            }
-            if self.machine.hooks.makerbot {
-                self.machine.rename_makerbot_a();
-            }
-            if self.machine.syntax.compact.bytes().is_empty() {
-                continue;
-            }
-            if self.machine.syntax.block_delete && self.machine.syntax.compact.bytes()[0] == b'/' {
-                continue;
-            }
-            if self.machine.hooks.dialect.reads_macro_b()
-                && let fanuc::FanucLine::Done =
-                    self.fanuc_line().map_err(|fault| self.error(fault))?
-            {
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let bytes = self.machine.syntax.compact.bytes();
-            let g65 =
-                self.machine.hooks.dialect.fanuc_subprograms() && control::may_call_g65(bytes);
-            if (self.control.engaged() || control::may_control(bytes) || g65)
-                && self.control_line()?
-            {
-                // (A line skipped inside a false `if` is no O-word of its own.)
-                if control::may_control(self.machine.syntax.compact.bytes()) {
-                    self.machine
-                        .hooks
-                        .dialect
-                        .count_refused_o_word(&mut self.machine.hooks.summary);
-                }
-                if !self.machine.output.queue.is_empty() {
-                    // A Python subroutine's move.
-                    return Ok(());
-                }
-                continue;
-            }
-            if self.machine.syntax.compact.bytes()[0] == b';'
-                && self.machine.hooks.dialect.executes_comments()
-                && self.lines.line.starts_with(b";py,")
-            {
-                // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
-                let code = self.lines.line[4..].to_vec();
-                self.python_comment(comments::PythonComment::Run, &code)
-                    .map_err(|fault| self.error(fault))?;
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let raw_len = self.lines.line.len();
-            let result = {
-                let mut reader = Reader::new(
-                    &self.machine.syntax.compact,
-                    raw_len,
-                    &self.machine.state.params,
-                    &self.machine.state,
-                )
-                .mach3(self.machine.hooks.dialect.reads_mach3_codes());
-                reader.read_block(&mut self.machine.syntax.block)
-            };
-            result.map_err(|fault| self.error(fault))?;
-            let dialect = self.machine.hooks.dialect;
-            if dialect.adapts_blocks()
-                && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
-            {
-                continue;
-            }
-            self.execute_block().map_err(|fault| self.error(fault))?;
-            if !self.machine.output.queue.is_empty() || self.machine.output.finished {
+            if flow == Flow::Yield {
                 return Ok(());
             }
         }
+    }
+
+    /// The end of the input: an O-word or a Fanuc jump left open is an error; then the end of
+    /// the program as the dialect wants it.
+    fn input_ended(&mut self) -> Result<(), GcodeError> {
+        if let Some(err) = self.control_end() {
+            return Err(err);
+        }
+        if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
+            return Err(GcodeError::NoBlockNumber { line, target });
+        }
+        if !self.machine.hooks.dialect.needs_program_end() {
+            self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+        }
+        self.end_of_input()
+    }
+
+    /// The line's framing: its length, the program's opening and closing `%`; the line's
+    /// number for the motions it makes.
+    fn frame_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
+            self.long_line_decides()?;
+        }
+        if self.lines.too_long {
+            let max = self.lines.max;
+            return Err(GcodeError::LineTooLong {
+                at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
+                max,
+            });
+        }
+        let trimmed = self.lines.line.trim_ascii();
+        if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
+            return Ok(Flow::Next);
+        }
+        if self.machine.syntax.percent == Percent::Unknown {
+            if trimmed.first() == Some(&b'%') {
+                self.machine.syntax.percent = Percent::Open;
+                return Ok(Flow::Next);
+            }
+            self.machine.syntax.percent = Percent::Absent;
+        } else if self.machine.syntax.percent == Percent::Open
+            && trimmed == b"%"
+            && !self.lines.in_file()
+        {
+            if let Some(err) = self.control_percent() {
+                return Err(err);
+            }
+            // rs274 never sends the motions cutter compensation holds at a closing `%`.
+            self.machine.state.comp.discard();
+            self.machine.output.finished = true;
+            return Ok(Flow::Yield);
+        }
+        self.machine.state.line = self.lines.number;
+        if self.machine.state.resync {
+            self.machine.resync_position();
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The dialect's look at the raw line, then its significant characters (comments and
+    /// spaces out, lower case); a line with none, or deleted by the block delete switch, is
+    /// done with.
+    fn significant_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.dialect.has_prelude() && self.dialect_prelude()? {
+            return Ok(self.made_or_next());
+        }
+        let inner = self.machine.hooks.dialect.inner_paren();
+        if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
+            if self.fanuc_seeking() {
+                return Ok(Flow::Next);
+            }
+            // Closed at the end of its line, the line is read.
+            if !self.machine.hooks.dialect.closes_comment_at_line_end()
+                || fault.message != UNCLOSED_COMMENT
+            {
+                return Err(self.error(fault));
+            }
+        }
+        if self.machine.hooks.makerbot {
+            self.machine.rename_makerbot_a();
+        }
+        let bytes = self.machine.syntax.compact.bytes();
+        if bytes.is_empty() || (self.machine.syntax.block_delete && bytes[0] == b'/') {
+            return Ok(Flow::Next);
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The control flow a line may be part of: the dialect's Macro B, O-words (and M98, M99,
+    /// G65), LinuxCNC's `;py,` lines.
+    fn control_flow_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.dialect.reads_macro_b()
+            && let fanuc::FanucLine::Done = self.fanuc_line().map_err(|fault| self.error(fault))?
+        {
+            return Ok(self.made_or_next());
+        }
+        let bytes = self.machine.syntax.compact.bytes();
+        let g65 = self.machine.hooks.dialect.fanuc_subprograms() && control::may_call_g65(bytes);
+        if (self.control.engaged() || control::may_control(bytes) || g65) && self.control_line()? {
+            // (A line skipped inside a false `if` is no O-word of its own.)
+            if control::may_control(self.machine.syntax.compact.bytes()) {
+                self.machine.hooks.dialect.count_refused_o_word(&mut self.machine.hooks.summary);
+            }
+            // (A Python subroutine's move.)
+            return Ok(self.made_or_next());
+        }
+        if self.machine.syntax.compact.bytes()[0] == b';'
+            && self.machine.hooks.dialect.executes_comments()
+            && self.lines.line.starts_with(b";py,")
+        {
+            // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
+            let code = self.lines.line[4..].to_vec();
+            self.python_comment(comments::PythonComment::Run, &code)
+                .map_err(|fault| self.error(fault))?;
+            return Ok(self.made_or_next());
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The line read as a block, changed by the dialect, and executed.
+    fn block_line(&mut self) -> Result<Flow, GcodeError> {
+        let raw_len = self.lines.line.len();
+        let result = {
+            let mut reader = Reader::new(
+                &self.machine.syntax.compact,
+                raw_len,
+                &self.machine.state.params,
+                &self.machine.state,
+            )
+            .mach3(self.machine.hooks.dialect.reads_mach3_codes());
+            reader.read_block(&mut self.machine.syntax.block)
+        };
+        result.map_err(|fault| self.error(fault))?;
+        let dialect = self.machine.hooks.dialect;
+        if dialect.adapts_blocks()
+            && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
+        {
+            return Ok(Flow::Next);
+        }
+        self.execute_block().map_err(|fault| self.error(fault))?;
+        if !self.machine.output.queue.is_empty() || self.machine.output.finished {
+            return Ok(Flow::Yield);
+        }
+        Ok(Flow::Next)
+    }
+
+    /// After a line a hook took: give the motions it made, else read the next line.
+    fn made_or_next(&self) -> Flow {
+        if self.machine.output.queue.is_empty() { Flow::Next } else { Flow::Yield }
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution: the machine's, with the
