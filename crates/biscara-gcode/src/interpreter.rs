@@ -205,7 +205,7 @@ pub struct Interpreter<R> {
 impl<R: BufRead> Interpreter<R> {
     /// The dialect being read: the configured one, or what `auto` chose so far.
     pub fn dialect(&self) -> Dialect {
-        self.machine.hooks.dialect.dialect()
+        self.machine.hooks.rules.dialect
     }
 
     /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
@@ -371,7 +371,7 @@ impl<R: BufRead> Interpreter<R> {
         if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
             return Err(GcodeError::NoBlockNumber { line, target });
         }
-        if !self.machine.hooks.dialect.needs_program_end() {
+        if !self.machine.hooks.rules.needs_program_end {
             self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
         }
         self.end_of_input()
@@ -423,16 +423,16 @@ impl<R: BufRead> Interpreter<R> {
     /// spaces out, lower case); a line with none, or deleted by the block delete switch, is
     /// done with.
     fn significant_line(&mut self) -> Result<Flow, GcodeError> {
-        if self.machine.hooks.dialect.has_prelude() && self.dialect_prelude()? {
+        if self.machine.hooks.rules.has_prelude && self.dialect_prelude()? {
             return Ok(self.made_or_next());
         }
-        let inner = self.machine.hooks.dialect.inner_paren();
+        let inner = self.machine.hooks.rules.inner_paren;
         if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
             if self.fanuc_seeking() {
                 return Ok(Flow::Next);
             }
             // Closed at the end of its line, the line is read.
-            if !self.machine.hooks.dialect.closes_comment_at_line_end()
+            if !self.machine.hooks.rules.closes_comment_at_line_end
                 || fault.message != UNCLOSED_COMMENT
             {
                 return Err(self.error(fault));
@@ -451,13 +451,13 @@ impl<R: BufRead> Interpreter<R> {
     /// The control flow a line may be part of: the dialect's Macro B, O-words (and M98, M99,
     /// G65), LinuxCNC's `;py,` lines.
     fn control_flow_line(&mut self) -> Result<Flow, GcodeError> {
-        if self.machine.hooks.dialect.reads_macro_b()
+        if self.machine.hooks.rules.reads_macro_b
             && let fanuc::FanucLine::Done = self.fanuc_line().map_err(|fault| self.error(fault))?
         {
             return Ok(self.made_or_next());
         }
         let bytes = self.machine.syntax.compact.bytes();
-        let g65 = self.machine.hooks.dialect.fanuc_subprograms() && control::may_call_g65(bytes);
+        let g65 = self.machine.hooks.rules.fanuc_subprograms && control::may_call_g65(bytes);
         if (self.control.engaged() || control::may_control(bytes) || g65) && self.control_line()? {
             // (A line skipped inside a false `if` is no O-word of its own.)
             if control::may_control(self.machine.syntax.compact.bytes()) {
@@ -467,7 +467,7 @@ impl<R: BufRead> Interpreter<R> {
             return Ok(self.made_or_next());
         }
         if self.machine.syntax.compact.bytes()[0] == b';'
-            && self.machine.hooks.dialect.executes_comments()
+            && self.machine.hooks.rules.executes_comments
             && self.lines.line.starts_with(b";py,")
         {
             // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
@@ -489,12 +489,12 @@ impl<R: BufRead> Interpreter<R> {
                 &self.machine.state.params,
                 &self.machine.state,
             )
-            .mach3(self.machine.hooks.dialect.reads_mach3_codes());
+            .mach3(self.machine.hooks.rules.reads_mach3_codes);
             reader.read_block(&mut self.machine.syntax.block)
         };
         result.map_err(|fault| self.error(fault))?;
         let dialect = self.machine.hooks.dialect;
-        if dialect.adapts_blocks()
+        if self.machine.hooks.rules.adapts_blocks
             && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
         {
             return Ok(Flow::Next);
@@ -527,7 +527,7 @@ impl<R: BufRead> Interpreter<R> {
     /// ([`Machine::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
     /// end before the rest of the line.
     pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
-        if !self.machine.hooks.dialect.executes_comments() || !self.lines.line.contains(&b'(') {
+        if !self.machine.hooks.rules.executes_comments || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
         if let Some((_, text, close)) = comments::last_comment(&self.lines.line)
@@ -614,8 +614,8 @@ impl<R: BufRead> Interpreter<R> {
     /// What the dialect sets before the first line: the longest line, and the feed rate before
     /// any F word (Marlin's `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
     pub(super) fn apply_dialect(&mut self) {
-        self.lines.max = self.machine.hooks.dialect.max_line();
-        if let Some(feed) = self.machine.hooks.dialect.default_feed()
+        self.lines.max = self.machine.hooks.rules.max_line;
+        if let Some(feed) = self.machine.hooks.rules.default_feed
             && self.machine.state.feed_rate == 0.0
         {
             self.machine.state.feed_rate = feed;
@@ -713,7 +713,7 @@ impl<R: BufRead> Interpreter<R> {
                 makerbot: false,
             });
         }
-        if !self.machine.hooks.dialect.needs_program_end() {
+        if !self.machine.hooks.rules.needs_program_end {
             return Ok(());
         }
         Err(match self.machine.syntax.percent {

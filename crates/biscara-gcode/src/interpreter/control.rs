@@ -368,7 +368,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65 && (!self.machine.hooks.dialect.fanuc_subprograms() || skipping) {
+        if g65 && (!self.machine.hooks.rules.fanuc_subprograms || skipping) {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -734,7 +734,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if self.machine.hooks.dialect.fanuc_subprograms()
+            if self.machine.hooks.rules.fanuc_subprograms
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {

@@ -293,7 +293,7 @@ impl Machine {
                 ));
             }
             d.value / 2.0
-        } else if self.hooks.dialect.comp_radius_in_p()
+        } else if self.hooks.rules.comp_radius_in_p
             && let Some(p) = self.syntax.block.word(b'p')
         {
             // Mach3's G41/G42 P: the radius itself, program units, instead of the tool table's

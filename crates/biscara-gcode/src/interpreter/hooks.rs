@@ -8,7 +8,7 @@
 use biscara_motion::{CodeName, MotionKind};
 
 use super::Machine;
-use super::dialects::{DialectHooks, hooks_of};
+use super::dialects::{DialectHooks, Rules, hooks_of};
 use crate::dialect::{Detection, Dialect, Summary};
 use crate::tool::{Tool, ToolInference};
 
@@ -18,6 +18,8 @@ use crate::tool::{Tool, ToolInference};
 pub(super) struct Hooks {
     /// The hooks of the dialect being read (LinuxCNC's while `auto` has not decided).
     pub(super) dialect: &'static dyn DialectHooks,
+    /// Their rules (`dialect.rules()`, kept at hand: the reader asks them on every line).
+    pub(super) rules: &'static Rules,
     /// Whether `auto` still has to read ahead (before the first line).
     pub(super) undecided: bool,
     /// `auto` found nothing in its look-ahead: read as LinuxCNC, and perhaps decided at the end.
@@ -51,6 +53,7 @@ impl Hooks {
         let auto = config.dialect == Dialect::Auto;
         Hooks {
             dialect: hooks_of(config.dialect),
+            rules: hooks_of(config.dialect).rules(),
             undecided: auto,
             provisional: false,
             detection: None,
@@ -71,6 +74,7 @@ impl Hooks {
     /// Reads on in `dialect` (what `auto` decided).
     pub(super) fn set_dialect(&mut self, dialect: Dialect) {
         self.dialect = hooks_of(dialect);
+        self.rules = self.dialect.rules();
     }
 }
 

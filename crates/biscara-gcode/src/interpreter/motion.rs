@@ -74,7 +74,7 @@ impl Machine {
             return self.comp_straight(true, end, None, g53);
         }
         // Marlin moves G0 as G1, at the feed rate in force.
-        if motion == 0 && self.hooks.dialect.rapid_at_feed() {
+        if motion == 0 && self.hooks.rules.rapid_at_feed {
             self.move_to(end, Some(Feed { mm_per_min: self.state.feed_mm, inverse_time: false }));
             return Ok(());
         }
@@ -126,7 +126,7 @@ impl Machine {
         let word = |letter: u8| self.syntax.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
         // Grbl reads the K word of an XY-plane arc and ignores it.
-        if self.state.plane == Plane::Xy && self.hooks.dialect.ignores_k_in_xy_arc() {
+        if self.state.plane == Plane::Xy && self.hooks.rules.ignores_k_in_xy_arc {
             k = None;
         }
         let ijk = i.is_some() || j.is_some() || k.is_some();

@@ -83,7 +83,7 @@ impl Machine {
         }
         self.state.params.set(PROBE_TRIPPED, 0.0);
         let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
-        if distance != 0.0 && self.hooks.dialect.probe_backs_off() {
+        if distance != 0.0 && self.hooks.rules.probe_backs_off {
             let backoff = BACKOFF_MM / self.state.factor();
             let mut stop = end;
             for axis in 0..3 {

@@ -5,10 +5,8 @@
 
 use biscara_motion::MotionKind;
 
-use super::DialectHooks;
-use crate::dialect::{
-    Dialect, MAX_LONG_LINE, Prelude, Summary, g_name, grbl_prelude, grbl_runs_g, grbl_runs_m,
-};
+use super::{DialectHooks, Rules};
+use crate::dialect::{Dialect, Prelude, Summary, g_name, grbl_prelude, grbl_runs_g, grbl_runs_m};
 use crate::interpreter::Machine;
 use crate::syntax::lexer::{Fault, InnerParen};
 
@@ -16,71 +14,37 @@ use crate::syntax::lexer::{Fault, InnerParen};
 #[derive(Debug)]
 pub(in crate::interpreter) struct Grbl;
 
-impl DialectHooks for Grbl {
-    fn dialect(&self) -> Dialect {
-        Dialect::Grbl
-    }
+/// Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all characters until
+/// ')' or EOL"); Grbl 1.1 wants P or L in G10 (`gc_execute_line`: "P/L word missing"), and its P
+/// defaults to 0: the system in force (an OpenBuilds plasma post's `G10 L20 Z-2`).
+const RULES: Rules = Rules {
+    dialect: Dialect::Grbl,
+    has_prelude: true,
+    inner_paren: InnerParen::Ignored,
+    closes_comment_at_line_end: true,
+    g10_p_optional: true,
+    ignores_k_in_xy_arc: true,
+    gates_laser_in_rapids: true,
+    ..Rules::FIRMWARE
+};
 
-    fn max_line(&self) -> usize {
-        MAX_LONG_LINE
+impl DialectHooks for Grbl {
+    fn rules(&self) -> &'static Rules {
+        &RULES
     }
 
     fn prelude(&self, raw: &[u8]) -> Prelude {
         grbl_prelude(raw)
     }
 
-    fn has_prelude(&self) -> bool {
-        true
-    }
-
-    fn inner_paren(&self) -> InnerParen {
-        InnerParen::Ignored
-    }
-
-    /// Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all characters until
-    /// ')' or EOL").
-    fn closes_comment_at_line_end(&self) -> bool {
-        true
-    }
-
     fn count_refused_o_word(&self, summary: &mut Summary) {
         summary.count_refused("O-words");
-    }
-
-    fn executes_comments(&self) -> bool {
-        false
-    }
-
-    fn adapts_blocks(&self) -> bool {
-        true
     }
 
     /// Grbl changes no block; it counts what Grbl itself would refuse in it.
     fn adapt_block(&self, machine: &mut Machine) -> Result<bool, Fault> {
         machine.count_refused_by_grbl();
         Ok(false)
-    }
-
-    fn needs_program_end(&self) -> bool {
-        false
-    }
-
-    /// Grbl 1.1 wants P or L (`gc_execute_line`: "P/L word missing"), and its P defaults to 0:
-    /// the system in force (an OpenBuilds plasma post's `G10 L20 Z-2`).
-    fn g10_p_optional(&self) -> bool {
-        true
-    }
-
-    fn ignores_k_in_xy_arc(&self) -> bool {
-        true
-    }
-
-    fn probe_backs_off(&self) -> bool {
-        false
-    }
-
-    fn gates_laser_in_rapids(&self) -> bool {
-        true
     }
 }
 

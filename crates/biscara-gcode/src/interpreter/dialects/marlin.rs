@@ -3,8 +3,8 @@
 //! rate in force, a default feed rate, long lines, nested comments, no program end, no probe
 //! back-off; a program read as Marlin's is a 3D printer's.
 
-use super::DialectHooks;
-use crate::dialect::{Dialect, MAX_LONG_LINE, Prelude, marlin_prelude};
+use super::{DialectHooks, Rules};
+use crate::dialect::{Dialect, Prelude, marlin_prelude};
 use crate::interpreter::{AXES, MM_PER_INCH, Machine};
 use crate::syntax::lexer::{Fault, InnerParen};
 use crate::syntax::parser::Word;
@@ -19,18 +19,21 @@ const MAX_EXTRUSION: f64 = 1e9;
 #[derive(Debug)]
 pub(in crate::interpreter) struct Marlin;
 
+/// Marlin's feed rate before the first F word is its `DEFAULT_FEEDRATE_MM_M`; it moves G0 as G1,
+/// at the feed rate in force (its G0_G1; a separate G0 feed rate is a build option, off by
+/// default), so a slicer's `G0 F9000` travels at 150 mm/s.
+const RULES: Rules = Rules {
+    dialect: Dialect::Marlin,
+    default_feed: Some(MARLIN_DEFAULT_FEED),
+    has_prelude: true,
+    inner_paren: InnerParen::Opens,
+    rapid_at_feed: true,
+    ..Rules::FIRMWARE
+};
+
 impl DialectHooks for Marlin {
-    fn dialect(&self) -> Dialect {
-        Dialect::Marlin
-    }
-
-    fn max_line(&self) -> usize {
-        MAX_LONG_LINE
-    }
-
-    /// Marlin's `DEFAULT_FEEDRATE_MM_M`.
-    fn default_feed(&self) -> Option<f64> {
-        Some(MARLIN_DEFAULT_FEED)
+    fn rules(&self) -> &'static Rules {
+        &RULES
     }
 
     /// A slicer's thumbnail can fill the look-ahead: its dialect still tells.
@@ -46,38 +49,8 @@ impl DialectHooks for Marlin {
         marlin_prelude(raw)
     }
 
-    fn has_prelude(&self) -> bool {
-        true
-    }
-
-    fn inner_paren(&self) -> InnerParen {
-        InnerParen::Opens
-    }
-
-    fn executes_comments(&self) -> bool {
-        false
-    }
-
-    fn adapts_blocks(&self) -> bool {
-        true
-    }
-
     fn adapt_block(&self, machine: &mut Machine) -> Result<bool, Fault> {
         machine.adapt_marlin_block()
-    }
-
-    fn needs_program_end(&self) -> bool {
-        false
-    }
-
-    /// Marlin moves G0 as G1, at the feed rate in force (its G0_G1; a separate G0 feed rate is
-    /// a build option, off by default), so a slicer's `G0 F9000` travels at 150 mm/s.
-    fn rapid_at_feed(&self) -> bool {
-        true
-    }
-
-    fn probe_backs_off(&self) -> bool {
-        false
     }
 }
 
