@@ -35,7 +35,7 @@ mod comments;
 mod control;
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
-/// The dialects' hooks: one implementation of [`dialects::DialectHooks`] per dialect.
+/// The dialects' hooks: one implementation of `DialectHooks` per dialect.
 mod dialects;
 /// A block executed in LinuxCNC's order.
 mod execute;

@@ -1,11 +1,12 @@
-//! The dialects as implementations of one trait, [`DialectHooks`]: what the interpreter asks of
+//! The dialects as implementations of one trait, `DialectHooks`: what the interpreter asks of
 //! the firmware a program was written for, at the points where a firmware reads G-code
-//! differently from LinuxCNC. The answers that are values are the dialect's [`Rules`]; the
-//! ones that act (a raw line read before the block reader, a block changed after it) are the
-//! trait's other methods. Every default is LinuxCNC's reading, so [`Linuxcnc`] implements
+//! differently from LinuxCNC. The answers that are values are the dialect's `Rules`; the ones
+//! that act (a raw line read before the block reader, a block changed after it) are the
+//! trait's other methods. Every default is LinuxCNC's reading, so `Linuxcnc` implements
 //! nothing; Grbl, Marlin, Mach3 and Fanuc (`dialects/`) answer where they differ. The machine
-//! holds the hooks in force ([`Hooks`](super::hooks::Hooks)) and the executor asks them, never
-//! which dialect it reads; `auto` swaps them when it decides, before or during the program.
+//! holds the hooks in force (`Hooks::dialect`, `Hooks::rules`) and the executor asks them,
+//! never which dialect it reads; `auto` swaps them when it decides, before or during the
+//! program.
 
 use std::fmt::Debug;
 

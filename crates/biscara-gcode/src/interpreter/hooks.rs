@@ -1,7 +1,7 @@
 //! The dialect's and the tool's state on the machine (`Hooks`: the dialect's hooks in force,
 //! what `auto` found, the tool, Marlin's extruder, the Fanuc control flow), and what M3/M4/M5/S
 //! emit for each tool (docs/gcode.md, docs/motion.md). What each dialect reads differently is
-//! its implementation of [`DialectHooks`] (`dialects/`); the hooks that read the input
+//! its implementation of `DialectHooks` (`dialects/`); the hooks that read the input
 //! (`auto`'s look-ahead, a line before the block reader, the end of the input) are the
 //! interpreter's.
 
