@@ -717,20 +717,11 @@ fn marlin_knows_m(code: u32) -> bool {
     )
 }
 
-/// The line as Grbl or Marlin reads it before the block reader (LinuxCNC and Mach3: always a
-/// block; Mach3's `O0001` program numbers and `O1000` subprogram labels are LinuxCNC's
-/// Fanuc-style O lines).
-pub(crate) fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
-    match dialect {
-        Dialect::Grbl => grbl_prelude(raw),
-        Dialect::Marlin => marlin_prelude(raw),
-        Dialect::Auto | Dialect::Linuxcnc | Dialect::Mach3 | Dialect::Fanuc => Prelude::Block,
-    }
-}
-
-/// Grbl's `$` system commands (Grbl wiki, "Grbl v1.1 Commands"): settings, homing, unlock,
-/// reports. `$J=` jogging is motion, refused.
-fn grbl_prelude(raw: &[u8]) -> Prelude {
+/// The line as Grbl reads it before the block reader: its `$` system commands (Grbl wiki, "Grbl
+/// v1.1 Commands": settings, homing, unlock, reports) and real-time characters are events; `$J=`
+/// jogging is motion, refused. (LinuxCNC, Mach3 and Fanuc have no such hook: Mach3's `O0001`
+/// program numbers and `O1000` subprogram labels are LinuxCNC's Fanuc-style O lines.)
+pub(crate) fn grbl_prelude(raw: &[u8]) -> Prelude {
     let start = raw.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(raw.len());
     if let Some(name) = grbl_realtime_line(&raw[start..]) {
         return Prelude::Event { name, known: true };
@@ -839,7 +830,7 @@ pub(crate) fn g_name(code: u16) -> String {
 
 /// Marlin reads one command per line (marlinfw.org "G-code"): the first G, M or T word. A line
 /// that starts with anything else (text without a `;`) is an unknown command, skipped.
-fn marlin_prelude(raw: &[u8]) -> Prelude {
+pub(crate) fn marlin_prelude(raw: &[u8]) -> Prelude {
     let Some((letter, number, start, end)) = first_command(raw) else {
         return unknown_text(raw);
     };

@@ -10,13 +10,12 @@ use std::io::BufRead;
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use crate::dialect::{
-    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect, prelude,
+    Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect,
 };
 use crate::error::{GcodeError, Location};
 use crate::ini_file::IniFile;
 use crate::syntax::lexer::{
-    Compact, Fault, FaultKind, InnerParen, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT,
-    compact,
+    Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
 };
 use crate::syntax::params::{
     COORDINATE_SYSTEM, G28_HOME, G30_HOME, G92_ENABLED, G92_OFFSET, Params, axis_slot,
@@ -25,7 +24,6 @@ use crate::syntax::params::{
 use crate::syntax::parser::{Block, Code, Predefined, Reader, Support, Word, g_group, m_group};
 use crate::tool::{Tool, ToolInference};
 use crate::tool_table::{ToolEntry, ToolTable};
-use hooks::MARLIN_DEFAULT_FEED;
 
 /// Canned cycles: G73, G74, G81–G89, G98/G99.
 mod canned;
@@ -37,12 +35,13 @@ mod comments;
 mod control;
 /// Cutter radius compensation (G40, G41, G42, G41.1, G42.1).
 mod cutter_comp;
+/// The dialects' hooks: one implementation of `DialectHooks` per dialect.
+mod dialects;
 /// A block executed in LinuxCNC's order.
 mod execute;
 /// The Fanuc/Haas dialect: Macro B control flow, M97, machine M-codes, look-ahead codes.
 mod fanuc;
-/// The dialects' and the tool's hooks (docs/gcode.md, docs/motion.md), kept apart from LinuxCNC's
-/// execution.
+/// The dialect's and the tool's state, and the tool's events (docs/gcode.md, docs/motion.md).
 mod hooks;
 /// M19, M48–M53, M62–M68 and the `$` word.
 mod io_codes;
@@ -175,6 +174,17 @@ pub fn interpret_seekable<R: Seekable>(reader: R, config: &Config) -> Interprete
     interpreter
 }
 
+/// What the reader does after a step of a line ([`Interpreter::step`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Flow {
+    /// The line goes on to the next step.
+    Go,
+    /// The line is done with: read the next one.
+    Next,
+    /// Motions are ready, or the program has ended: give them.
+    Yield,
+}
+
 /// The iterator returned by [`interpret`]: the line reader, generic over the input, with the
 /// O-word control flow and the Python plug-ins that move in it, and the machine that executes
 /// the blocks read.
@@ -195,7 +205,7 @@ pub struct Interpreter<R> {
 impl<R: BufRead> Interpreter<R> {
     /// The dialect being read: the configured one, or what `auto` chose so far.
     pub fn dialect(&self) -> Dialect {
-        self.machine.hooks.dialect
+        self.machine.hooks.rules.dialect
     }
 
     /// What `auto` chose and why, once the first motion (or error) has been returned; `None`
@@ -334,150 +344,171 @@ impl<R: BufRead> Interpreter<R> {
                 .map_err(|source| GcodeError::Read { line: self.lines.number + 1, source })?;
             self.machine.syntax.raw_len = self.lines.line.len();
             if !more {
-                if let Some(err) = self.control_end() {
-                    return Err(err);
-                }
-                if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
-                    return Err(GcodeError::NoBlockNumber { line, target });
-                }
-                if self.machine.hooks.dialect != Dialect::Linuxcnc {
-                    self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
-                }
-                return self.end_of_input();
+                return self.input_ended();
             }
-            if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
-                self.long_line_decides()?;
+            let mut flow = self.frame_line()?;
+            if flow == Flow::Go {
+                flow = self.significant_line()?;
             }
-            if self.lines.too_long {
-                let max = self.lines.max;
-                return Err(GcodeError::LineTooLong {
-                    at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
-                    max,
-                });
+            if flow == Flow::Go {
+                flow = self.control_flow_line()?;
             }
-            let trimmed = self.lines.line.trim_ascii();
-            if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
-                continue;
+            if flow == Flow::Go {
+                flow = self.block_line()?;
             }
-            if self.machine.syntax.percent == Percent::Unknown {
-                if trimmed.first() == Some(&b'%') {
-                    self.machine.syntax.percent = Percent::Open;
-                    continue;
-                }
-                self.machine.syntax.percent = Percent::Absent;
-            } else if self.machine.syntax.percent == Percent::Open
-                && trimmed == b"%"
-                && !self.lines.in_file()
-            {
-                if let Some(err) = self.control_percent() {
-                    return Err(err);
-                }
-                // rs274 never sends the motions cutter compensation holds at a closing `%`.
-                self.machine.state.comp.discard();
-                self.machine.output.finished = true;
-                return Ok(());
-            }
-            self.machine.state.line = self.lines.number;
-            if self.machine.state.resync {
-                self.machine.resync_position();
-            }
-            if self.machine.hooks.dialect != Dialect::Linuxcnc && self.dialect_prelude()? {
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let inner = match self.machine.hooks.dialect {
-                Dialect::Mach3 | Dialect::Marlin | Dialect::Fanuc => InnerParen::Opens,
-                Dialect::Grbl => InnerParen::Ignored,
-                _ => InnerParen::Refused,
-            };
-            if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
-                // Grbl ends a `(` comment at the end of its line (protocol.c: "ignore all
-                // characters until ')' or EOL"): closed there, the line is read.
-                if self.fanuc_seeking() {
-                    continue;
-                }
-                if self.machine.hooks.dialect != Dialect::Grbl || fault.message != UNCLOSED_COMMENT
-                {
-                    return Err(self.error(fault));
-                }
-            }
-            if self.machine.hooks.makerbot {
-                self.machine.rename_makerbot_a();
-            }
-            if self.machine.syntax.compact.bytes().is_empty() {
-                continue;
-            }
-            if self.machine.syntax.block_delete && self.machine.syntax.compact.bytes()[0] == b'/' {
-                continue;
-            }
-            if self.machine.hooks.dialect == Dialect::Fanuc
-                && let fanuc::FanucLine::Done =
-                    self.fanuc_line().map_err(|fault| self.error(fault))?
-            {
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let bytes = self.machine.syntax.compact.bytes();
-            let g65 = matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
-                && control::may_call_g65(bytes);
-            if (self.control.engaged() || control::may_control(bytes) || g65)
-                && self.control_line()?
-            {
-                // (A line skipped inside a false `if` is no O-word of its own.)
-                if self.machine.hooks.dialect == Dialect::Grbl
-                    && control::may_control(self.machine.syntax.compact.bytes())
-                {
-                    self.machine.hooks.summary.count_refused("O-words");
-                }
-                if !self.machine.output.queue.is_empty() {
-                    // A Python subroutine's move.
-                    return Ok(());
-                }
-                continue;
-            }
-            if self.machine.syntax.compact.bytes()[0] == b';'
-                && self.machine.hooks.dialect == Dialect::Linuxcnc
-                && self.lines.line.starts_with(b";py,")
-            {
-                // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
-                let code = self.lines.line[4..].to_vec();
-                self.python_comment(comments::PythonComment::Run, &code)
-                    .map_err(|fault| self.error(fault))?;
-                if !self.machine.output.queue.is_empty() {
-                    return Ok(());
-                }
-                continue;
-            }
-            let raw_len = self.lines.line.len();
-            let result = {
-                let mut reader = Reader::new(
-                    &self.machine.syntax.compact,
-                    raw_len,
-                    &self.machine.state.params,
-                    &self.machine.state,
-                )
-                .mach3(self.machine.hooks.dialect == Dialect::Mach3);
-                reader.read_block(&mut self.machine.syntax.block)
-            };
-            result.map_err(|fault| self.error(fault))?;
-            if self.machine.hooks.dialect != Dialect::Linuxcnc {
-                if self.machine.hooks.dialect == Dialect::Grbl {
-                    self.machine.count_refused_by_grbl();
-                }
-                self.machine.hooks.pending_extrude = None;
-                if self.machine.adapt_block().map_err(|fault| self.error(fault))? {
-                    continue;
-                }
-            }
-            self.execute_block().map_err(|fault| self.error(fault))?;
-            if !self.machine.output.queue.is_empty() || self.machine.output.finished {
+            if flow == Flow::Yield {
                 return Ok(());
             }
         }
+    }
+
+    /// The end of the input: an O-word or a Fanuc jump left open is an error; then the end of
+    /// the program as the dialect wants it.
+    fn input_ended(&mut self) -> Result<(), GcodeError> {
+        if let Some(err) = self.control_end() {
+            return Err(err);
+        }
+        if let Some((target, line)) = self.machine.hooks.fanuc.seeking {
+            return Err(GcodeError::NoBlockNumber { line, target });
+        }
+        if !self.machine.hooks.rules.needs_program_end {
+            self.machine.flush_cutter_comp().map_err(|fault| self.error(fault))?;
+        }
+        self.end_of_input()
+    }
+
+    /// The line's framing: its length, the program's opening and closing `%`; the line's
+    /// number for the motions it makes.
+    fn frame_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.provisional && self.lines.line.len() > MAX_LINE {
+            self.long_line_decides()?;
+        }
+        if self.lines.too_long {
+            let max = self.lines.max;
+            return Err(GcodeError::LineTooLong {
+                at: self.location(max.min(MAX_LINE), max.min(MAX_LINE) + 1),
+                max,
+            });
+        }
+        let trimmed = self.lines.line.trim_ascii();
+        if trimmed.first() == Some(&b'%') && self.fanuc_seeking() {
+            return Ok(Flow::Next);
+        }
+        if self.machine.syntax.percent == Percent::Unknown {
+            if trimmed.first() == Some(&b'%') {
+                self.machine.syntax.percent = Percent::Open;
+                return Ok(Flow::Next);
+            }
+            self.machine.syntax.percent = Percent::Absent;
+        } else if self.machine.syntax.percent == Percent::Open
+            && trimmed == b"%"
+            && !self.lines.in_file()
+        {
+            if let Some(err) = self.control_percent() {
+                return Err(err);
+            }
+            // rs274 never sends the motions cutter compensation holds at a closing `%`.
+            self.machine.state.comp.discard();
+            self.machine.output.finished = true;
+            return Ok(Flow::Yield);
+        }
+        self.machine.state.line = self.lines.number;
+        if self.machine.state.resync {
+            self.machine.resync_position();
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The dialect's look at the raw line, then its significant characters (comments and
+    /// spaces out, lower case); a line with none, or deleted by the block delete switch, is
+    /// done with.
+    fn significant_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.rules.has_prelude && self.dialect_prelude()? {
+            return Ok(self.made_or_next());
+        }
+        let inner = self.machine.hooks.rules.inner_paren;
+        if let Err(fault) = compact(&self.lines.line, &mut self.machine.syntax.compact, inner) {
+            if self.fanuc_seeking() {
+                return Ok(Flow::Next);
+            }
+            // Closed at the end of its line, the line is read.
+            if !self.machine.hooks.rules.closes_comment_at_line_end
+                || fault.message != UNCLOSED_COMMENT
+            {
+                return Err(self.error(fault));
+            }
+        }
+        if self.machine.hooks.makerbot {
+            self.machine.rename_makerbot_a();
+        }
+        let bytes = self.machine.syntax.compact.bytes();
+        if bytes.is_empty() || (self.machine.syntax.block_delete && bytes[0] == b'/') {
+            return Ok(Flow::Next);
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The control flow a line may be part of: the dialect's Macro B, O-words (and M98, M99,
+    /// G65), LinuxCNC's `;py,` lines.
+    fn control_flow_line(&mut self) -> Result<Flow, GcodeError> {
+        if self.machine.hooks.rules.reads_macro_b
+            && let fanuc::FanucLine::Done = self.fanuc_line().map_err(|fault| self.error(fault))?
+        {
+            return Ok(self.made_or_next());
+        }
+        let bytes = self.machine.syntax.compact.bytes();
+        let g65 = self.machine.hooks.rules.fanuc_subprograms && control::may_call_g65(bytes);
+        if (self.control.engaged() || control::may_control(bytes) || g65) && self.control_line()? {
+            // (A line skipped inside a false `if` is no O-word of its own.)
+            if control::may_control(self.machine.syntax.compact.bytes()) {
+                self.machine.hooks.dialect.count_refused_o_word(&mut self.machine.hooks.summary);
+            }
+            // (A Python subroutine's move.)
+            return Ok(self.made_or_next());
+        }
+        if self.machine.syntax.compact.bytes()[0] == b';'
+            && self.machine.hooks.rules.executes_comments
+            && self.lines.line.starts_with(b";py,")
+        {
+            // LinuxCNC runs a line that starts with `;py,` as it reads it (`read_semicolon`).
+            let code = self.lines.line[4..].to_vec();
+            self.python_comment(comments::PythonComment::Run, &code)
+                .map_err(|fault| self.error(fault))?;
+            return Ok(self.made_or_next());
+        }
+        Ok(Flow::Go)
+    }
+
+    /// The line read as a block, changed by the dialect, and executed.
+    fn block_line(&mut self) -> Result<Flow, GcodeError> {
+        let raw_len = self.lines.line.len();
+        let result = {
+            let mut reader = Reader::new(
+                &self.machine.syntax.compact,
+                raw_len,
+                &self.machine.state.params,
+                &self.machine.state,
+            )
+            .mach3(self.machine.hooks.rules.reads_mach3_codes);
+            reader.read_block(&mut self.machine.syntax.block)
+        };
+        result.map_err(|fault| self.error(fault))?;
+        let dialect = self.machine.hooks.dialect;
+        if self.machine.hooks.rules.adapts_blocks
+            && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
+        {
+            return Ok(Flow::Next);
+        }
+        self.execute_block().map_err(|fault| self.error(fault))?;
+        if !self.machine.output.queue.is_empty() || self.machine.output.finished {
+            return Ok(Flow::Yield);
+        }
+        Ok(Flow::Next)
+    }
+
+    /// After a line a hook took: give the motions it made, else read the next line.
+    fn made_or_next(&self) -> Flow {
+        if self.machine.output.queue.is_empty() { Flow::Next } else { Flow::Yield }
     }
 
     /// Executes the block just read, in LinuxCNC's order of execution: the machine's, with the
@@ -496,7 +527,7 @@ impl<R: BufRead> Interpreter<R> {
     /// ([`Machine::abort_comment`]), or Python's `py,`, `pyrun,`, `pyreload`, run to their
     /// end before the rest of the line.
     pub(super) fn convert_comment(&mut self) -> Result<(), Fault> {
-        if self.machine.hooks.dialect != Dialect::Linuxcnc || !self.lines.line.contains(&b'(') {
+        if !self.machine.hooks.rules.executes_comments || !self.lines.line.contains(&b'(') {
             return Ok(());
         }
         if let Some((_, text, close)) = comments::last_comment(&self.lines.line)
@@ -580,14 +611,15 @@ impl<R: BufRead> Interpreter<R> {
         self
     }
 
-    /// What the dialect sets before the first line: the longest line, and Marlin's feed rate
-    /// before any F word (its `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
+    /// What the dialect sets before the first line: the longest line, and the feed rate before
+    /// any F word (Marlin's `DEFAULT_FEEDRATE_MM_M`, 4000 mm/min).
     pub(super) fn apply_dialect(&mut self) {
-        self.lines.max =
-            if self.machine.hooks.dialect == Dialect::Linuxcnc { MAX_LINE } else { MAX_LONG_LINE };
-        if self.machine.hooks.dialect == Dialect::Marlin && self.machine.state.feed_rate == 0.0 {
-            self.machine.state.feed_rate = MARLIN_DEFAULT_FEED;
-            self.machine.state.feed_mm = MARLIN_DEFAULT_FEED;
+        self.lines.max = self.machine.hooks.rules.max_line;
+        if let Some(feed) = self.machine.hooks.rules.default_feed
+            && self.machine.state.feed_rate == 0.0
+        {
+            self.machine.state.feed_rate = feed;
+            self.machine.state.feed_mm = feed;
         }
     }
 
@@ -598,14 +630,8 @@ impl<R: BufRead> Interpreter<R> {
             .source()
             .read_ahead(LOOKAHEAD_BYTES)
             .map_err(|source| GcodeError::Read { line: 1, source })?;
-        let inference = crate::tool::infer_tool(self.lines.source().head()).or_else(|| {
-            // A slicer's thumbnail can fill the look-ahead: its dialect still tells.
-            (self.machine.hooks.dialect == Dialect::Marlin).then(|| ToolInference {
-                tool: Tool::Extruder,
-                reason: "read as Marlin G-code: a 3D printer".to_owned(),
-                line: None,
-            })
-        });
+        let inference = crate::tool::infer_tool(self.lines.source().head())
+            .or_else(|| self.machine.hooks.dialect.implied_tool());
         if let Some(inference) = inference {
             self.machine.hooks.tool = inference.tool;
             self.machine.hooks.tool_inference = Some(inference);
@@ -623,7 +649,7 @@ impl<R: BufRead> Interpreter<R> {
             .map_err(|source| GcodeError::Read { line: 1, source })?;
         match detect_dialect(self.lines.source().head(), complete) {
             Some(detection) => {
-                self.machine.hooks.dialect = detection.dialect;
+                self.machine.hooks.set_dialect(detection.dialect);
                 self.machine.hooks.makerbot = detection.makerbot;
                 self.machine.hooks.detection = Some(detection);
                 self.apply_dialect();
@@ -651,7 +677,7 @@ impl<R: BufRead> Interpreter<R> {
             });
         }
         self.machine.hooks.provisional = false;
-        self.machine.hooks.dialect = Dialect::Grbl;
+        self.machine.hooks.set_dialect(Dialect::Grbl);
         self.machine.hooks.detection = Some(Detection {
             dialect: Dialect::Grbl,
             reason: format!(
@@ -674,7 +700,7 @@ impl<R: BufRead> Interpreter<R> {
         self.machine.output.finished = true;
         if self.machine.hooks.provisional && self.machine.output.moved {
             self.machine.hooks.provisional = false;
-            self.machine.hooks.dialect = Dialect::Grbl;
+            self.machine.hooks.set_dialect(Dialect::Grbl);
             self.machine.hooks.detection = Some(Detection {
                 dialect: Dialect::Grbl,
                 reason: format!(
@@ -687,7 +713,7 @@ impl<R: BufRead> Interpreter<R> {
                 makerbot: false,
             });
         }
-        if self.machine.hooks.dialect != Dialect::Linuxcnc {
+        if !self.machine.hooks.rules.needs_program_end {
             return Ok(());
         }
         Err(match self.machine.syntax.percent {
@@ -698,7 +724,7 @@ impl<R: BufRead> Interpreter<R> {
 
     /// A dialect's look at the line before the block reader; `Ok(true)` when it consumed it.
     pub(super) fn dialect_prelude(&mut self) -> Result<bool, GcodeError> {
-        match prelude(self.machine.hooks.dialect, &self.lines.line) {
+        match self.machine.hooks.dialect.prelude(&self.lines.line) {
             Prelude::Block => Ok(false),
             Prelude::Event { name, known } => {
                 self.machine.record(&name, known);

@@ -2,6 +2,16 @@
 
 use super::*;
 
+/// The line as `dialect`'s hook before the block reader reads it (Grbl's and Marlin's; the
+/// other dialects have none: every line is a block).
+fn prelude(dialect: Dialect, raw: &[u8]) -> Prelude {
+    match dialect {
+        Dialect::Grbl => grbl_prelude(raw),
+        Dialect::Marlin => marlin_prelude(raw),
+        _ => Prelude::Block,
+    }
+}
+
 #[track_caller]
 fn check(text: &str, expected: Option<Dialect>) {
     let found = detect_dialect(text.as_bytes(), true);

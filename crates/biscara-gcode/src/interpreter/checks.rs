@@ -71,7 +71,7 @@ impl Machine {
                     ));
                 };
                 // (Grbl takes no P as P0: see `set_coordinate_data`.)
-                let grbl_p0 = p.is_none() && self.hooks.dialect == Dialect::Grbl;
+                let grbl_p0 = p.is_none() && self.hooks.rules.g10_p_optional;
                 if matches!(l, 2 | 20)
                     && !grbl_p0
                     && !p.is_some_and(|p| (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0)
@@ -184,7 +184,7 @@ impl Machine {
             }
         }
         // Mach3 takes the compensation radius from a P word (G41 P1.5): G41/G42 use it.
-        let mach3_radius = self.hooks.dialect == Dialect::Mach3
+        let mach3_radius = self.hooks.rules.comp_radius_in_p
             && block.g[7].is_some_and(|code| matches!(code.code, 410 | 420));
         if let Some(p) = block.word(b'p')
             && !mach3_radius

@@ -21,7 +21,6 @@ use super::{Interpreter, round_to_int};
 
 /// Reading O-word lines, M98/M99 and G65 (`read_o`).
 mod read;
-use crate::dialect::Dialect;
 use crate::environment::{Environment, NoEnvironment};
 use crate::error::GcodeError;
 use crate::error::Setting;
@@ -369,9 +368,7 @@ impl<R: BufRead> Interpreter<R> {
         };
         let skipping = self.control.engaged();
         let g65 = lead == Some(b'g');
-        if g65
-            && (!matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc) || skipping)
-        {
+        if g65 && (!self.machine.hooks.rules.fanuc_subprograms || skipping) {
             return Ok(skipping);
         }
         match (lead, m_number) {
@@ -737,7 +734,7 @@ impl<R: BufRead> Interpreter<R> {
             // Mach3 finds a subprogram's `O` label anywhere in the file (pcb2gcode's Mach3
             // posts call O2 from O3, defined after it): one passed while reading on to another
             // is remembered. rs274 refuses such a call ("EOF in file … seeking o-word").
-            if matches!(self.machine.hooks.dialect, Dialect::Mach3 | Dialect::Fanuc)
+            if self.machine.hooks.rules.fanuc_subprograms
                 && block.kind == OType::Fanuc
                 && self.label_of(&block.name).is_none()
             {

@@ -22,7 +22,6 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 
 use super::Machine;
 use super::motion::find_turn;
-use crate::Dialect;
 use crate::syntax::lexer::Fault;
 use crate::syntax::parser::Word;
 
@@ -294,7 +293,7 @@ impl Machine {
                 ));
             }
             d.value / 2.0
-        } else if self.hooks.dialect == Dialect::Mach3
+        } else if self.hooks.rules.comp_radius_in_p
             && let Some(p) = self.syntax.block.word(b'p')
         {
             // Mach3's G41/G42 P: the radius itself, program units, instead of the tool table's

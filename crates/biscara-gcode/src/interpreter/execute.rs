@@ -21,6 +21,28 @@ impl Machine {
         if self.syntax.block.extra.is_some() {
             self.check_polar_words()?;
         }
+        let plan = self.plan_motion()?;
+        self.check_group_zero()?;
+        if let Some(zero) = plan.group0.filter(|zero| zero.code == 530) {
+            if !matches!(plan.motion_to_be, Some(0 | 10)) {
+                return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
+            }
+            let incremental = match self.syntax.block.g[3] {
+                Some(code) => code.code == 910,
+                None => self.state.incremental,
+            };
+            if incremental {
+                return Err(self.code_fault(zero, "Cannot use g53 incremental"));
+            }
+        }
+        self.check_other_words(plan.motion_to_be)?;
+        self.store_parameters()?;
+        Ok(plan)
+    }
+
+    /// The motion the block makes, checked against its axis words (`enhance_block`,
+    /// `check_g_codes`).
+    fn plan_motion(&self) -> Result<Plan, Fault> {
         let motion_code = self.syntax.block.g[1];
         let group0 = self.syntax.block.g[0];
         let axis_words = AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some())
@@ -65,23 +87,13 @@ impl Machine {
             None if axis_words && !group0_uses_axes => self.state.motion,
             None => None,
         };
-        self.check_group_zero()?;
-        if let Some(zero) = group0.filter(|zero| zero.code == 530) {
-            if !matches!(motion_to_be, Some(0 | 10)) {
-                return Err(self.code_fault(zero, "Must use g0 or g1 with g53"));
-            }
-            let incremental = match self.syntax.block.g[3] {
-                Some(code) => code.code == 910,
-                None => self.state.incremental,
-            };
-            if incremental {
-                return Err(self.code_fault(zero, "Cannot use g53 incremental"));
-            }
-        }
+        Ok(Plan { motion_code, group0, motion_to_be })
+    }
 
-        self.check_other_words(motion_to_be)?;
-        // Read-only names are refused when the settings are stored, after the block's checks
-        // (rs274 reports an unused E word on `#<_x>=1 E1`, not the assignment).
+    /// Stores the block's parameter settings, which take effect after the whole line is read.
+    /// Read-only names are refused here, after the block's checks (rs274 reports an unused E
+    /// word on `#<_x>=1 E1`, not the assignment).
+    fn store_parameters(&mut self) -> Result<(), Fault> {
         for &(start, end, _) in &self.syntax.block.named {
             let name = &self.syntax.compact.bytes()[start..end];
             if name.first() == Some(&b'_') && self.state.predefined(name).is_some() {
@@ -95,7 +107,6 @@ impl Machine {
                 ));
             }
         }
-        // Parameter settings take effect after the whole line is read.
         for index in 0..self.syntax.block.numbered.len() {
             let (number, value) = self.syntax.block.numbered[index];
             self.state.params.set(number, value);
@@ -104,14 +115,35 @@ impl Machine {
             let (start, end, value) = self.syntax.block.named[index];
             self.state.params.set_named(&self.syntax.compact.bytes()[start..end], value);
         }
-        Ok(Plan { motion_code, group0, motion_to_be })
+        Ok(())
     }
 
-    /// Executes the rest of the block, after its comment, in LinuxCNC's order of execution;
-    /// `user_m_missing`: its user M-code has no program where the INI file says they are.
+    /// Executes the rest of the block, after its comment, in LinuxCNC's order of execution
+    /// (`execute_block`'s numbered steps); `user_m_missing`: its user M-code has no program
+    /// where the INI file says they are.
     pub(super) fn execute(&mut self, plan: Plan, user_m_missing: bool) -> Result<(), Fault> {
-        let Plan { motion_code, group0, motion_to_be } = plan;
+        self.execute_feed_and_tool()?;
+        if self.execute_m_codes(user_m_missing)? {
+            // rs274 read the restoring codes into this block's place: the rest is lost.
+            self.state.publish_position();
+            return Ok(());
+        }
+        self.execute_dwell(plan.group0)?;
+        self.execute_modes()?;
+        self.execute_group_zero(plan.group0)?;
+        // 22. retract mode
+        if let Some(code) = self.syntax.block.g[10] {
+            self.state.cycle.retract_to_old = code.code == 980;
+        }
+        self.execute_motion(plan)?;
+        self.check_range()?;
+        self.execute_stop()?;
+        self.state.publish_position();
+        Ok(())
+    }
 
+    /// Steps 3–6: feed mode, feed rate, spindle speed, tool selection.
+    fn execute_feed_and_tool(&mut self) -> Result<(), Fault> {
         // 3. feed mode
         if let Some(code) = self.syntax.block.g[5] {
             if code.code == 930 {
@@ -147,6 +179,12 @@ impl Machine {
         if self.syntax.block.word(b't').is_some() {
             self.select_tool()?;
         }
+        Ok(())
+    }
+
+    /// Steps 7–12: outputs and inputs, tool change, spindle, coolant, overrides, user M-codes;
+    /// `Ok(true)` when M72 or M73 restored the modal state (the rest of the block is lost).
+    fn execute_m_codes(&mut self, user_m_missing: bool) -> Result<bool, Fault> {
         // 7. digital and analog outputs and inputs
         if self.syntax.block.m[5].is_some() {
             self.io_output()?;
@@ -169,9 +207,7 @@ impl Machine {
         // 9. spindle: the gripper (or the tool)
         if let Some(code) = self.syntax.block.m[7].filter(|code| code.code >= 70) {
             if self.modal_state(code)? {
-                // rs274 read the restoring codes into this block's place: the rest is lost.
-                self.state.publish_position();
-                return Ok(());
+                return Ok(true);
             }
         } else if self.syntax.block.m[7].is_some_and(|code| code.code == 19) {
             self.orient_spindle()?;
@@ -207,7 +243,11 @@ impl Machine {
             }
             self.record(&name, true);
         }
-        // 14. dwell
+        Ok(false)
+    }
+
+    /// Step 14: dwell (G4 P).
+    fn execute_dwell(&mut self, group0: Option<Code>) -> Result<(), Fault> {
         if group0.is_some_and(|zero| zero.code == 40)
             && let Some(p) = self.syntax.block.word(b'p')
         {
@@ -218,6 +258,12 @@ impl Machine {
             }
             self.emit(MotionKind::Dwell { seconds: p.value });
         }
+        Ok(())
+    }
+
+    /// Steps 15–21: plane, length units, cutter radius compensation, tool length offset,
+    /// coordinate system, path control, distance modes.
+    fn execute_modes(&mut self) -> Result<(), Fault> {
         // 15. plane
         if let Some(code) = self.syntax.block.g[2] {
             let plane = match code.code {
@@ -275,7 +321,11 @@ impl Machine {
         if let Some(code) = self.syntax.block.g[4] {
             self.state.ijk_absolute = code.code == 901;
         }
-        // 23. G10, G28, G30, G92 family
+        Ok(())
+    }
+
+    /// Step 23: G10, G28, G30, G28.1, G30.1, G52, G92, then G92.1, G92.2, G92.3.
+    fn execute_group_zero(&mut self, group0: Option<Code>) -> Result<(), Fault> {
         if let Some(zero) = group0 {
             match zero.code {
                 100 => self.set_coordinate_data(zero)?,
@@ -321,11 +371,12 @@ impl Machine {
                 }
             }
         }
-        // 22. retract mode
-        if let Some(code) = self.syntax.block.g[10] {
-            self.state.cycle.retract_to_old = code.code == 980;
-        }
-        // 24. motion
+        Ok(())
+    }
+
+    /// Step 24: the motion mode, and the block's motion.
+    fn execute_motion(&mut self, plan: Plan) -> Result<(), Fault> {
+        let Plan { motion_code, group0, motion_to_be } = plan;
         let previous_motion = self.state.motion;
         // A spline leaves the modal motion as it was.
         if let Some(code) = motion_code.filter(|code| !spline::is_spline(code.code)) {
@@ -334,21 +385,22 @@ impl Machine {
                 self.state.cycle.initial_level = None;
             }
         }
-        if let Some(motion) = motion_to_be {
-            let g53 = group0.is_some_and(|zero| zero.code == 530);
-            if self.syntax.block.extra.is_some() {
-                self.apply_polar(motion, g53)?;
-            }
-            match motion {
-                0 | 10 => self.straight(motion, g53)?,
-                20 | 30 => self.arc(motion == 20)?,
-                50 | 51 => self.spline(motion)?,
-                code if probe::is_probe(code) => self.probe(code)?,
-                _ => self.canned_cycle(motion, previous_motion == Some(motion))?,
-            }
+        let Some(motion) = motion_to_be else { return Ok(()) };
+        let g53 = group0.is_some_and(|zero| zero.code == 530);
+        if self.syntax.block.extra.is_some() {
+            self.apply_polar(motion, g53)?;
         }
-        self.check_range()?;
-        // 25. stop
+        match motion {
+            0 | 10 => self.straight(motion, g53),
+            20 | 30 => self.arc(motion == 20),
+            50 | 51 => self.spline(motion),
+            code if probe::is_probe(code) => self.probe(code),
+            _ => self.canned_cycle(motion, previous_motion == Some(motion)),
+        }
+    }
+
+    /// Step 25: stop (M0, M1, M60) or end (M2, M30).
+    fn execute_stop(&mut self) -> Result<(), Fault> {
         if let Some(code) = self.syntax.block.m[4] {
             self.flush_cutter_comp()?;
             match code.code {
@@ -360,7 +412,6 @@ impl Machine {
                 _ => self.emit(MotionKind::Pause),
             }
         }
-        self.state.publish_position();
         Ok(())
     }
 }

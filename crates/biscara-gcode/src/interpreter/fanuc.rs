@@ -500,9 +500,8 @@ impl super::Machine {
     /// The Mach3 and Fanuc dialects' changes to the block just read (before it is run):
     /// - bare axis words after G80 run in the motion mode from before the cycle (G0–G3), as
     ///   Fanuc and Mach3 do (Autodesk's posts write G80 and go on with `X… Y…`);
-    /// - G53 with no axis word moves nowhere (a Mach3 post's `G53 G90 G40` preamble): dropped;
-    /// - Fanuc: G04 P is milliseconds and X seconds; a canned cycle's K is its repeat count.
-    pub(super) fn adapt_fanuc_block(&mut self) {
+    /// - G53 with no axis word moves nowhere (a Mach3 post's `G53 G90 G40` preamble): dropped.
+    pub(super) fn adapt_fanuc_style_block(&mut self) {
         let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
         if let Some(code) = self.syntax.block.g[1]
             && matches!(code.code, 0 | 10 | 20 | 30)
@@ -529,10 +528,14 @@ impl super::Machine {
                 _ => "axis words after G80, run in G3 (the motion before the cycle)",
             });
         }
-        if self.hooks.dialect != crate::Dialect::Fanuc {
-            return;
-        }
+    }
+
+    /// The Fanuc dialect's changes to the block just read, after
+    /// [`Self::adapt_fanuc_style_block`]: G04 P is milliseconds and X seconds; a canned cycle's
+    /// K is its repeat count.
+    pub(super) fn adapt_fanuc_words(&mut self) {
         let letter = |letter: u8| usize::from(letter - b'a');
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
         if group0 == Some(40) {
             // G04 X seconds, else P milliseconds.
             let x = self.syntax.block.letters[letter(b'x')].take();

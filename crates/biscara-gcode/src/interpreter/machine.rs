@@ -327,7 +327,7 @@ impl Machine {
     }
 
     pub(super) fn emit(&mut self, kind: MotionKind) {
-        if self.hooks.dialect == Dialect::Grbl && self.hooks.tool == Tool::Laser {
+        if self.hooks.tool == Tool::Laser && self.hooks.rules.gates_laser_in_rapids {
             self.grbl_laser_gate(&kind);
         }
         let extrude = if kind.end().is_some() { self.hooks.pending_extrude.take() } else { None };

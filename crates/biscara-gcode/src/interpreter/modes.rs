@@ -84,7 +84,7 @@ impl Machine {
             Some(p) if (0.0..=9.0).contains(&p.value) && p.value.fract() == 0.0 => p.value as usize,
             // Grbl 1.1 wants P or L (`gc_execute_line`: "P/L word missing"), and its P defaults
             // to 0: the system in force (an OpenBuilds plasma post's `G10 L20 Z-2`).
-            None if self.hooks.dialect == Dialect::Grbl => 0,
+            None if self.hooks.rules.g10_p_optional => 0,
             _ => {
                 return Err(self
                     .code_fault(code, format!("P value out of range (0-9) with G10 L{l_value}")));

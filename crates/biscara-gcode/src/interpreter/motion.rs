@@ -73,9 +73,8 @@ impl Machine {
         if motion == 0 && self.state.comp.active() {
             return self.comp_straight(true, end, None, g53);
         }
-        // Marlin moves G0 as G1, at the feed rate in force (its G0_G1; a separate G0 feed rate
-        // is a build option, off by default), so a slicer's `G0 F9000` travels at 150 mm/s.
-        if motion == 0 && self.hooks.dialect == Dialect::Marlin {
+        // Marlin moves G0 as G1, at the feed rate in force.
+        if motion == 0 && self.hooks.rules.rapid_at_feed {
             self.move_to(end, Some(Feed { mm_per_min: self.state.feed_mm, inverse_time: false }));
             return Ok(());
         }
@@ -127,7 +126,7 @@ impl Machine {
         let word = |letter: u8| self.syntax.block.word(letter);
         let (i, j, mut k, r) = (word(b'i'), word(b'j'), word(b'k'), word(b'r'));
         // Grbl reads the K word of an XY-plane arc and ignores it.
-        if self.hooks.dialect == Dialect::Grbl && self.state.plane == Plane::Xy {
+        if self.state.plane == Plane::Xy && self.hooks.rules.ignores_k_in_xy_arc {
             k = None;
         }
         let ijk = i.is_some() || j.is_some() || k.is_some();

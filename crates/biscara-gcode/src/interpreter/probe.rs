@@ -16,7 +16,7 @@
 use biscara_motion::{CodeName, Feed, MotionKind};
 
 use super::Machine;
-use crate::dialect::{Dialect, g_name};
+use crate::dialect::g_name;
 use crate::syntax::lexer::Fault;
 use crate::syntax::params::axis_slot;
 
@@ -83,7 +83,7 @@ impl Machine {
         }
         self.state.params.set(PROBE_TRIPPED, 0.0);
         let distance = (0..3).map(|axis| (start[axis] - end[axis]).powi(2)).sum::<f64>().sqrt();
-        if distance != 0.0 && self.hooks.dialect == Dialect::Linuxcnc {
+        if distance != 0.0 && self.hooks.rules.probe_backs_off {
             let backoff = BACKOFF_MM / self.state.factor();
             let mut stop = end;
             for axis in 0..3 {

@@ -5,15 +5,48 @@
 
 use std::path::Path;
 
-use crate::rs274_record::{cases, judge_case, read_record, record_path};
+use crate::rs274_record::{cases, config, judge_case, read_record, record_path};
+
+/// Whether `case` needs LinuxCNC's Python plug-ins: its INI file has a `[PYTHON]` section.
+fn needs_python(case: &Path) -> bool {
+    config(case).ini.is_some_and(|ini| ini.has_section("PYTHON"))
+}
+
+/// In a build without the Python plug-ins (the cargo feature `python` off), what a program that
+/// needs them gives: an error, the refusal of its Python line, or, for a call of a Python
+/// subroutine, no subroutine of that name (as LinuxCNC without the plug-ins); `None` when so.
+#[cfg(not(feature = "python"))]
+fn without_python(case: &Path) -> Option<String> {
+    match crate::rs274_record::ours(case) {
+        Err(err) => {
+            let message = err.to_string();
+            let refused = message.contains("leaves out (the cargo feature `python`");
+            (!refused && !message.contains("seeking o-word"))
+                .then(|| format!("not refused as Python: {message}"))
+        }
+        Ok(_) => Some("runs without the Python plug-ins".to_owned()),
+    }
+}
 
 #[test]
 fn every_conformance_program_matches_its_recorded_rs274_result() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/conformance");
     let cases = cases(&dir);
     let (mut failures, mut missing) = (Vec::new(), Vec::new());
+    let mut python = 0;
     for case in &cases {
         let name = case.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        if needs_python(case) {
+            python += 1;
+            // Built without the plug-ins, a Python program is refused instead of compared.
+            #[cfg(not(feature = "python"))]
+            {
+                if let Some(problem) = without_python(case) {
+                    failures.push(format!("{name}: {problem}"));
+                }
+                continue;
+            }
+        }
         let Ok(text) = std::fs::read_to_string(record_path(case)) else {
             missing.push(name.to_owned());
             continue;
@@ -25,6 +58,7 @@ fn every_conformance_program_matches_its_recorded_rs274_result() {
     }
     assert!(missing.is_empty(), "{} programs have no recorded result: {missing:?}", missing.len());
     assert!(cases.len() >= 500, "only {} recorded programs", cases.len());
+    assert!(python > 0, "no program needs the Python plug-ins");
     assert!(
         failures.is_empty(),
         "{} of {} programs differ from rs274's recorded result:\n{}",
