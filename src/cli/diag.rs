@@ -28,10 +28,19 @@ pub(crate) fn report(level: Level, message: impl Display) {
     let _ = writeln!(std::io::stderr(), "biscara: {label}: {message}");
 }
 
-/// The error's message as the command line shows it: the library's message, then each hint of
-/// a pipeline error on a line of its own, worded with this command line's flags.
+/// The error's message as the command line shows it: the library's message with its causes
+/// (`what: why`, a cause left out where the message already ends with it, as an error that
+/// names a file and its I/O error does), then each hint of a pipeline error on a line of its
+/// own, worded with this command line's flags.
 pub(crate) fn error_message(err: &anyhow::Error) -> String {
-    let mut message = format!("{err:#}");
+    let mut message = err.to_string();
+    for cause in err.chain().skip(1) {
+        let cause = cause.to_string();
+        if !message.ends_with(&cause) {
+            message.push_str(": ");
+            message.push_str(&cause);
+        }
+    }
     let hints = err.chain().find_map(|cause| cause.downcast_ref::<PipelineError>());
     for hint in hints.map(PipelineError::hints).unwrap_or_default() {
         message.push_str("\n    ");

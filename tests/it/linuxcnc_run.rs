@@ -260,7 +260,7 @@ fn linuxcnc_refusals_are_errors_with_the_line() {
 /// joint's velocity and acceleration limit on the data programs (it does not with the robot's
 /// Cartesian limits as they are: the README's table).
 #[test]
-fn linuxcncs_planner_on_the_derived_limits_stays_within_every_joint_limit() {
+fn linuxcnc_planner_on_the_derived_limits_stays_within_every_joint_limit() {
     let Some(_lock) = linuxcnc_or_skip("LinuxCNC planner on the derived limits") else { return };
     let dir = temp_dir("linuxcnc-derived");
     let robot = RobotModel::default();
@@ -421,6 +421,8 @@ fn linuxcnc_bad_input_is_refused() {
         let run = biscara(&dir, args);
         run.expect_code(1);
         assert!(!run.stderr.contains("panicked"), "{run}");
+        // A file's I/O error is said once, not again as the error's cause.
+        assert!(run.stderr.matches("(os error").count() <= 1, "{run}");
         assert!(!dir.join("run.csv").exists(), "{run}");
     }
 }
