@@ -115,7 +115,7 @@ pub struct Config {
     pub dialect: Dialect,
     /// What the robot carries: what M3, M4, M5 and S mean (docs/motion.md). The gripper by default.
     pub tool: Tool,
-    /// Infer the tool from the program's first [`LOOKAHEAD_BYTES`](crate::LOOKAHEAD_BYTES)
+    /// Infer the tool from the program's first [`crate::LOOKAHEAD_BYTES`]
     /// ([`crate::infer_tool`]); `tool` is kept when nothing tells. See
     /// [`Interpreter::tool_inference`].
     pub infer_tool: bool,

@@ -2,7 +2,7 @@
 //!
 //! The pieces of the chain (trimmed lines, the fillets between them and programmed arcs tangent
 //! to their neighbours, from `biscara-blend`) are laid end to end: the path parameter is the
-//! length along the chain, mm. The planner ([`TimeOptimal::plan_streamed`]) asks for grid points
+//! length along the chain, mm. The planner ([`TimeOptimal::plan_streamed`](biscara_timing::TimeOptimal::plan_streamed)) asks for grid points
 //! one by one; the chain pulls pieces from the blender as it needs them and drops those the
 //! sampling has passed, so it holds only the pieces of the planner's window.
 //!

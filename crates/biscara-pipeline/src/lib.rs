@@ -13,7 +13,7 @@
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
 //!   `FILE:LINE[:COL]: message`, with [`Hint`]s the caller words for its own settings.
 //!
-//! - [`generate`]: the other pipeline, points → CL → G-code (`biscara gen`).
+//! - [`generate()`]: the other pipeline, points → CL → G-code (`biscara gen`).
 //!
 //! It deliberately holds no whole program: motions and samples are iterators, and fitting
 //! reads the program twice (once for its extent) rather than keeping it.

@@ -3,7 +3,7 @@
 //!
 //! The CL statements, their reader and their writer are `biscara-cl`'s, the contract this crate
 //! shares with the stage that makes programs (`biscara-pnp`). [`Postprocessor`] turns statements
-//! into G-code as they come, writing to any `Write`; [`post`] reads a whole CL file with
+//! into G-code as they come, writing to any `Write`; [`post()`] reads a whole CL file with
 //! `biscara_cl::ClReader` and posts it.
 //!
 //! It deliberately knows nothing of the robot's kinematics: reachability is checked where the

@@ -11,7 +11,7 @@
 //! - [`Checker`]: every sample of a program checked for every problem of docs/virtual-robot.md
 //!   without stopping, grouped into [`Problem`]s with their time spans, and a [`Summary`].
 //! - [`Workspace`]: the reachable XY grid of docs/virtual-robot.md, its area and the largest
-//!   axis-aligned [`Rectangle`] inside it; [`Bounds`] and [`fit`]: a program's XY extent (arcs
+//!   axis-aligned [`Rectangle`] inside it; [`Bounds`] and [`fit()`]: a program's XY extent (arcs
 //!   included) and the offset that centres it in that rectangle.
 //!
 //! It is sans-IO: it takes samples, motions and bytes, and returns values; it never prints

@@ -3,7 +3,7 @@
 //! - bounded lines: [`read_capped_line`] (bytes, the cap a parameter: the G-code lexer's 252),
 //!   and on it [`LineReader`] (1-based lines, UTF-8 and NUL checked, at most
 //!   [`MAX_LINE_BYTES`]) and [`read_bounded_line`] (the same bound, `io::Error`s);
-//! - fixed-decimal numbers: [`fixed`] (never a negative zero), [`round_to`] for JSON, and the
+//! - fixed-decimal numbers: [`fixed()`] (never a negative zero), [`round_to`] for JSON, and the
 //!   [`RowBuffer`] the CSV writers gather rows in, with its fast formatter;
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;
 //! - the readers' error shape: [`Located`] (line, column, span, and a kind per reader);

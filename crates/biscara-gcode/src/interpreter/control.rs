@@ -318,7 +318,7 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// Sets where the files the program names (file subroutines, user M-code programs) are
-    /// found and opened, and how Python is started: [`NoEnvironment`](crate::NoEnvironment)
+    /// found and opened, and how Python is started: [`crate::NoEnvironment`]
     /// by default, which has neither files nor Python.
     pub fn with_environment(mut self, environment: Arc<dyn Environment>) -> Self {
         self.control.environment = environment;

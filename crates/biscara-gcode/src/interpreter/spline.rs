@@ -1,5 +1,6 @@
 //! G5 (cubic spline) and G5.1 (quadratic B-spline) in the XY plane, read as rs274 reads them
-//! (`convert_spline`), run as straight moves that stay within [`CHORD_TOLERANCE_MM`] of the
+//! (`convert_spline`), run as straight moves that stay within
+//! [`CHORD_TOLERANCE_MM`](crate::interpreter::spline::CHORD_TOLERANCE_MM) of the
 //! curve.
 //!
 //! rs274 checks a spline block and hands its control points to the motion planner as a NURBS
@@ -18,7 +19,8 @@
 //! `max|B''| ≤ 6 · max(|P0 − 2P1 + P2|, |P1 − 2P2 + P3|)` for a cubic Bézier (a quadratic is
 //! raised to the cubic it equals), so `n = ⌈√(0.75 · M / tolerance)⌉` with `M` the larger
 //! second difference keeps every move within the tolerance. The moves are queued with the
-//! block's line; a block makes at most [`MAX_SEGMENTS`] of them (memory stays bounded), and a
+//! block's line; a block makes at most
+//! [`MAX_SEGMENTS`](crate::interpreter::spline::MAX_SEGMENTS) of them (memory stays bounded), and a
 //! spline that would need more is refused (its control points then lie metres apart).
 
 use biscara_motion::{Feed, Plane};
