@@ -166,18 +166,10 @@ fn kinematics(c: &mut Criterion) {
     ] {
         group.bench_function(name, |b| {
             b.iter(|| {
-                let [theta1, theta2, theta3, d4, distal_rotation] = &mut q;
                 model.inverse_columns_with(
                     dispatch,
                     PoseColumns { x: black_box(&xs), y: &ys, z: &zs, phi: &phis },
-                    SolutionColumns {
-                        theta1,
-                        theta2,
-                        theta3,
-                        d4,
-                        distal_rotation,
-                        status: &mut status,
-                    },
+                    SolutionColumns::new(&mut q, &mut status),
                 );
                 q[0].iter().sum::<f64>()
             });

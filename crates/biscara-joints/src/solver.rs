@@ -107,17 +107,9 @@ impl JointSolver {
             let pose = Pose::from_degrees(x, y, z, c);
             (batch.x[k], batch.y[k], batch.z[k], batch.phi[k]) = (pose.x, pose.y, pose.z, pose.phi);
         }
-        let [theta1, theta2, theta3, d4, distal_rotation] = &mut batch.solved;
         self.model.inverse_columns(
             PoseColumns { x: &batch.x, y: &batch.y, z: &batch.z, phi: &batch.phi },
-            SolutionColumns {
-                theta1,
-                theta2,
-                theta3,
-                d4,
-                distal_rotation,
-                status: &mut batch.status,
-            },
+            SolutionColumns::new(&mut batch.solved, &mut batch.status),
         );
     }
 

@@ -479,6 +479,15 @@ pub struct SolutionColumns<'a> {
     pub status: &'a mut [BatchStatus],
 }
 
+impl<'a> SolutionColumns<'a> {
+    /// The columns `[theta1, theta2, theta3, d4, distal_rotation]` (in the fields' order, as
+    /// [`Joints::to_array`] then the distal rotation) and `status`.
+    pub fn new(joints: &'a mut [Vec<f64>; 5], status: &'a mut [BatchStatus]) -> Self {
+        let [theta1, theta2, theta3, d4, distal_rotation] = joints;
+        SolutionColumns { theta1, theta2, theta3, d4, distal_rotation, status }
+    }
+}
+
 impl Kinematics {
     /// [`Kinematics::inverse_checked`] for every pose of `poses`, written into `out` (as long as
     /// `poses`): the joints [`Kinematics::inverse`] gives, the same bits, and the first check
@@ -961,18 +970,10 @@ mod tests {
             let mut status = vec![BatchStatus::Ok; poses.len()];
             let phis: Vec<f64> = poses.iter().map(|p| p.phi).collect();
             let zs: Vec<f64> = poses.iter().map(|p| p.z).collect();
-            let [theta1, theta2, theta3, d4, distal_rotation] = &mut columns;
             model.inverse_columns_with(
                 dispatch,
                 PoseColumns { x: &xs, y: &ys, z: &zs, phi: &phis },
-                SolutionColumns {
-                    theta1,
-                    theta2,
-                    theta3,
-                    d4,
-                    distal_rotation,
-                    status: &mut status,
-                },
+                SolutionColumns::new(&mut columns, &mut status),
             );
             for (k, solution) in out.iter().enumerate() {
                 assert_eq!(status[k], solution.status, "{:?} {dispatch:?}", poses[k]);
