@@ -79,8 +79,8 @@ impl Polygon {
 
     /// Adds `lo ≤ alpha · u + beta · x ≤ hi`: one division for both sides.
     pub(crate) fn push_range(&mut self, alpha: f64, beta: f64, lo: f64, hi: f64) {
-        let scale = alpha.abs().max(beta.abs());
-        if scale == 0.0 || alpha.abs() <= ZERO * scale {
+        // |α| ≤ ZERO·max(|α|, |β|) (with α = β = 0) is |α| ≤ ZERO·|β| for finite α.
+        if alpha.abs() <= ZERO * beta.abs() {
             self.push(alpha, beta, hi);
             self.push(-alpha, -beta, -lo);
             return;
@@ -117,8 +117,11 @@ impl Polygon {
         let (mut lo, mut hi) = (lo.max(self.x_lo), hi.min(self.x_hi));
         let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
         let constant_lower = (self.u_lo > f64::NEG_INFINITY).then_some((self.u_lo, 0.0));
-        for &(p_upper, r_upper) in self.uppers.iter().chain(&constant_upper) {
-            for &(p_lower, r_lower) in self.lowers.iter().chain(&constant_lower) {
+        // The pairs in the order of the bounds (the slanted ones, then the constant one), over
+        // plain slices: the chained iterators cost a third of the loop's instructions.
+        let lowers = self.lowers.as_slice();
+        let mut pair = |(p_upper, r_upper): (f64, f64)| -> bool {
+            let mut one = |(p_lower, r_lower): (f64, f64)| -> bool {
                 // p_lower + r_lower·x ≤ p_upper + r_upper·x
                 let coefficient = r_lower - r_upper;
                 let bound = p_upper - p_lower;
@@ -131,18 +134,30 @@ impl Polygon {
                         lo = bound / coefficient;
                     }
                 } else if bound < 0.0 {
-                    return None;
+                    return false;
+                }
+                true
+            };
+            for &lower in lowers {
+                if !one(lower) {
+                    return false;
                 }
             }
+            constant_lower.is_none_or(&mut one)
+        };
+        for &upper in &self.uppers {
+            if !pair(upper) {
+                return None;
+            }
         }
-        if self.u_lo > self.u_hi {
+        if !constant_upper.is_none_or(&mut pair) || self.u_lo > self.u_hi {
             return None;
         }
         (lo <= hi).then_some((lo, hi))
     }
 
     /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)); the
-    /// planner computes the same without building the polygon (`TimeOptimal::u_range_at`).
+    /// planner computes the same without building the polygon (`TimeOptimal::cut_stage`).
     #[cfg(test)]
     pub(crate) fn contains_x(&self, x: f64) -> bool {
         let (lo, hi) = self.u_range(x);
