@@ -387,22 +387,19 @@ impl TimeOptimal {
                 *cut = Cut::NONE;
                 return;
             }
+            // An infinite bound needs no test: it gives u = +∞ above (−∞ below), which changes
+            // nothing, as its sign and the inverse's go together (x and β·x are finite where
+            // the range is read).
             let (upper, lower) = if alpha > 0.0 { (hi, lo) } else { (lo, hi) };
             let inverse = 1.0 / alpha;
-            if upper.is_finite() {
-                *cut = Cut { upper, beta, inverse };
-                let u = (upper - beta * x) * inverse;
-                if u < u_hi {
-                    u_hi = u;
-                }
-            } else {
-                *cut = Cut::NONE;
+            *cut = Cut { upper, beta, inverse };
+            let u = (upper - beta * x) * inverse;
+            if u < u_hi {
+                u_hi = u;
             }
-            if lower.is_finite() {
-                let u = (lower - beta * x) * inverse;
-                if u > u_lo {
-                    u_lo = u;
-                }
+            let u = (lower - beta * x) * inverse;
+            if u > u_lo {
+                u_lo = u;
             }
         };
         let (start, end) = stage_ranges(self.count, self.skip, self.take, local);
@@ -555,9 +552,9 @@ impl TimeOptimal {
                 }
             }
             self.build_stage(local, false);
-            // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}), so the
-            // range is empty only by rounding: then only rest is controllable.
-            let (_, top) = self.polygon.x_range(0.0, x_max).unwrap_or((0.0, 0.0));
+            // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}): the
+            // range runs from 0 to its top.
+            let top = self.polygon.x_top(x_max);
             if top.is_infinite() {
                 return Err(TimingError::Unbounded { s: self.s[local] });
             }

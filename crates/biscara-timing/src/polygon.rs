@@ -112,7 +112,9 @@ impl Polygon {
     ///
     /// u exists iff every lower bound `p_l + r_l·x` is at most every upper bound `p_u + r_u·x`,
     /// a linear condition on x per pair: with m half-planes, at most m²/4 pairs of a
-    /// multiplication and a comparison (a division only where the range shrinks).
+    /// multiplication and a comparison (a division only where the range shrinks). The planner
+    /// takes [`x_top`](Self::x_top), the same top for its polygons (tested against this).
+    #[cfg(test)]
     pub(crate) fn x_range(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
         let (mut lo, mut hi) = (lo.max(self.x_lo), hi.min(self.x_hi));
         let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
@@ -154,6 +156,71 @@ impl Polygon {
             return None;
         }
         (lo <= hi).then_some((lo, hi))
+    }
+
+    /// `x_range(0, hi)`'s top, for a polygon that holds rest, (u, x) = (0, 0): every bound
+    /// `γ ≥ 0` (the planner's stages: each row allows rest, and the next point's set holds 0).
+    ///
+    /// The same pairs in the same order with the same arithmetic, so the same bits, but only
+    /// the pairs that can act are tested: each upper's p is ≥ 0 and each lower's ≤ 0, so a
+    /// pair's `bound` is ≥ 0; then a pair of coefficient ≤ 0 can neither raise the bottom
+    /// (which stays 0, the x-only bounds being ≤ 0 below and ≥ 0 above) nor empty the range,
+    /// and only the top moves. One comparison a pair instead of three branches (the polygon is
+    /// the planner's largest cost on short moves).
+    pub(crate) fn x_top(&self, hi: f64) -> f64 {
+        let mut hi = hi.min(self.x_hi);
+        let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
+        let constant_lower = (self.u_lo > f64::NEG_INFINITY).then_some((self.u_lo, 0.0));
+        let lowers = self.lowers.as_slice();
+        // A pair acts (coefficient > 0 and bound < hi·coefficient) only where, at x = hi, the
+        // lower line p_l + r_l·x lies above the upper one, up to rounding (a few ulps of the
+        // terms' sizes). So an upper whose line lies clearly above every lower's at hi (by far
+        // more than rounding: 1e-12 of the sizes) is skipped, as no pair of it would act; the
+        // others are tested pair by pair as before. The lowers' highest line and largest size
+        // at hi are computed again only when hi moves (twice a polygon, on average).
+        let highest = |hi: f64| {
+            let (mut line, mut size) = (f64::NEG_INFINITY, 0.0f64);
+            for &(p, r) in lowers.iter().chain(&constant_lower) {
+                line = line.max(p + hi * r);
+                size = size.max(p.abs() + hi * r.abs());
+            }
+            (line, size)
+        };
+        let mut lines = highest(hi);
+        let mut pair = |(p_upper, r_upper): (f64, f64)| {
+            let (line, size) = lines;
+            let upper = p_upper + hi * r_upper;
+            let slack = 1e-12 * (p_upper.abs() + hi * r_upper.abs() + size) + 1e-300;
+            // (NaN, at hi = ∞, takes the pairs.)
+            if upper - line > slack {
+                return;
+            }
+            let before = hi;
+            let mut one = |(p_lower, r_lower): (f64, f64)| {
+                let coefficient = r_lower - r_upper;
+                let bound = p_upper - p_lower;
+                debug_assert!(bound >= 0.0 || bound.is_nan(), "a bound below rest: {bound}");
+                if (coefficient > 0.0) & (bound < hi * coefficient) {
+                    hi = bound / coefficient;
+                }
+            };
+            for &lower in lowers {
+                one(lower);
+            }
+            if let Some(lower) = constant_lower {
+                one(lower);
+            }
+            if hi != before {
+                lines = highest(hi);
+            }
+        };
+        for &upper in &self.uppers {
+            pair(upper);
+        }
+        if let Some(upper) = constant_upper {
+            pair(upper);
+        }
+        hi
     }
 
     /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)); the
@@ -217,6 +284,8 @@ mod tests {
                 polygon.push(alpha, beta, gamma);
             }
             let (lo, hi) = polygon.x_range(0.0, 8.0).expect("(0, 0) is feasible");
+            // The planner's shortcut: the same top, bit for bit.
+            prop_assert_eq!(polygon.x_top(8.0).to_bits(), hi.to_bits());
             let feasible = |u: f64, x: f64| {
                 u.abs() <= 5.0 + 1e-9
                     && planes.iter().all(|&(a, b, g)| a * u + b * x <= g + 1e-9)
