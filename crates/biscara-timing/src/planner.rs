@@ -104,6 +104,10 @@ impl Grid {
 
     /// Grid point `index` (0 ..= M).
     pub fn s(&self, index: usize) -> f64 {
+        if self.refine == 0 {
+            // The same points without the refined ends' arithmetic: base(0) = 0, base(M) = 1.
+            return self.base(index);
+        }
         let refine = self.refine as usize;
         let last = self.len();
         // From an end: 0, Δ·ratio^r, …, Δ·ratio, Δ at 0, 1, …, r + 1.

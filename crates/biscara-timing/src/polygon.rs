@@ -180,9 +180,16 @@ impl Polygon {
         // at hi are computed again only when hi moves (twice a polygon, on average).
         let highest = |hi: f64| {
             let (mut line, mut size) = (f64::NEG_INFINITY, 0.0f64);
+            // Comparisons, not `f64::max` (five instructions each for its NaN rule): a NaN
+            // line (hi = ∞) is left out here, and the test below takes every pair at hi = ∞.
             for &(p, r) in lowers.iter().chain(&constant_lower) {
-                line = line.max(p + hi * r);
-                size = size.max(p.abs() + hi * r.abs());
+                let (value, value_size) = (p + hi * r, p.abs() + hi * r.abs());
+                if value > line {
+                    line = value;
+                }
+                if value_size > size {
+                    size = value_size;
+                }
             }
             (line, size)
         };
