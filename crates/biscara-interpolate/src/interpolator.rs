@@ -220,13 +220,16 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
         out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
         let joints = out.len() - 1;
         let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
-        let known =
-            self.limit.joint_derivatives(
-                self.segment,
-                s,
-                &mut first[..joints],
-                &mut second[..joints],
-            ) && first[..joints].iter().chain(&second[..joints]).all(|value| value.is_finite());
+        let known = self.limit.joint_derivatives(
+            self.segment,
+            s,
+            &mut first[..joints],
+            &mut second[..joints],
+        ) && {
+            // Finite, all of them: the spread x − x is 0 for a finite x, NaN otherwise.
+            let spread = first[..joints].iter().zip(&second[..joints]);
+            spread.fold(0.0, |sum, (a, b)| sum + (a - a) + (b - b)) == 0.0
+        };
         let mut rate = self.rate;
         for (j, bound) in self.limit.joint_bounds()[..joints].iter().enumerate() {
             if !known {

@@ -158,9 +158,10 @@ pub struct TimeOptimal {
     /// them (see [`cut_stage`](Self::cut_stage)): what the forward pass reads.
     cuts: Vec<Cut>,
     stride: usize,
-    /// ṡ² of the forward pass at every point held from `forward_from` on, once the window holds
-    /// the path's end (the forward pass then runs to the end at once, to learn the duration).
-    forward: Vec<f64>,
+    /// ṡ² of the forward pass at every point held from `forward_from` on, and the duration of
+    /// the interval ending there, once the window holds the path's end (the forward pass then
+    /// runs to the end at once, to learn the duration).
+    forward: Vec<[f64; 2]>,
     /// Local index of `forward[0]` (`usize::MAX` while the end is not held).
     forward_from: usize,
     polygon: Polygon,
@@ -320,11 +321,14 @@ impl TimeOptimal {
         let local = self.index - self.first;
         let (s_start, s_end) = (self.s[local], self.s[local + 1]);
         let step = s_end - s_start;
-        let x_end = match local.checked_sub(self.forward_from) {
+        // The forward pass to the end kept each interval's ṡ² at its end and its duration.
+        let [x_end, duration] = match local.checked_sub(self.forward_from) {
             Some(k) => self.forward[k + 1],
-            None => self.forward_step(local),
+            None => {
+                let x_end = self.forward_step(local);
+                [x_end, 2.0 * step / (self.x.sqrt() + x_end.sqrt())]
+            }
         };
-        let duration = 2.0 * step / (self.x.sqrt() + x_end.sqrt());
         if !duration.is_finite() {
             return Err(TimingError::Stuck { s: s_start });
         }
@@ -470,7 +474,7 @@ impl TimeOptimal {
         let from = self.index - self.first;
         let mut forward = std::mem::take(&mut self.forward);
         forward.clear();
-        forward.push(self.x);
+        forward.push([self.x, 0.0]);
         let mut x = self.x;
         let mut time = self.time;
         for local in from..self.x_max.len() - 1 {
@@ -482,7 +486,7 @@ impl TimeOptimal {
                 return Err(TimingError::Stuck { s: self.s[local] });
             }
             time += duration;
-            forward.push(x_end);
+            forward.push([x_end, duration]);
             x = x_end;
         }
         self.forward = forward;
