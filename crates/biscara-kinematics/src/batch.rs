@@ -936,6 +936,17 @@ mod tests {
             rng ^= rng << 17;
             (rng >> 11) as f64 / (1u64 << 53) as f64
         };
+        // Ratios from 2⁻⁶² to 2⁻²², where libm returns the ratio itself below 2⁻²⁷ and the
+        // lanes take the polynomial all the same.
+        for _ in 0..50_000 {
+            let q = 2f64.powf(-62.0 + 40.0 * unit());
+            for x in [1.0f64, -1.0, 3.7, -0.2, 1e-5] {
+                for y in [q * x.abs(), -q * x.abs()] {
+                    let (ours, libm) = (atan2(y, x), libm::atan2(y, x));
+                    assert!(same(ours, libm), "atan2({y:e}, {x:e}) = {ours:e}, libm {libm:e}");
+                }
+            }
+        }
         for i in 0..400_000 {
             let angle = -PI + TAU * f64::from(i) / 400_000.0;
             let length = 10f64.powf(12.0 * unit() - 6.0);
