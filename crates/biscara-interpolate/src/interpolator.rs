@@ -226,9 +226,9 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
             &mut first[..joints],
             &mut second[..joints],
         ) && {
-            // Finite, all of them: the spread x − x is 0 for a finite x, NaN otherwise.
+            // Finite, all of them: x·0 is 0 for a finite x, NaN otherwise.
             let spread = first[..joints].iter().zip(&second[..joints]);
-            spread.fold(0.0, |sum, (a, b)| sum + (a - a) + (b - b)) == 0.0
+            spread.fold(0.0, |sum, (a, b)| sum + a * 0.0 + b * 0.0) == 0.0
         };
         let mut rate = self.rate;
         for (j, bound) in self.limit.joint_bounds()[..joints].iter().enumerate() {

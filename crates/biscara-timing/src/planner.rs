@@ -508,9 +508,9 @@ impl TimeOptimal {
             return Err(TimingError::NotFinite { s });
         }
         // One test a row in the common case: the spread is 0 when a, b and c are finite (NaN
-        // otherwise), and a NaN bound fails the comparisons.
+        // otherwise: ∞·0 is NaN), and a NaN bound fails the comparisons.
         let clean = self.rows[start..].iter().all(|row| {
-            let spread = (row.a - row.a) + (row.b - row.b) + (row.c - row.c);
+            let spread = row.a * 0.0 + row.b * 0.0 + row.c * 0.0;
             spread == 0.0 && row.lo <= row.c && row.c <= row.hi
         });
         if !clean {
@@ -553,11 +553,9 @@ impl TimeOptimal {
             // infinite x_max the range is meaningless and not read.)
             let x_max = self.x_max[local];
             let (u_lo, u_hi, x_ok) = self.cut_stage(local, x_max);
-            if x_max.is_finite() {
-                if x_ok && u_lo <= u_hi {
-                    self.k_max[local] = x_max;
-                    continue;
-                }
+            if x_max.is_finite() && x_ok && u_lo <= u_hi {
+                self.k_max[local] = x_max;
+                continue;
             }
             self.build_stage(local, false);
             // (u, x) = (0, 0) is feasible (rest is allowed everywhere and 0 ∈ K_{i+1}): the
