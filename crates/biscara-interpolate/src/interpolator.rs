@@ -2,7 +2,7 @@
 
 use biscara_blend::{Blended, Blender, NaiveCam, Piece};
 use biscara_motion::{Motion, MotionKind, Position};
-use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal};
+use biscara_timing::{Constraint, Grid, PathConstraints, TimeOptimal, TimingError};
 
 use crate::chain::{Chain, ChainBounds};
 use crate::{Profile, Segment, Timing};
@@ -222,13 +222,16 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
         out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
         let joints = out.len() - 1;
         let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
-        let known =
-            self.limit.joint_derivatives(
-                self.segment,
-                s,
-                &mut first[..joints],
-                &mut second[..joints],
-            ) && first[..joints].iter().chain(&second[..joints]).all(|value| value.is_finite());
+        let known = self.limit.joint_derivatives(
+            self.segment,
+            s,
+            &mut first[..joints],
+            &mut second[..joints],
+        ) && {
+            // Finite, all of them: x·0 is 0 for a finite x, NaN otherwise.
+            let spread = first[..joints].iter().zip(&second[..joints]);
+            spread.fold(0.0, |sum, (a, b)| sum + a * 0.0 + b * 0.0) == 0.0
+        };
         let mut rate = self.rate;
         for (j, bound) in self.limit.joint_bounds()[..joints].iter().enumerate() {
             if !known {
@@ -381,6 +384,21 @@ where
         }
     }
 
+    /// Plans one move on the optimal profile over `grid` (the planner's first window) under its
+    /// Cartesian bounds and the joints', noting the slowest joint rate met in `slowest`.
+    fn plan_move(
+        &mut self,
+        segment: &Segment,
+        grid: Grid,
+        rate: f64,
+        acceleration: f64,
+        slowest: &mut Option<RateLimit>,
+    ) -> Result<(), TimingError> {
+        let mut bounds =
+            MoveBounds { segment, limit: &mut self.limit, rate, acceleration, slowest };
+        self.planner.plan(&mut bounds, grid, WINDOW)
+    }
+
     /// The timing of a move, or `None` when it does not move.
     fn plan(
         &mut self,
@@ -430,14 +448,7 @@ where
             let grid = optimal_grid(length, segment.turning(), rate, acceleration, false)
                 .ok_or_else(too_long)?;
             let mut slowest = cause.map(|cause| RateLimit { rate, cause });
-            let mut bounds = MoveBounds {
-                segment,
-                limit: &mut self.limit,
-                rate,
-                acceleration,
-                slowest: &mut slowest,
-            };
-            if self.planner.plan(&mut bounds, grid, WINDOW).is_err() {
+            if self.plan_move(segment, grid, rate, acceleration, &mut slowest).is_err() {
                 return self.fallback(line, segment, rate, acceleration, programmed);
             }
             // Slower than the Cartesian trapezoid: a joint bound binds, and the switches need
@@ -450,14 +461,7 @@ where
             if self.planner.duration().is_some_and(|duration| duration > cartesian * (1.0 + 1e-9)) {
                 let refined = optimal_grid(length, segment.turning(), rate, acceleration, true)
                     .ok_or_else(too_long)?;
-                let mut bounds = MoveBounds {
-                    segment,
-                    limit: &mut self.limit,
-                    rate,
-                    acceleration,
-                    slowest: &mut slowest,
-                };
-                if self.planner.plan(&mut bounds, refined, WINDOW).is_err() {
+                if self.plan_move(segment, refined, rate, acceleration, &mut slowest).is_err() {
                     return self.fallback(line, segment, rate, acceleration, programmed);
                 }
             }

@@ -43,7 +43,7 @@ pub struct JointSpeedLimit {
     model: Kinematics,
     /// θ limits in rad/s, d4 in mm/s.
     max_velocity: [f64; 4],
-    /// The last probe: its point (x, y) and configuration, if IK found one.
+    /// The last probe or grid point: its point (x, y) and configuration, if IK found one.
     last_probe: Option<([f64; 2], Option<PlanarConfiguration>)>,
     /// The optimal profile's bounds, margins included.
     bounds: [JointBound; 4],
@@ -130,7 +130,21 @@ impl SpeedLimit for JointSpeedLimit {
         second: &mut [f64],
     ) -> bool {
         let [point, along, curve] = segment.derivatives(s);
-        let Ok(configuration) = self.model.configuration(point[0], point[1]) else {
+        // A move's first grid point is the last one's of the move before (the same bits):
+        // its configuration is the probe kept from there.
+        let configuration = match self.last_probe {
+            Some(([x, y], configuration))
+                if x.to_bits() == point[0].to_bits() && y.to_bits() == point[1].to_bits() =>
+            {
+                configuration
+            }
+            _ => {
+                let configuration = self.model.configuration(point[0], point[1]).ok();
+                self.last_probe = Some(([point[0], point[1]], configuration));
+                configuration
+            }
+        };
+        let Some(configuration) = configuration else {
             return false;
         };
         let (along, curve) = (

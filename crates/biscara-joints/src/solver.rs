@@ -107,17 +107,9 @@ impl JointSolver {
             let pose = Pose::from_degrees(x, y, z, c);
             (batch.x[k], batch.y[k], batch.z[k], batch.phi[k]) = (pose.x, pose.y, pose.z, pose.phi);
         }
-        let [theta1, theta2, theta3, d4, distal_rotation] = &mut batch.solved;
         self.model.inverse_columns(
             PoseColumns { x: &batch.x, y: &batch.y, z: &batch.z, phi: &batch.phi },
-            SolutionColumns {
-                theta1,
-                theta2,
-                theta3,
-                d4,
-                distal_rotation,
-                status: &mut batch.status,
-            },
+            SolutionColumns::new(&mut batch.solved, &mut batch.status),
         );
     }
 
@@ -137,10 +129,12 @@ impl JointSolver {
             let [theta1, theta2, theta3, d4, rotation] = batch.solved.each_ref().map(|q| q[k]);
             let mut unwrapper = self.theta3;
             let theta3 = unwrapper.theta3(batch.phi[k], rotation, theta3);
-            let joints = Joints::new(theta1, theta2, theta3, d4);
-            if self.model.within_limits(&joints) {
+            // The batch found θ1, θ2 and d4 inside their limits (these values, the same
+            // comparisons); θ3, made continuous, may have moved by a turn: only it is tested.
+            let [min, max] = self.model.limits(Joint::Theta3);
+            if min <= theta3 && theta3 <= max {
                 self.theta3 = unwrapper;
-                return Ok(joints);
+                return Ok(Joints::new(theta1, theta2, theta3, d4));
             }
         }
         self.solve(sample).map(|solution| solution.joints)

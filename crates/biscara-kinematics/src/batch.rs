@@ -120,6 +120,10 @@ struct Lanes {
     psi1_home: f64,
     /// θ1's and θ2's limits as arcs of directions.
     arc: [Arc; 2],
+    /// Whether θ1's and θ2's limits reach ±π, where `fit_into` can move an angle of `atan2`
+    /// (in [−π, π]) by 2π; inside (−π, π) it never does (θ + 2π ≥ π > max, θ − 2π ≤ −π < min),
+    /// and the angle is kept as it is, as the scalar path keeps it.
+    wraps: [bool; 2],
 }
 
 /// [`Lanes::solve_block`]'s working space: the arguments of the three angles of a block, θ1's,
@@ -211,6 +215,7 @@ impl Lanes {
             margin_tan: model.singularity_margin_tan,
             psi1_home: model.distal_home[0],
             arc: [Arc::new(model.limits[0]), Arc::new(model.limits[1])],
+            wraps: [0, 1].map(|j| !(model.limits[j][0] > -PI && model.limits[j][1] < PI)),
         }
     }
 
@@ -265,8 +270,8 @@ impl Lanes {
             // Decide by the angles, as the scalar path does.
             let (theta1, other1) = atan2_simd(s, d1[1], d1[0]);
             let (theta2, other2) = atan2_simd(s, d2[1], d2[0]);
-            let theta1 = fit_into(s, theta1, self.limits[0]);
-            let theta2 = fit_into(s, theta2, self.limits[1]);
+            let theta1 = self.fit_angle(s, 0, theta1);
+            let theta2 = self.fit_angle(s, 1, theta2);
             let within =
                 s.and_m64s(inside(s, theta1, self.limits[0]), inside(s, theta2, self.limits[1]));
             (within, s.and_m64s(near, s.or_m64s(other1, other2)))
@@ -338,8 +343,8 @@ impl Lanes {
                 ),
             );
             let q = [
-                fit_into(s, theta1, self.limits[0]),
-                fit_into(s, theta2, self.limits[1]),
+                self.fit_angle(s, 0, theta1),
+                self.fit_angle(s, 1, theta2),
                 fit_into(s, s.sub_f64s(phi[v], rotation), self.limits[2]),
                 s.sub_f64s(s.splat_f64s(self.lp), z[v]),
             ];
@@ -367,6 +372,12 @@ impl Lanes {
             (q0[v], q1[v], q2[v], q3[v], q4[v]) = (q[0], q[1], q[2], q[3], rotation);
         }
         s.first_true_m64s(any_other) < S::F64_LANES
+    }
+
+    /// θ1 (`j` = 0) or θ2 (`j` = 1) from `atan2` fitted into its limits ([`fit_into`]).
+    #[inline(always)]
+    fn fit_angle<S: Simd>(&self, s: S, j: usize, angle: S::f64s) -> S::f64s {
+        if self.wraps[j] { fit_into(s, angle, self.limits[j]) } else { angle }
     }
 
     /// Chain `i`'s IK (the scalar `chain_inverse`): `(cos θ, sin θ)` times the reach squared and
@@ -477,6 +488,15 @@ pub struct SolutionColumns<'a> {
     pub distal_rotation: &'a mut [f64],
     /// Whether the robot can take the pose, or the first reason it cannot.
     pub status: &'a mut [BatchStatus],
+}
+
+impl<'a> SolutionColumns<'a> {
+    /// The columns `[theta1, theta2, theta3, d4, distal_rotation]` (in the fields' order, as
+    /// [`Joints::to_array`] then the distal rotation) and `status`.
+    pub fn new(joints: &'a mut [Vec<f64>; 5], status: &'a mut [BatchStatus]) -> Self {
+        let [theta1, theta2, theta3, d4, distal_rotation] = joints;
+        SolutionColumns { theta1, theta2, theta3, d4, distal_rotation, status }
+    }
 }
 
 impl Kinematics {
@@ -811,7 +831,7 @@ const PI_LOW: f64 = f64::from_bits(0x3CA1_A626_3314_5C07);
 const ATAN_BOUNDS: [f64; 4] = [0.4375, 0.6875, 1.1875, 2.4375];
 /// Below 2⁻²⁷, atan q rounds to q.
 const ATAN_TINY: f64 = 1.0 / 134_217_728.0;
-/// The lanes [`atan2_simd`] leaves to libm: |y| or |x| at least 2⁶² times the other (zeros
+/// The lanes [`atan2_simd`] leaves to libm: |y/x| at least 2⁶² or at most 2⁻⁶² (zeros
 /// included), where libm takes its special cases, and NaN or infinite arguments.
 const ATAN_RATIO: f64 = 4_611_686_018_427_387_904.0;
 
@@ -832,13 +852,13 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 /// fraction is selected per lane (q/1 below 7/16, where the constants are 0), one division.
 #[inline(always)]
 fn atan2_simd<S: Simd>(s: S, y: S::f64s, x: S::f64s) -> (S::f64s, S::m64s) {
-    let (ax, ay) = (s.abs_f64s(x), s.abs_f64s(y));
-    let ratio = s.splat_f64s(ATAN_RATIO);
-    let handled = s.and_m64s(
-        s.less_than_f64s(ay, s.mul_f64s(ratio, ax)),
-        s.less_than_f64s(ax, s.mul_f64s(ratio, ay)),
-    );
     let q = s.abs_f64s(s.div_f64s(y, x));
+    // 2⁻⁶² < q < 2⁶²: the exponents of y and x differ by less than 64, so libm takes none of
+    // its special cases (zeros, infinities and NaN give q = 0, ∞ or NaN, outside).
+    let handled = s.and_m64s(
+        s.less_than_f64s(q, s.splat_f64s(ATAN_RATIO)),
+        s.less_than_f64s(s.splat_f64s(1.0 / ATAN_RATIO), q),
+    );
     let one = s.splat_f64s(1.0);
     let (mut numerator, mut denominator) = (q, one);
     let (mut high, mut low) = (s.splat_f64s(0.0), s.splat_f64s(0.0));
@@ -916,6 +936,17 @@ mod tests {
             rng ^= rng << 17;
             (rng >> 11) as f64 / (1u64 << 53) as f64
         };
+        // Ratios from 2⁻⁶² to 2⁻²², where libm returns the ratio itself below 2⁻²⁷ and the
+        // lanes take the polynomial all the same.
+        for _ in 0..50_000 {
+            let q = 2f64.powf(-62.0 + 40.0 * unit());
+            for x in [1.0f64, -1.0, 3.7, -0.2, 1e-5] {
+                for y in [q * x.abs(), -q * x.abs()] {
+                    let (ours, libm) = (atan2(y, x), libm::atan2(y, x));
+                    assert!(same(ours, libm), "atan2({y:e}, {x:e}) = {ours:e}, libm {libm:e}");
+                }
+            }
+        }
         for i in 0..400_000 {
             let angle = -PI + TAU * f64::from(i) / 400_000.0;
             let length = 10f64.powf(12.0 * unit() - 6.0);
@@ -961,18 +992,10 @@ mod tests {
             let mut status = vec![BatchStatus::Ok; poses.len()];
             let phis: Vec<f64> = poses.iter().map(|p| p.phi).collect();
             let zs: Vec<f64> = poses.iter().map(|p| p.z).collect();
-            let [theta1, theta2, theta3, d4, distal_rotation] = &mut columns;
             model.inverse_columns_with(
                 dispatch,
                 PoseColumns { x: &xs, y: &ys, z: &zs, phi: &phis },
-                SolutionColumns {
-                    theta1,
-                    theta2,
-                    theta3,
-                    d4,
-                    distal_rotation,
-                    status: &mut status,
-                },
+                SolutionColumns::new(&mut columns, &mut status),
             );
             for (k, solution) in out.iter().enumerate() {
                 assert_eq!(status[k], solution.status, "{:?} {dispatch:?}", poses[k]);

@@ -79,8 +79,8 @@ impl Polygon {
 
     /// Adds `lo ≤ alpha · u + beta · x ≤ hi`: one division for both sides.
     pub(crate) fn push_range(&mut self, alpha: f64, beta: f64, lo: f64, hi: f64) {
-        let scale = alpha.abs().max(beta.abs());
-        if scale == 0.0 || alpha.abs() <= ZERO * scale {
+        // |α| ≤ ZERO·max(|α|, |β|) (with α = β = 0) is |α| ≤ ZERO·|β| for finite α.
+        if alpha.abs() <= ZERO * beta.abs() {
             self.push(alpha, beta, hi);
             self.push(-alpha, -beta, -lo);
             return;
@@ -112,13 +112,18 @@ impl Polygon {
     ///
     /// u exists iff every lower bound `p_l + r_l·x` is at most every upper bound `p_u + r_u·x`,
     /// a linear condition on x per pair: with m half-planes, at most m²/4 pairs of a
-    /// multiplication and a comparison (a division only where the range shrinks).
+    /// multiplication and a comparison (a division only where the range shrinks). The planner
+    /// takes [`x_top`](Self::x_top), the same top for its polygons (tested against this).
+    #[cfg(test)]
     pub(crate) fn x_range(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
         let (mut lo, mut hi) = (lo.max(self.x_lo), hi.min(self.x_hi));
         let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
         let constant_lower = (self.u_lo > f64::NEG_INFINITY).then_some((self.u_lo, 0.0));
-        for &(p_upper, r_upper) in self.uppers.iter().chain(&constant_upper) {
-            for &(p_lower, r_lower) in self.lowers.iter().chain(&constant_lower) {
+        // The pairs in the order of the bounds (the slanted ones, then the constant one), over
+        // plain slices: the chained iterators cost a third of the loop's instructions.
+        let lowers = self.lowers.as_slice();
+        let mut pair = |(p_upper, r_upper): (f64, f64)| -> bool {
+            let mut one = |(p_lower, r_lower): (f64, f64)| -> bool {
                 // p_lower + r_lower·x ≤ p_upper + r_upper·x
                 let coefficient = r_lower - r_upper;
                 let bound = p_upper - p_lower;
@@ -131,18 +136,102 @@ impl Polygon {
                         lo = bound / coefficient;
                     }
                 } else if bound < 0.0 {
-                    return None;
+                    return false;
+                }
+                true
+            };
+            for &lower in lowers {
+                if !one(lower) {
+                    return false;
                 }
             }
+            constant_lower.is_none_or(&mut one)
+        };
+        for &upper in &self.uppers {
+            if !pair(upper) {
+                return None;
+            }
         }
-        if self.u_lo > self.u_hi {
+        if !constant_upper.is_none_or(&mut pair) || self.u_lo > self.u_hi {
             return None;
         }
         (lo <= hi).then_some((lo, hi))
     }
 
+    /// `x_range(0, hi)`'s top, for a polygon that holds rest, (u, x) = (0, 0): every bound
+    /// `γ ≥ 0` (the planner's stages: each row allows rest, and the next point's set holds 0).
+    ///
+    /// The same pairs in the same order with the same arithmetic, so the same bits, but only
+    /// the pairs that can act are tested: each upper's p is ≥ 0 and each lower's ≤ 0, so a
+    /// pair's `bound` is ≥ 0; then a pair of coefficient ≤ 0 can neither raise the bottom
+    /// (which stays 0, the x-only bounds being ≤ 0 below and ≥ 0 above) nor empty the range,
+    /// and only the top moves. One comparison a pair instead of three branches (the polygon is
+    /// the planner's largest cost on short moves).
+    pub(crate) fn x_top(&self, hi: f64) -> f64 {
+        let mut hi = hi.min(self.x_hi);
+        let constant_upper = (self.u_hi < f64::INFINITY).then_some((self.u_hi, 0.0));
+        let constant_lower = (self.u_lo > f64::NEG_INFINITY).then_some((self.u_lo, 0.0));
+        let lowers = self.lowers.as_slice();
+        // A pair acts (coefficient > 0 and bound < hi·coefficient) only where, at x = hi, the
+        // lower line p_l + r_l·x lies above the upper one, up to rounding (a few ulps of the
+        // terms' sizes). So an upper whose line lies clearly above every lower's at hi (by far
+        // more than rounding: 1e-12 of the sizes) is skipped, as no pair of it would act; the
+        // others are tested pair by pair as before. The lowers' highest line and largest size
+        // at hi are computed again only when hi moves (twice a polygon, on average).
+        let highest = |hi: f64| {
+            let (mut line, mut size) = (f64::NEG_INFINITY, 0.0f64);
+            // Comparisons, not `f64::max` (five instructions each for its NaN rule): a NaN
+            // line (hi = ∞) is left out here, and the test below takes every pair at hi = ∞.
+            for &(p, r) in lowers.iter().chain(&constant_lower) {
+                let (value, value_size) = (p + hi * r, p.abs() + hi * r.abs());
+                if value > line {
+                    line = value;
+                }
+                if value_size > size {
+                    size = value_size;
+                }
+            }
+            (line, size)
+        };
+        let mut lines = highest(hi);
+        let mut pair = |(p_upper, r_upper): (f64, f64)| {
+            let (line, size) = lines;
+            let upper = p_upper + hi * r_upper;
+            let slack = 1e-12 * (p_upper.abs() + hi * r_upper.abs() + size) + 1e-300;
+            // (NaN, at hi = ∞, takes the pairs.)
+            if upper - line > slack {
+                return;
+            }
+            let before = hi;
+            let mut one = |(p_lower, r_lower): (f64, f64)| {
+                let coefficient = r_lower - r_upper;
+                let bound = p_upper - p_lower;
+                debug_assert!(bound >= 0.0 || bound.is_nan(), "a bound below rest: {bound}");
+                if (coefficient > 0.0) & (bound < hi * coefficient) {
+                    hi = bound / coefficient;
+                }
+            };
+            for &lower in lowers {
+                one(lower);
+            }
+            if let Some(lower) = constant_lower {
+                one(lower);
+            }
+            if hi != before {
+                lines = highest(hi);
+            }
+        };
+        for &upper in &self.uppers {
+            pair(upper);
+        }
+        if let Some(upper) = constant_upper {
+            pair(upper);
+        }
+        hi
+    }
+
     /// Whether some u satisfies every half-plane at `x` (O(m), against `x_range`'s O(m²)); the
-    /// planner computes the same without building the polygon (`TimeOptimal::u_range_at`).
+    /// planner computes the same without building the polygon (`TimeOptimal::cut_stage`).
     #[cfg(test)]
     pub(crate) fn contains_x(&self, x: f64) -> bool {
         let (lo, hi) = self.u_range(x);
@@ -202,6 +291,8 @@ mod tests {
                 polygon.push(alpha, beta, gamma);
             }
             let (lo, hi) = polygon.x_range(0.0, 8.0).expect("(0, 0) is feasible");
+            // The planner's shortcut: the same top, bit for bit.
+            prop_assert_eq!(polygon.x_top(8.0).to_bits(), hi.to_bits());
             let feasible = |u: f64, x: f64| {
                 u.abs() <= 5.0 + 1e-9
                     && planes.iter().all(|&(a, b, g)| a * u + b * x <= g + 1e-9)
