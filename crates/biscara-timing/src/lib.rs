@@ -134,6 +134,15 @@ pub enum TimingError {
         /// Path parameter of the grid point.
         s: f64,
     },
+    /// Occurs when a streamed path gives a grid point that does not lie past the one before it
+    /// (a piece of the path too short for its parameter to tell its ends apart).
+    #[error("at s = {s}: the grid point does not lie past the one before it, at {previous}")]
+    NotIncreasing {
+        /// Path parameter of the grid point.
+        s: f64,
+        /// Path parameter of the grid point before it.
+        previous: f64,
+    },
     /// Occurs when a constraint forbids rest (`c` outside `[lo, hi]`).
     #[error("at s = {s}: constraint {index} does not allow rest")]
     RestForbidden {

@@ -449,7 +449,11 @@ impl TimeOptimal {
             let s = if self.streamed {
                 match path.point(index) {
                     Some(s) if index == 0 || s > self.s[self.s.len() - 1] => s,
-                    Some(s) => return Err(TimingError::NotFinite { s }),
+                    Some(s) if s.is_nan() => return Err(TimingError::NotFinite { s }),
+                    Some(s) => {
+                        let previous = self.s[self.s.len() - 1];
+                        return Err(TimingError::NotIncreasing { s, previous });
+                    }
                     None if index < 2 => return Err(TimingError::NoIntervals),
                     None => {
                         self.intervals = index - 1;
@@ -848,6 +852,32 @@ mod tests {
         assert_eq!(
             TimeOptimal::default().plan_streamed(&mut one, 10),
             Err(TimingError::NoIntervals)
+        );
+    }
+
+    /// A path whose third point does not lie past its second.
+    struct Stalled;
+
+    impl PathConstraints for Stalled {
+        fn count(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, _s: f64, out: &mut [Constraint]) -> f64 {
+            out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -4.0, hi: 4.0 };
+            1.0
+        }
+        fn point(&mut self, index: usize) -> Option<f64> {
+            [0.0, 0.5, 0.5, 1.0].get(index).copied()
+        }
+    }
+
+    #[test]
+    fn a_streamed_point_that_does_not_advance_is_an_error_saying_so() {
+        let err = TimeOptimal::default().plan_streamed(&mut Stalled, 10).unwrap_err();
+        assert_eq!(err, TimingError::NotIncreasing { s: 0.5, previous: 0.5 });
+        assert_eq!(
+            err.to_string(),
+            "at s = 0.5: the grid point does not lie past the one before it, at 0.5"
         );
     }
 
