@@ -164,6 +164,8 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// nested comments, an `O0001` program number or G41/G42 with a P word → Mach3, LinuxCNC's O-words
 /// or named parameters → LinuxCNC). Only complete lines are looked at (all of them when `complete`
 /// says the text is the whole program). `None` when nothing decides.
+// Run once per program: kept out of the interpreter's line loop.
+#[inline(never)]
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
     let end = if complete {
@@ -320,8 +322,8 @@ pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
 /// returns, when `return_too`).
 fn is_text(raw: &[u8], return_too: bool) -> bool {
     // Printable ASCII and tabs, the common case, without decoding.
-    let plain = |b: u8| (b' '..=b'~').contains(&b) || b == b'\t' || (return_too && b == b'\r');
-    raw.iter().all(|&b| plain(b))
+    let plain = |b: u8| (b' '..=b'~').contains(&b) | (b == b'\t') | (return_too & (b == b'\r'));
+    raw.iter().fold(true, |all, &b| all & plain(b))
         || std::str::from_utf8(raw).is_ok_and(|text| {
             text.chars().all(|c| !c.is_control() || c == '\t' || (return_too && c == '\r'))
         })
@@ -349,7 +351,7 @@ fn fanuc_evidence(squeezed: &[u8]) -> Option<&'static str> {
         return Some("Macro B control flow (IF, WHILE … DO, GOTO, END)");
     }
     for (at, &byte) in squeezed.iter().enumerate() {
-        if at > 0 && squeezed[at - 1].is_ascii_alphabetic() {
+        if !matches!(byte, b'g' | b'm') || (at > 0 && squeezed[at - 1].is_ascii_alphabetic()) {
             continue;
         }
         match (byte, number_after(squeezed, at)) {
@@ -502,35 +504,42 @@ impl LineParts {
     fn split(&mut self, raw: &[u8]) {
         self.code.clear();
         self.comment.clear();
-        self.squeezed.clear();
-        let mut depth = 0usize;
         let mut rest = raw;
-        while let Some((&byte, after)) = rest.split_first() {
-            if depth > 0 {
-                match byte {
-                    b'(' => depth += 1,
-                    b')' => depth -= 1,
-                    _ => {}
-                }
-                self.comment.push(byte.to_ascii_lowercase());
-            } else {
-                match byte {
-                    b'(' => depth = 1,
-                    b';' => {
-                        self.comment.extend(after.iter().map(u8::to_ascii_lowercase));
-                        break;
-                    }
-                    _ => {
-                        let lower = byte.to_ascii_lowercase();
-                        self.code.push(lower);
-                        if !lower.is_ascii_whitespace() {
-                            self.squeezed.push(lower);
-                        }
-                    }
-                }
+        while let Some(at) = rest.iter().position(|&b| b == b'(' || b == b';') {
+            self.code.extend_from_slice(&rest[..at]);
+            if rest[at] == b';' {
+                self.comment.extend_from_slice(&rest[at + 1..]);
+                rest = &[];
+                break;
             }
-            rest = after;
+            // A parenthesised comment: its text up to the parenthesis that closes it, with it.
+            let inner = &rest[at + 1..];
+            let mut depth = 1usize;
+            let end = inner
+                .iter()
+                .position(|&b| {
+                    match b {
+                        b'(' => depth += 1,
+                        b')' => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                })
+                .map_or(inner.len(), |close| close + 1);
+            self.comment.extend_from_slice(&inner[..end]);
+            rest = &inner[end..];
         }
+        self.code.extend_from_slice(rest);
+        self.code.make_ascii_lowercase();
+        self.comment.make_ascii_lowercase();
+        self.squeezed.clear();
+        self.squeezed.resize(self.code.len(), 0);
+        let mut kept = 0;
+        for &byte in &self.code {
+            self.squeezed[kept] = byte;
+            kept += usize::from(!byte.is_ascii_whitespace());
+        }
+        self.squeezed.truncate(kept);
     }
 }
 
