@@ -164,6 +164,8 @@ pub const MAX_LONG_LINE: usize = 65_535;
 /// nested comments, an `O0001` program number or G41/G42 with a P word → Mach3, LinuxCNC's O-words
 /// or named parameters → LinuxCNC). Only complete lines are looked at (all of them when `complete`
 /// says the text is the whole program). `None` when nothing decides.
+// Run once per program: kept out of the interpreter's line loop.
+#[inline(never)]
 pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
     let end = if complete {
@@ -171,7 +173,10 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     } else {
         text.iter().rposition(|&byte| byte == b'\n').map_or(0, |index| index + 1)
     };
-    let makerbot = contains_any(&text[..end], MAKERBOT_NAMES);
+    // Whether a comment names a MakerBot program, so far (the lines after a deciding generator
+    // comment are searched then).
+    let mut makerbot = false;
+    let mut parts = LineParts::default();
     let mut content: Option<Detection> = None;
     // The first evidence that is not a printer M-code, and the first line that continues a
     // motion with no G word (which a CNC post writes and Marlin does not read).
@@ -183,24 +188,25 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
         let line = index + 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
-        let lower = raw.to_ascii_lowercase();
-        let (code, comment) = split_comment(&lower);
-        if let Some((dialect, name)) = generator(&comment) {
+        parts.split(raw);
+        let (code, comment, squeezed) = (&parts.code[..], &parts.comment[..], &parts.squeezed[..]);
+        makerbot = makerbot || names_any(comment, MAKERBOT_NAMES);
+        if let Some((dialect, name)) = generator(comment) {
             let shown = String::from_utf8_lossy(raw.trim_ascii());
+            let makerbot = dialect == Dialect::Marlin
+                && (makerbot || names_any_line(&text[..end], MAKERBOT_NAMES, &mut parts));
             return Some(Detection {
                 dialect,
                 reason: format!("line {line} names {name}: `{}`", shorten(&shown)),
                 line: Some(line),
-                makerbot: makerbot && dialect == Dialect::Marlin,
+                makerbot,
             });
         }
         // Content evidence comes from text lines only (binary garbage proves nothing).
-        let text = std::str::from_utf8(raw)
-            .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t'));
-        if !text {
+        if !is_text(raw, false) {
             continue;
         }
-        if modal.is_none() && continues_motion(&code) {
+        if modal.is_none() && continues_motion(code) {
             modal = Some((line, shorten(&String::from_utf8_lossy(raw.trim_ascii()))));
         }
         let located = |why: &str| Detection {
@@ -213,26 +219,28 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
             makerbot: false,
         };
         if fanuc.is_none()
-            && let Some(why) = fanuc_evidence(&code)
+            && let Some(why) = fanuc_evidence(squeezed)
         {
             fanuc = Some(located(why));
         }
-        if machine_m.is_none() && has_machine_m(&code) {
+        if machine_m.is_none() && has_machine_m(squeezed) {
             machine_m = Some(located("a machine M-code only Fanuc and Haas controls have"));
         }
         if long_comment.is_none() && long_only_in_comment(raw) {
             long_comment = Some((line, raw.len()));
         }
         if content.is_none() || other.is_none() {
-            let found = evidence(raw, &code, &mut plane_xy).map(|(dialect, why)| Detection {
-                dialect,
-                reason: format!(
-                    "line {line}: {why}: `{}`",
-                    shorten(&String::from_utf8_lossy(raw.trim_ascii()))
-                ),
-                line: Some(line),
-                makerbot: makerbot && dialect == Dialect::Marlin,
-            });
+            // `makerbot` is settled after the last line.
+            let found =
+                evidence(raw, code, squeezed, &mut plane_xy).map(|(dialect, why)| Detection {
+                    dialect,
+                    reason: format!(
+                        "line {line}: {why}: `{}`",
+                        shorten(&String::from_utf8_lossy(raw.trim_ascii()))
+                    ),
+                    line: Some(line),
+                    makerbot: false,
+                });
             if let Some(found) = found {
                 let printer = found.reason.contains(PRINTER_M_CODE);
                 if other.is_none() && !printer {
@@ -243,6 +251,10 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
                 }
             }
         }
+    }
+    // A MakerBot name anywhere in the comments makes Marlin's evidence MakerBot's.
+    for found in [&mut content, &mut other].into_iter().flatten() {
+        found.makerbot = makerbot && found.dialect == Dialect::Marlin;
     }
     // Fanuc's and Haas's own codes (look-ahead, M97, Macro B) outweigh an `O` program number
     // (Mach3's too) and numbered parameters (LinuxCNC's too).
@@ -298,24 +310,31 @@ pub(crate) fn long_only_in_comment(raw: &[u8]) -> bool {
     if raw.len() <= crate::syntax::lexer::MAX_LINE {
         return false;
     }
-    let text = std::str::from_utf8(raw)
-        .is_ok_and(|text| text.chars().all(|c| !c.is_control() || c == '\t' || c == '\r'));
-    if !text {
+    if !is_text(raw, true) {
         return false;
     }
-    let (code, comment) = split_comment(&raw.to_ascii_lowercase());
-    !comment.is_empty()
-        && code.iter().filter(|b| !b.is_ascii_whitespace()).count()
-            <= crate::syntax::lexer::MAX_LINE
+    let mut parts = LineParts::default();
+    parts.split(raw);
+    !parts.comment.is_empty() && parts.squeezed.len() <= crate::syntax::lexer::MAX_LINE
+}
+
+/// Whether a line is text: valid UTF-8 with no control character but tabs (and carriage
+/// returns, when `return_too`).
+fn is_text(raw: &[u8], return_too: bool) -> bool {
+    // Printable ASCII and tabs, the common case, without decoding.
+    let plain = |b: u8| (b' '..=b'~').contains(&b) | (b == b'\t') | (return_too & (b == b'\r'));
+    raw.iter().fold(true, |all, &b| all & plain(b))
+        || std::str::from_utf8(raw).is_ok_and(|text| {
+            text.chars().all(|c| !c.is_control() || c == '\t' || (return_too && c == '\r'))
+        })
 }
 
 /// The evidence an `O0001` line gives (Mach3's, and Fanuc's).
 const PROGRAM_NUMBER: &str = "an `O` program number";
 
-/// What only Fanuc and Haas controls read, on a line (lower case, outside comments): their
-/// look-ahead and smoothing codes, Haas's M97, Macro B's control flow.
-fn fanuc_evidence(code: &[u8]) -> Option<&'static str> {
-    let squeezed: Vec<u8> = code.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
+/// What only Fanuc and Haas controls read, on a line (`squeezed`: lower case, outside comments,
+/// without blanks): their look-ahead and smoothing codes, Haas's M97, Macro B's control flow.
+fn fanuc_evidence(squeezed: &[u8]) -> Option<&'static str> {
     let first = {
         let mut at = 0;
         if squeezed.first() == Some(&b'n') {
@@ -332,16 +351,16 @@ fn fanuc_evidence(code: &[u8]) -> Option<&'static str> {
         return Some("Macro B control flow (IF, WHILE … DO, GOTO, END)");
     }
     for (at, &byte) in squeezed.iter().enumerate() {
-        if at > 0 && squeezed[at - 1].is_ascii_alphabetic() {
+        if !matches!(byte, b'g' | b'm') || (at > 0 && squeezed[at - 1].is_ascii_alphabetic()) {
             continue;
         }
-        match (byte, number_after(&squeezed, at)) {
+        match (byte, number_after(squeezed, at)) {
             (b'g', Some(187)) => return Some("Haas's G187 (smoothness)"),
             (b'g', Some(103)) => return Some("Haas's G103 (look-ahead)"),
-            (b'g', Some(8)) if contains(&squeezed, "p") && !contains(&squeezed, "g8.") => {
+            (b'g', Some(8)) if contains(squeezed, "p") && !contains(squeezed, "g8.") => {
                 return Some("Fanuc's G08 P (advanced preview control)");
             }
-            (b'g', Some(5)) if contains(&squeezed, "g5.1q") || contains(&squeezed, "g05.1q") => {
+            (b'g', Some(5)) if contains(squeezed, "g5.1q") || contains(squeezed, "g05.1q") => {
                 return Some("Fanuc's G05.1 Q (AI contour control)");
             }
             (b'm', Some(97)) => return Some("Haas's M97 (local subprogram)"),
@@ -351,14 +370,14 @@ fn fanuc_evidence(code: &[u8]) -> Option<&'static str> {
     None
 }
 
-/// Whether a line (lower case, outside comments) has an M-code that only Fanuc and Haas
-/// controls have among the dialects (none of LinuxCNC's, Mach3's or a printer's).
-fn has_machine_m(code: &[u8]) -> bool {
-    let squeezed: Vec<u8> = code.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
+/// Whether a line (`squeezed`: lower case, outside comments, without blanks) has an M-code that
+/// only Fanuc and Haas controls have among the dialects (none of LinuxCNC's, Mach3's or a
+/// printer's).
+fn has_machine_m(squeezed: &[u8]) -> bool {
     squeezed.iter().enumerate().any(|(at, &byte)| {
         byte == b'm'
             && (at == 0 || !squeezed[at - 1].is_ascii_alphabetic())
-            && number_after(&squeezed, at).is_some_and(|number| {
+            && number_after(squeezed, at).is_some_and(|number| {
                 (10..100).contains(&number)
                     && !matches!(number, 10 | 11 | 19 | 30 | 40 | 41 | 47..=53 | 60..=73 | 98 | 99)
                     && !printer_m_code(number)
@@ -425,15 +444,27 @@ const GENERATORS: &[(&str, Dialect, &str)] = &[
     ("emc2", Dialect::Linuxcnc, "EMC2 (LinuxCNC)"),
 ];
 
+/// Whether `needle` (not empty) is in `haystack`, ignoring ASCII case.
 fn contains(haystack: &[u8], needle: &str) -> bool {
-    haystack.windows(needle.len()).any(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
+    let needle = needle.as_bytes();
+    let Some((first, rest)) = needle.split_first() else { return true };
+    let Some(last_start) = haystack.len().checked_sub(needle.len()) else { return false };
+    haystack[..=last_start].iter().enumerate().any(|(at, byte)| {
+        byte.eq_ignore_ascii_case(first)
+            && haystack[at + 1..at + needle.len()].eq_ignore_ascii_case(rest)
+    })
 }
 
-fn contains_any(haystack: &[u8], needles: &[&str]) -> bool {
-    haystack.split(|&byte| byte == b'\n').any(|line| {
-        let lower = line.to_ascii_lowercase();
-        let (_, comment) = split_comment(&lower);
-        needles.iter().any(|needle| contains(&comment, needle))
+/// Whether a comment's text names any of `needles`.
+fn names_any(comment: &[u8], needles: &[&str]) -> bool {
+    !comment.is_empty() && needles.iter().any(|needle| contains(comment, needle))
+}
+
+/// Whether a comment on any line of `text` names any of `needles` (`parts` is scratch space).
+fn names_any_line(text: &[u8], needles: &[&str], parts: &mut LineParts) -> bool {
+    text.split(|&byte| byte == b'\n').any(|line| {
+        parts.split(line);
+        names_any(&parts.comment, needles)
     })
 }
 
@@ -456,31 +487,60 @@ fn shorten(text: &str) -> String {
     }
 }
 
-/// A lower-cased line split into its code (outside comments) and its comments' text.
-fn split_comment(lower: &[u8]) -> (Vec<u8>, Vec<u8>) {
-    let mut code = Vec::with_capacity(lower.len());
-    let mut comment = Vec::new();
-    let mut depth = 0usize;
-    for (index, &byte) in lower.iter().enumerate() {
-        if depth > 0 {
-            match byte {
-                b'(' => depth += 1,
-                b')' => depth -= 1,
-                _ => {}
-            }
-            comment.push(byte);
-            continue;
-        }
-        match byte {
-            b'(' => depth = 1,
-            b';' => {
-                comment.extend_from_slice(&lower[index + 1..]);
+/// One line split into its parts, lower case, in buffers reused from line to line.
+#[derive(Debug, Default)]
+struct LineParts {
+    /// The text outside comments.
+    code: Vec<u8>,
+    /// The comments' text: each parenthesised comment's text with its closing parenthesis (and
+    /// the nested ones), then what follows a `;`.
+    comment: Vec<u8>,
+    /// [`Self::code`] without its blanks (ASCII whitespace).
+    squeezed: Vec<u8>,
+}
+
+impl LineParts {
+    /// Splits `raw` (one line) into the buffers.
+    fn split(&mut self, raw: &[u8]) {
+        self.code.clear();
+        self.comment.clear();
+        let mut rest = raw;
+        while let Some(at) = rest.iter().position(|&b| b == b'(' || b == b';') {
+            self.code.extend_from_slice(&rest[..at]);
+            if rest[at] == b';' {
+                self.comment.extend_from_slice(&rest[at + 1..]);
+                rest = &[];
                 break;
             }
-            _ => code.push(byte),
+            // A parenthesised comment: its text up to the parenthesis that closes it, with it.
+            let inner = &rest[at + 1..];
+            let mut depth = 1usize;
+            let end = inner
+                .iter()
+                .position(|&b| {
+                    match b {
+                        b'(' => depth += 1,
+                        b')' => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                })
+                .map_or(inner.len(), |close| close + 1);
+            self.comment.extend_from_slice(&inner[..end]);
+            rest = &inner[end..];
         }
+        self.code.extend_from_slice(rest);
+        self.code.make_ascii_lowercase();
+        self.comment.make_ascii_lowercase();
+        self.squeezed.clear();
+        self.squeezed.resize(self.code.len(), 0);
+        let mut kept = 0;
+        for &byte in &self.code {
+            self.squeezed[kept] = byte;
+            kept += usize::from(!byte.is_ascii_whitespace());
+        }
+        self.squeezed.truncate(kept);
     }
-    (code, comment)
 }
 
 /// M-codes no LinuxCNC program uses and Marlin (or another printer firmware) does: evidence
@@ -495,23 +555,27 @@ fn printer_m_code(code: u32) -> bool {
     )
 }
 
-/// The number after a letter at `at` in `code` (digits only).
+/// The number after a letter at `at` in `code` (digits only, after any spaces; `None` when
+/// there are none or the number overflows).
 fn number_after(code: &[u8], at: usize) -> Option<u32> {
-    let digits: Vec<u8> = code[at + 1..]
-        .iter()
-        .copied()
-        .skip_while(|&b| b == b' ')
-        .take_while(u8::is_ascii_digit)
-        .collect();
-    if digits.is_empty() {
-        return None;
+    let rest = &code[at + 1..];
+    let start = rest.iter().position(|&b| b != b' ').unwrap_or(rest.len());
+    let digits = rest[start..].iter().take_while(|b| b.is_ascii_digit());
+    let mut value: Option<u32> = None;
+    for digit in digits {
+        value = Some(value.unwrap_or(0).checked_mul(10)?.checked_add(u32::from(digit - b'0'))?);
     }
-    std::str::from_utf8(&digits).ok()?.parse().ok()
+    value
 }
 
 /// Content that only one dialect reads, on one line: `code` is the lower-case text outside
-/// comments.
-fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'static str)> {
+/// comments, `squeezed` the same without its blanks.
+fn evidence(
+    raw: &[u8],
+    code: &[u8],
+    squeezed: &[u8],
+    plane_xy: &mut bool,
+) -> Option<(Dialect, &'static str)> {
     let trimmed = code.trim_ascii();
     if trimmed.first() == Some(&b'$') {
         return Some((Dialect::Grbl, "a Grbl `$` system line"));
@@ -526,14 +590,13 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
             _ => {}
         }
     }
-    let squeezed: Vec<u8> = trimmed.iter().copied().filter(|b| !b.is_ascii_whitespace()).collect();
     if squeezed.first() == Some(&b'o') {
         if squeezed.len() > 1 && squeezed[1..].iter().all(u8::is_ascii_digit) {
             return Some((Dialect::Mach3, PROGRAM_NUMBER));
         }
         return Some((Dialect::Linuxcnc, "a LinuxCNC O-word"));
     }
-    if contains(&squeezed, "#<") {
+    if contains(squeezed, "#<") {
         return Some((Dialect::Linuxcnc, "a LinuxCNC named parameter"));
     }
     // An E word stands after a space or at the start (`X1E2` could be a number's exponent).
@@ -554,13 +617,13 @@ fn evidence(raw: &[u8], code: &[u8], plane_xy: &mut bool) -> Option<(Dialect, &'
         }
         match byte {
             b'm' => {
-                if let Some(number) = number_after(&squeezed, at)
+                if let Some(number) = number_after(squeezed, at)
                     && printer_m_code(number)
                 {
                     return Some((Dialect::Marlin, PRINTER_M_CODE));
                 }
             }
-            b'g' => match number_after(&squeezed, at) {
+            b'g' => match number_after(squeezed, at) {
                 Some(0 | 1) => g_motion = true,
                 Some(2 | 3) => {
                     g_motion = true;
