@@ -657,85 +657,37 @@ impl WithSimd for InverseOp<'_> {
     #[inline(always)]
     fn with_simd<S: Simd>(self, s: S) {
         let mut scratch = Scratch::new();
-        // The block's poses as they lie in memory (array of structs), then as columns (struct
-        // of arrays), transposed a vector group at a time by shuffles; the joints the other way.
-        // A short last block is padded with the previous block's poses (and dropped).
-        let mut rows = [0.0; 4 * LANES];
+        // Struct of arrays; a short last block is padded with the previous block's poses (and
+        // dropped).
         let mut pose = [[0.0; LANES]; 4];
         let mut q = [[0.0; LANES]; 5];
         let mut status = [0.0; LANES];
-        let lane = lanes_of_poses(s);
         for (poses, out) in self.poses.chunks(LANES).zip(self.out.chunks_mut(LANES)) {
-            for (row, p) in rows.chunks_exact_mut(4).zip(poses) {
-                row.copy_from_slice(&[p.x, p.y, p.z, p.phi]);
-            }
-            {
-                let [x, y, z, phi] = &mut pose;
-                let (x, y) = (S::as_mut_simd_f64s(x).0, S::as_mut_simd_f64s(y).0);
-                let (z, phi) = (S::as_mut_simd_f64s(z).0, S::as_mut_simd_f64s(phi).0);
-                let groups = S::as_simd_f64s(&rows).0;
-                for v in 0..x.len() {
-                    let group =
-                        [groups[4 * v], groups[4 * v + 1], groups[4 * v + 2], groups[4 * v + 3]];
-                    [x[v], y[v], z[v], phi[v]] = s.deinterleave_shfl_f64s(group);
-                }
+            for (k, p) in poses.iter().enumerate() {
+                (pose[0][k], pose[1][k], pose[2][k], pose[3][k]) = (p.x, p.y, p.z, p.phi);
             }
             let [x, y, z, phi] = &pose;
             let [q0, q1, q2, q3, rotation] = &mut q;
             let joints = [q0, q1, q2, q3, rotation];
             let other =
                 self.lanes.solve_block(s, [x, y, z, phi], joints, &mut status, &mut scratch);
-            {
-                let [q0, q1, q2, q3, _] = &q;
-                let (q0, q1) = (S::as_simd_f64s(q0).0, S::as_simd_f64s(q1).0);
-                let (q2, q3) = (S::as_simd_f64s(q2).0, S::as_simd_f64s(q3).0);
-                let groups = S::as_mut_simd_f64s(&mut rows).0;
-                for v in 0..q0.len() {
-                    let group = s.interleave_shfl_f64s([q0[v], q1[v], q2[v], q3[v]]);
-                    groups[4 * v..4 * v + 4].copy_from_slice(&group);
-                }
-            }
             // Field by field: a whole `BatchSolution` was built on the stack and copied with
             // its padding, a load over the status byte just stored that waited for it (29 % of
-            // the time, 20 → 14 ns per pose).
-            for ((solution, row), &lane) in out.iter_mut().zip(rows.chunks_exact(4)).zip(&lane) {
-                solution.joints = Joints::new(row[0], row[1], row[2], row[3]);
-                solution.status = status_of(code_of(status[lane % LANES]));
+            // the time, 20 → 14 ns per pose). No branch per pose: the poses the scalar path
+            // solves again are found after, in the rare blocks that have one.
+            for (k, solution) in out.iter_mut().enumerate() {
+                solution.joints = Joints::new(q[0][k], q[1][k], q[2][k], q[3][k]);
+                solution.status = status_of(code_of(status[k]));
             }
             if other {
-                for (k, &lane) in lane[..out.len()].iter().enumerate() {
-                    if code_of(status[lane % LANES]) == SCALAR {
+                for (k, &code) in status[..out.len()].iter().enumerate() {
+                    if code_of(code) == SCALAR {
                         out[k] = self.model.solve_scalar(&poses[k]).0;
                     }
                 }
             }
         }
     }
-}
-
-/// The lane of a block's columns that each of its poses lands in when [`InverseOp`] transposes
-/// them by pulp's shuffles, which group the coordinates but need not keep the poses' order
-/// (AVX-512's do not); the joints go back by the inverse shuffles, the status codes by this.
-#[inline(always)]
-fn lanes_of_poses<S: Simd>(s: S) -> [usize; LANES] {
-    let mut rows = [0.0; 4 * LANES];
-    for (k, row) in rows.chunks_exact_mut(4).enumerate() {
-        row[0] = k as f64;
-    }
-    let mut column = [0.0; LANES];
-    {
-        let groups = S::as_simd_f64s(&rows).0;
-        let column = S::as_mut_simd_f64s(&mut column).0;
-        for v in 0..column.len() {
-            let group = [groups[4 * v], groups[4 * v + 1], groups[4 * v + 2], groups[4 * v + 3]];
-            column[v] = s.deinterleave_shfl_f64s(group)[0];
-        }
-    }
-    let mut lane = [0; LANES];
-    for (k, &pose) in column.iter().enumerate() {
-        lane[pose as usize] = k;
-    }
-    lane
 }
 
 /// [`Kinematics::inverse_columns`] as pulp runs it, with the vector type of the CPU.
