@@ -22,6 +22,11 @@
 //! a load of 0.4–0.9: reference 90.1 ns, `inverse` 78.8 ns, `inverse_checked` 85.7 ns, the
 //! batch path 15.3 ns through `inverse_batch` and 14.7 ns through `inverse_columns` (48.4 and
 //! 47.5 ns forced portable), `forward` 84.9 ns.
+//!
+//! Measured 2026-11-27 after `inverse_batch`'s status codes became bits (no f64 → u8
+//! conversion) and its write-back lost its branch per pose, at a load of 2.3–3: 14.7 and
+//! 14.9 ns through `inverse_batch`, 13.7 and 15.3 ns through `inverse_columns` (main's binary,
+//! interleaved: 15.2 and 14.7 ns, 14.2 and 13.9 ns). docs/performance.md has the runs.
 
 #![allow(missing_docs)]
 

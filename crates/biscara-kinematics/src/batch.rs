@@ -73,6 +73,15 @@ const NEAR_SINGULAR: u8 = 5;
 /// Not a status: the pose is solved again by the scalar path (see [`atan2_simd`]).
 const SCALAR: u8 = 6;
 
+/// 2⁵²: a code from 0 to 6 plus this is a double whose low bits are the code.
+const CODE_BIAS: f64 = 4_503_599_627_370_496.0;
+
+/// The code of a status [`Lanes::solve_block`] wrote (biased by [`CODE_BIAS`]).
+#[inline(always)]
+fn code_of(biased: f64) -> u8 {
+    (biased.to_bits() & 0xff) as u8
+}
+
 fn status_of(code: u8) -> BatchStatus {
     match code {
         OK => BatchStatus::Ok,
@@ -368,7 +377,10 @@ impl Lanes {
             ));
             let other = s.and_m64s(solvable, s.not_m64s(s.equal_f64s(sum, sum)));
             any_other = s.or_m64s(any_other, other);
-            codes[v] = s.select_f64s(other, code(s, SCALAR), status);
+            // Plus 2⁵²: the code in the low bits of the double, read back by `code_of` (a
+            // move, no conversion).
+            let status = s.select_f64s(other, code(s, SCALAR), status);
+            codes[v] = s.add_f64s(status, s.splat_f64s(CODE_BIAS));
             (q0[v], q1[v], q2[v], q3[v], q4[v]) = (q[0], q[1], q[2], q[3], rotation);
         }
         s.first_true_m64s(any_other) < S::F64_LANES
@@ -657,16 +669,20 @@ impl WithSimd for InverseOp<'_> {
             let [x, y, z, phi] = &pose;
             let [q0, q1, q2, q3, rotation] = &mut q;
             let joints = [q0, q1, q2, q3, rotation];
-            self.lanes.solve_block(s, [x, y, z, phi], joints, &mut status, &mut scratch);
+            let other =
+                self.lanes.solve_block(s, [x, y, z, phi], joints, &mut status, &mut scratch);
+            // Field by field: a whole `BatchSolution` was built on the stack and copied with
+            // its padding, a load over the status byte just stored that waited for it (29 % of
+            // the time, 20 → 14 ns per pose). No branch per pose: the poses the scalar path
+            // solves again are found after, in the rare blocks that have one.
             for (k, solution) in out.iter_mut().enumerate() {
-                // Field by field: a whole `BatchSolution` was built on the stack and copied
-                // with its padding, a load over the status byte just stored that waited for it
-                // (29 % of the time, 20 → 14 ns per pose).
-                match status[k] as u8 {
-                    SCALAR => *solution = self.model.solve_scalar(&poses[k]).0,
-                    code => {
-                        solution.joints = Joints::new(q[0][k], q[1][k], q[2][k], q[3][k]);
-                        solution.status = status_of(code);
+                solution.joints = Joints::new(q[0][k], q[1][k], q[2][k], q[3][k]);
+                solution.status = status_of(code_of(status[k]));
+            }
+            if other {
+                for (k, &code) in status[..out.len()].iter().enumerate() {
+                    if code_of(code) == SCALAR {
+                        out[k] = self.model.solve_scalar(&poses[k]).0;
                     }
                 }
             }
@@ -726,11 +742,11 @@ impl WithSimd for ColumnsOp<'_> {
                 }
             };
             for (slot, code) in status.iter_mut().zip(codes) {
-                *slot = status_of(code as u8);
+                *slot = status_of(code_of(code));
             }
             if other {
                 for (k, &code) in codes[..status.len()].iter().enumerate() {
-                    if code as u8 == SCALAR {
+                    if code_of(code) == SCALAR {
                         let pose = Pose::new(pose[0][k], pose[1][k], pose[2][k], pose[3][k]);
                         let (solution, rotation) = self.model.solve_scalar(&pose);
                         [theta1[k], theta2[k], theta3[k], d4[k]] = solution.joints.to_array();
