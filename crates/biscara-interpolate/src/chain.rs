@@ -2,9 +2,10 @@
 //!
 //! The pieces of the chain (trimmed lines, the fillets between them and programmed arcs tangent
 //! to their neighbours, from `biscara-blend`) are laid end to end: the path parameter is the
-//! length along the chain, mm. The planner ([`TimeOptimal::plan_streamed`](biscara_timing::TimeOptimal::plan_streamed)) asks for grid points
-//! one by one; the chain pulls pieces from the blender as it needs them and drops those the
-//! sampling has passed, so it holds only the pieces of the planner's window.
+//! length along the chain, mm. The planner
+//! ([`TimeOptimal::plan_streamed`](biscara_timing::TimeOptimal::plan_streamed)) asks for grid
+//! points one by one; the chain pulls pieces from the blender as it needs them and drops those
+//! the sampling has passed, so it holds only the pieces of the planner's window.
 //!
 //! Each piece gets its own grid ([`GRID_MM`] or [`GRID_SECONDS`] at the feed, whichever is
 //! shorter, [`GRID_TURN_DEGREES`], at least one interval; a line's or an arc's ends refined as a

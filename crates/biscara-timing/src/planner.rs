@@ -855,16 +855,15 @@ mod tests {
         );
     }
 
-    /// A path whose third point does not lie past its second.
-    struct Stalled;
+    /// The trapezoid over points whose third does not lie past its second.
+    struct Stalled(Trapezoid);
 
     impl PathConstraints for Stalled {
         fn count(&self) -> usize {
-            1
+            self.0.count()
         }
-        fn evaluate(&mut self, _s: f64, out: &mut [Constraint]) -> f64 {
-            out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -4.0, hi: 4.0 };
-            1.0
+        fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
+            self.0.evaluate(s, out)
         }
         fn point(&mut self, index: usize) -> Option<f64> {
             [0.0, 0.5, 0.5, 1.0].get(index).copied()
@@ -873,7 +872,8 @@ mod tests {
 
     #[test]
     fn a_streamed_point_that_does_not_advance_is_an_error_saying_so() {
-        let err = TimeOptimal::default().plan_streamed(&mut Stalled, 10).unwrap_err();
+        let mut path = Stalled(trapezoid(1.0, 4.0));
+        let err = TimeOptimal::default().plan_streamed(&mut path, 10).unwrap_err();
         assert_eq!(err, TimingError::NotIncreasing { s: 0.5, previous: 0.5 });
         assert_eq!(
             err.to_string(),

@@ -2,9 +2,10 @@
 //!
 //! LinuxCNC reads a block by first dropping spaces and tabs everywhere and lowering the case of
 //! everything outside comments (`close_and_downcase`); then it parses words from what is left.
-//! [`compact`](crate::syntax::lexer::compact) does the same into reused buffers, keeping for every byte left its column in the
-//! original line (for error messages). A `( … )` comment becomes one `(` byte, so that it still
-//! separates what stands on either side of it, as it does in LinuxCNC.
+//! [`compact`](crate::syntax::lexer::compact) does the same into reused buffers, keeping for
+//! every byte left its column in the original line (for error messages). A `( … )` comment
+//! becomes one `(` byte, so that it still separates what stands on either side of it, as it
+//! does in LinuxCNC.
 
 use std::io::{self, BufRead, BufReader, Read, Seek};
 
