@@ -29,8 +29,14 @@ pub struct JointCsvFormat {
 }
 
 impl JointCsvFormat {
-    /// The header line, without the newline.
+    /// The header line, without the newline: [`JointCsvFormat::columns`] joined by commas.
     pub fn header(&self) -> String {
+        self.columns().join(",")
+    }
+
+    /// The names of the columns, in order: `t_s`, the joints, and with `derivatives` their
+    /// velocities and accelerations (the values of [`JointCsvFormat::values`]).
+    pub fn columns(&self) -> Vec<String> {
         let unit = match self.angle_unit {
             AngleUnit::Radians => "rad",
             AngleUnit::Degrees => "deg",
@@ -45,7 +51,29 @@ impl JointCsvFormat {
             columns.extend(angles.iter().map(|name| format!("dd{name}_{unit}_s2")));
             columns.push("ddd4_mm_s2".to_owned());
         }
-        columns.join(",")
+        columns
+    }
+
+    /// The values of one sample in the order and units of [`JointCsvFormat::columns`], unrounded:
+    /// what a row of the CSV holds, for callers that keep the numbers (the Python package).
+    pub fn values(&self, sample: &JointSample) -> impl Iterator<Item = f64> + use<> {
+        let (pose, derivatives) = self.scaled(sample);
+        let derivatives = if self.derivatives { Some(derivatives) } else { None };
+        pose.into_iter().chain(derivatives.into_iter().flatten())
+    }
+
+    /// `[t, θ1, θ2, θ3, d4]` and the velocities and accelerations in the format's angle unit.
+    #[inline]
+    fn scaled(&self, sample: &JointSample) -> ([f64; 5], [f64; 8]) {
+        let scale = match self.angle_unit {
+            AngleUnit::Radians => 1.0,
+            AngleUnit::Degrees => 180.0 / std::f64::consts::PI,
+        };
+        let scaled = |[a, b, c, d]: [f64; 4]| [a * scale, b * scale, c * scale, d];
+        let [theta1, theta2, theta3, d4] = scaled(sample.joints.to_array());
+        let [v1, v2, v3, v4] = scaled(sample.velocity);
+        let [a1, a2, a3, a4] = scaled(sample.acceleration);
+        ([sample.t, theta1, theta2, theta3, d4], [v1, v2, v3, v4, a1, a2, a3, a4])
     }
 }
 
@@ -87,18 +115,11 @@ impl<W: Write> JointCsvWriter<W> {
     /// [`JointCsvWriter::with_columns`]), with the format's decimals.
     pub fn write_with(&mut self, sample: &JointSample, values: &[f64]) -> io::Result<()> {
         let decimals = self.format.precision;
-        let scale = match self.format.angle_unit {
-            AngleUnit::Radians => 1.0,
-            AngleUnit::Degrees => 180.0 / std::f64::consts::PI,
-        };
-        let scaled = |[a, b, c, d]: [f64; 4]| [a * scale, b * scale, c * scale, d];
-        let [theta1, theta2, theta3, d4] = scaled(sample.joints.to_array());
-        self.row.push_fixed_list([sample.t, theta1, theta2, theta3, d4], decimals);
+        let (pose, derivatives) = self.format.scaled(sample);
+        self.row.push_fixed_list(pose, decimals);
         if self.format.derivatives {
-            let [v1, v2, v3, v4] = scaled(sample.velocity);
-            let [a1, a2, a3, a4] = scaled(sample.acceleration);
             self.row.push(b',');
-            self.row.push_fixed_list([v1, v2, v3, v4, a1, a2, a3, a4], decimals);
+            self.row.push_fixed_list(derivatives, decimals);
         }
         for value in values {
             self.row.push(b',');

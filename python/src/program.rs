@@ -1,0 +1,354 @@
+//! The functions that run a program: `interpret`, `interpolate`, `joints` and `check`, through
+//! the library's pipeline, with the GIL released and signals checked between chunks.
+
+use std::cell::RefCell;
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::rc::Rc;
+use std::sync::Arc;
+
+use biscara_files::FileSystem;
+use biscara_gcode::{Dialect, IniFile, Tool, ToolTable};
+use biscara_interpolate::{PATH_HEADER, Profile};
+use biscara_joints::{AngleUnit, JointCsvFormat};
+use biscara_motion::write_jsonl;
+use biscara_pipeline::{Note, Pipeline, SamplingConfig, ToolState};
+use biscara_robot::{Checker, Scene};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+use crate::error::{Failure, check_signals};
+use crate::robot::PyRobot;
+use crate::source::Program;
+
+/// Samples between two checks for signals (Ctrl-C).
+const CHUNK: usize = 1 << 16;
+
+/// Slowed motions reported one by one before they are only counted (as on the command line).
+const SLOWED_SHOWN: usize = 20;
+
+/// How a program is read and sampled: the command line's options, as the Python layer passes
+/// them (a dict, already checked there).
+#[derive(Debug, FromPyObject)]
+#[pyo3(from_item_all)]
+pub(crate) struct Options {
+    /// `gcode`, `jsonl`, `path` or None (from the name and first bytes).
+    kind: Option<String>,
+    dialect: String,
+    tool: Option<String>,
+    origin: Option<[f64; 4]>,
+    fit: bool,
+    profile: String,
+    dt: f64,
+    grip_time: f64,
+    blend: Option<f64>,
+    subroutine_path: Vec<PathBuf>,
+    tool_table: Option<PathBuf>,
+    ini: Option<PathBuf>,
+    max_idle_jumps: u64,
+}
+
+impl Options {
+    /// The pipeline's configuration.
+    fn config(&self) -> Result<SamplingConfig, Failure> {
+        let dialect: Dialect = self.dialect.parse().map_err(Failure::plain)?;
+        let tool = match &self.tool {
+            Some(name) => Some(Tool::from_name(name).ok_or_else(|| {
+                Failure::plain(format!(
+                    "{name:?} is not a tool: gripper, laser, spindle, extruder or pen"
+                ))
+            })?),
+            None => None,
+        };
+        let profile = match self.profile.as_str() {
+            "constant" => Profile::Constant,
+            "trapezoid" => Profile::Trapezoid,
+            "optimal" => Profile::Optimal,
+            other => {
+                return Err(Failure::plain(format!(
+                    "profile must be \"constant\", \"trapezoid\" or \"optimal\", got {other:?}"
+                )));
+            }
+        };
+        let tool_table = match &self.tool_table {
+            Some(path) => Some(Arc::new(
+                ToolTable::read(&FileSystem, path).map_err(|err| Failure::of(&err, None))?,
+            )),
+            None => None,
+        };
+        let ini = match &self.ini {
+            Some(path) => Some(Arc::new(
+                IniFile::read(&FileSystem, path).map_err(|err| Failure::of(&err, None))?,
+            )),
+            None => None,
+        };
+        Ok(SamplingConfig {
+            dt: self.dt,
+            profile,
+            grip_time: self.grip_time,
+            origin: self.origin,
+            fit: self.fit,
+            dialect,
+            tool,
+            subroutine_path: self.subroutine_path.clone(),
+            blend: self.blend,
+            tool_table,
+            ini,
+            max_idle_jumps: self.max_idle_jumps,
+            ..SamplingConfig::default()
+        })
+    }
+}
+
+/// The pipeline's notes, kept as text (the command line prints them on stderr; the Python layer
+/// logs them): slowed motions one by one up to [`SLOWED_SHOWN`], then counted.
+#[derive(Default, Clone)]
+struct Notes {
+    kept: Rc<RefCell<(Vec<String>, usize)>>,
+}
+
+impl Notes {
+    fn sink(&self) -> impl FnMut(Note) + 'static {
+        let kept = Rc::clone(&self.kept);
+        move |note| {
+            let mut kept = kept.borrow_mut();
+            if let Note::SlowedDown { .. } = note {
+                kept.1 += 1;
+                if kept.1 > SLOWED_SHOWN {
+                    return;
+                }
+            }
+            kept.0.push(note.to_string());
+        }
+    }
+
+    fn finish(self) -> Vec<String> {
+        let (mut notes, slowed) = self.kept.take();
+        if slowed > SLOWED_SHOWN {
+            notes.push(format!("{slowed} motions slowed in all"));
+        }
+        notes
+    }
+}
+
+/// Columns of numbers, filled row by row.
+struct Columns {
+    names: Vec<String>,
+    values: Vec<Vec<f64>>,
+    rows: usize,
+}
+
+impl Columns {
+    fn new(names: Vec<String>) -> Columns {
+        let values = names.iter().map(|_| Vec::new()).collect();
+        Columns { names, values, rows: 0 }
+    }
+
+    /// Appends one row (as many values as columns), checking for signals now and then.
+    fn push(&mut self, row: impl IntoIterator<Item = f64>) -> Result<(), Failure> {
+        for (column, value) in self.values.iter_mut().zip(row) {
+            column.push(value);
+        }
+        self.rows += 1;
+        if self.rows.is_multiple_of(CHUNK) {
+            check_signals()?;
+        }
+        Ok(())
+    }
+
+    /// The columns as a list of (name, 1-D array) pairs, in order.
+    fn into_py(self, py: Python<'_>) -> Vec<(String, Bound<'_, PyArray1<f64>>)> {
+        self.names
+            .into_iter()
+            .zip(self.values)
+            .map(|(name, values)| (name, PyArray1::from_vec(py, values)))
+            .collect()
+    }
+}
+
+/// The (name, array) pairs of a sampled program and its notes.
+type Table<'py> = (Vec<(String, Bound<'py, PyArray1<f64>>)>, Vec<String>);
+
+/// `interpret`: the program's motions as the inter-file's JSON Lines records, gathered into one
+/// JSON array (the Python layer parses it), and the notes.
+#[pyfunction]
+#[pyo3(signature = (robot, path, source, options))]
+pub(crate) fn interpret(
+    py: Python<'_>,
+    robot: &Bound<'_, PyRobot>,
+    path: Option<PathBuf>,
+    source: Option<String>,
+    options: Options,
+) -> PyResult<(String, Vec<String>)> {
+    let model = &robot.get().model;
+    py.detach(|| -> Result<_, Failure> {
+        let program = Program::new(path, source)?;
+        let config = options.config()?;
+        let notes = Notes::default();
+        let kind = program.kind(options.kind.as_deref().or(Some("gcode")))?;
+        let motions = Pipeline::new(model, config).motions(program.source(), kind, notes.sink())?;
+        let mut out = Vec::with_capacity(64 * 1024);
+        out.push(b'[');
+        for (count, motion) in motions.enumerate() {
+            if count > 0 {
+                out.push(b',');
+            }
+            write_jsonl(&mut out, &motion?).map_err(Failure::plain)?;
+            if out.last() == Some(&b'\n') {
+                out.pop();
+            }
+            if count % CHUNK == CHUNK - 1 {
+                check_signals()?;
+            }
+        }
+        out.push(b']');
+        let text = String::from_utf8(out).map_err(Failure::plain)?;
+        Ok((text, notes.finish()))
+    })
+    .map_err(|failure| failure.into_py(py))
+}
+
+/// `joints`: the joint trajectory's columns, named as the joint CSV's, and the notes.
+#[pyfunction]
+#[pyo3(signature = (robot, path, source, options, derivatives, radians, events))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn joints<'py>(
+    py: Python<'py>,
+    robot: &Bound<'py, PyRobot>,
+    path: Option<PathBuf>,
+    source: Option<String>,
+    options: Options,
+    derivatives: bool,
+    radians: bool,
+    events: bool,
+) -> PyResult<Table<'py>> {
+    let model = &robot.get().model;
+    let (columns, notes) = py
+        .detach(|| -> Result<_, Failure> {
+            let program = Program::new(path, source)?;
+            let kind = program.kind(options.kind.as_deref())?;
+            let pipeline = Pipeline::new(model, options.config()?);
+            let notes = Notes::default();
+            let angle_unit = if radians { AngleUnit::Radians } else { AngleUnit::Degrees };
+            let format = JointCsvFormat { angle_unit, derivatives, precision: 6 };
+            if events {
+                let mut samples = pipeline.tool_joints(program.source(), kind, notes.sink())?;
+                let tool = samples.tool();
+                let mut names = format.columns();
+                names.extend(ToolState::columns(tool).iter().map(|name| (*name).to_owned()));
+                let mut columns = Columns::new(names);
+                while let Some(row) = samples.next_sample() {
+                    let (row, state) = row?;
+                    columns.push(format.values(row).chain([state.value(tool)]))?;
+                }
+                return Ok((columns, notes.finish()));
+            }
+            let mut samples = pipeline.joints(program.source(), kind, notes.sink())?;
+            if !derivatives {
+                samples = samples.without_derivatives();
+            }
+            let mut columns = Columns::new(format.columns());
+            while let Some(row) = samples.next_sample() {
+                columns.push(format.values(row?))?;
+            }
+            Ok((columns, notes.finish()))
+        })
+        .map_err(|failure| failure.into_py(py))?;
+    Ok((columns.into_py(py), notes))
+}
+
+/// `interpolate`: the Cartesian path's columns, named as the path CSV's, and the notes.
+#[pyfunction]
+#[pyo3(signature = (robot, path, source, options, events))]
+pub(crate) fn interpolate<'py>(
+    py: Python<'py>,
+    robot: &Bound<'py, PyRobot>,
+    path: Option<PathBuf>,
+    source: Option<String>,
+    options: Options,
+    events: bool,
+) -> PyResult<Table<'py>> {
+    let model = &robot.get().model;
+    let (columns, notes) = py
+        .detach(|| -> Result<_, Failure> {
+            let program = Program::new(path, source)?;
+            let kind = program.kind(options.kind.as_deref())?;
+            if kind == biscara_pipeline::ProgramKind::Path {
+                return Err(Failure::plain(
+                    "a path CSV holds samples already: give G-code or an inter-file",
+                ));
+            }
+            let pipeline = Pipeline::new(model, options.config()?);
+            let notes = Notes::default();
+            let mut names: Vec<String> = PATH_HEADER.split(',').map(str::to_owned).collect();
+            let mut samples = pipeline.tool_samples(program.source(), kind, notes.sink())?;
+            let tool = samples.tool();
+            if events {
+                names.extend(ToolState::columns(tool).iter().map(|name| (*name).to_owned()));
+            }
+            let mut columns = Columns::new(names);
+            for sample in samples {
+                let (sample, state) = sample?;
+                let [x, y, z, c] = sample.pose;
+                let tool_value = events.then(|| state.value(tool));
+                columns.push([sample.t, x, y, z, c].into_iter().chain(tool_value))?;
+            }
+            Ok((columns, notes.finish()))
+        })
+        .map_err(|failure| failure.into_py(py))?;
+    Ok((columns.into_py(py), notes))
+}
+
+/// `check`: the report as `check --json` prints it (JSON text), and the notes.
+#[pyfunction]
+#[pyo3(signature = (robot, path, source, options, scene_path, scene_text))]
+pub(crate) fn check(
+    py: Python<'_>,
+    robot: &Bound<'_, PyRobot>,
+    path: Option<PathBuf>,
+    source: Option<String>,
+    options: Options,
+    scene_path: Option<PathBuf>,
+    scene_text: Option<String>,
+) -> PyResult<(String, Vec<String>)> {
+    let model = &robot.get().model;
+    py.detach(|| -> Result<_, Failure> {
+        let scene = match (&scene_path, &scene_text) {
+            (Some(path), _) => {
+                let name = path.display().to_string();
+                let bytes = std::fs::read(path)
+                    .map_err(|err| Failure::in_file(format!("cannot read {name}: {err}"), &name))?;
+                Scene::from_json(&bytes).map_err(|err| Failure::located(&err, Some(&name)))?
+            }
+            (None, Some(text)) => {
+                Scene::from_json(text.as_bytes()).map_err(|err| Failure::located(&err, None))?
+            }
+            (None, None) => Scene::new(),
+        };
+        let program = Program::new(path, source)?;
+        let kind = program.kind(options.kind.as_deref())?;
+        let notes = Notes::default();
+        let mut checker = Checker::new(model, scene);
+        let mut samples = Pipeline::new(model, options.config()?).tool_samples(
+            program.source(),
+            kind,
+            notes.sink(),
+        )?;
+        let tool = samples.tool();
+        for (count, sample) in samples.by_ref().enumerate() {
+            let (sample, state) = sample?;
+            checker.push(&sample);
+            if let Some((subject, detail, severity)) = state.problem(tool) {
+                checker.push_tool_problem(&sample, subject, detail, severity);
+            }
+            if count % CHUNK == CHUNK - 1 {
+                check_signals()?;
+            }
+        }
+        let report = checker.finish();
+        let mut text = Vec::new();
+        write!(text, "{}", report.to_json()).map_err(Failure::plain)?;
+        Ok((String::from_utf8(text).map_err(Failure::plain)?, notes.finish()))
+    })
+    .map_err(|failure| failure.into_py(py))
+}
