@@ -15,6 +15,7 @@ mod motion_cli;
 mod mujoco;
 mod optimal_profile;
 mod programming;
+mod python;
 /// The recorded rs274 results of the conformance programs, shared with biscara-gcode's tests.
 #[path = "../../crates/biscara-gcode/tests/it/rs274_record.rs"]
 mod record;
