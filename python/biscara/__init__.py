@@ -54,19 +54,26 @@ def _log_notes(notes: Sequence[str]) -> None:
         _log.info("%s", note)
 
 
-def _rows(value: Any, name: str) -> np.ndarray:
-    """``value`` as a C-contiguous (N, 4) float64 array of finite numbers."""
+def _rows(value: Any, name: str, finite: bool = True) -> np.ndarray:
+    """``value`` as a C-contiguous (N, 4) float64 array (of finite numbers, with ``finite``)."""
     array = value if isinstance(value, np.ndarray) else np.asarray(value)
     if array.dtype.kind not in "fiu":
         raise TypeError(f"{name} must hold real numbers (float64), not dtype {array.dtype}")
     if array.ndim != 2 or array.shape[1] != 4:
         raise ValueError(f"{name} must have shape (N, 4), got {array.shape}")
     array = np.ascontiguousarray(array, dtype=np.float64)
-    finite = np.isfinite(array).all(axis=1)
-    if not finite.all():
-        row = int(np.argmin(finite))
-        raise ValueError(f"{name}: row {row} is not finite: {array[row].tolist()}")
+    if finite:
+        _finite(array, name)
     return array
+
+
+def _finite(array: np.ndarray, name: str, row: Optional[int] = None) -> None:
+    if row is None:
+        rows = np.isfinite(array).all(axis=1)
+        if rows.all():
+            return
+        row = int(np.argmin(rows))
+    raise ValueError(f"{name}: row {row} is not finite: {array[row].tolist()}")
 
 
 def _radians(angle_unit: str) -> bool:
@@ -209,7 +216,11 @@ class Robot:
         if errors not in ("raise", "nan"):
             raise ValueError(f'errors must be "raise" or "nan", got {errors!r}')
         radians = _radians(angle_unit)
-        joints, mask, first = self._inner.ik(_rows(poses, "poses"), radians)
+        # The batch solver finds the poses that are not finite (one pass less over the array).
+        poses = _rows(poses, "poses", finite=False)
+        joints, mask, first, not_finite = self._inner.ik(poses, radians)
+        if not_finite is not None:
+            _finite(poses, "poses", not_finite)
         if errors == "nan":
             return joints, mask
         if first is not None:
@@ -224,7 +235,7 @@ class Robot:
         if errors not in ("raise", "nan"):
             raise ValueError(f'errors must be "raise" or "nan", got {errors!r}')
         radians = _radians(angle_unit)
-        poses, mask, first = self._inner.fk(_rows(joints, "joints"), radians)
+        poses, mask, first, _ = self._inner.fk(_rows(joints, "joints"), radians)
         if errors == "nan":
             return poses, mask
         if first is not None:

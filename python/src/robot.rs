@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use biscara_design::{Design, Evaluator};
-use biscara_kinematics::{BatchSolution, BatchStatus, Joints, Pose, Robot, RobotModel};
+use biscara_kinematics::{BatchSolution, BatchStatus, Joints, Kinematics, Pose, Robot, RobotModel};
 use biscara_robot::Workspace;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -39,12 +39,34 @@ fn located(err: &biscara_kinematics::RobotError, path: Option<&str>, _text: &str
     }
 }
 
+/// The row and message of a pose `inverse_batch` could not solve: the message of
+/// [`Kinematics::inverse_checked`], as `biscara ik` prints it.
+fn failed_pose(
+    kinematics: &Kinematics,
+    row: usize,
+    given: &[f64],
+    pose: &Pose,
+    status: BatchStatus,
+) -> (usize, String) {
+    let p = &given[..4];
+    let why = match kinematics.inverse_checked(pose) {
+        Err(err) => err.to_string(),
+        Ok(_) => format!("{status:?}"),
+    };
+    let message = format!(
+        "row {row}: pose (x, y, z, c) = ({}, {}, {}, {}) is unreachable: {why}",
+        p[0], p[1], p[2], p[3]
+    );
+    (row, message)
+}
+
 /// An angle conversion.
 type Convert = fn(f64) -> f64;
 
-/// What `ik` and `fk` return: the (N, 4) values, the mask of rows solved, and the first row that
-/// failed with its message.
-type Solved<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Option<(usize, String)>);
+/// What `ik` and `fk` return: the (N, 4) values, the mask of rows solved, the first row that
+/// failed with its message, and the first row that is not finite (`ik` only: `fk`'s caller
+/// checks).
+type Solved<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Option<(usize, String)>, Option<usize>);
 
 /// Conversions of the caller's angles to radians and back: degrees as the command line converts
 /// them (`to_radians`, `to_degrees`), or none.
@@ -101,8 +123,8 @@ impl PyRobot {
 
     /// Batch inverse kinematics of the C-contiguous (N, 4) float64 array `poses` (x, y, z mm,
     /// c in degrees, or radians with `radians`): the (N, 4) joints (θ1, θ2, θ3, d4), a boolean
-    /// mask of the poses solved, and the first row that failed with its message (None when all
-    /// were solved).
+    /// mask of the poses solved, the first row that failed with its message (None when all
+    /// were solved), and the first row that is not finite.
     fn ik<'py>(
         &self,
         py: Python<'py>,
@@ -113,38 +135,39 @@ impl PyRobot {
         let n = input.len() / 4;
         let kinematics = self.model.kinematics();
         let result = py.detach(|| -> Result<_, Failure> {
-            let mut joints = vec![f64::NAN; 4 * n];
-            let mut mask = vec![false; n];
+            let mut joints = Vec::with_capacity(4 * n);
+            let mut mask = Vec::with_capacity(n);
             let mut first: Option<(usize, String)> = None;
+            let mut not_finite = None;
             let mut batch = Vec::with_capacity(CHUNK.min(n));
             let mut out = Vec::with_capacity(CHUNK.min(n));
             let (to_rad, from_rad) = angle_units(radians);
             for (chunk, rows) in input.chunks(4 * CHUNK).enumerate() {
                 batch.clear();
-                batch.extend(rows.chunks_exact(4).map(|p| Pose::new(p[0], p[1], p[2], to_rad(p[3]))));
+                batch.extend(
+                    rows.chunks_exact(4).map(|p| Pose::new(p[0], p[1], p[2], to_rad(p[3]))),
+                );
                 out.clear();
                 out.resize(batch.len(), BatchSolution::default());
                 kinematics.inverse_batch(&batch, &mut out);
-                let start = chunk * CHUNK;
-                let target = &mut joints[4 * start..4 * (start + batch.len())];
-                for (k, (solution, slot)) in out.iter().zip(target.chunks_exact_mut(4)).enumerate() {
-                    if solution.status == BatchStatus::Ok {
+                for (k, solution) in out.iter().enumerate() {
+                    let ok = solution.status == BatchStatus::Ok;
+                    mask.push(ok);
+                    if ok {
                         let [t1, t2, t3, d4] = solution.joints.to_array();
-                        slot.copy_from_slice(&[from_rad(t1), from_rad(t2), from_rad(t3), d4]);
-                        mask[start + k] = true;
+                        joints.extend([from_rad(t1), from_rad(t2), from_rad(t3), d4]);
+                        continue;
+                    }
+                    joints.extend([f64::NAN; 4]);
+                    if solution.status == BatchStatus::NotFinite {
+                        not_finite.get_or_insert(chunk * CHUNK + k);
                     } else if first.is_none() {
-                        let row = start + k;
-                        let p = &rows[4 * k..4 * k + 4];
-                        let why = match kinematics.inverse_checked(&batch[k]) {
-                            Err(err) => err.to_string(),
-                            Ok(_) => format!("{:?}", solution.status),
-                        };
-                        first = Some((
-                            row,
-                            format!(
-                                "row {row}: pose (x, y, z, c) = ({}, {}, {}, {}) is unreachable: {why}",
-                                p[0], p[1], p[2], p[3]
-                            ),
+                        first = Some(failed_pose(
+                            &kinematics,
+                            chunk * CHUNK + k,
+                            &rows[4 * k..],
+                            &batch[k],
+                            solution.status,
                         ));
                     }
                 }
@@ -152,12 +175,12 @@ impl PyRobot {
                     check_signals()?;
                 }
             }
-            Ok((joints, mask, first))
+            Ok((joints, mask, first, not_finite))
         });
-        let (joints, mask, first) = result.map_err(|failure| failure.into_py(py))?;
+        let (joints, mask, first, not_finite) = result.map_err(|failure| failure.into_py(py))?;
         let joints = PyArray1::from_vec(py, joints).reshape([n, 4])?.into_any();
         let mask = PyArray1::from_vec(py, mask).into_any();
-        Ok((joints, mask, first))
+        Ok((joints, mask, first, not_finite))
     }
 
     /// Forward kinematics of the C-contiguous (N, 4) float64 array `joints` (θ1, θ2, θ3 in
@@ -205,7 +228,7 @@ impl PyRobot {
         let (poses, mask, first) = result.map_err(|failure| failure.into_py(py))?;
         let poses = PyArray1::from_vec(py, poses).reshape([n, 4])?.into_any();
         let mask = PyArray1::from_vec(py, mask).into_any();
-        Ok((poses, mask, first))
+        Ok((poses, mask, first, None))
     }
 
     /// The reachable XY grid at multiples of `step` (mm): a dict with `area_mm2`, `step_mm`,

@@ -257,6 +257,29 @@ mod tests {
     }
 
     #[test]
+    fn columns_and_values_are_the_rows_the_writer_writes() {
+        for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
+            for derivatives in [false, true] {
+                let format = JointCsvFormat { angle_unit, derivatives, precision: 6 };
+                let s = sample(0.25, [10.0, -20.0, 30.0, 40.0]);
+                let mut writer = JointCsvWriter::new(Vec::new(), format).unwrap();
+                writer.write(&s).unwrap();
+                let text = String::from_utf8(writer.finish().unwrap()).unwrap();
+                let mut lines = text.lines();
+                assert_eq!(lines.next().unwrap(), format.columns().join(","));
+                let written: Vec<f64> =
+                    lines.next().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+                let values: Vec<f64> = format.values(&s).collect();
+                assert_eq!(values.len(), format.columns().len());
+                assert_eq!(written.len(), values.len());
+                for (written, value) in written.iter().zip(&values) {
+                    assert!((written - value).abs() <= 5e-7, "{written} vs {value}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn what_the_writer_writes_reads_back_in_both_units() {
         for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
             for derivatives in [false, true] {
