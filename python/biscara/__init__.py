@@ -86,7 +86,9 @@ def _number(value: Any, name: str, low: float, high: float, unit: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise TypeError(f"{name} must be a number, not {type(value).__name__}")
     value = float(value)
-    if not (math.isfinite(value) and low <= value <= high):
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {value}")
+    if not low <= value <= high:
         raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {value}")
     return value
 
