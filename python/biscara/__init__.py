@@ -337,12 +337,15 @@ def check(
     scene: Union[None, PathLike, Mapping[str, Any]] = None,
     profile: str = "optimal",
     dt: float = 0.001,
+    time_limit: float = 172_800.0,
     **options: Any,
 ) -> Dict[str, Any]:
     """Runs a program on the virtual robot, as ``biscara check --json``: the report as a dict
     (``ok``, ``problems``, ``summary``). ``scene`` is a scene file or the scene as a dict
     (``{"boxes": [{"name": …, "min": [x, y, z], "max": [x, y, z]}]}``). A program with
-    problems is not an error here: look at ``report["ok"]``."""
+    problems is not an error here: look at ``report["ok"]``. A program still moving after
+    ``time_limit`` seconds of robot time (48 h) is an error (an endless loop)."""
+    time_limit = _number(time_limit, "time_limit", 0.0, 1e9, "s")
     path, source = _program(path, source)
     options = _options(profile=profile, dt=dt, **options)
     scene_path = scene_text = None
@@ -350,7 +353,9 @@ def check(
         scene_text = json.dumps(scene)
     elif scene is not None:
         scene_path = os.fspath(scene)
-    text, notes = _biscara.check(_robot(robot), path, source, options, scene_path, scene_text)
+    text, notes = _biscara.check(
+        _robot(robot), path, source, options, scene_path, scene_text, time_limit
+    )
     _log_notes(notes)
     return json.loads(text)
 

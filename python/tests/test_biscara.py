@@ -282,6 +282,22 @@ def test_check_matches_the_command_line(cli, data, name, scene):
         assert biscara.check(source=path.read_text(), scene=as_dict) == expected
 
 
+def test_check_stops_an_endless_program_at_the_time_limit(cli, tmp_path):
+    program = tmp_path / "endless.ngc"
+    program.write_text(
+        "G21 G90 F6000\nG0 X0 Y300\no100 while [1]\nG1 X50\nG1 X0\no100 endwhile\nM2\n"
+    )
+    with pytest.raises(biscara.Error) as caught:
+        biscara.check(program, time_limit=2.0)
+    # The command line's message, naming the keyword instead of the flag --time-limit.
+    expected = cli_error(cli("check", "--time-limit", "2", program, check=False))
+    assert str(caught.value).split(", past")[0] == expected.split(", past")[0]
+    assert "past time_limit" in str(caught.value)
+    assert caught.value.path == str(program) and caught.value.line in (4, 5)
+    with pytest.raises(ValueError, match="time_limit"):
+        biscara.check(program, time_limit=-1)
+
+
 def test_design_matches_the_command_line(cli):
     args = ["--l1", "150:270:3", "--l2", "210:330:3", "--base", "100:300:3", "--step", "5"]
     done = cli("design", *args, "--task", "-100,250,100,350", "--objective", "gci")
