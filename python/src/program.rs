@@ -274,9 +274,11 @@ pub(crate) fn interpolate<'py>(
             let program = Program::new(path, source)?;
             let kind = program.kind(options.kind.as_deref())?;
             if kind == biscara_pipeline::ProgramKind::Path {
-                return Err(Failure::plain(
-                    "a path CSV holds samples already: give G-code or an inter-file",
-                ));
+                let name = program.file().unwrap_or(crate::error::SOURCE_NAME);
+                let message = format!(
+                    "{name}: a path CSV holds samples already: give G-code or an inter-file"
+                );
+                return Err(Failure::message_in(message, Some(name)));
             }
             let pipeline = Pipeline::new(model, options.config()?);
             let notes = Notes::default();

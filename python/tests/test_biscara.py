@@ -389,6 +389,26 @@ def test_points_and_cl_errors_are_located(cli, tmp_path):
     assert caught.value.path is None and caught.value.line == 3
 
 
+def test_inputs_of_other_kinds(cli, data, tmp_path):
+    program = data / "programs" / "arcs_and_offsets.ngc"
+    motions = tmp_path / "job.jsonl"
+    motions.write_text(cli("interpret", program).stdout)
+    expected = read_csv(cli("joints", motions).stdout)
+    got = biscara.joints(motions)
+    np.testing.assert_allclose(got["theta2_rad"], expected["theta2_rad"], atol=5.1e-7)
+    path_csv = tmp_path / "path.csv"
+    path_csv.write_text(cli("interpolate", program).stdout)
+    expected = read_csv(cli("joints", path_csv).stdout)
+    got = biscara.joints(source=path_csv.read_text(), kind="path")
+    np.testing.assert_allclose(got["d4_mm"], expected["d4_mm"], atol=5.1e-7)
+    with pytest.raises(biscara.Error) as caught:
+        biscara.interpolate(path_csv)
+    assert str(caught.value) == cli_error(cli("interpolate", path_csv, check=False))
+    assert caught.value.path == str(path_csv)
+    with pytest.raises(ValueError, match="kind"):
+        biscara.joints(path_csv, kind="csv")
+
+
 def test_missing_file_and_bad_scene(tmp_path, data):
     with pytest.raises(biscara.Error) as caught:
         biscara.joints(tmp_path / "missing.ngc")
