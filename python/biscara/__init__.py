@@ -377,21 +377,33 @@ def design(
     task: Optional[Sequence[float]] = None,
     objective: str = "rect",
     threads: int = 0,
+    programs: Sequence[PathLike] = (),
+    fit: bool = False,
 ) -> Dict[str, Any]:
     """Sweeps link lengths and base distance, as ``biscara design``: each range is
     ``(min, max, n)`` (mm, n values). A dict of 1-D arrays named as the design CSV's columns
     (``index``, ``l1``, ``l2``, ``base``, ``area_mm2``, ``rect_w_mm``, ``rect_h_mm``,
     ``rect_x0_mm``, ``rect_y0_mm``, ``gci``, ``lci_min``, ``status``; ``task_ok`` with a
     ``task`` (x0, y0, x1, y1)), and ``best``: the row of the best design by ``objective``
-    (``"rect"``, ``"gci"``, ``"area"`` or ``"lci_min"``), None when none has a rectangle."""
-    if objective not in ("rect", "gci", "area", "lci_min"):
-        raise ValueError(f'objective must be "rect", "gci", "area" or "lci_min", got {objective!r}')
+    (``"rect"``, ``"gci"``, ``"area"``, ``"lci_min"`` or ``"time"``), None when none has a
+    rectangle. With ``programs`` (files), each design's total time of them as ``joints`` runs
+    them (``time_s``, NaN where one cannot run; centred in each design's rectangle first with
+    ``fit``)."""
+    objectives = ("rect", "gci", "area", "lci_min", "time")
+    if objective not in objectives:
+        raise ValueError(f"objective must be one of {objectives}, got {objective!r}")
+    if isinstance(programs, (str, bytes, os.PathLike)):
+        raise TypeError("programs must be a list of paths")
+    programs = [os.fspath(p) for p in programs]
+    if objective == "time" and not programs:
+        raise ValueError('objective="time" needs programs')
     task_text = None if task is None else ",".join(repr(v) for v in _numbers(task, "task", 4))
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 0:
         raise ValueError(f"threads must be a whole number ≥ 0, got {threads!r}")
     columns, best = _biscara.design(
         _robot(robot), _range(l1, "l1"), _range(l2, "l2"), _range(base, "base"),
         _number(step, "step", 0.0, math.inf, "mm"), task_text, objective, int(threads),
+        programs, bool(fit),
     )
     columns["status"] = np.asarray(columns["status"])
     columns["best"] = best

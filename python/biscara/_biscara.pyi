@@ -64,6 +64,8 @@ def design(
     task: Optional[str],
     objective: str,
     threads: int,
+    programs: List[str],
+    fit: bool,
 ) -> Tuple[Dict[str, Any], Optional[int]]: ...
 def gen(robot: Robot, path: Optional[str], source: Optional[str], line_numbers: bool) -> str: ...
 def post(

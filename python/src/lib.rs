@@ -9,7 +9,9 @@ mod source;
 
 use std::path::PathBuf;
 
-use biscara_design::{Best, DesignGrid, Evaluator, Objective, ParamRange, Shard, Sweep, Task};
+use biscara_design::{
+    Best, DesignGrid, Evaluator, Objective, ParamRange, ProgramTimer, Shard, Sweep, Task,
+};
 use biscara_pipeline::{GenerateError, generate};
 use biscara_post::{PostOptions, post as post_cl};
 use numpy::PyArray1;
@@ -21,9 +23,10 @@ use crate::robot::PyRobot;
 use crate::source::Program;
 
 /// `design`: the sweep's columns (named as the design CSV's) as a dict of 1-D arrays, and the
-/// row of the best design by `objective` (None when no design qualifies).
+/// row of the best design by `objective` (None when no design qualifies); with `programs`, each
+/// design's total time of them (`time_s`, NaN where one cannot run).
 #[pyfunction]
-#[pyo3(signature = (robot, l1, l2, base, step, task, objective, threads))]
+#[pyo3(signature = (robot, l1, l2, base, step, task, objective, threads, programs, fit))]
 #[allow(clippy::too_many_arguments)]
 fn design<'py>(
     py: Python<'py>,
@@ -35,6 +38,8 @@ fn design<'py>(
     task: Option<&str>,
     objective: &str,
     threads: usize,
+    programs: Vec<PathBuf>,
+    fit: bool,
 ) -> PyResult<(Bound<'py, PyDict>, Option<usize>)> {
     let robot = robot.get().model.robot().clone();
     let swept = py
@@ -44,16 +49,31 @@ fn design<'py>(
                 "gci" => Objective::Gci,
                 "area" => Objective::Area,
                 "lci_min" => Objective::LciMin,
+                "time" => Objective::Time,
                 other => {
                     return Err(Failure::plain(format!(
-                        "objective must be \"rect\", \"gci\", \"area\" or \"lci_min\", got {other:?}"
+                        "objective must be \"rect\", \"gci\", \"area\", \"lci_min\" or \"time\", \
+                         got {other:?}"
                     )));
                 }
             };
             let range = |what, text| ParamRange::parse(what, text).map_err(Failure::from);
             let grid = DesignGrid::new(range("l1", l1)?, range("l2", l2)?, range("base", base)?)?;
             let task: Option<Task> = task.map(str::parse).transpose()?;
-            let evaluator = Evaluator::new(robot, step, task)?;
+            let mut evaluator = Evaluator::new(robot, step, task)?;
+            if !programs.is_empty() {
+                let mut texts = Vec::with_capacity(programs.len());
+                for path in &programs {
+                    let name = path.display().to_string();
+                    let text = std::fs::read_to_string(path).map_err(|err| {
+                        Failure::in_file(format!("cannot read {name}: {err}"), &name)
+                    })?;
+                    texts.push((name, text));
+                }
+                evaluator = evaluator.with_programs(ProgramTimer::new(texts, fit));
+            } else if objective == Objective::Time {
+                return Err(Failure::plain("objective \"time\" needs programs"));
+            }
             let sweep = Sweep::new(evaluator, grid, Shard::ALL);
             let mut best = Best::new(objective);
             let mut rows = Vec::new();
@@ -66,10 +86,10 @@ fn design<'py>(
                 Ok(())
             })?;
             let chosen = best.get().map(|chosen| chosen.design.index);
-            Ok((rows, chosen, task.is_some()))
+            Ok((rows, chosen, task.is_some(), !programs.is_empty()))
         })
         .map_err(|failure| failure.into_py(py))?;
-    let (rows, chosen, with_task) = swept;
+    let (rows, chosen, with_task, with_time) = swept;
     let column = |value: fn(&biscara_design::Evaluation) -> f64| {
         PyArray1::from_vec(py, rows.iter().map(value).collect())
     };
@@ -91,6 +111,9 @@ fn design<'py>(
     if with_task {
         let task_ok: Vec<bool> = rows.iter().map(|e| e.task_ok == Some(true)).collect();
         dict.set_item("task_ok", PyArray1::from_vec(py, task_ok))?;
+    }
+    if with_time {
+        dict.set_item("time_s", column(|e| e.time_s.unwrap_or(f64::NAN)))?;
     }
     let best = chosen.and_then(|index| rows.iter().position(|e| e.design.index == index));
     Ok((dict, best))

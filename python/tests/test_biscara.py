@@ -319,6 +319,21 @@ def test_design_matches_the_command_line(cli):
     assert json.loads(chosen.to_json())["links"]["l1"] == got["l1"][best]
 
 
+def test_design_times_programs_as_the_command_line(cli, data):
+    program = data / "programs" / "arcs_and_offsets.ngc"
+    args = ["--l1", "190:230:2", "--l2", "250:290:2", "--base", "200:200:1", "--step", "10"]
+    done = cli("design", *args, "--programs", program, "--objective", "time")
+    expected = read_csv(done.stdout)
+    got = biscara.design(
+        l1=(190, 230, 2), l2=(250, 290, 2), base=(200, 200, 1), step=10,
+        programs=[program], objective="time",
+    )
+    np.testing.assert_allclose(got["time_s"], expected["time_s"], atol=0.00051)
+    assert np.isfinite(got["time_s"]).any()
+    with pytest.raises(ValueError, match="programs"):
+        biscara.design(l1=(190, 230, 2), l2=(250, 290, 2), base=(200, 200, 1), objective="time")
+
+
 def test_design_refuses_bad_ranges():
     with pytest.raises(ValueError, match="l1"):
         biscara.design(l1=(150, 300), l2=(200, 350, 7), base=(100, 300, 5))
