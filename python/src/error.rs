@@ -32,6 +32,8 @@ pub(crate) enum Failure {
     },
     /// A Python exception (KeyboardInterrupt from a signal handler).
     Python(PyErr),
+    /// An argument's value is not one the call takes: `ValueError`, the message naming it.
+    Value(String),
 }
 
 /// The name a program given as text has in messages.
@@ -79,6 +81,7 @@ impl Failure {
     pub(crate) fn into_py(self, py: Python<'_>) -> PyErr {
         match self {
             Failure::Python(err) => err,
+            Failure::Value(message) => pyo3::exceptions::PyValueError::new_err(message),
             Failure::Located { message, path, line, column } => {
                 let err = Error::new_err(message);
                 let value = err.value(py);

@@ -51,7 +51,7 @@ fn design<'py>(
                 "lci_min" => Objective::LciMin,
                 "time" => Objective::Time,
                 other => {
-                    return Err(Failure::plain(format!(
+                    return Err(Failure::Value(format!(
                         "objective must be \"rect\", \"gci\", \"area\", \"lci_min\" or \"time\", \
                          got {other:?}"
                     )));
@@ -72,7 +72,7 @@ fn design<'py>(
                 }
                 evaluator = evaluator.with_programs(ProgramTimer::new(texts, fit));
             } else if objective == Objective::Time {
-                return Err(Failure::plain("objective \"time\" needs programs"));
+                return Err(Failure::Value("objective \"time\" needs programs".to_owned()));
             }
             let sweep = Sweep::new(evaluator, grid, Shard::ALL);
             let mut best = Best::new(objective);

@@ -51,11 +51,12 @@ pub(crate) struct Options {
 impl Options {
     /// The pipeline's configuration.
     fn config(&self) -> Result<SamplingConfig, Failure> {
-        let dialect: Dialect = self.dialect.parse().map_err(Failure::plain)?;
+        let dialect: Dialect =
+            self.dialect.parse().map_err(|err| Failure::Value(format!("dialect: {err}")))?;
         let tool = match &self.tool {
             Some(name) => Some(Tool::from_name(name).ok_or_else(|| {
-                Failure::plain(format!(
-                    "{name:?} is not a tool: gripper, laser, spindle, extruder or pen"
+                Failure::Value(format!(
+                    "tool: {name:?} is not a tool: gripper, laser, spindle, extruder or pen"
                 ))
             })?),
             None => None,
@@ -65,7 +66,7 @@ impl Options {
             "trapezoid" => Profile::Trapezoid,
             "optimal" => Profile::Optimal,
             other => {
-                return Err(Failure::plain(format!(
+                return Err(Failure::Value(format!(
                     "profile must be \"constant\", \"trapezoid\" or \"optimal\", got {other:?}"
                 )));
             }

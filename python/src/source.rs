@@ -97,7 +97,7 @@ impl Program {
             Some("jsonl") => return Ok(ProgramKind::Jsonl),
             Some("path") => return Ok(ProgramKind::Path),
             Some(other) => {
-                return Err(Failure::plain(format!(
+                return Err(Failure::Value(format!(
                     "kind must be \"gcode\", \"jsonl\" or \"path\", got {other:?}"
                 )));
             }

@@ -457,6 +457,10 @@ def test_program_arguments_are_checked(data):
         biscara.joints(path, angle_unit="grad")
     with pytest.raises(TypeError, match="robot"):
         biscara.joints(path, robot="robot.json")
+    with pytest.raises(ValueError, match="dialect"):
+        biscara.joints(path, dialect="heidenhain")
+    with pytest.raises(ValueError, match="tool"):
+        biscara.interpret(path, tool="welder")
     with pytest.raises(TypeError, match="unexpected keyword"):
         biscara.joints(path, colour="red")
 
