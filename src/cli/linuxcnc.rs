@@ -1,24 +1,18 @@
 //! `biscara linuxcnc config` and `biscara linuxcnc run`: the robot on LinuxCNC.
 
-use std::fs;
-use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
-use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
+use biscara::gcode::Tool;
+use biscara::joints::JointCsvFormat;
 use biscara::kinematics::{RobotModel, ToolKind};
-use biscara::linuxcnc::runner::{self, RunRequest, TempFolder};
-use biscara::linuxcnc::{
-    AxisLimitSource, ConfigOptions, Configuration, RecordingStart, configuration, read_recording,
-    write_stream_sample,
-};
-use biscara::pipeline::{Pipeline, SamplingConfig};
+use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, Region, configuration, job};
+use biscara::pipeline::{ProgramKind, SamplingConfig};
+use biscara::robot::Rectangle;
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::args::{ProfileArg, parse_pose};
+use super::args::{AngleUnitArg, ProfileArg, parse_pose, parse_tool};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{FileSource, display_path, write_output};
-use super::trajectory::AngleUnitArg;
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.
@@ -40,30 +34,6 @@ enum LinuxcncCommand {
     Run(RunArgs),
 }
 
-/// The tool a configuration wires, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum ToolArg {
-    /// M3 picks, M4 places, M5 off (spindle.0.forward / reverse / on).
-    Gripper,
-    /// M3/M4 on, M5 off, S the power (spindle.0.on, spindle.0.speed-out).
-    Laser,
-    /// M3 clockwise, M4 counter-clockwise, M5 off, S in rpm.
-    Spindle,
-    /// M3/M4 pen down, M5 up (spindle.0.on).
-    Pen,
-}
-
-impl From<ToolArg> for ToolKind {
-    fn from(tool: ToolArg) -> ToolKind {
-        match tool {
-            ToolArg::Gripper => ToolKind::Gripper,
-            ToolArg::Laser => ToolKind::Laser,
-            ToolArg::Spindle => ToolKind::Spindle,
-            ToolArg::Pen => ToolKind::Pen,
-        }
-    }
-}
-
 /// Where the axis limits come from, as named on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum LimitsArg {
@@ -78,26 +48,99 @@ enum LimitsArg {
 /// How a configuration is made: shared by `config` and by `run` without --config.
 #[derive(Debug, Args)]
 struct ConfigChoice {
-    /// The tool whose codes the HAL wires (default: the robot file's tool.kind, else gripper).
-    #[arg(long, value_enum, value_name = "KIND")]
-    tool: Option<ToolArg>,
+    /// The tool whose codes the HAL wires: gripper, laser, spindle or pen (default: the robot
+    /// file's tool.kind, else gripper); LinuxCNC has no extruder axis here.
+    #[arg(long, value_name = "KIND", value_parser = parse_tool)]
+    tool: Option<Tool>,
     /// Where the axis limits come from.
     #[arg(long, value_enum, default_value = "derived")]
     limits: LimitsArg,
+    /// Derive the axis limits over this program's own XY extent (placed by --origin, or by
+    /// --fit with `config`; from the robot's home pose) plus --margin, and set LinuxCNC's soft
+    /// limits to that region: faster than over the whole workspace, and LinuxCNC refuses a
+    /// move that leaves the region.
+    #[arg(long = "for", value_name = "PROGRAM", conflicts_with = "region")]
+    for_program: Option<PathBuf>,
+    /// The margin around the program's extent, mm.
+    #[arg(long, value_name = "MM", default_value = "10", requires = "for_program")]
+    margin: f64,
+    /// Derive the axis limits over this rectangle and set LinuxCNC's soft limits to it, mm.
+    #[arg(long, value_name = "X0:X1,Y0:Y1", allow_hyphen_values = true, value_parser = parse_region)]
+    region: Option<[f64; 4]>,
 }
 
 impl ConfigChoice {
-    fn options(&self, model: &RobotModel) -> ConfigOptions {
-        let tool = match self.tool {
-            Some(tool) => tool.into(),
-            None => model.robot().tool.kind.unwrap_or(ToolKind::Gripper),
-        };
+    /// The configuration's options; `placement` places the --for program.
+    fn options(
+        &self,
+        model: &RobotModel,
+        origin: Option<[f64; 4]>,
+        fit: bool,
+    ) -> anyhow::Result<ConfigOptions> {
+        let tool = self.tool.or(model.robot().tool.kind).unwrap_or(ToolKind::Gripper);
         let limits = match self.limits {
             LimitsArg::Derived => AxisLimitSource::Derived,
             LimitsArg::Cartesian => AxisLimitSource::Cartesian,
         };
-        ConfigOptions { tool, limits, ..ConfigOptions::default() }
+        let region = match (&self.for_program, self.region) {
+            (Some(program), _) => {
+                if !(self.margin >= 0.0 && self.margin.is_finite()) {
+                    anyhow::bail!(
+                        "--margin must be a number of mm, 0 or more (got {})",
+                        self.margin
+                    );
+                }
+                let source = FileSource::new(program);
+                let kind = source.kind(None)?;
+                let sampling = SamplingConfig { origin, fit, ..SamplingConfig::default() };
+                let notes = NoteReporter::default();
+                let region = job::program_region::<anyhow::Error>(
+                    model,
+                    &source,
+                    kind,
+                    sampling,
+                    self.margin,
+                    notes.sink(),
+                )?;
+                notes.finish();
+                Some(region)
+            }
+            (None, Some([x0, x1, y0, y1])) => {
+                let [_, _, z, _] = model.home_position();
+                Some(Region {
+                    rectangle: Rectangle { min: [x0, y0], max: [x1, y1] },
+                    origin: format!("--region {x0}:{x1},{y0}:{y1}"),
+                    park: Some([0.5 * (x0 + x1), 0.5 * (y0 + y1), z, 0.0]),
+                })
+            }
+            (None, None) => None,
+        };
+        Ok(ConfigOptions { tool, limits, region, ..ConfigOptions::default() })
     }
+}
+
+/// Reads `X0:X1,Y0:Y1` (mm), each range from its smaller end.
+fn parse_region(text: &str) -> Result<[f64; 4], String> {
+    let bad = || format!("expected X0:X1,Y0:Y1 (mm), found `{text}`");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let range = |range: &str| -> Result<[f64; 2], String> {
+        let (a, b) = range.split_once(':').ok_or_else(bad)?;
+        let number = |value: &str| {
+            value
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|value| value.is_finite())
+                .ok_or_else(|| format!("`{}` is not a finite number", value.trim()))
+        };
+        let (a, b) = (number(a)?, number(b)?);
+        if a >= b {
+            return Err(format!("the range {a}:{b} is empty: give its smaller end first"));
+        }
+        Ok([a, b])
+    };
+    let ([x0, x1], [y0, y1]) = (range(x)?, range(y)?);
+    Ok([x0, x1, y0, y1])
 }
 
 /// Writes a complete LinuxCNC (2.9) configuration for the robot in force into DIR.
@@ -124,6 +167,19 @@ struct ConfigArgs {
     output: PathBuf,
     #[command(flatten)]
     choice: ConfigChoice,
+    /// The G54 offset X,Y,Z,C (mm, degrees) the --for program runs with (give `run` the same).
+    #[arg(
+        long,
+        value_name = "X,Y,Z,C",
+        allow_hyphen_values = true,
+        value_parser = parse_pose,
+        requires = "for_program"
+    )]
+    origin: Option<[f64; 4]>,
+    /// Place the --for program as `biscara joints --fit` does (the placement is reported; give
+    /// `run` the same --origin).
+    #[arg(long, requires = "for_program", conflicts_with = "origin")]
+    fit: bool,
 }
 
 /// Runs a G-code program on LinuxCNC itself, headless, and writes what its joints did.
@@ -195,31 +251,21 @@ struct RunArgs {
     timeout: f64,
 }
 
-pub(crate) fn linuxcnc(model: &RobotModel, args: &LinuxcncArgs) -> anyhow::Result<()> {
+pub(crate) fn linuxcnc(
+    model: &RobotModel,
+    robot_file: Option<&Path>,
+    args: &LinuxcncArgs,
+) -> anyhow::Result<()> {
     match &args.command {
         LinuxcncCommand::Config(args) => config(model, args),
-        LinuxcncCommand::Run(args) => run(model, args),
+        LinuxcncCommand::Run(args) => run(model, robot_file, args),
     }
-}
-
-/// Writes `configuration` into `folder`.
-fn write_configuration(configuration: &Configuration, folder: &Path) -> anyhow::Result<()> {
-    fs::create_dir_all(folder).with_context(|| display_path(folder))?;
-    for file in &configuration.files {
-        let path = folder.join(file.name);
-        write_output(Some(&path), |out| Ok(out.write_all(file.contents.as_bytes())?))?;
-        if file.executable {
-            use std::os::unix::fs::PermissionsExt as _;
-            fs::set_permissions(&path, fs::Permissions::from_mode(0o755))
-                .with_context(|| display_path(&path))?;
-        }
-    }
-    Ok(())
 }
 
 fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
-    let configuration = configuration(model, &args.choice.options(model))?;
-    write_configuration(&configuration, &args.output)?;
+    let options = args.choice.options(model, args.origin, args.fit)?;
+    let configuration = configuration(model, &options)?;
+    job::write_configuration(&configuration, &args.output)?;
     let limits = &configuration.limits;
     report(
         Level::Note,
@@ -238,122 +284,51 @@ fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes the stream file of `program`'s joint trajectory into `path`.
-fn write_stream(model: &RobotModel, args: &RunArgs, path: &Path) -> anyhow::Result<usize> {
+fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow::Result<()> {
+    // An interrupt stops LinuxCNC and removes its folders before the run ends (exit 130).
+    biscara_files::catch_interrupts();
     let source = FileSource::new(&args.program);
-    let kind = source.kind(None)?;
-    let config = SamplingConfig {
-        profile: args.profile.into(),
-        origin: args.origin,
-        ..SamplingConfig::default()
-    };
-    let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, config);
-    let mut samples = pipeline.joints(&source, kind, notes.sink())?.without_derivatives();
-    let file = fs::File::create(path).with_context(|| display_path(path))?;
-    let mut out = BufWriter::new(file);
-    let mut count = 0;
-    while let Some(sample) = samples.next_sample() {
-        write_stream_sample(&mut out, &sample?.joints)?;
-        count += 1;
-    }
-    out.flush()?;
-    notes.finish();
-    Ok(count)
-}
-
-fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
-    if !(args.timeout > 0.0 && args.timeout.is_finite()) {
-        anyhow::bail!("--timeout must be a positive number of seconds (got {})", args.timeout);
-    }
-    for program in std::iter::once(&args.program).chain(&args.then) {
-        fs::File::open(program).with_context(|| display_path(program))?;
-    }
-    runner::check_installed()?;
-    let work = TempFolder::new("biscara-linuxcnc-run")?;
-    let config_dir = match &args.config {
-        Some(dir) => dir.clone(),
-        None => {
-            let dir = work.path().join("config");
-            write_configuration(&configuration(model, &args.choice.options(model))?, &dir)?;
-            dir
-        }
-    };
-    if runner::ensure_component(&config_dir)? == runner::ComponentStatus::Updated {
-        report(Level::Note, "built and installed the kinematics component biscarakins");
-    }
-    let stream = if args.stream {
-        let path = work.path().join("stream.txt");
-        let samples = write_stream(model, args, &path)?;
-        report(Level::Note, format_args!("streaming {samples} samples of `biscara joints`"));
-        Some(path)
-    } else {
-        None
-    };
-    let program = if args.stream { args.then.clone() } else { Some(args.program.clone()) };
-    let request = RunRequest {
-        config: config_dir,
-        program: program.clone(),
+    let kind = if args.stream { source.kind(None)? } else { ProgramKind::Gcode };
+    let stream = args.stream.then(|| job::Stream {
+        source: &source,
+        kind,
+        sampling: SamplingConfig {
+            profile: args.profile.into(),
+            origin: args.origin,
+            ..SamplingConfig::default()
+        },
+    });
+    let job = job::Job {
+        config: args.config.as_deref(),
+        robot_file,
+        options: args.choice.options(model, args.origin, false)?,
+        program: &args.program,
         stream,
-        origin: if args.stream { None } else { args.origin },
+        then: args.then.as_deref(),
+        origin: args.origin,
         timeout: args.timeout,
     };
-    let run = runner::run(&request)?;
-    for message in run.messages.iter().filter(|message| !message.error) {
-        report(Level::Note, format_args!("LinuxCNC: {}", message.text));
-    }
-    if !run.ok {
-        let errors: Vec<&str> =
-            run.messages.iter().filter(|m| m.error).map(|m| m.text.as_str()).collect();
-        let what = if errors.is_empty() {
-            run.failure.clone().unwrap_or_else(|| "stopped".to_owned())
-        } else {
-            errors.join("; ")
-        };
-        let line = line_of(&errors).unwrap_or(run.line);
-        let name = program.as_deref().map_or_else(|| display_path(&args.program), display_path);
-        if line > 0 {
-            anyhow::bail!("{name}:{line}: LinuxCNC: {what}");
-        }
-        anyhow::bail!("{name}: LinuxCNC: {what}");
+    let notes = NoteReporter::default();
+    let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
+        report(Level::Note, note);
+    })?;
+    notes.finish();
+    for note in finished.notes() {
+        report(Level::Note, format_args!("LinuxCNC: {note}"));
     }
     let format = JointCsvFormat {
-        angle_unit: match args.angle_unit {
-            AngleUnitArg::Rad => AngleUnit::Radians,
-            AngleUnitArg::Deg => AngleUnit::Degrees,
-        },
+        angle_unit: args.angle_unit.into(),
         derivatives: args.derivatives,
         precision: usize::from(args.precision),
     };
-    let start = if args.stream { RecordingStart::Stream } else { RecordingStart::FirstMotion };
-    let decimals = usize::from(args.precision);
-    let samples_path = run.samples();
-    let open_recording = || -> anyhow::Result<std::io::BufReader<fs::File>> {
-        Ok(std::io::BufReader::new(fs::File::open(&samples_path).context("LinuxCNC's recording")?))
-    };
     let mut summary = None;
     write_output(args.output.as_deref(), |out| {
-        let mut joints = JointCsvWriter::new(out, format)?;
-        summary = Some(read_recording(open_recording()?, start, model.robot(), |sample, _| {
-            joints.write(sample)?;
-            anyhow::Ok(())
-        })?);
-        joints.finish()?;
+        summary = Some(finished.write_joints::<anyhow::Error>(out, format)?);
         Ok(())
     })?;
     if let Some(path) = &args.path {
         write_output(Some(path), |out| {
-            writeln!(out, "t_s,x_mm,y_mm,z_mm,c_deg")?;
-            read_recording(open_recording()?, start, model.robot(), |sample, recorded| {
-                let [x, y, z, c] = recorded.axes;
-                let t = sample.t;
-                writeln!(
-                    out,
-                    "{t:.decimals$},{x:.decimals$},{y:.decimals$},{z:.decimals$},{c:.decimals$}"
-                )?;
-                anyhow::Ok(())
-            })?;
-            Ok(())
+            finished.write_path::<anyhow::Error>(out, usize::from(args.precision))
         })?;
     }
     if let Some(summary) = summary {
@@ -390,13 +365,4 @@ fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// The program line a LinuxCNC message names (`… on line 12 …`).
-fn line_of(messages: &[&str]) -> Option<usize> {
-    messages.iter().find_map(|text| {
-        let rest = &text[text.find("line ")? + 5..];
-        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-        digits.parse().ok()
-    })
 }

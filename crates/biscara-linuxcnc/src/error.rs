@@ -23,6 +23,43 @@ pub enum LinuxcncError {
          spindle or pen"
     )]
     Extruder,
+    /// Occurs when the region a configuration is made for is not a rectangle of the workspace.
+    #[error("the region of {region}: {message}")]
+    Region {
+        /// Where the region comes from.
+        region: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a configuration folder's robot file and its INI or HAL disagree, or the
+    /// robot in force is not the configuration's.
+    #[error("{message}")]
+    Robot {
+        /// What disagrees, naming both.
+        message: String,
+    },
+    /// Occurs when LinuxCNC refused the program or stopped it (a soft limit, an unreachable
+    /// move): its message, and the program's line when LinuxCNC named one.
+    #[error("{program}:{}LinuxCNC: {message}", if *line > 0 { format!("{line}: ") } else { " ".to_owned() })]
+    Refused {
+        /// The program, as named on the command line.
+        program: String,
+        /// Its 1-based line (0: LinuxCNC named none).
+        line: usize,
+        /// LinuxCNC's messages.
+        message: String,
+    },
+    /// Occurs when a run is asked for something it cannot do (a timeout that is not a positive
+    /// number of seconds).
+    #[error("{message}")]
+    Usage {
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a run was interrupted (SIGINT, SIGTERM, SIGHUP): LinuxCNC was stopped and
+    /// nothing of it is left.
+    #[error("interrupted: LinuxCNC was stopped and its temporary folders removed")]
+    Interrupted,
     /// Occurs when a program LinuxCNC needs is not installed.
     #[error(
         "LinuxCNC is not installed ({program} not found): apt-get install \
@@ -67,6 +104,9 @@ pub enum LinuxcncError {
         /// LinuxCNC's output.
         log: String,
     },
+    /// Occurs when a configuration file cannot be written.
+    #[error(transparent)]
+    File(#[from] biscara_files::FileError),
     /// Occurs when the recorder's file holds a line that is not a sample, or lost samples.
     #[error("the recording's line {line}: {message}")]
     Recording {
