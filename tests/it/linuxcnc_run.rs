@@ -305,13 +305,14 @@ fn linuxcnc_refusals_are_errors_with_the_line() {
 /// SIGINT, SIGTERM and SIGHUP during a run stop LinuxCNC and remove the temporary folders:
 /// exit 130, no output, nothing of LinuxCNC left.
 #[test]
+#[allow(clippy::print_stderr)]
 fn an_interrupted_run_leaves_nothing_behind() {
     let Some(_lock) = linuxcnc_or_skip("LinuxCNC interrupted") else { return };
     let dir = temp_dir("linuxcnc-interrupt");
     let program = repo_root().join("data/programs/arcs_and_offsets.ngc");
     for signal in ["INT", "TERM", "HUP"] {
         wait_for_other_linuxcnc();
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
             .args(["linuxcnc", "run"])
             .arg(&program)
             .args(["-o", "run.csv"])
@@ -350,7 +351,7 @@ fn an_interrupted_run_leaves_nothing_behind() {
             assert!(!folder.exists(), "SIG{signal}: {} left", folder.display());
         }
         assert!(!dir.join("run.csv").exists(), "SIG{signal}: an output was written");
-        println!("SIG{signal}: exit 130, nothing of LinuxCNC left");
+        eprintln!("SIG{signal}: exit 130, nothing of LinuxCNC left");
     }
 }
 
@@ -374,6 +375,7 @@ fn run_folders(pid: u32) -> Vec<std::path::PathBuf> {
 /// every joint's velocity and acceleration limit, and takes at most 1.5 times the time-optimal
 /// duration of `biscara joints` (the ratio is printed).
 #[test]
+#[allow(clippy::print_stderr)]
 fn linuxcnc_planner_on_job_limits_stays_within_every_joint_limit_and_is_fast() {
     let Some(_lock) = linuxcnc_or_skip("LinuxCNC planner on job limits") else { return };
     let dir = temp_dir("linuxcnc-job");
@@ -446,7 +448,7 @@ fn linuxcnc_planner_on_job_limits_stays_within_every_joint_limit_and_is_fast() {
         let (_, optimal) = read_csv(&dir.join("optimal.csv"));
         let duration = |rows: &[Vec<f64>]| rows.last().expect("a sample")[0];
         let ratio = duration(&rows) / duration(&optimal);
-        println!(
+        eprintln!(
             "{name}: LinuxCNC on job limits {:.3} s, time-optimal {:.3} s, ratio {ratio:.2}; \
              joints' peak velocity / acceleration: {}",
             duration(&rows),
