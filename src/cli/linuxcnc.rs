@@ -6,7 +6,7 @@ use biscara::gcode::Tool;
 use biscara::joints::JointCsvFormat;
 use biscara::kinematics::{RobotModel, ToolKind};
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, Region, configuration, job};
-use biscara::pipeline::{ProgramKind, SamplingConfig};
+use biscara::pipeline::SamplingConfig;
 use biscara::robot::Rectangle;
 use clap::{Args, Subcommand, ValueEnum};
 
@@ -201,6 +201,7 @@ struct ConfigArgs {
 /// LinuxCNC's message and the program's line, and nothing written. LinuxCNC runs one instance
 /// per machine, in real time: a program of 10 s takes about 15 s.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("streaming").args(["stream", "stream_csv"])))]
 #[command(
     about = "Run a program on LinuxCNC itself (headless) and write its joint trajectory CSV",
     after_long_help = "Example:\n  $ biscara linuxcnc run job.ngc -o run.csv\n  \
@@ -209,8 +210,8 @@ struct ConfigArgs {
 )]
 struct RunArgs {
     /// The G-code program (LinuxCNC's dialect).
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
+    #[arg(value_name = "PROGRAM", required_unless_present = "stream_csv")]
+    program: Option<PathBuf>,
     /// A configuration folder written by `biscara linuxcnc config` (default: one written for
     /// the robot in force, in a temporary folder).
     #[arg(long, value_name = "DIR")]
@@ -219,13 +220,20 @@ struct RunArgs {
     choice: ConfigChoice,
     /// Play `biscara joints PROGRAM` through the stream path instead of running the program on
     /// LinuxCNC's planner.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "stream_csv")]
     stream: bool,
+    /// Play a joint CSV through the stream path: the columns and units `biscara joints` writes
+    /// (radians or degrees, with or without derivatives), one row per servo cycle of 1 ms,
+    /// checked against the robot's joint position, velocity and acceleration limits before
+    /// anything moves (refused with the first offending row) and starting where the joints
+    /// stand.
+    #[arg(long, value_name = "TRAJ.csv", conflicts_with = "program")]
+    stream_csv: Option<PathBuf>,
     /// The velocity profile of the streamed trajectory.
     #[arg(long, value_enum, default_value = "optimal", requires = "stream")]
     profile: ProfileArg,
     /// A G-code program to run on LinuxCNC's planner after the stream, from where it ended.
-    #[arg(long, value_name = "PROGRAM", requires = "stream")]
+    #[arg(long, value_name = "PROGRAM", requires = "streaming")]
     then: Option<PathBuf>,
     /// A G54 offset X,Y,Z,C (mm, degrees) in force before the program's first line.
     #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_pose)]
@@ -287,22 +295,32 @@ fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
 fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow::Result<()> {
     // An interrupt stops LinuxCNC and removes its folders before the run ends (exit 130).
     biscara_files::catch_interrupts();
-    let source = FileSource::new(&args.program);
-    let kind = if args.stream { source.kind(None)? } else { ProgramKind::Gcode };
-    let stream = args.stream.then(|| job::Stream {
-        source: &source,
-        kind,
-        sampling: SamplingConfig {
-            profile: args.profile.into(),
-            origin: args.origin,
-            ..SamplingConfig::default()
-        },
-    });
+    let program = match (&args.program, &args.stream_csv) {
+        (Some(program), _) | (None, Some(program)) => program,
+        (None, None) => anyhow::bail!("give a PROGRAM or --stream-csv TRAJ.csv"),
+    };
+    let source = FileSource::new(program);
+    let stream = if let Some(path) = &args.stream_csv {
+        Some(job::Stream::Csv { path })
+    } else if args.stream {
+        Some(job::Stream::Program {
+            source: &source,
+            kind: source.kind(None)?,
+            sampling: SamplingConfig {
+                profile: args.profile.into(),
+                origin: args.origin,
+                ..SamplingConfig::default()
+            },
+        })
+    } else {
+        None
+    };
+    let streamed = stream.is_some();
     let job = job::Job {
         config: args.config.as_deref(),
         robot_file,
         options: args.choice.options(model, args.origin, false)?,
-        program: &args.program,
+        program,
         stream,
         then: args.then.as_deref(),
         origin: args.origin,
@@ -332,12 +350,12 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         })?;
     }
     if let Some(summary) = summary {
-        let what = if args.stream { "streamed" } else { "ran" };
+        let what = if streamed { "streamed" } else { "ran" };
         report(
             Level::Note,
             format_args!(
                 "LinuxCNC {what} {}: {:.3} s, {} samples of 1 ms",
-                display_path(&args.program),
+                display_path(program),
                 summary.duration,
                 summary.samples
             ),

@@ -248,6 +248,36 @@ fn the_stream_replays_joints_of_the_configurations_robot_and_gcode_continues_aft
     for j in 1..4 {
         assert!((end[j] - last[j]).abs() < 1e-6, "only Z moved: {end:?} after {last:?}");
     }
+    // The same trajectory as a joint CSV (`--stream-csv`), checked and played sample for sample.
+    let run =
+        run_linuxcnc(
+            &dir,
+            &[
+                &[
+                    "linuxcnc",
+                    "run",
+                    "--stream-csv",
+                    "traj.csv",
+                    "--config",
+                    "cfg",
+                    "-o",
+                    "csv.csv",
+                ][..],
+                &deg,
+            ]
+            .concat(),
+        );
+    run.success().stderr_has("LinuxCNC streamed traj.csv");
+    let (_, played) = read_csv(&dir.join("csv.csv"));
+    // (The recording goes on for the few cycles the display takes to stop it: standing still.)
+    assert!(played.len() >= expected.len(), "{} of {} samples", played.len(), expected.len());
+    let last = expected.last().expect("samples");
+    for (k, got) in played.iter().enumerate() {
+        let want = expected.get(k).unwrap_or(last);
+        for j in 1..5 {
+            assert!((want[j] - got[j]).abs() < 1e-6, "{want:?} against {got:?}");
+        }
+    }
     // Another robot than the configuration's is refused before LinuxCNC starts, naming both.
     let default = repo_root().join("data/robots/default.json").display().to_string();
     let run = run_linuxcnc(
@@ -300,6 +330,43 @@ fn linuxcnc_refusals_are_errors_with_the_line() {
         run_linuxcnc(&dir, &["linuxcnc", "run", "out.ngc", "--config", "region", "-o", "run.csv"]);
     run.expect_code(1).stderr_has("out.ngc:3: LinuxCNC: ").stderr_has("X's positive limit");
     assert!(!dir.join("run.csv").exists());
+}
+
+/// A joint CSV that does not start where the joints stand, or that breaks a joint limit, is
+/// refused before LinuxCNC moves (LinuxCNC is not even started): exit 1, the file and its line,
+/// nothing written.
+#[test]
+fn a_stream_csv_away_from_the_joints_or_beyond_a_limit_is_refused() {
+    let Some(_lock) = linuxcnc_or_skip("LinuxCNC stream CSV refusals") else { return };
+    let dir = temp_dir("linuxcnc-stream-csv");
+    let header = "t_s,theta1_deg,theta2_deg,theta3_deg,d4_mm\n";
+    let write = |name: &str, rows: &str| {
+        std::fs::write(dir.join(name), format!("{header}{rows}")).expect("write CSV");
+    };
+    // Starts 10° from where θ1 stands after homing (0°).
+    write("away.csv", "0,10,0,0,0\n0.001,10,0,0,0\n");
+    // 500 °/s on θ1 against its 360.
+    write("fast.csv", "0,0,0,0,0\n0.001,0.5,0,0,0\n0.002,1,0,0,0\n");
+    // θ2 at 300 °/s from the start, beyond its 135° at row 451 (line 453).
+    let ramp: String = (0..460)
+        .map(|k| format!("{:.3},0,{:.1},0,0\n", f64::from(k) * 1e-3, 0.3 * f64::from(k)))
+        .collect();
+    write("far.csv", &ramp);
+    // Rows 2 ms apart, and a malformed row.
+    write("slow.csv", "0,0,0,0,0\n0.002,0,0,0,0\n");
+    write("bad.csv", "0,0,0,0,0\n0.001,0,x,0,0\n");
+    for (name, expected) in [
+        ("away.csv", "the stream starts at θ1 10.0000°"),
+        ("fast.csv", "fast.csv:3: theta1 moves at 500.000000°/s over its velocity limit"),
+        ("far.csv", "far.csv:453: theta2 at 135.300000° is outside its limits -135 to 135"),
+        ("slow.csv", "slow.csv:3: t = 0.002 s where the next servo cycle is"),
+        ("bad.csv", "bad.csv:3:"),
+    ] {
+        let run = run_linuxcnc(&dir, &["linuxcnc", "run", "--stream-csv", name, "-o", "run.csv"]);
+        run.expect_code(1).stderr_has(expected);
+        assert!(!run.stderr.contains("LinuxCNC streamed") && !run.stderr.contains("panicked"));
+        assert!(!dir.join("run.csv").exists(), "{run}");
+    }
 }
 
 /// SIGINT, SIGTERM and SIGHUP during a run stop LinuxCNC and remove the temporary folders:

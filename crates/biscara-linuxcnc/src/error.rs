@@ -56,6 +56,35 @@ pub enum LinuxcncError {
         /// What is wrong.
         message: String,
     },
+    /// Occurs when a joint CSV to stream breaks a rule: `FILE:LINE: what`.
+    #[error("{file}:{line}: {message}")]
+    StreamCsv {
+        /// The CSV, as named on the command line.
+        file: String,
+        /// 1-based line of the CSV.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a joint CSV to stream cannot be read: `FILE:LINE:COL: what`.
+    #[error("{file}:{message}")]
+    StreamCsvFormat {
+        /// The CSV, as named on the command line.
+        file: String,
+        /// The reader's message.
+        message: String,
+    },
+    /// Occurs when a stream does not start where the joints stand.
+    #[error(
+        "the stream starts at {stream} but the joints stand at {joints} (after homing): a \
+         stream must start where the joints are, within 0.001° and 0.001 mm"
+    )]
+    StartPosition {
+        /// The stream's first sample.
+        stream: String,
+        /// Where the joints are.
+        joints: String,
+    },
     /// Occurs when a run was interrupted (SIGINT, SIGTERM, SIGHUP): LinuxCNC was stopped and
     /// nothing of it is left.
     #[error("interrupted: LinuxCNC was stopped and its temporary folders removed")]

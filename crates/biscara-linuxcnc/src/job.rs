@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use biscara_files::{FileError, display_path, write_output};
 use biscara_joints::{JointCsvFormat, JointCsvWriter};
-use biscara_kinematics::RobotModel;
+use biscara_kinematics::{Joints, RobotModel};
 use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 use biscara_robot::{Bounds, Rectangle};
 
@@ -16,18 +16,27 @@ use crate::config::check_region;
 use crate::runner::{self, ComponentStatus, RunRequest, TempFolder};
 use crate::{
     ConfigOptions, Configuration, INI_FILE, LinuxcncError, ROBOT_FILE, RecordingStart,
-    RecordingSummary, Region, configuration, configuration_robot, grow, read_recording,
-    write_stream_sample,
+    RecordingSummary, Region, SERVO_PERIOD, configuration, configuration_robot, grow, ini_value,
+    read_recording, write_stream_sample,
 };
 
 /// What a run plays through the stream path before any G-code.
-pub struct Stream<'a> {
-    /// The program whose joint trajectory (`biscara joints`) is streamed.
-    pub source: &'a dyn ProgramSource,
-    /// Its kind.
-    pub kind: ProgramKind,
-    /// How it is sampled (the profile, the origin); the time step is the servo period.
-    pub sampling: SamplingConfig,
+pub enum Stream<'a> {
+    /// A program's joint trajectory (`biscara joints`), computed for the configuration's robot.
+    Program {
+        /// The program.
+        source: &'a dyn ProgramSource,
+        /// Its kind.
+        kind: ProgramKind,
+        /// How it is sampled (the profile, the origin); the time step is the servo period.
+        sampling: SamplingConfig,
+    },
+    /// A joint CSV with the columns and units `biscara joints` writes, checked against the
+    /// robot's joint limits before it plays.
+    Csv {
+        /// The file.
+        path: &'a Path,
+    },
 }
 
 /// One run of `biscara linuxcnc run`.
@@ -232,26 +241,55 @@ pub fn program_region<E: From<PipelineError>>(
     Ok(region(margin))
 }
 
-/// Writes the stream file of `stream`'s joint trajectory for `model` into `path`; returns the
-/// number of samples.
+/// Writes the stream file of `stream` for `model` into `path`; returns the first sample's
+/// joints and the number of samples.
 fn write_stream<E: From<LinuxcncError> + From<PipelineError>>(
     model: &RobotModel,
     stream: &Stream<'_>,
     path: &Path,
     notes: impl FnMut(Note) + 'static,
-) -> Result<usize, E> {
-    let pipeline = Pipeline::new(model, stream.sampling.clone());
-    let mut samples = pipeline.joints(stream.source, stream.kind, notes)?.without_derivatives();
+) -> Result<(Joints, usize), E> {
     let file = fs::File::create(path).map_err(|err| LinuxcncError::io(path, err))?;
     let mut out = BufWriter::new(file);
-    let mut count = 0;
-    while let Some(sample) = samples.next_sample() {
-        write_stream_sample(&mut out, &sample?.joints)
-            .map_err(|err| LinuxcncError::io(path, err))?;
-        count += 1;
-    }
+    let (first, count) = match stream {
+        Stream::Program { source, kind, sampling } => {
+            let mut sampling = sampling.clone();
+            sampling.dt = SERVO_PERIOD;
+            let pipeline = Pipeline::new(model, sampling);
+            let mut samples = pipeline.joints(*source, *kind, notes)?.without_derivatives();
+            let mut first = None;
+            let mut count = 0;
+            while let Some(sample) = samples.next_sample() {
+                let joints = sample?.joints;
+                first.get_or_insert(joints);
+                write_stream_sample(&mut out, &joints)
+                    .map_err(|err| LinuxcncError::io(path, err))?;
+                count += 1;
+            }
+            (first.unwrap_or_default(), count)
+        }
+        Stream::Csv { path: csv } => {
+            let name = display_path(csv);
+            let reader = fs::File::open(csv)
+                .map(BufReader::new)
+                .map_err(|err| LinuxcncError::io(csv, err))?;
+            crate::stream::check_joint_csv(&name, reader, model.robot(), &mut out)?
+        }
+    };
     out.flush().map_err(|err| LinuxcncError::io(path, err))?;
-    Ok(count)
+    Ok((first, count))
+}
+
+/// Where the joints stand after homing: `[JOINT_n] HOME` of the configuration's INI (θ1 θ2 d4
+/// θ3, degrees and mm; 0 where it says nothing).
+fn homed_joints(config: &Path) -> Result<[f64; 4], LinuxcncError> {
+    let path = config.join(INI_FILE);
+    let ini = fs::read_to_string(&path).map_err(|err| LinuxcncError::io(&path, err))?;
+    Ok(std::array::from_fn(|joint| {
+        ini_value(&ini, &format!("JOINT_{joint}"), "HOME")
+            .and_then(|value| value.parse().ok())
+            .unwrap_or(0.0)
+    }))
 }
 
 /// Runs `job` on LinuxCNC: resolves the configuration and its robot, builds and installs the
@@ -292,8 +330,13 @@ pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
     let stream = match &job.stream {
         Some(stream) => {
             let path = work.path().join("stream.txt");
-            let samples = write_stream::<E>(&model, stream, &path, notes)?;
-            say(format!("streaming {samples} samples of `biscara joints`"));
+            let (first, samples) = write_stream::<E>(&model, stream, &path, notes)?;
+            crate::stream::check_start(&first, homed_joints(&config)?)?;
+            let what = match stream {
+                Stream::Program { .. } => "`biscara joints`".to_owned(),
+                Stream::Csv { path } => display_path(path),
+            };
+            say(format!("streaming {samples} samples of {what}"));
             Some(path)
         }
         None => None,

@@ -34,6 +34,7 @@ pub mod job;
 mod limits;
 pub mod runner;
 mod samples;
+pub mod stream;
 
 pub use config::{
     AxisLimitSource, COMPONENT_NAME, COMPONENT_SOURCE, ConfigFile, ConfigOptions, Configuration,
