@@ -361,25 +361,7 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
             ),
         );
         for peak in summary.peaks {
-            let unit = if peak.joint.is_revolute() { "°" } else { "mm" };
-            let level = if peak.velocity_ratio() > 1.0 || peak.acceleration_ratio() > 1.0 {
-                Level::Warning
-            } else {
-                Level::Note
-            };
-            report(
-                level,
-                format_args!(
-                    "{}: peak {:.1} {unit}/s of {} ({:.0} %), {:.0} {unit}/s² of {} ({:.0} %)",
-                    peak.joint.name(),
-                    peak.velocity,
-                    peak.velocity_limit,
-                    100.0 * peak.velocity_ratio(),
-                    peak.acceleration,
-                    peak.acceleration_limit,
-                    100.0 * peak.acceleration_ratio()
-                ),
-            );
+            report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
         }
     }
     Ok(())

@@ -271,6 +271,30 @@ impl JointPeaks {
     pub fn acceleration_ratio(&self) -> f64 {
         self.acceleration / self.acceleration_limit
     }
+
+    /// Whether the velocity or the acceleration exceeds its limit by more than the recording's
+    /// resolution (1e-9 degree or mm a cycle: a millionth of a limit).
+    pub fn exceeds(&self) -> bool {
+        self.velocity_ratio().max(self.acceleration_ratio()) > 1.0 + 1e-6
+    }
+}
+
+impl std::fmt::Display for JointPeaks {
+    /// `theta1: peak 120.0 °/s of 360 (33 %), 2400 °/s² of 7200 (33 %)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let unit = if self.joint.is_revolute() { "°" } else { "mm" };
+        write!(
+            f,
+            "{}: peak {:.1} {unit}/s of {} ({:.0} %), {:.0} {unit}/s² of {} ({:.0} %)",
+            self.joint.name(),
+            self.velocity,
+            self.velocity_limit,
+            100.0 * self.velocity_ratio(),
+            self.acceleration,
+            self.acceleration_limit,
+            100.0 * self.acceleration_ratio()
+        )
+    }
 }
 
 /// Writes one line of a stream file for the configuration's stream path: θ1 θ2 d4 θ3 in
