@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use biscara::gcode::Tool;
 use biscara::joints::JointCsvFormat;
 use biscara::kinematics::{RobotModel, ToolKind};
+use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, Region, configuration, job};
 use biscara::pipeline::SamplingConfig;
 use biscara::robot::Rectangle;
@@ -195,7 +196,9 @@ struct ConfigArgs {
 ///
 /// With --stream, LinuxCNC's planner is not used: `biscara joints PROGRAM` (the time-optimal
 /// profile by default) is played sample for sample through the stream path (streamer → limit3 →
-/// mux2) with the machine off and homed; t = 0 is the stream's first sample.
+/// mux2) with the machine on, inside its enable chain (E-stop, machine off, a joint fault or a
+/// following error stop it at once, the joints holding); t = 0 is the stream's first sample.
+/// A stream must start where the joints stand after homing.
 ///
 /// LinuxCNC's errors (an unreachable move, a soft limit) are errors here: exit 1 with
 /// LinuxCNC's message and the program's line, and nothing written. LinuxCNC runs one instance
@@ -254,6 +257,19 @@ struct RunArgs {
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
+    /// Commissioning: press E-stop SECONDS after the stream (or the program) started. The run
+    /// still writes what the joints did, and exits 1 naming the event and its time.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        conflicts_with = "machine_off_at",
+        allow_negative_numbers = true
+    )]
+    estop_at: Option<f64>,
+    /// Commissioning: switch the machine off SECONDS after the stream (or the program) started;
+    /// as --estop-at.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    machine_off_at: Option<f64>,
     /// Give up when the program (or the stream) has not ended after SECONDS.
     #[arg(long, value_name = "SECONDS", default_value = "3600")]
     timeout: f64,
@@ -325,7 +341,19 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         then: args.then.as_deref(),
         origin: args.origin,
         timeout: args.timeout,
+        event: match (args.estop_at, args.machine_off_at) {
+            (Some(at), _) => Some((Event::Estop, at)),
+            (None, Some(at)) => Some((Event::MachineOff, at)),
+            (None, None) => None,
+        },
     };
+    if let Some((_, at)) = job.event
+        && !(at >= 0.0 && at.is_finite())
+    {
+        anyhow::bail!(
+            "--estop-at and --machine-off-at take a time in seconds, 0 or more (got {at})"
+        );
+    }
     let notes = NoteReporter::default();
     let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
         report(Level::Note, note);
@@ -349,7 +377,7 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
             finished.write_path::<anyhow::Error>(out, usize::from(args.precision))
         })?;
     }
-    if let Some(summary) = summary {
+    if let Some(summary) = &summary {
         let what = if streamed { "streamed" } else { "ran" };
         report(
             Level::Note,
@@ -363,6 +391,21 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         for peak in summary.peaks {
             report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
         }
+    }
+    if let Some(stop) = finished.stop() {
+        let held = match summary {
+            Some(summary) if streamed => format!(
+                "the stream's last sample played at {:.3} s, the joints held from there",
+                summary.streamed.saturating_sub(1) as f64 * 0.001
+            ),
+            _ => "the joints held where LinuxCNC stopped them".to_owned(),
+        };
+        anyhow::bail!(
+            "{}: {} at {:.3} s: {held} (what they did is written)",
+            display_path(program),
+            stop.what,
+            stop.time,
+        );
     }
     Ok(())
 }

@@ -234,7 +234,13 @@ fn the_stream_replays_joints_of_the_configurations_robot_and_gcode_continues_aft
         .kinematics()
         .forward(&Joints::from_degrees(last[1], last[2], last[3], last[4]))
         .expect("FK");
-    let after = &path[expected.len() + 5];
+    // (With the machine on during the stream LinuxCNC takes up where the joints are once it
+    // ended: its pose before the G-code moves the joints again, which follow its commanded pose
+    // a few cycles late.)
+    let moves_again = (expected.len() + 1..actual.len())
+        .find(|&k| actual[k][1..] != actual[k - 1][1..])
+        .expect("the G-code moved");
+    let after = &path[moves_again - 5];
     let want = [fk.pose.x, fk.pose.y, fk.pose.z, fk.pose.phi.to_degrees()];
     for (got, want) in after[1..].iter().zip(want) {
         assert!(
@@ -367,6 +373,100 @@ fn a_stream_csv_away_from_the_joints_or_beyond_a_limit_is_refused() {
         assert!(!run.stderr.contains("LinuxCNC streamed") && !run.stderr.contains("panicked"));
         assert!(!dir.join("run.csv").exists(), "{run}");
     }
+}
+
+/// The recorded time of the stream's last sample, from the run's error message.
+fn stream_end(stderr: &str) -> f64 {
+    let needle = "the stream's last sample played at ";
+    let rest = &stderr[stderr.find(needle).expect(stderr) + needle.len()..];
+    rest[..rest.find(" s").expect(stderr)].parse().expect(stderr)
+}
+
+/// E-stop and machine off during a stream (commissioning in simulation): the stream stops at
+/// once and the joints hold (after the stop plus two servo cycles no recorded joint moves), the
+/// samples before it are the streamed ones, the recording is written, exit 1 names the event
+/// and its time; a following error injected on the simulated machine stops it too.
+#[test]
+fn estop_machine_off_and_a_following_error_stop_the_stream() {
+    let Some(_lock) = linuxcnc_or_skip("LinuxCNC stream stops") else { return };
+    let dir = temp_dir("linuxcnc-stream-stop");
+    std::fs::write(dir.join("job.ngc"), PARITY_PROGRAM).expect("write program");
+    let deg = ["--angle-unit", "deg", "--precision", "9"];
+    biscara(&dir, &[&["joints", "job.ngc", "-o", "traj.csv"][..], &deg].concat()).success();
+    let (_, expected) = read_csv(&dir.join("traj.csv"));
+    // The recording against the trajectory: equal up to the stream's last sample, still after.
+    let check = |run: &Run, what: &str, at: Option<f64>| {
+        run.expect_code(1).stderr_has(what);
+        let end = stream_end(&run.stderr);
+        if let Some(at) = at {
+            assert!(run.stderr.contains(&format!("{what} at {at}")), "{run}");
+            assert!(end >= at && end < at + 0.2, "stopped at {end} s for {at} s\n{run}");
+        }
+        let (_, recorded) = read_csv(&dir.join("run.csv"));
+        let last = (end * 1000.0).round() as usize;
+        assert!(recorded.len() > last + 100, "the joints after the stop are recorded too");
+        for (k, row) in recorded.iter().enumerate() {
+            let want = if k <= last { &expected[k] } else { &recorded[last + 2] };
+            for j in 1..5 {
+                assert!(
+                    (row[j] - want[j]).abs() < 1e-6,
+                    "{what}: sample {k} (stream's end {last}): {row:?} against {want:?}"
+                );
+            }
+        }
+        // (The two cycles after the last sample: the hold takes effect.)
+        assert!(expected.len() > last + 100, "the stream was stopped before its end");
+        std::fs::remove_file(dir.join("run.csv")).expect("remove");
+    };
+    for (flag, what, at) in [
+        ("--estop-at", "E-stop", "0.5"),
+        ("--machine-off-at", "machine off", "1.7"),
+        ("--estop-at", "E-stop", "3.2"),
+    ] {
+        let run = run_linuxcnc(
+            &dir,
+            &[&["linuxcnc", "run", "job.ngc", "--stream", flag, at, "-o", "run.csv"][..], &deg]
+                .concat(),
+        );
+        check(&run, what, Some(at.parse().expect("time")));
+    }
+    // A following error of 10° on θ1's simulated feedback (its FERROR is 5°), injected while
+    // the stream plays.
+    wait_for_other_linuxcnc();
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(["linuxcnc", "run", "job.ngc", "--stream", "-o", "run.csv"])
+        .args(deg)
+        .current_dir(&dir)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start biscara");
+    let playing = || {
+        std::process::Command::new("halcmd")
+            .args(["gets", "stream-play"])
+            .output()
+            .is_ok_and(|out| String::from_utf8_lossy(&out.stdout).trim() == "TRUE")
+    };
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !playing() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(800));
+    let status = std::process::Command::new("halcmd")
+        .args(["sets", "sim-theta1-error", "10"])
+        .status()
+        .expect("halcmd");
+    assert!(status.success(), "could not inject the following error");
+    let output = child.wait_with_output().expect("wait");
+    let run = Run {
+        command: "biscara linuxcnc run job.ngc --stream (following error)".to_owned(),
+        code: output.status.code().unwrap_or(-1),
+        stdout: String::new(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    };
+    assert_nothing_left(&run);
+    check(&run, "following error", None);
 }
 
 /// SIGINT, SIGTERM and SIGHUP during a run stop LinuxCNC and remove the temporary folders:
@@ -644,6 +744,13 @@ fn linuxcnc_bad_input_is_refused() {
         .stderr_has("no extruder");
     assert!(!dir.join("cfg").exists());
     biscara(&dir, &["linuxcnc", "run", "job.ngc", "--then", "job.ngc"]).expect_code(2);
+    biscara(&dir, &["linuxcnc", "run", "-o", "run.csv"]).expect_code(2);
+    biscara(&dir, &["linuxcnc", "run", "job.ngc", "--stream-csv", "t.csv"]).expect_code(2);
+    biscara(&dir, &["linuxcnc", "run", "job.ngc", "--estop-at", "1", "--machine-off-at", "2"])
+        .expect_code(2);
+    biscara(&dir, &["linuxcnc", "run", "job.ngc", "--estop-at", "-1", "-o", "run.csv"])
+        .expect_code(1)
+        .stderr_has("--estop-at");
     for args in [
         &["linuxcnc", "run", "missing.ngc", "-o", "run.csv"][..],
         &["linuxcnc", "run", "job.ngc", "--config", "no-such-folder", "-o", "run.csv"],

@@ -58,6 +58,8 @@ pub struct Job<'a> {
     pub origin: Option<[f64; 4]>,
     /// How long the program or the stream may take, s.
     pub timeout: f64,
+    /// A commissioning event: E-stop or machine off this long after the start, s.
+    pub event: Option<(runner::Event, f64)>,
 }
 
 /// A finished job: LinuxCNC's recording, and the robot it ran.
@@ -69,6 +71,12 @@ pub struct Finished {
 }
 
 impl Finished {
+    /// What stopped the stream or the program early (an E-stop, the machine switched off, a
+    /// following error), when something did: the recording still holds what the joints did.
+    pub fn stop(&self) -> Option<&runner::Stop> {
+        self.run.stop.as_ref()
+    }
+
     /// The robot the job ran (the configuration's).
     pub fn model(&self) -> &RobotModel {
         &self.model
@@ -331,7 +339,18 @@ pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
         Some(stream) => {
             let path = work.path().join("stream.txt");
             let (first, samples) = write_stream::<E>(&model, stream, &path, notes)?;
-            crate::stream::check_start(&first, homed_joints(&config)?)?;
+            let homed = homed_joints(&config)?;
+            if homed != [0.0; 4] {
+                return Err(LinuxcncError::Usage {
+                    message: format!(
+                        "{} parks the robot away from its home pose (a configuration made for a \
+                         region): stream with a configuration for the whole workspace",
+                        display_path(&config)
+                    ),
+                }
+                .into());
+            }
+            crate::stream::check_start(&first, homed)?;
             let what = match stream {
                 Stream::Program { .. } => "`biscara joints`".to_owned(),
                 Stream::Csv { path } => display_path(path),
@@ -350,9 +369,10 @@ pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
         origin: if stream.is_some() { None } else { job.origin },
         stream,
         timeout: job.timeout,
+        event: job.event,
     };
     let run = runner::run(&request)?;
-    if !run.ok {
+    if !run.ok && run.stop.is_none() {
         let errors: Vec<&str> =
             run.messages.iter().filter(|m| m.error).map(|m| m.text.as_str()).collect();
         let message = if errors.is_empty() {

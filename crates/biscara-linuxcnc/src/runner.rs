@@ -51,6 +51,27 @@ pub struct RunRequest {
     pub origin: Option<[f64; 4]>,
     /// How long the program or the stream may take, seconds.
     pub timeout: f64,
+    /// A commissioning event: E-stop or machine off this many seconds after the stream (or the
+    /// program) started.
+    pub event: Option<(Event, f64)>,
+}
+
+/// What a commissioning run does to the machine ([`RunRequest::event`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Event {
+    /// Press E-stop.
+    Estop,
+    /// Switch the machine off.
+    MachineOff,
+}
+
+/// What stopped a run early: an event the run was asked for, or one of the enable chain's.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+pub struct Stop {
+    /// What happened: `E-stop`, `machine off`, `following error` or `joint fault`.
+    pub what: String,
+    /// When, seconds after the stream (or the program) started, by the display's clock.
+    pub time: f64,
 }
 
 /// One message of LinuxCNC's.
@@ -63,7 +84,7 @@ pub struct Message {
 }
 
 /// What the headless display reported.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 struct Outcome {
     ok: bool,
     messages: Vec<Message>,
@@ -73,6 +94,8 @@ struct Outcome {
     failure: Option<String>,
     #[serde(default)]
     overruns: u64,
+    #[serde(default)]
+    event: Option<Stop>,
 }
 
 /// A finished run.
@@ -88,6 +111,8 @@ pub struct Run {
     pub line: usize,
     /// Why the run stopped early, when it did.
     pub failure: Option<String>,
+    /// What stopped the stream or the program, when something did (the recording goes on).
+    pub stop: Option<Stop>,
 }
 
 impl Run {
@@ -458,8 +483,14 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     }
     let temporary = TempFolder::new("biscara-linuxcnc")?;
     let folder = temporary.path().to_owned();
-    let mut run =
-        Run { folder: temporary, ok: false, messages: Vec::new(), line: 0, failure: None };
+    let mut run = Run {
+        folder: temporary,
+        ok: false,
+        messages: Vec::new(),
+        line: 0,
+        failure: None,
+        stop: None,
+    };
     prepare(&request.config, &folder)?;
     let log_path = folder.join("linuxcnc.log");
     let log = fs::File::create(&log_path).map_err(|err| LinuxcncError::io(&log_path, err))?;
@@ -490,6 +521,13 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     if let Some(stream) = &request.stream {
         let stream = fs::canonicalize(stream).map_err(|err| LinuxcncError::io(stream, err))?;
         command.env("BISCARA_STREAM", stream);
+    }
+    if let Some((event, at)) = request.event {
+        let kind = match event {
+            Event::Estop => "estop",
+            Event::MachineOff => "machine-off",
+        };
+        command.env("BISCARA_EVENT", format!("{kind}:{at}"));
     }
     if let Some([x, y, z, c]) = request.origin {
         command.env("BISCARA_ORIGIN", format!("{x},{y},{z},{c}"));
@@ -545,5 +583,6 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     run.messages = outcome.messages;
     run.line = outcome.line;
     run.failure = outcome.failure;
+    run.stop = outcome.event;
     Ok(run)
 }
