@@ -375,6 +375,18 @@ fn a_stream_csv_away_from_the_joints_or_beyond_a_limit_is_refused() {
     }
 }
 
+/// Starts `biscara ARGS` in `dir` without waiting for it: its standard error piped.
+fn spawn_biscara(dir: &Path, args: &[&str]) -> std::process::Child {
+    std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start biscara")
+}
+
 /// The recorded time of the stream's last sample, from the run's error message.
 fn stream_end(stderr: &str) -> f64 {
     let needle = "the stream's last sample played at ";
@@ -433,15 +445,10 @@ fn estop_machine_off_and_a_following_error_stop_the_stream() {
     // A following error of 10° on θ1's simulated feedback (its FERROR is 5°), injected while
     // the stream plays.
     wait_for_other_linuxcnc();
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
-        .args(["linuxcnc", "run", "job.ngc", "--stream", "-o", "run.csv"])
-        .args(deg)
-        .current_dir(&dir)
-        .stdin(std::process::Stdio::null())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("start biscara");
+    let child = spawn_biscara(
+        &dir,
+        &[&["linuxcnc", "run", "job.ngc", "--stream", "-o", "run.csv"][..], &deg].concat(),
+    );
     let playing = || {
         std::process::Command::new("halcmd")
             .args(["gets", "stream-play"])
@@ -477,18 +484,10 @@ fn an_interrupted_run_leaves_nothing_behind() {
     let Some(_lock) = linuxcnc_or_skip("LinuxCNC interrupted") else { return };
     let dir = temp_dir("linuxcnc-interrupt");
     let program = repo_root().join("data/programs/arcs_and_offsets.ngc");
+    let program = program.display().to_string();
     for signal in ["INT", "TERM", "HUP"] {
         wait_for_other_linuxcnc();
-        let child = std::process::Command::new(env!("CARGO_BIN_EXE_biscara"))
-            .args(["linuxcnc", "run"])
-            .arg(&program)
-            .args(["-o", "run.csv"])
-            .current_dir(&dir)
-            .stdin(std::process::Stdio::null())
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .expect("start biscara");
+        let child = spawn_biscara(&dir, &["linuxcnc", "run", &program, "-o", "run.csv"]);
         // Mid-run: LinuxCNC is up (its lock file) and has run for a while.
         let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
         while !Path::new(LOCK_FILE).exists() && std::time::Instant::now() < deadline {

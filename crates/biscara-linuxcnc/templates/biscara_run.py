@@ -125,6 +125,9 @@ def stream_trajectory(path, timeout, keep_recording, event):
     halcmd("sets", "stream-own-fb", "1")
     halcmd("sets", "stream-on", "1")
     halcmd("sets", "stream-request", "1")
+    # The latch sets in the next servo cycle: with the machine on and no following error.
+    wait_for(lambda: hal_value("stream-latch.ok-out") == "TRUE",
+             "the stream's enable (machine on, out of E-stop, no following error)", 1.0)
     start = time.monotonic()
     deadline = start + timeout
     fired = None
