@@ -3,13 +3,14 @@
 
 For each robot file and data program: LinuxCNC's own planner with the robot file's Cartesian
 limits as they are (`--limits cartesian`), with the axis limits derived from the joint limits
-(`--limits derived`, the default), and `biscara joints` (time-optimal profile) played through
-the stream path (`--stream`). Prints a Markdown table: each run's duration and its largest
+over the workspace rectangle (`--limits derived`, the default), with them derived over the
+program's own region (`linuxcnc config --for PROGRAM`, then `run --config`), and `biscara
+joints` (time-optimal profile) played through the stream path (`--stream`). Prints a Markdown table: each run's duration and its largest
 joint velocity and acceleration as a share of the joint's limit (the joint named), over theta1,
 theta2, theta3 and d4.
 
-Usage: scripts/linuxcnc-comparison.py [BISCARA [ONLY]] > table.md (ONLY: rows whose robot or program
-contains it)   (needs LinuxCNC; runs serially,
+Usage: scripts/linuxcnc-comparison.py [BISCARA [ONLY [MODE]]] > table.md (ONLY: rows whose robot
+or program contains it, "" for all; MODE: only the columns whose name contains it)   (needs LinuxCNC; runs serially,
 in real time: about 20 minutes for the full table)
 """
 
@@ -36,6 +37,7 @@ CASES = [("default.json", program) for program in PLACED] + [
 MODES = [
     ("LinuxCNC, Cartesian limits", ["--limits", "cartesian"]),
     ("LinuxCNC, derived limits", ["--limits", "derived"]),
+    ("LinuxCNC, job limits (`--for`)", ["--for"]),
     ("optimal profile, streamed", ["--stream"]),
 ]
 PEAK = re.compile(r"(\w+): peak ([\d.]+) \S+ of ([\d.]+) \(\d+ %\), ([\d.]+) \S+ of ([\d.]+)")
@@ -45,9 +47,22 @@ DURATION = re.compile(r"LinuxCNC \w+ \S+: ([\d.]+) s")
 
 def run(robot, program, extra):
     with tempfile.TemporaryDirectory() as folder:
-        command = [BISCARA, "--robot", f"data/robots/{robot}", "linuxcnc", "run",
-                   f"data/programs/{program}", "-o", f"{folder}/run.csv", *PLACED[program],
-                   *extra]
+        robot_args = ["--robot", f"data/robots/{robot}"]
+        if extra == ["--for"]:
+            # A configuration for the program's region, with the placement the program runs with.
+            origin = PLACED[program][:2] if PLACED[program][:1] == ["--origin"] else []
+            tool = PLACED[program][2:] if origin else PLACED[program]
+            config = [BISCARA, *robot_args, "linuxcnc", "config", "--for",
+                      f"data/programs/{program}", *origin, *tool, "-o", f"{folder}/cfg"]
+            done = subprocess.run(config, capture_output=True, text=True)
+            if done.returncode != 0:
+                return "failed: " + done.stderr.strip().splitlines()[-1]
+            extra = ["--config", f"{folder}/cfg", *origin]
+            placed = []
+        else:
+            placed = PLACED[program]
+        command = [BISCARA, *robot_args, "linuxcnc", "run", f"data/programs/{program}",
+                   "-o", f"{folder}/run.csv", *placed, *extra]
         done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
         return "failed: " + done.stderr.strip().splitlines()[-1]
@@ -61,13 +76,14 @@ def run(robot, program, extra):
 
 
 def main():
-    print("| robot | program | " + " | ".join(name for name, _ in MODES) + " |")
-    print("| --- | --- | " + " | ".join("---" for _ in MODES) + " |")
+    modes = [mode for mode in MODES if len(sys.argv) < 4 or sys.argv[3] in mode[0]]
+    print("| robot | program | " + " | ".join(name for name, _ in modes) + " |")
+    print("| --- | --- | " + " | ".join("---" for _ in modes) + " |")
     only = sys.argv[2] if len(sys.argv) > 2 else None
     for robot, program in CASES:
         if only and only not in f"{robot} {program}":
             continue
-        cells = [run(robot, program, extra) for _, extra in MODES]
+        cells = [run(robot, program, extra) for _, extra in modes]
         print(f"| {robot} | {program} | " + " | ".join(cells) + " |", flush=True)
 
 

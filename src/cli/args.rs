@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
+use biscara::joints::AngleUnit;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use biscara_files::FileSystem;
 use clap::{Args, ValueEnum};
@@ -50,6 +51,24 @@ impl From<ProfileArg> for Profile {
             ProfileArg::Constant => Profile::Constant,
             ProfileArg::Trapezoid => Profile::Trapezoid,
             ProfileArg::Optimal => Profile::Optimal,
+        }
+    }
+}
+
+/// The angle unit of a joint CSV, as named on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum AngleUnitArg {
+    /// Radians.
+    Rad,
+    /// Degrees.
+    Deg,
+}
+
+impl From<AngleUnitArg> for AngleUnit {
+    fn from(unit: AngleUnitArg) -> AngleUnit {
+        match unit {
+            AngleUnitArg::Rad => AngleUnit::Radians,
+            AngleUnitArg::Deg => AngleUnit::Degrees,
         }
     }
 }
@@ -126,7 +145,7 @@ pub(crate) struct DialectArgs {
     pub(crate) tool: Option<Tool>,
 }
 
-fn parse_tool(text: &str) -> Result<Tool, String> {
+pub(crate) fn parse_tool(text: &str) -> Result<Tool, String> {
     Tool::from_name(text)
         .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }

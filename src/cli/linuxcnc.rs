@@ -1,24 +1,19 @@
 //! `biscara linuxcnc config` and `biscara linuxcnc run`: the robot on LinuxCNC.
 
-use std::fs;
-use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
-use biscara::joints::{AngleUnit, JointCsvFormat, JointCsvWriter};
+use biscara::gcode::Tool;
+use biscara::joints::JointCsvFormat;
 use biscara::kinematics::{RobotModel, ToolKind};
-use biscara::linuxcnc::runner::{self, RunRequest, TempFolder};
-use biscara::linuxcnc::{
-    AxisLimitSource, ConfigOptions, Configuration, RecordingStart, configuration, read_recording,
-    write_stream_sample,
-};
-use biscara::pipeline::{Pipeline, SamplingConfig};
+use biscara::linuxcnc::runner::Event;
+use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, Region, configuration, job};
+use biscara::pipeline::SamplingConfig;
+use biscara::robot::Rectangle;
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::args::{ProfileArg, parse_pose};
+use super::args::{AngleUnitArg, ProfileArg, parse_pose, parse_tool};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{FileSource, display_path, write_output};
-use super::trajectory::AngleUnitArg;
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.
@@ -40,30 +35,6 @@ enum LinuxcncCommand {
     Run(RunArgs),
 }
 
-/// The tool a configuration wires, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum ToolArg {
-    /// M3 picks, M4 places, M5 off (spindle.0.forward / reverse / on).
-    Gripper,
-    /// M3/M4 on, M5 off, S the power (spindle.0.on, spindle.0.speed-out).
-    Laser,
-    /// M3 clockwise, M4 counter-clockwise, M5 off, S in rpm.
-    Spindle,
-    /// M3/M4 pen down, M5 up (spindle.0.on).
-    Pen,
-}
-
-impl From<ToolArg> for ToolKind {
-    fn from(tool: ToolArg) -> ToolKind {
-        match tool {
-            ToolArg::Gripper => ToolKind::Gripper,
-            ToolArg::Laser => ToolKind::Laser,
-            ToolArg::Spindle => ToolKind::Spindle,
-            ToolArg::Pen => ToolKind::Pen,
-        }
-    }
-}
-
 /// Where the axis limits come from, as named on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum LimitsArg {
@@ -78,26 +49,99 @@ enum LimitsArg {
 /// How a configuration is made: shared by `config` and by `run` without --config.
 #[derive(Debug, Args)]
 struct ConfigChoice {
-    /// The tool whose codes the HAL wires (default: the robot file's tool.kind, else gripper).
-    #[arg(long, value_enum, value_name = "KIND")]
-    tool: Option<ToolArg>,
+    /// The tool whose codes the HAL wires: gripper, laser, spindle or pen (default: the robot
+    /// file's tool.kind, else gripper); LinuxCNC has no extruder axis here.
+    #[arg(long, value_name = "KIND", value_parser = parse_tool)]
+    tool: Option<Tool>,
     /// Where the axis limits come from.
     #[arg(long, value_enum, default_value = "derived")]
     limits: LimitsArg,
+    /// Derive the axis limits over this program's own XY extent (placed by --origin, or by
+    /// --fit with `config`; from the robot's home pose) plus --margin, and set LinuxCNC's soft
+    /// limits to that region: faster than over the whole workspace, and LinuxCNC refuses a
+    /// move that leaves the region.
+    #[arg(long = "for", value_name = "PROGRAM", conflicts_with = "region")]
+    for_program: Option<PathBuf>,
+    /// The margin around the program's extent, mm.
+    #[arg(long, value_name = "MM", default_value = "10", requires = "for_program")]
+    margin: f64,
+    /// Derive the axis limits over this rectangle and set LinuxCNC's soft limits to it, mm.
+    #[arg(long, value_name = "X0:X1,Y0:Y1", allow_hyphen_values = true, value_parser = parse_region)]
+    region: Option<[f64; 4]>,
 }
 
 impl ConfigChoice {
-    fn options(&self, model: &RobotModel) -> ConfigOptions {
-        let tool = match self.tool {
-            Some(tool) => tool.into(),
-            None => model.robot().tool.kind.unwrap_or(ToolKind::Gripper),
-        };
+    /// The configuration's options; `placement` places the --for program.
+    fn options(
+        &self,
+        model: &RobotModel,
+        origin: Option<[f64; 4]>,
+        fit: bool,
+    ) -> anyhow::Result<ConfigOptions> {
+        let tool = self.tool.or(model.robot().tool.kind).unwrap_or(ToolKind::Gripper);
         let limits = match self.limits {
             LimitsArg::Derived => AxisLimitSource::Derived,
             LimitsArg::Cartesian => AxisLimitSource::Cartesian,
         };
-        ConfigOptions { tool, limits, ..ConfigOptions::default() }
+        let region = match (&self.for_program, self.region) {
+            (Some(program), _) => {
+                if !(self.margin >= 0.0 && self.margin.is_finite()) {
+                    anyhow::bail!(
+                        "--margin must be a number of mm, 0 or more (got {})",
+                        self.margin
+                    );
+                }
+                let source = FileSource::new(program);
+                let kind = source.kind(None)?;
+                let sampling = SamplingConfig { origin, fit, ..SamplingConfig::default() };
+                let notes = NoteReporter::default();
+                let region = job::program_region::<anyhow::Error>(
+                    model,
+                    &source,
+                    kind,
+                    sampling,
+                    self.margin,
+                    notes.sink(),
+                )?;
+                notes.finish();
+                Some(region)
+            }
+            (None, Some([x0, x1, y0, y1])) => {
+                let [_, _, z, _] = model.home_position();
+                Some(Region {
+                    rectangle: Rectangle { min: [x0, y0], max: [x1, y1] },
+                    origin: format!("--region {x0}:{x1},{y0}:{y1}"),
+                    park: Some([0.5 * (x0 + x1), 0.5 * (y0 + y1), z, 0.0]),
+                })
+            }
+            (None, None) => None,
+        };
+        Ok(ConfigOptions { tool, limits, region, ..ConfigOptions::default() })
     }
+}
+
+/// Reads `X0:X1,Y0:Y1` (mm), each range from its smaller end.
+fn parse_region(text: &str) -> Result<[f64; 4], String> {
+    let bad = || format!("expected X0:X1,Y0:Y1 (mm), found `{text}`");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let range = |range: &str| -> Result<[f64; 2], String> {
+        let (a, b) = range.split_once(':').ok_or_else(bad)?;
+        let number = |value: &str| {
+            value
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|value| value.is_finite())
+                .ok_or_else(|| format!("`{}` is not a finite number", value.trim()))
+        };
+        let (a, b) = (number(a)?, number(b)?);
+        if a >= b {
+            return Err(format!("the range {a}:{b} is empty: give its smaller end first"));
+        }
+        Ok([a, b])
+    };
+    let ([x0, x1], [y0, y1]) = (range(x)?, range(y)?);
+    Ok([x0, x1, y0, y1])
 }
 
 /// Writes a complete LinuxCNC (2.9) configuration for the robot in force into DIR.
@@ -124,6 +168,19 @@ struct ConfigArgs {
     output: PathBuf,
     #[command(flatten)]
     choice: ConfigChoice,
+    /// The G54 offset X,Y,Z,C (mm, degrees) the --for program runs with (give `run` the same).
+    #[arg(
+        long,
+        value_name = "X,Y,Z,C",
+        allow_hyphen_values = true,
+        value_parser = parse_pose,
+        requires = "for_program"
+    )]
+    origin: Option<[f64; 4]>,
+    /// Place the --for program as `biscara joints --fit` does (the placement is reported; give
+    /// `run` the same --origin).
+    #[arg(long, requires = "for_program", conflicts_with = "origin")]
+    fit: bool,
 }
 
 /// Runs a G-code program on LinuxCNC itself, headless, and writes what its joints did.
@@ -139,12 +196,15 @@ struct ConfigArgs {
 ///
 /// With --stream, LinuxCNC's planner is not used: `biscara joints PROGRAM` (the time-optimal
 /// profile by default) is played sample for sample through the stream path (streamer → limit3 →
-/// mux2) with the machine off and homed; t = 0 is the stream's first sample.
+/// mux2) with the machine on, inside its enable chain (E-stop, machine off, a joint fault or a
+/// following error stop it at once, the joints holding); t = 0 is the stream's first sample.
+/// A stream must start where the joints stand after homing.
 ///
 /// LinuxCNC's errors (an unreachable move, a soft limit) are errors here: exit 1 with
 /// LinuxCNC's message and the program's line, and nothing written. LinuxCNC runs one instance
 /// per machine, in real time: a program of 10 s takes about 15 s.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("streaming").args(["stream", "stream_csv"])))]
 #[command(
     about = "Run a program on LinuxCNC itself (headless) and write its joint trajectory CSV",
     after_long_help = "Example:\n  $ biscara linuxcnc run job.ngc -o run.csv\n  \
@@ -153,8 +213,8 @@ struct ConfigArgs {
 )]
 struct RunArgs {
     /// The G-code program (LinuxCNC's dialect).
-    #[arg(value_name = "PROGRAM")]
-    program: PathBuf,
+    #[arg(value_name = "PROGRAM", required_unless_present = "stream_csv")]
+    program: Option<PathBuf>,
     /// A configuration folder written by `biscara linuxcnc config` (default: one written for
     /// the robot in force, in a temporary folder).
     #[arg(long, value_name = "DIR")]
@@ -163,13 +223,20 @@ struct RunArgs {
     choice: ConfigChoice,
     /// Play `biscara joints PROGRAM` through the stream path instead of running the program on
     /// LinuxCNC's planner.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "stream_csv")]
     stream: bool,
+    /// Play a joint CSV through the stream path: the columns and units `biscara joints` writes
+    /// (radians or degrees, with or without derivatives), one row per servo cycle of 1 ms,
+    /// checked against the robot's joint position, velocity and acceleration limits before
+    /// anything moves (refused with the first offending row) and starting where the joints
+    /// stand.
+    #[arg(long, value_name = "TRAJ.csv", conflicts_with = "program")]
+    stream_csv: Option<PathBuf>,
     /// The velocity profile of the streamed trajectory.
     #[arg(long, value_enum, default_value = "optimal", requires = "stream")]
     profile: ProfileArg,
     /// A G-code program to run on LinuxCNC's planner after the stream, from where it ended.
-    #[arg(long, value_name = "PROGRAM", requires = "stream")]
+    #[arg(long, value_name = "PROGRAM", requires = "streaming")]
     then: Option<PathBuf>,
     /// A G54 offset X,Y,Z,C (mm, degrees) in force before the program's first line.
     #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_pose)]
@@ -190,36 +257,39 @@ struct RunArgs {
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
+    /// Commissioning: press E-stop SECONDS after the stream (or the program) started. The run
+    /// still writes what the joints did, and exits 1 naming the event and its time.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        conflicts_with = "machine_off_at",
+        allow_negative_numbers = true
+    )]
+    estop_at: Option<f64>,
+    /// Commissioning: switch the machine off SECONDS after the stream (or the program) started;
+    /// as --estop-at.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    machine_off_at: Option<f64>,
     /// Give up when the program (or the stream) has not ended after SECONDS.
     #[arg(long, value_name = "SECONDS", default_value = "3600")]
     timeout: f64,
 }
 
-pub(crate) fn linuxcnc(model: &RobotModel, args: &LinuxcncArgs) -> anyhow::Result<()> {
+pub(crate) fn linuxcnc(
+    model: &RobotModel,
+    robot_file: Option<&Path>,
+    args: &LinuxcncArgs,
+) -> anyhow::Result<()> {
     match &args.command {
         LinuxcncCommand::Config(args) => config(model, args),
-        LinuxcncCommand::Run(args) => run(model, args),
+        LinuxcncCommand::Run(args) => run(model, robot_file, args),
     }
-}
-
-/// Writes `configuration` into `folder`.
-fn write_configuration(configuration: &Configuration, folder: &Path) -> anyhow::Result<()> {
-    fs::create_dir_all(folder).with_context(|| display_path(folder))?;
-    for file in &configuration.files {
-        let path = folder.join(file.name);
-        write_output(Some(&path), |out| Ok(out.write_all(file.contents.as_bytes())?))?;
-        if file.executable {
-            use std::os::unix::fs::PermissionsExt as _;
-            fs::set_permissions(&path, fs::Permissions::from_mode(0o755))
-                .with_context(|| display_path(&path))?;
-        }
-    }
-    Ok(())
 }
 
 fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
-    let configuration = configuration(model, &args.choice.options(model))?;
-    write_configuration(&configuration, &args.output)?;
+    let options = args.choice.options(model, args.origin, args.fit)?;
+    let configuration = configuration(model, &options)?;
+    job::write_configuration(&configuration, &args.output)?;
     let limits = &configuration.limits;
     report(
         Level::Note,
@@ -238,165 +308,104 @@ fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes the stream file of `program`'s joint trajectory into `path`.
-fn write_stream(model: &RobotModel, args: &RunArgs, path: &Path) -> anyhow::Result<usize> {
-    let source = FileSource::new(&args.program);
-    let kind = source.kind(None)?;
-    let config = SamplingConfig {
-        profile: args.profile.into(),
-        origin: args.origin,
-        ..SamplingConfig::default()
+fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow::Result<()> {
+    // An interrupt stops LinuxCNC and removes its folders before the run ends (exit 130).
+    biscara_files::catch_interrupts();
+    let program = match (&args.program, &args.stream_csv) {
+        (Some(program), _) | (None, Some(program)) => program,
+        (None, None) => anyhow::bail!("give a PROGRAM or --stream-csv TRAJ.csv"),
     };
-    let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, config);
-    let mut samples = pipeline.joints(&source, kind, notes.sink())?.without_derivatives();
-    let file = fs::File::create(path).with_context(|| display_path(path))?;
-    let mut out = BufWriter::new(file);
-    let mut count = 0;
-    while let Some(sample) = samples.next_sample() {
-        write_stream_sample(&mut out, &sample?.joints)?;
-        count += 1;
-    }
-    out.flush()?;
-    notes.finish();
-    Ok(count)
-}
-
-fn run(model: &RobotModel, args: &RunArgs) -> anyhow::Result<()> {
-    if !(args.timeout > 0.0 && args.timeout.is_finite()) {
-        anyhow::bail!("--timeout must be a positive number of seconds (got {})", args.timeout);
-    }
-    for program in std::iter::once(&args.program).chain(&args.then) {
-        fs::File::open(program).with_context(|| display_path(program))?;
-    }
-    runner::check_installed()?;
-    let work = TempFolder::new("biscara-linuxcnc-run")?;
-    let config_dir = match &args.config {
-        Some(dir) => dir.clone(),
-        None => {
-            let dir = work.path().join("config");
-            write_configuration(&configuration(model, &args.choice.options(model))?, &dir)?;
-            dir
-        }
-    };
-    if runner::ensure_component(&config_dir)? == runner::ComponentStatus::Updated {
-        report(Level::Note, "built and installed the kinematics component biscarakins");
-    }
-    let stream = if args.stream {
-        let path = work.path().join("stream.txt");
-        let samples = write_stream(model, args, &path)?;
-        report(Level::Note, format_args!("streaming {samples} samples of `biscara joints`"));
-        Some(path)
+    let source = FileSource::new(program);
+    let stream = if let Some(path) = &args.stream_csv {
+        Some(job::Stream::Csv { path })
+    } else if args.stream {
+        Some(job::Stream::Program {
+            source: &source,
+            kind: source.kind(None)?,
+            sampling: SamplingConfig {
+                profile: args.profile.into(),
+                origin: args.origin,
+                ..SamplingConfig::default()
+            },
+        })
     } else {
         None
     };
-    let program = if args.stream { args.then.clone() } else { Some(args.program.clone()) };
-    let request = RunRequest {
-        config: config_dir,
-        program: program.clone(),
+    let streamed = stream.is_some();
+    let job = job::Job {
+        config: args.config.as_deref(),
+        robot_file,
+        options: args.choice.options(model, args.origin, false)?,
+        program,
         stream,
-        origin: if args.stream { None } else { args.origin },
+        then: args.then.as_deref(),
+        origin: args.origin,
         timeout: args.timeout,
+        event: match (args.estop_at, args.machine_off_at) {
+            (Some(at), _) => Some((Event::Estop, at)),
+            (None, Some(at)) => Some((Event::MachineOff, at)),
+            (None, None) => None,
+        },
     };
-    let run = runner::run(&request)?;
-    for message in run.messages.iter().filter(|message| !message.error) {
-        report(Level::Note, format_args!("LinuxCNC: {}", message.text));
+    if let Some((_, at)) = job.event
+        && !(at >= 0.0 && at.is_finite())
+    {
+        anyhow::bail!(
+            "--estop-at and --machine-off-at take a time in seconds, 0 or more (got {at})"
+        );
     }
-    if !run.ok {
-        let errors: Vec<&str> =
-            run.messages.iter().filter(|m| m.error).map(|m| m.text.as_str()).collect();
-        let what = if errors.is_empty() {
-            run.failure.clone().unwrap_or_else(|| "stopped".to_owned())
-        } else {
-            errors.join("; ")
-        };
-        let line = line_of(&errors).unwrap_or(run.line);
-        let name = program.as_deref().map_or_else(|| display_path(&args.program), display_path);
-        if line > 0 {
-            anyhow::bail!("{name}:{line}: LinuxCNC: {what}");
-        }
-        anyhow::bail!("{name}: LinuxCNC: {what}");
+    let notes = NoteReporter::default();
+    let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
+        report(Level::Note, note);
+    })?;
+    notes.finish();
+    for note in finished.notes() {
+        report(Level::Note, format_args!("LinuxCNC: {note}"));
     }
     let format = JointCsvFormat {
-        angle_unit: match args.angle_unit {
-            AngleUnitArg::Rad => AngleUnit::Radians,
-            AngleUnitArg::Deg => AngleUnit::Degrees,
-        },
+        angle_unit: args.angle_unit.into(),
         derivatives: args.derivatives,
         precision: usize::from(args.precision),
     };
-    let start = if args.stream { RecordingStart::Stream } else { RecordingStart::FirstMotion };
-    let decimals = usize::from(args.precision);
-    let samples_path = run.samples();
-    let open_recording = || -> anyhow::Result<std::io::BufReader<fs::File>> {
-        Ok(std::io::BufReader::new(fs::File::open(&samples_path).context("LinuxCNC's recording")?))
-    };
     let mut summary = None;
     write_output(args.output.as_deref(), |out| {
-        let mut joints = JointCsvWriter::new(out, format)?;
-        summary = Some(read_recording(open_recording()?, start, model.robot(), |sample, _| {
-            joints.write(sample)?;
-            anyhow::Ok(())
-        })?);
-        joints.finish()?;
+        summary = Some(finished.write_joints::<anyhow::Error>(out, format)?);
         Ok(())
     })?;
     if let Some(path) = &args.path {
         write_output(Some(path), |out| {
-            writeln!(out, "t_s,x_mm,y_mm,z_mm,c_deg")?;
-            read_recording(open_recording()?, start, model.robot(), |sample, recorded| {
-                let [x, y, z, c] = recorded.axes;
-                let t = sample.t;
-                writeln!(
-                    out,
-                    "{t:.decimals$},{x:.decimals$},{y:.decimals$},{z:.decimals$},{c:.decimals$}"
-                )?;
-                anyhow::Ok(())
-            })?;
-            Ok(())
+            finished.write_path::<anyhow::Error>(out, usize::from(args.precision))
         })?;
     }
-    if let Some(summary) = summary {
-        let what = if args.stream { "streamed" } else { "ran" };
+    if let Some(summary) = &summary {
+        let what = if streamed { "streamed" } else { "ran" };
         report(
             Level::Note,
             format_args!(
                 "LinuxCNC {what} {}: {:.3} s, {} samples of 1 ms",
-                display_path(&args.program),
+                display_path(program),
                 summary.duration,
                 summary.samples
             ),
         );
         for peak in summary.peaks {
-            let unit = if peak.joint.is_revolute() { "°" } else { "mm" };
-            let level = if peak.velocity_ratio() > 1.0 || peak.acceleration_ratio() > 1.0 {
-                Level::Warning
-            } else {
-                Level::Note
-            };
-            report(
-                level,
-                format_args!(
-                    "{}: peak {:.1} {unit}/s of {} ({:.0} %), {:.0} {unit}/s² of {} ({:.0} %)",
-                    peak.joint.name(),
-                    peak.velocity,
-                    peak.velocity_limit,
-                    100.0 * peak.velocity_ratio(),
-                    peak.acceleration,
-                    peak.acceleration_limit,
-                    100.0 * peak.acceleration_ratio()
-                ),
-            );
+            report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
         }
     }
+    if let Some(stop) = finished.stop() {
+        let held = match summary {
+            Some(summary) if streamed => format!(
+                "the stream's last sample played at {:.3} s, the joints held from there",
+                summary.streamed.saturating_sub(1) as f64 * 0.001
+            ),
+            _ => "the joints held where LinuxCNC stopped them".to_owned(),
+        };
+        anyhow::bail!(
+            "{}: {} at {:.3} s: {held} (what they did is written)",
+            display_path(program),
+            stop.what,
+            stop.time,
+        );
+    }
     Ok(())
-}
-
-/// The program line a LinuxCNC message names (`… on line 12 …`).
-fn line_of(messages: &[&str]) -> Option<usize> {
-    messages.iter().find_map(|text| {
-        let rest = &text[text.find("line ")? + 5..];
-        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-        digits.parse().ok()
-    })
 }

@@ -77,6 +77,10 @@ pub(crate) fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        Err(err) if is_interrupted(&err) => {
+            let _ = writeln!(io::stderr(), "biscara: {}", diag::error_message(&err));
+            ExitCode::from(130)
+        }
         Err(err) => {
             // (Written even to a closed stderr without a panic: the exit code says it.)
             let _ = writeln!(io::stderr(), "biscara: error: {}", diag::error_message(&err));
@@ -87,6 +91,10 @@ pub(crate) fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     let model = load_robot(cli.robot.as_deref())?;
+    if let Command::Linuxcnc(args) = &cli.command {
+        // A LinuxCNC configuration carries its robot: --robot must agree with it.
+        return linuxcnc::linuxcnc(&model, cli.robot.as_deref(), args);
+    }
     dispatch(&model, cli.command)
 }
 
@@ -110,7 +118,7 @@ fn dispatch(robot: &RobotModel, command: Command) -> anyhow::Result<()> {
         Command::Workspace(args) => workspace::workspace(robot, &args),
         Command::Design(args) => design::design(robot, &args),
         Command::Plot(args) => plot::plot(robot, &args),
-        Command::Linuxcnc(args) => linuxcnc::linuxcnc(robot, &args),
+        Command::Linuxcnc(args) => linuxcnc::linuxcnc(robot, None, &args),
     }
 }
 
@@ -136,6 +144,17 @@ fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
     let mut robot = Robot::from_json(&text).map_err(|err| diag::located(path, err))?;
     files::resolve_meshes(&mut robot, path, &text)?;
     RobotModel::new(robot).map_err(|err| diag::located(path, err))
+}
+
+/// Whether a LinuxCNC run was interrupted (it ends with 130, as an interrupt while writing a
+/// file does).
+fn is_interrupted(err: &anyhow::Error) -> bool {
+    err.chain().any(|cause| {
+        matches!(
+            cause.downcast_ref::<biscara::linuxcnc::LinuxcncError>(),
+            Some(biscara::linuxcnc::LinuxcncError::Interrupted)
+        )
+    })
 }
 
 fn is_broken_pipe(err: &anyhow::Error) -> bool {

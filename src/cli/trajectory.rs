@@ -4,20 +4,11 @@ use std::path::PathBuf;
 
 use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::pipeline::{Pipeline, RobotModel};
-use clap::{Args, ValueEnum};
+use clap::Args;
 
-use super::args::{ProgramArgs, SamplingArgs};
+use super::args::{AngleUnitArg, ProgramArgs, SamplingArgs};
 use super::diag::NoteReporter;
 use super::files::write_output;
-
-/// The angle unit of the joint CSV, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum AngleUnitArg {
-    /// Radians.
-    Rad,
-    /// Degrees.
-    Deg,
-}
 
 /// Samples a program at a fixed time step: the Cartesian path.
 ///

@@ -1,4 +1,4 @@
-//! LinuxCNC acceptance (SPEC §4.1, issue 3): LinuxCNC's own interpreter must accept every G-code
+//! LinuxCNC acceptance: LinuxCNC's own interpreter must accept every G-code
 //! program that `post` and `gen` write for `data/`, and produce the motions the CL file asked for.
 //!
 //! The interpreter is `rs274` from Debian's `linuxcnc-uspace` (`.ci/run` installs it). Invocation:

@@ -36,7 +36,7 @@ use std::path::{Path, PathBuf};
 pub use environment::FileSystem;
 pub use indicatif::ProgressBar;
 pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
-pub use output::{on_interrupt, write_output};
+pub use output::{catch_interrupts, on_interrupt, write_output};
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]

@@ -87,6 +87,13 @@ pub fn on_interrupt(interrupted: fn() -> !) {
     let _ = INTERRUPTED.set(interrupted);
 }
 
+/// Installs the handler of [`on_interrupt`] now, rather than when the first output file is
+/// written: for a run that owns something outside the process (a controller it started) from
+/// its start.
+pub fn catch_interrupts() {
+    remove_temporaries_on_interrupt();
+}
+
 /// Installs, once, the handler of SIGINT, SIGTERM and SIGHUP when the caller asked for one.
 fn remove_temporaries_on_interrupt() {
     static INSTALLED: std::sync::Once = std::sync::Once::new();

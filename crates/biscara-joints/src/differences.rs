@@ -29,6 +29,18 @@ pub fn central_differences(
     (velocity, acceleration)
 }
 
+/// The end-sample rule of every joint trajectory here (the joint CSV, LinuxCNC's recordings): a
+/// first or last sample takes the slope between it and its one neighbour as its velocity, and
+/// its neighbour's acceleration (zero when the neighbour has none: two samples in all).
+#[inline(always)]
+pub fn end_derivatives(
+    end: (f64, &[f64; 4]),
+    neighbour: (f64, &[f64; 4]),
+    neighbour_acceleration: [f64; 4],
+) -> ([f64; 4], [f64; 4]) {
+    (slope(end.0, end.1, neighbour.0, neighbour.1), neighbour_acceleration)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -34,7 +34,7 @@ pub use csv::{
     AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
     TOOL_COLUMNS, TrajectorySummary, read_joint_csv,
 };
-pub use differences::{central_differences, slope};
+pub use differences::{central_differences, end_derivatives, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};
 pub use solver::{JointSolver, LimitViolation, PreparedSamples, SampleError};
 pub use trajectory::{BATCH_SAMPLES, JointSample, JointTrajectory, JointsError};

@@ -4,7 +4,7 @@ use biscara_interpolate::CartesianSample;
 use biscara_kinematics::{Joints, Kinematics};
 use biscara_motion::Position;
 
-use crate::differences::{central_differences, slope};
+use crate::differences::{central_differences, end_derivatives};
 use crate::solver::{JointSolver, PreparedSamples, SampleError};
 
 /// How many Cartesian samples [`JointTrajectory`] reads ahead and solves together by batch IK
@@ -180,11 +180,10 @@ where
         let middle = &mut self.ring[current];
         middle.velocity = velocity;
         middle.acceleration = acceleration;
-        let back = slope(t[0], &q[0], t[1], &q[1]);
         if !self.emitted_any {
             // The first sample: forward difference, and the acceleration of its neighbour.
-            self.ring[previous].velocity = back;
-            self.ring[previous].acceleration = acceleration;
+            let first = end_derivatives((t[0], &q[0]), (t[1], &q[1]), acceleration);
+            (self.ring[previous].velocity, self.ring[previous].acceleration) = first;
             self.emitted_any = true;
         }
         self.head = current;
@@ -209,14 +208,16 @@ where
             _ => {
                 let (previous, last) = (self.at(0), self.at(1));
                 let (a, b) = (&self.ring[previous], &self.ring[last]);
-                let velocity = slope(a.t, &a.joints.to_array(), b.t, &b.joints.to_array());
+                let (qa, qb) = (a.joints.to_array(), b.joints.to_array());
+                let (velocity, acceleration) =
+                    end_derivatives((b.t, &qb), (a.t, &qa), a.acceleration);
                 if !self.emitted_any {
                     // Only two samples in all.
                     self.ring[previous].velocity = velocity;
                     self.emitted_any = true;
                 }
                 self.ring[last].velocity = velocity;
-                self.ring[last].acceleration = self.ring[previous].acceleration;
+                self.ring[last].acceleration = acceleration;
                 self.head = last;
                 self.held = 1;
                 Some(previous)

@@ -1,7 +1,7 @@
 //! The configuration's files, rendered from the templates with a robot's numbers.
 
-use biscara_kinematics::{Robot, RobotModel, Sign, ToolKind};
-use biscara_robot::Workspace;
+use biscara_kinematics::{Pose, Robot, RobotModel, Sign, ToolKind};
+use biscara_robot::{Rectangle, Workspace, reachable};
 
 use crate::LinuxcncError;
 use crate::limits::{AxisLimits, derive_axis_limits};
@@ -14,9 +14,13 @@ pub const COMPONENT_NAME: &str = "biscarakins";
 pub const INI_FILE: &str = "biscara.ini";
 /// The headless display's file name.
 pub const RUNNER_FILE: &str = "biscara_run.py";
+/// The robot file a configuration carries: the robot its files were written for.
+pub const ROBOT_FILE: &str = "robot.json";
 
-const INI: &str = include_str!("../templates/biscara.ini");
-const HAL: &str = include_str!("../templates/biscara.hal");
+/// The INI's template.
+pub(crate) const INI: &str = include_str!("../templates/biscara.ini");
+/// `biscara.hal`'s template.
+pub(crate) const HAL: &str = include_str!("../templates/biscara.hal");
 const SIM_HAL: &str = include_str!("../templates/sim.hal");
 const HARDWARE_HAL: &str = include_str!("../templates/hardware.hal");
 const RUNNER: &str = include_str!("../templates/biscara_run.py");
@@ -35,8 +39,22 @@ pub enum AxisLimitSource {
     Cartesian,
 }
 
+/// The region of the XY plane a configuration is made for: its axis limits are derived over it
+/// and LinuxCNC's soft limits keep the robot inside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// The rectangle, millimetres.
+    pub rectangle: Rectangle,
+    /// Where it comes from, for the INI's comments (`the extent of job.ngc plus 10 mm`).
+    pub origin: String,
+    /// The pose `[x, y, z, c]` (mm, degrees) the robot parks at inside the region: where
+    /// homing ends (each joint moves there in joint space) and where G28 and G30 go. `None`:
+    /// the robot's home pose (all joints 0), which must then lie inside the region.
+    pub park: Option<[f64; 4]>,
+}
+
 /// What a configuration is made for.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ConfigOptions {
     /// The tool whose codes the HAL wires (M3/M4/M5 and S).
     pub tool: ToolKind,
@@ -44,12 +62,77 @@ pub struct ConfigOptions {
     pub limits: AxisLimitSource,
     /// The workspace grid step the rectangle and the derived limits are computed on, mm.
     pub step: f64,
+    /// The region the job stays in (`None`: the workspace rectangle, and soft limits at the
+    /// robot's reach).
+    pub region: Option<Region>,
 }
 
 impl Default for ConfigOptions {
     fn default() -> Self {
-        ConfigOptions { tool: ToolKind::Gripper, limits: AxisLimitSource::Derived, step: 2.0 }
+        ConfigOptions {
+            tool: ToolKind::Gripper,
+            limits: AxisLimitSource::Derived,
+            step: 2.0,
+            region: None,
+        }
     }
+}
+
+/// The rectangle `[x0, x1] × [y0, y1]` grown by `margin` mm on every side.
+pub fn grow(rectangle: &Rectangle, margin: f64) -> Rectangle {
+    Rectangle {
+        min: [rectangle.min[0] - margin, rectangle.min[1] - margin],
+        max: [rectangle.max[0] + margin, rectangle.max[1] + margin],
+    }
+}
+
+/// Fails unless every point of `region` (a grid of at most `step` mm, edges included) is
+/// reachable: inside the joint limits and away from the singularities.
+pub(crate) fn check_region(
+    model: &RobotModel,
+    region: &Region,
+    step: f64,
+) -> Result<(), LinuxcncError> {
+    let rectangle = &region.rectangle;
+    let finite = rectangle.min.iter().chain(&rectangle.max).all(|value| value.is_finite());
+    if !finite || rectangle.width() < 0.0 || rectangle.height() < 0.0 {
+        return Err(LinuxcncError::Region {
+            region: region.origin.clone(),
+            message: "not a rectangle".to_owned(),
+        });
+    }
+    let kinematics = model.kinematics();
+    let [x, y, z, c] = region.park.unwrap_or_else(|| model.home_position());
+    let inside = (rectangle.min[0]..=rectangle.max[0]).contains(&x)
+        && (rectangle.min[1]..=rectangle.max[1]).contains(&y);
+    if !inside || kinematics.inverse_checked(&Pose::from_degrees(x, y, z, c)).is_err() {
+        let what = if region.park.is_some() { "park" } else { "home" };
+        return Err(LinuxcncError::Region {
+            region: region.origin.clone(),
+            message: format!(
+                "the robot's {what} pose ({x:.3}, {y:.3}, {z:.3}, {c:.3}) is not a reachable \
+                 pose inside it"
+            ),
+        });
+    }
+    let columns = ((rectangle.width() / step).ceil() as usize).max(1);
+    let rows = ((rectangle.height() / step).ceil() as usize).max(1);
+    for i in 0..=columns {
+        for j in 0..=rows {
+            let x = rectangle.min[0] + rectangle.width() * i as f64 / columns as f64;
+            let y = rectangle.min[1] + rectangle.height() * j as f64 / rows as f64;
+            if !reachable(&kinematics, x, y) {
+                return Err(LinuxcncError::Region {
+                    region: region.origin.clone(),
+                    message: format!(
+                        "({x:.1}, {y:.1}) mm is outside the workspace (a joint limit or a \
+                         singularity): `biscara workspace` shows where the robot reaches"
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// One file of a configuration.
@@ -89,10 +172,7 @@ fn limit(value: f64) -> String {
 /// When a placeholder is left without a value: the templates and this crate disagree, a bug
 /// that the tests catch.
 fn render(template: &str, values: &[(String, String)]) -> String {
-    let mut text = template.to_owned();
-    for (key, value) in values {
-        text = text.replace(&format!("@{key}@"), value);
-    }
+    let text = fill(template, values);
     if let Some(start) = text.find('@') {
         let rest = &text[start + 1..];
         if let Some(end) = rest.find('@') {
@@ -102,6 +182,15 @@ fn render(template: &str, values: &[(String, String)]) -> String {
                 "template placeholder @{key}@ has no value"
             );
         }
+    }
+    text
+}
+
+/// Replaces every `@KEY@` of `template` that has a value in `values`; the others stay.
+pub(crate) fn fill(template: &str, values: &[(String, String)]) -> String {
+    let mut text = template.to_owned();
+    for (key, value) in values {
+        text = text.replace(&format!("@{key}@"), value);
     }
     text
 }
@@ -153,8 +242,13 @@ pub fn configuration(
 ) -> Result<Configuration, LinuxcncError> {
     let robot = model.robot();
     let kinematics = model.kinematics();
-    let workspace = Workspace::compute(&kinematics, options.step)?;
-    let rectangle = workspace.largest_rectangle()?;
+    let rectangle = match &options.region {
+        Some(region) => {
+            check_region(model, region, options.step)?;
+            region.rectangle
+        }
+        None => Workspace::compute(&kinematics, options.step)?.largest_rectangle()?,
+    };
     let mut limits = derive_axis_limits(robot, &kinematics, &rectangle, options.step)?;
     if options.limits == AxisLimitSource::Cartesian {
         limits.xy_velocity = robot.motion.rapid_velocity;
@@ -165,7 +259,26 @@ pub fn configuration(
         limits.c_acceleration = robot.motion.rotation_acceleration;
     }
     let (tool_nets, tool_hardware) = tool_nets(options.tool)?;
-    let values = values(robot, &limits, options, tool_nets, tool_hardware);
+    let park = options.region.as_ref().and_then(|region| region.park);
+    let home = match park {
+        Some([x, y, z, c]) => {
+            let joints =
+                kinematics.inverse_checked(&Pose::from_degrees(x, y, z, c)).map_err(|err| {
+                    LinuxcncError::Region {
+                        region: String::from("the park pose"),
+                        message: err.to_string(),
+                    }
+                })?;
+            let [theta1, theta2, theta3, d4] = joints.joints.to_array();
+            [theta1.to_degrees(), theta2.to_degrees(), d4, theta3.to_degrees()]
+        }
+        None => [0.0; 4],
+    };
+    let park = park.unwrap_or_else(|| model.home_position());
+    let mut values = values(robot, &limits, options, tool_nets, tool_hardware);
+    for (joint, value) in home.into_iter().enumerate() {
+        values.push((format!("HOME_{joint}"), number(value)));
+    }
     let file = |name, template, executable| ConfigFile {
         name,
         contents: render(template, &values),
@@ -180,11 +293,19 @@ pub fn configuration(
             file("hardware.hal", HARDWARE_HAL, false),
             file(RUNNER_FILE, RUNNER, true),
             ConfigFile { name: "biscara.tbl", contents: tool_table(), executable: false },
-            ConfigFile { name: "biscara.var", contents: parameters(model), executable: false },
+            ConfigFile { name: "biscara.var", contents: parameters(park), executable: false },
+            ConfigFile { name: ROBOT_FILE, contents: robot_file(robot), executable: false },
             file("README.md", README, false),
         ],
         limits,
     })
+}
+
+/// The robot file the configuration carries: `robot` as JSON, every number exact.
+fn robot_file(robot: &Robot) -> String {
+    let mut text = serde_json::to_string_pretty(robot).unwrap_or_default();
+    text.push('\n');
+    text
 }
 
 /// The tool table: tools 1 to 99 in pockets 1 to 99, of zero length and diameter (what
@@ -195,10 +316,10 @@ fn tool_table() -> String {
 }
 
 /// The parameter file: G28's and G30's positions (parameters 5161–5169 and 5181–5189, in
-/// machine coordinates) at the robot's home pose, so that G28 and G30 go home as they do in
-/// `biscara interpret`; G54 in force (5220).
-fn parameters(model: &RobotModel) -> String {
-    let [x, y, z, c] = model.home_position();
+/// machine coordinates) at `park` (the robot's home pose unless the configuration is made for a
+/// region), so that G28 and G30 go home as they do in `biscara interpret`; G54 in force (5220).
+fn parameters(park: [f64; 4]) -> String {
+    let [x, y, z, c] = park;
     let mut text = String::new();
     for start in [5161, 5181] {
         for (offset, value) in [x, y, z, 0.0, 0.0, c, 0.0, 0.0, 0.0].into_iter().enumerate() {
@@ -210,7 +331,12 @@ fn parameters(model: &RobotModel) -> String {
 }
 
 /// The INI's comment block on where the axis limits come from.
-fn limits_comment(robot: &Robot, limits: &AxisLimits, source: AxisLimitSource) -> (String, String) {
+fn limits_comment(
+    robot: &Robot,
+    limits: &AxisLimits,
+    source: AxisLimitSource,
+    region: Option<&Region>,
+) -> (String, String) {
     let d = &limits.derivation;
     if source == AxisLimitSource::Cartesian {
         let title = "The robot file's Cartesian motion limits, unchanged.".to_owned();
@@ -227,9 +353,9 @@ fn limits_comment(robot: &Robot, limits: &AxisLimits, source: AxisLimitSource) -
                  each axis\n# and knows nothing of the joints, cannot exceed any joint's limit."
         .to_owned();
     let comment = format!(
-        "# Where: the workspace rectangle x {x0:.1} .. {x1:.1} mm, y {y0:.1} .. {y1:.1} mm \
+        "# Where: {place} x {x0:.1} .. {x1:.1} mm, y {y0:.1} .. {y1:.1} mm \
          ({points} grid points,\n\
-         # {step} mm apart). Outside it these numbers promise nothing.\n\
+         # {step} mm apart). {outside}\n\
          # How: with |vx|, |vy| <= V and |ax|, |ay| <= A, a joint angle theta(x, y) has\n\
          #   |theta'| <= G V and |theta''| <= G A + S V^2, G = |dtheta/dx| + |dtheta/dy|,\n\
          #   S = the largest |u' H u| over |ux|, |uy| <= 1 (H: theta's second derivatives),\n\
@@ -246,6 +372,15 @@ fn limits_comment(robot: &Robot, limits: &AxisLimits, source: AxisLimitSource) -
          # {v:.1} mm/s per axis ({diag:.1} mm/s diagonally). `biscara joints` (the time-optimal\n\
          # profile under the joint limits themselves) is faster: `biscara linuxcnc run --stream`\n\
          # plays its trajectory.",
+        place = match region {
+            Some(region) => format!("the region of {},\n#", region.origin),
+            None => "the workspace rectangle".to_owned(),
+        },
+        outside = if region.is_some() {
+            "LinuxCNC's soft limits\n# ([AXIS_X], [AXIS_Y] MIN_LIMIT/MAX_LIMIT) keep the robot inside it."
+        } else {
+            "Outside it these numbers promise nothing."
+        },
         points = d.points,
         step = d.step,
         g1 = d.gradient[0],
@@ -275,11 +410,15 @@ fn values(
     tool_hardware: String,
 ) -> Vec<(String, String)> {
     let joint_limits = robot.joint_limits.to_array();
-    let velocity = robot.joint_max_velocity.to_array();
-    let acceleration = robot.joint_max_acceleration.to_array();
-    let sign = |sign: Sign| number(sign.factor());
     let reach = robot.links.l1 + robot.links.l2 + robot.base.b1x.abs().max(robot.base.b2x.abs());
-    let (title, comment) = limits_comment(robot, limits, options.limits);
+    let (title, comment) = limits_comment(robot, limits, options.limits, options.region.as_ref());
+    let [x_min, y_min, x_max, y_max] = match &options.region {
+        Some(region) => {
+            let r = &region.rectangle;
+            [r.min[0], r.min[1], r.max[0], r.max[1]]
+        }
+        None => [-reach, -reach, reach, reach],
+    };
     let traj_velocity = (2.0 * limits.xy_velocity * limits.xy_velocity
         + limits.z_velocity * limits.z_velocity)
         .sqrt();
@@ -288,15 +427,6 @@ fn values(
         .sqrt();
     let values: Vec<(&str, String)> = vec![
         ("NAME", robot.name.replace(['\n', '\r', '"'], " ")),
-        ("L1", number(robot.links.l1)),
-        ("L2", number(robot.links.l2)),
-        ("B1X", number(robot.base.b1x)),
-        ("B2X", number(robot.base.b2x)),
-        ("LP", number(robot.lp)),
-        ("SIGMA1", sign(robot.working_mode.chain1)),
-        ("SIGMA2", sign(robot.working_mode.chain2)),
-        ("SIGMAA", sign(robot.assembly_mode.0)),
-        ("MARGIN", number(robot.singularity_margin)),
         ("XY_VELOCITY", limit(limits.xy_velocity)),
         ("XY_ACCELERATION", limit(limits.xy_acceleration)),
         ("Z_VELOCITY", limit(limits.z_velocity)),
@@ -306,10 +436,10 @@ fn values(
         ("TRAJ_VELOCITY", limit(traj_velocity)),
         ("TRAJ_ACCELERATION", limit(traj_acceleration)),
         ("DEFAULT_VELOCITY", limit(limits.xy_velocity / 4.0)),
-        ("X_MIN", number(-reach)),
-        ("X_MAX", number(reach)),
-        ("Y_MIN", number(-reach)),
-        ("Y_MAX", number(reach)),
+        ("X_MIN", number(x_min)),
+        ("X_MAX", number(x_max)),
+        ("Y_MIN", number(y_min)),
+        ("Y_MAX", number(y_max)),
         ("Z_MIN", number(robot.lp - joint_limits[3][1])),
         ("Z_MAX", number(robot.lp - joint_limits[3][0])),
         ("LIMITS_TITLE", title),
@@ -324,6 +454,30 @@ fn values(
     ];
     let mut values: Vec<(String, String)> =
         values.into_iter().map(|(key, value)| (key.to_owned(), value)).collect();
+    values.extend(robot_values(robot));
+    values
+}
+
+/// The placeholders that hold the robot's own numbers: its geometry, modes and joint limits.
+pub(crate) fn robot_values(robot: &Robot) -> Vec<(String, String)> {
+    let joint_limits = robot.joint_limits.to_array();
+    let velocity = robot.joint_max_velocity.to_array();
+    let acceleration = robot.joint_max_acceleration.to_array();
+    let sign = |sign: Sign| number(sign.factor());
+    let mut values: Vec<(String, String)> = [
+        ("L1", number(robot.links.l1)),
+        ("L2", number(robot.links.l2)),
+        ("B1X", number(robot.base.b1x)),
+        ("B2X", number(robot.base.b2x)),
+        ("LP", number(robot.lp)),
+        ("SIGMA1", sign(robot.working_mode.chain1)),
+        ("SIGMA2", sign(robot.working_mode.chain2)),
+        ("SIGMAA", sign(robot.assembly_mode.0)),
+        ("MARGIN", number(robot.singularity_margin)),
+    ]
+    .into_iter()
+    .map(|(key, value)| (key.to_owned(), value))
+    .collect();
     for (index, name) in ["THETA1", "THETA2", "THETA3", "D4"].into_iter().enumerate() {
         values.push((format!("{name}_MIN"), number(joint_limits[index][0])));
         values.push((format!("{name}_MAX"), number(joint_limits[index][1])));

@@ -23,6 +23,72 @@ pub enum LinuxcncError {
          spindle or pen"
     )]
     Extruder,
+    /// Occurs when the region a configuration is made for is not a rectangle of the workspace.
+    #[error("the region of {region}: {message}")]
+    Region {
+        /// Where the region comes from.
+        region: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a configuration folder's robot file and its INI or HAL disagree, or the
+    /// robot in force is not the configuration's.
+    #[error("{message}")]
+    Robot {
+        /// What disagrees, naming both.
+        message: String,
+    },
+    /// Occurs when LinuxCNC refused the program or stopped it (a soft limit, an unreachable
+    /// move): its message, and the program's line when LinuxCNC named one.
+    #[error("{program}:{}LinuxCNC: {message}", if *line > 0 { format!("{line}: ") } else { " ".to_owned() })]
+    Refused {
+        /// The program, as named on the command line.
+        program: String,
+        /// Its 1-based line (0: LinuxCNC named none).
+        line: usize,
+        /// LinuxCNC's messages.
+        message: String,
+    },
+    /// Occurs when a run is asked for something it cannot do (a timeout that is not a positive
+    /// number of seconds).
+    #[error("{message}")]
+    Usage {
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a joint CSV to stream breaks a rule: `FILE:LINE: what`.
+    #[error("{file}:{line}: {message}")]
+    StreamCsv {
+        /// The CSV, as named on the command line.
+        file: String,
+        /// 1-based line of the CSV.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Occurs when a joint CSV to stream cannot be read: `FILE:LINE:COL: what`.
+    #[error("{file}:{message}")]
+    StreamCsvFormat {
+        /// The CSV, as named on the command line.
+        file: String,
+        /// The reader's message.
+        message: String,
+    },
+    /// Occurs when a stream does not start where the joints stand.
+    #[error(
+        "the stream starts at {stream} but the joints stand at {joints} (after homing): a \
+         stream must start where the joints are, within 0.001° and 0.001 mm"
+    )]
+    StartPosition {
+        /// The stream's first sample.
+        stream: String,
+        /// Where the joints are.
+        joints: String,
+    },
+    /// Occurs when a run was interrupted (SIGINT, SIGTERM, SIGHUP): LinuxCNC was stopped and
+    /// nothing of it is left.
+    #[error("interrupted: LinuxCNC was stopped and its temporary folders removed")]
+    Interrupted,
     /// Occurs when a program LinuxCNC needs is not installed.
     #[error(
         "LinuxCNC is not installed ({program} not found): apt-get install \
@@ -67,6 +133,9 @@ pub enum LinuxcncError {
         /// LinuxCNC's output.
         log: String,
     },
+    /// Occurs when a configuration file cannot be written.
+    #[error(transparent)]
+    File(#[from] biscara_files::FileError),
     /// Occurs when the recorder's file holds a line that is not a sample, or lost samples.
     #[error("the recording's line {line}: {message}")]
     Recording {

@@ -28,15 +28,19 @@
 //! ```
 
 mod config;
+mod consistency;
 mod error;
+pub mod job;
 mod limits;
 pub mod runner;
 mod samples;
+pub mod stream;
 
 pub use config::{
     AxisLimitSource, COMPONENT_NAME, COMPONENT_SOURCE, ConfigFile, ConfigOptions, Configuration,
-    INI_FILE, configuration,
+    INI_FILE, ROBOT_FILE, Region, configuration, grow,
 };
+pub use consistency::{configuration_robot, hal_parameters, ini_value};
 pub use error::LinuxcncError;
 pub use limits::{AxisLimits, Derivation, LimitsError, derive_axis_limits};
 pub use samples::{

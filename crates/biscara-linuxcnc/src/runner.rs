@@ -9,6 +9,7 @@ use std::fs;
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use crate::LinuxcncError;
@@ -50,6 +51,27 @@ pub struct RunRequest {
     pub origin: Option<[f64; 4]>,
     /// How long the program or the stream may take, seconds.
     pub timeout: f64,
+    /// A commissioning event: E-stop or machine off this many seconds after the stream (or the
+    /// program) started.
+    pub event: Option<(Event, f64)>,
+}
+
+/// What a commissioning run does to the machine ([`RunRequest::event`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Event {
+    /// Press E-stop.
+    Estop,
+    /// Switch the machine off.
+    MachineOff,
+}
+
+/// What stopped a run early: an event the run was asked for, or one of the enable chain's.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+pub struct Stop {
+    /// What happened: `E-stop`, `machine off`, `following error` or `joint fault`.
+    pub what: String,
+    /// When, seconds after the stream (or the program) started, by the display's clock.
+    pub time: f64,
 }
 
 /// One message of LinuxCNC's.
@@ -62,7 +84,7 @@ pub struct Message {
 }
 
 /// What the headless display reported.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 struct Outcome {
     ok: bool,
     messages: Vec<Message>,
@@ -72,6 +94,8 @@ struct Outcome {
     failure: Option<String>,
     #[serde(default)]
     overruns: u64,
+    #[serde(default)]
+    event: Option<Stop>,
 }
 
 /// A finished run.
@@ -87,6 +111,8 @@ pub struct Run {
     pub line: usize,
     /// Why the run stopped early, when it did.
     pub failure: Option<String>,
+    /// What stopped the stream or the program, when something did (the recording goes on).
+    pub stop: Option<Stop>,
 }
 
 impl Run {
@@ -200,6 +226,7 @@ impl TempFolder {
         ));
         let _ = fs::remove_dir_all(&folder);
         fs::create_dir_all(&folder).map_err(|err| LinuxcncError::io(&folder, err))?;
+        lock(&FOLDERS).push(folder.clone());
         Ok(TempFolder(folder))
     }
 
@@ -212,6 +239,111 @@ impl TempFolder {
 impl Drop for TempFolder {
     fn drop(&mut self) {
         let _ = fs::remove_dir_all(&self.0);
+        lock(&FOLDERS).retain(|folder| folder != &self.0);
+    }
+}
+
+/// The temporary folders that exist: removed by [`interrupt`] when the process is about to end.
+static FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Whether a LinuxCNC runs ([`run`] is waiting for it), and whether it was interrupted.
+static RUNNING: Mutex<RunState> = Mutex::new(RunState { running: false, interrupted: false });
+
+#[derive(Debug)]
+struct RunState {
+    running: bool,
+    interrupted: bool,
+}
+
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// What the process's interrupt handler (SIGINT, SIGTERM, SIGHUP) calls, from its own thread.
+///
+/// While a LinuxCNC runs, this asks [`run`] to stop it (its display first, so that LinuxCNC's
+/// own shutdown runs, then its process group), remove its folders and fail with
+/// [`LinuxcncError::Interrupted`], and returns `true`: the caller must then leave the ending to
+/// the main thread. Otherwise it removes every temporary folder of this crate and returns
+/// `false`: the caller may end the process.
+pub fn interrupt() -> bool {
+    {
+        let mut state = lock(&RUNNING);
+        if state.running {
+            state.interrupted = true;
+            return true;
+        }
+    }
+    for folder in lock(&FOLDERS).drain(..) {
+        let _ = fs::remove_dir_all(folder);
+    }
+    false
+}
+
+/// Marks a run as started; an interrupt that came before fails it at once.
+fn start_running() -> Result<(), LinuxcncError> {
+    let mut state = lock(&RUNNING);
+    if state.interrupted {
+        return Err(LinuxcncError::Interrupted);
+    }
+    state.running = true;
+    Ok(())
+}
+
+/// Whether the run was interrupted.
+fn interrupted() -> bool {
+    lock(&RUNNING).interrupted
+}
+
+/// Marks the run as ended.
+fn stop_running() {
+    lock(&RUNNING).running = false;
+}
+
+/// The processes of process group `group`: (pid, command line's first two words).
+fn group_members(group: u32) -> Vec<(u32, String)> {
+    let Ok(entries) = fs::read_dir("/proc") else { return Vec::new() };
+    entries
+        .flatten()
+        .filter_map(|entry| {
+            let pid: u32 = entry.file_name().to_str()?.parse().ok()?;
+            let stat = fs::read_to_string(entry.path().join("stat")).ok()?;
+            (process_group(&stat)? == group).then_some(())?;
+            let cmdline = fs::read(entry.path().join("cmdline")).ok()?;
+            let words: Vec<String> = cmdline
+                .split(|&b| b == 0)
+                .take(2)
+                .map(|word| String::from_utf8_lossy(word).into_owned())
+                .collect();
+            Some((pid, words.join(" ")))
+        })
+        .collect()
+}
+
+/// The process group in a `/proc/PID/stat` line: "PID (COMMAND) STATE PPID PGRP …", the
+/// command possibly holding spaces and parentheses.
+fn process_group(stat: &str) -> Option<u32> {
+    let rest = &stat[stat.rfind(')')? + 1..];
+    rest.split_whitespace().nth(2)?.parse().ok()
+}
+
+/// Stops a running LinuxCNC as its user would: ends its display (the headless runner), which
+/// makes LinuxCNC's script shut everything down, and waits up to `grace` for that.
+fn stop_display(child: &mut Child, grace: Duration) {
+    for (pid, command) in group_members(child.id()) {
+        if command.contains(RUNNER_FILE) {
+            let _ = Command::new("kill")
+                .args(["-s", "TERM", &pid.to_string()])
+                .stderr(Stdio::null())
+                .status();
+        }
+    }
+    let deadline = Instant::now() + grace;
+    while Instant::now() < deadline {
+        if matches!(child.try_wait(), Ok(Some(_))) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(50));
     }
 }
 
@@ -311,15 +443,9 @@ fn is_linuxcnc_key(key: u32) -> bool {
     (1001..=1010).contains(&key) || key == 100 || key >> 24 == u32::from(b'H')
 }
 
-/// Whether a process of process group `group` is still running (`/proc/PID/stat`'s fifth field).
+/// Whether a process of process group `group` is still running.
 fn group_alive(group: u32) -> bool {
-    let Ok(entries) = fs::read_dir("/proc") else { return false };
-    entries.flatten().any(|entry| {
-        let Ok(stat) = fs::read_to_string(entry.path().join("stat")) else { return false };
-        // "PID (COMMAND) STATE PPID PGRP …": the command may hold spaces and parentheses.
-        let Some(rest) = stat.rfind(')').map(|end| &stat[end + 1..]) else { return false };
-        rest.split_whitespace().nth(2).and_then(|pgrp| pgrp.parse::<u32>().ok()) == Some(group)
-    })
+    !group_members(group).is_empty()
 }
 
 /// Kills what is left of a LinuxCNC: its process group (LinuxCNC's script, started in a group
@@ -357,8 +483,14 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     }
     let temporary = TempFolder::new("biscara-linuxcnc")?;
     let folder = temporary.path().to_owned();
-    let mut run =
-        Run { folder: temporary, ok: false, messages: Vec::new(), line: 0, failure: None };
+    let mut run = Run {
+        folder: temporary,
+        ok: false,
+        messages: Vec::new(),
+        line: 0,
+        failure: None,
+        stop: None,
+    };
     prepare(&request.config, &folder)?;
     let log_path = folder.join("linuxcnc.log");
     let log = fs::File::create(&log_path).map_err(|err| LinuxcncError::io(&log_path, err))?;
@@ -390,15 +522,33 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
         let stream = fs::canonicalize(stream).map_err(|err| LinuxcncError::io(stream, err))?;
         command.env("BISCARA_STREAM", stream);
     }
+    if let Some((event, at)) = request.event {
+        let kind = match event {
+            Event::Estop => "estop",
+            Event::MachineOff => "machine-off",
+        };
+        command.env("BISCARA_EVENT", format!("{kind}:{at}"));
+    }
     if let Some([x, y, z, c]) = request.origin {
         command.env("BISCARA_ORIGIN", format!("{x},{y},{z},{c}"));
     }
     use std::os::unix::process::CommandExt as _;
     command.process_group(0);
-    let mut child = command.spawn().map_err(|err| LinuxcncError::io(Path::new("linuxcnc"), err))?;
+    start_running()?;
+    let mut child = match command.spawn() {
+        Ok(child) => child,
+        Err(err) => {
+            stop_running();
+            return Err(LinuxcncError::io(Path::new("linuxcnc"), err));
+        }
+    };
     // The display waits `timeout` for the program; LinuxCNC takes seconds to start and stop.
     let deadline = Instant::now() + Duration::from_secs_f64(request.timeout + 60.0);
     let status = loop {
+        if interrupted() {
+            stop_display(&mut child, Duration::from_secs(20));
+            break None;
+        }
         match child.try_wait() {
             Ok(Some(status)) => break Some(status),
             Ok(None) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(20)),
@@ -406,6 +556,10 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
         }
     };
     clean_up(&mut child);
+    stop_running();
+    if interrupted() {
+        return Err(LinuxcncError::Interrupted);
+    }
     let result_path = folder.join("result.json");
     let mut text = String::new();
     let outcome = fs::File::open(&result_path)
@@ -429,5 +583,6 @@ pub fn run(request: &RunRequest) -> Result<Run, LinuxcncError> {
     run.messages = outcome.messages;
     run.line = outcome.line;
     run.failure = outcome.failure;
+    run.stop = outcome.event;
     Ok(run)
 }

@@ -1,6 +1,6 @@
 //! What LinuxCNC's joints did: the recorder's lines read back, and their summary.
 
-use biscara_joints::{JointSample, central_differences};
+use biscara_joints::{JointSample, central_differences, end_derivatives};
 use biscara_kinematics::{Joint, Joints, Robot};
 
 use crate::LinuxcncError;
@@ -87,7 +87,7 @@ pub struct RecordingSummary {
 
 /// Reads the recorder's lines (`halsampler -t`) and hands every sample from `start` on to
 /// `each` as a joint sample (t from 0, one servo period apart; velocity and acceleration by
-/// central differences, as `biscara joints` computes them, zero at both ends) with the recorded
+/// central differences and the end-sample rule of `biscara joints`) with the recorded
 /// sample; streaming, three samples at a time. Fails on a malformed line or a gap in the sample
 /// numbers (a lost sample).
 pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
@@ -102,25 +102,17 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
         RecordingSummary { samples: 0, duration: 0.0, streamed: 0, peaks: peaks.get() };
     let mut last_number: Option<u64> = None;
     let mut started = false;
-    let mut emit = |before: Option<&(RecordedSample, [f64; 4])>,
-                    middle: &(RecordedSample, [f64; 4]),
-                    after: Option<&(RecordedSample, [f64; 4])>,
+    // Emits one sample with its derivatives.
+    let mut emit = |entry: &(RecordedSample, [f64; 4]),
+                    (velocity, acceleration): ([f64; 4], [f64; 4]),
                     summary: &mut RecordingSummary|
      -> Result<(), E> {
         let t = summary.samples as f64 * SERVO_PERIOD;
-        let (velocity, acceleration) = match (before, after) {
-            (Some(before), Some(after)) => central_differences(
-                (t - SERVO_PERIOD, &before.1),
-                (t, &middle.1),
-                (t + SERVO_PERIOD, &after.1),
-            ),
-            _ => ([0.0; 4], [0.0; 4]),
-        };
-        let q = middle.1;
+        let q = entry.1;
         let sample = JointSample {
             t,
             line: 0,
-            pose: middle.0.axes,
+            pose: entry.0.axes,
             joints: Joints { theta1: q[0], theta2: q[1], theta3: q[2], d4: q[3] },
             velocity,
             acceleration,
@@ -129,9 +121,11 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
         peaks.push(&sample);
         summary.samples += 1;
         summary.duration = t;
-        summary.streamed += usize::from(middle.0.streaming);
-        each(&sample, &middle.0)
+        summary.streamed += usize::from(entry.0.streaming);
+        each(&sample, &entry.0)
     };
+    // The last central acceleration, for the last sample's end rule.
+    let mut last_acceleration = [0.0; 4];
     for (index, line) in reader.lines().enumerate() {
         let line_number = index + 1;
         let line = line.map_err(|err| LinuxcncError::Recording {
@@ -179,18 +173,32 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
             started = true;
         }
         window.push(entry);
-        match window.len() {
-            2 => emit(None, &window[0], None, &mut summary)?,
-            3 => {
-                emit(Some(&window[0]), &window[1], Some(&window[2]), &mut summary)?;
-                window.remove(0);
+        if window.len() == 3 {
+            let t = |k: usize| k as f64 * SERVO_PERIOD;
+            let (q0, q1, q2) = (&window[0].1, &window[1].1, &window[2].1);
+            let middle = central_differences((t(0), q0), (t(1), q1), (t(2), q2));
+            if summary.samples == 0 {
+                emit(&window[0], end_derivatives((t(0), q0), (t(1), q1), middle.1), &mut summary)?;
             }
-            _ => {}
+            emit(&window[1], middle, &mut summary)?;
+            last_acceleration = middle.1;
+            window.remove(0);
         }
     }
+    // What is left: the last sample (after at least three), or all of a recording of one or two.
+    let step = SERVO_PERIOD;
     match window.len() {
-        1 if !started || summary.samples == 0 => emit(None, &window[0], None, &mut summary)?,
-        2 => emit(None, &window[1], None, &mut summary)?,
+        1 => emit(&window[0], ([0.0; 4], [0.0; 4]), &mut summary)?,
+        2 if summary.samples == 0 => {
+            let (q0, q1) = (&window[0].1, &window[1].1);
+            emit(&window[0], end_derivatives((0.0, q0), (step, q1), [0.0; 4]), &mut summary)?;
+            emit(&window[1], end_derivatives((step, q1), (0.0, q0), [0.0; 4]), &mut summary)?;
+        }
+        2 => {
+            let (q0, q1) = (&window[0].1, &window[1].1);
+            let end = end_derivatives((step, q1), (0.0, q0), last_acceleration);
+            emit(&window[1], end, &mut summary)?;
+        }
         _ => {}
     }
     summary.peaks = peaks.get();
@@ -262,6 +270,30 @@ impl JointPeaks {
     /// The peak acceleration as a fraction of the limit.
     pub fn acceleration_ratio(&self) -> f64 {
         self.acceleration / self.acceleration_limit
+    }
+
+    /// Whether the velocity or the acceleration exceeds its limit by more than the recording's
+    /// resolution (1e-9 degree or mm a cycle: a millionth of a limit).
+    pub fn exceeds(&self) -> bool {
+        self.velocity_ratio().max(self.acceleration_ratio()) > 1.0 + 1e-6
+    }
+}
+
+impl std::fmt::Display for JointPeaks {
+    /// `theta1: peak 120.0 °/s of 360 (33 %), 2400 °/s² of 7200 (33 %)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let unit = if self.joint.is_revolute() { "°" } else { "mm" };
+        write!(
+            f,
+            "{}: peak {:.1} {unit}/s of {} ({:.0} %), {:.0} {unit}/s² of {} ({:.0} %)",
+            self.joint.name(),
+            self.velocity,
+            self.velocity_limit,
+            100.0 * self.velocity_ratio(),
+            self.acceleration,
+            self.acceleration_limit,
+            100.0 * self.acceleration_ratio()
+        )
     }
 }
 
@@ -354,7 +386,15 @@ mod tests {
         assert_eq!(summary.samples, 6);
         assert!((summary.duration - 0.005).abs() < 1e-12);
         assert_eq!(samples[0].joints.theta1, 0.0);
-        assert_eq!(samples[0].velocity, [0.0; 4], "no difference at the ends");
+        // The ends as `biscara joints` has them: the slope to the neighbour (1° in a cycle) and
+        // the neighbour's acceleration.
+        let first = samples[0].velocity[0].to_degrees();
+        assert!((first - 1000.0).abs() < 1e-6, "{first}");
+        assert_eq!(samples[0].acceleration, samples[1].acceleration);
+        // The last: 25° after 16°, 9° in the last cycle.
+        let last = samples[5].velocity[0].to_degrees();
+        assert!((last - 9000.0).abs() < 1e-6, "{last}");
+        assert_eq!(samples[5].acceleration, samples[4].acceleration);
         // q = t² degrees per cycle²: 2 degrees per cycle² = 2e6 degrees/s².
         let acceleration = samples[2].acceleration[0].to_degrees();
         assert!((acceleration - 2e6).abs() < 1e-3, "{acceleration}");

@@ -14,6 +14,8 @@ from the environment (`biscara linuxcnc run` sets it):
                    samples.txt)
   BISCARA_RESULT   where to write the outcome as JSON (default result.json)
   BISCARA_TIMEOUT  seconds to wait for the program or the stream to end (default 3600)
+  BISCARA_EVENT    "estop:SECONDS" or "machine-off:SECONDS": press E-stop (or switch the machine
+                   off) that long after the stream (or the program) started
 """
 
 import json
@@ -73,6 +75,11 @@ def hal_value(name):
                           text=True).stdout.strip()
 
 
+def hal_signal(name):
+    return subprocess.run(["halcmd", "gets", name], check=True, capture_output=True,
+                          text=True).stdout.strip()
+
+
 def start_machine():
     wait_for(lambda: STAT.task_state != 0, "LinuxCNC's task")
     COMMAND.state(linuxcnc.STATE_ESTOP_RESET)
@@ -85,30 +92,83 @@ def start_machine():
     wait_for(lambda: all(STAT.homed[:STAT.joints]), "homing", 30.0)
 
 
-def stream_trajectory(path, timeout, keep_recording):
-    """Plays the samples in path through streamer -> limit3 -> mux2 with the machine off (the
-    motion controller's commands follow the feedback) and homed, then turns the machine on."""
-    COMMAND.state(linuxcnc.STATE_OFF)
-    wait_for(lambda: not STAT.enabled, "machine off")
+def fire(event):
+    """Presses E-stop or switches the machine off: the commissioning event of the run."""
+    if event == "estop":
+        COMMAND.state(linuxcnc.STATE_ESTOP)
+    else:
+        COMMAND.state(linuxcnc.STATE_OFF)
+
+
+def stop_cause():
+    """Why the stream's latch fell."""
+    STAT.poll()
+    if hal_signal("stream-ferror") == "TRUE":
+        return "following error"
+    if STAT.task_state == linuxcnc.STATE_ESTOP:
+        return "E-stop"
+    if not STAT.enabled:
+        return "machine off"
+    return "joint fault"
+
+
+def stream_trajectory(path, timeout, keep_recording, event):
+    """Plays the samples in path through streamer -> limit3 -> mux2 with the machine on, inside
+    the enable chain (biscara.hal's stream-latch); afterwards the machine is turned off and on so
+    that LinuxCNC takes up where the joints are. Returns the event that stopped it, if one did."""
     with open(path) as samples:
         feeder = subprocess.Popen(["halstreamer"], stdin=samples)
     full = int(hal_value("streamer.0.curr-depth")) + 1
     wait_for(lambda: feeder.poll() is not None or int(hal_value("streamer.0.curr-depth")) > full // 2,
              "the stream to fill")
     halcmd("sets", "record", "1")
+    halcmd("sets", "stream-own-fb", "1")
     halcmd("sets", "stream-on", "1")
-    wait_for(lambda: feeder.poll() is not None and hal_value("streamer.0.curr-depth") == "0",
-             "the stream's end", timeout)
-    halcmd("sets", "stream-on", "0")
+    halcmd("sets", "stream-request", "1")
+    # The latch sets in the next servo cycle: with the machine on and no following error.
+    wait_for(lambda: hal_value("stream-latch.ok-out") == "TRUE",
+             "the stream's enable (machine on, out of E-stop, no following error)", 1.0)
+    start = time.monotonic()
+    deadline = start + timeout
+    fired = None
+    while True:
+        elapsed = time.monotonic() - start
+        if event and fired is None and elapsed >= event[1]:
+            fire(event[0])
+            fired = elapsed
+        if feeder.poll() is not None and hal_value("streamer.0.curr-depth") == "0":
+            break
+        if hal_value("stream-latch.ok-out") != "TRUE":
+            cause = stop_cause()
+            what = {"estop": "E-stop", "machine-off": "machine off"}.get(event[0]) if fired else cause
+            RESULT["event"] = {"what": what, "time": fired if fired is not None else elapsed}
+            collect_messages()
+            # What the joints do after the stop, recorded: they hold.
+            time.sleep(0.3)
+            feeder.kill()
+            feeder.wait()
+            return True
+        if time.monotonic() > deadline:
+            raise Stopped(f"timed out after {timeout:g} s waiting for the stream's end")
+        time.sleep(0.002)
+    halcmd("sets", "stream-request", "0")
     if not keep_recording:
         halcmd("sets", "record", "0")
     if feeder.returncode != 0:
         raise Stopped(f"halstreamer failed with exit code {feeder.returncode}")
+    # LinuxCNC takes up where the joints are: off (its command follows the feedback), the
+    # feedback its own again, the joints' muxes back to its command, on.
+    COMMAND.state(linuxcnc.STATE_OFF)
+    wait_for(lambda: not STAT.enabled, "machine off")
+    halcmd("sets", "stream-own-fb", "0")
+    time.sleep(0.05)
+    halcmd("sets", "stream-on", "0")
     COMMAND.state(linuxcnc.STATE_ON)
     wait_for(lambda: STAT.task_state == linuxcnc.STATE_ON, "machine on")
+    return False
 
 
-def run_program(path, origin, timeout):
+def run_program(path, origin, timeout, event):
     COMMAND.mode(linuxcnc.MODE_MDI)
     wait_for(lambda: STAT.task_mode == linuxcnc.MODE_MDI, "MDI mode")
     if origin:
@@ -121,31 +181,53 @@ def run_program(path, origin, timeout):
     halcmd("sets", "record", "1")
     COMMAND.auto(linuxcnc.AUTO_RUN, 0)
     wait_for(lambda: STAT.interp_state != linuxcnc.INTERP_IDLE, "the program to start")
+    if event:
+        start = time.monotonic()
+        wait_for(lambda: time.monotonic() - start >= event[1]
+                 or (STAT.interp_state == linuxcnc.INTERP_IDLE and STAT.queue == 0),
+                 "the event", timeout)
+        if time.monotonic() - start >= event[1]:
+            fired = time.monotonic() - start
+            fire(event[0])
+            what = {"estop": "E-stop", "machine-off": "machine off"}[event[0]]
+            RESULT["event"] = {"what": what, "time": fired}
+            time.sleep(0.3)
+            collect_messages()
+            halcmd("sets", "record", "0")
+            return True
     wait_for(lambda: STAT.interp_state == linuxcnc.INTERP_IDLE and STAT.queue == 0,
              "the program's end", timeout)
     halcmd("sets", "record", "0")
+    return False
 
 
 def main():
     program = os.environ.get("BISCARA_PROGRAM")
     stream = os.environ.get("BISCARA_STREAM")
     timeout = float(os.environ.get("BISCARA_TIMEOUT", "3600"))
+    event = os.environ.get("BISCARA_EVENT")
+    if event:
+        kind, at = event.split(":")
+        event = (kind, float(at))
     with open(os.environ.get("BISCARA_SAMPLES", "samples.txt"), "w") as samples:
         sampler = subprocess.Popen(["halsampler", "-t"], stdout=samples)
     try:
         start_machine()
+        stopped = False
         if stream:
-            stream_trajectory(stream, timeout, bool(program))
-        if program:
-            run_program(program, os.environ.get("BISCARA_ORIGIN"), timeout)
+            stopped = stream_trajectory(stream, timeout, bool(program), event)
+        if program and not stopped:
+            stopped = run_program(program, os.environ.get("BISCARA_ORIGIN"), timeout, event)
         failed = collect_messages()
-        RESULT["ok"] = not failed
+        RESULT["ok"] = not failed and not stopped
     except Stopped as stopped:
         RESULT["failure"] = str(stopped)
+    except Exception as error:
+        RESULT["failure"] = f"the headless display failed: {error!r}"
     finally:
         try:
             halcmd("sets", "record", "0")
-            halcmd("sets", "stream-on", "0")
+            halcmd("sets", "stream-request", "0")
             # halsampler empties the sampler's FIFO before it is stopped.
             deadline = time.monotonic() + 10.0
             while hal_value("sampler.0.curr-depth") != "0" and time.monotonic() < deadline:

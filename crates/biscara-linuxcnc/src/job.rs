@@ -1,0 +1,438 @@
+//! One job on LinuxCNC, from the command line's choices to its outputs: the configuration and
+//! its robot, the stream, the run, LinuxCNC's refusals as errors with the program's line, and
+//! the recording written as a joint CSV or a path CSV.
+
+use std::fs;
+use std::io::{BufReader, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use biscara_files::{FileError, display_path, write_output};
+use biscara_joints::{JointCsvFormat, JointCsvWriter};
+use biscara_kinematics::{Joints, RobotModel};
+use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
+use biscara_robot::{Bounds, Rectangle};
+
+use crate::config::check_region;
+use crate::runner::{self, ComponentStatus, RunRequest, TempFolder};
+use crate::{
+    ConfigOptions, Configuration, INI_FILE, LinuxcncError, ROBOT_FILE, RecordingStart,
+    RecordingSummary, Region, SERVO_PERIOD, configuration, configuration_robot, grow, ini_value,
+    read_recording, write_stream_sample,
+};
+
+/// What a run plays through the stream path before any G-code.
+pub enum Stream<'a> {
+    /// A program's joint trajectory (`biscara joints`), computed for the configuration's robot.
+    Program {
+        /// The program.
+        source: &'a dyn ProgramSource,
+        /// Its kind.
+        kind: ProgramKind,
+        /// How it is sampled (the profile, the origin); the time step is the servo period.
+        sampling: SamplingConfig,
+    },
+    /// A joint CSV with the columns and units `biscara joints` writes, checked against the
+    /// robot's joint limits before it plays.
+    Csv {
+        /// The file.
+        path: &'a Path,
+    },
+}
+
+/// One run of `biscara linuxcnc run`.
+pub struct Job<'a> {
+    /// The configuration folder (`None`: one written for the robot in force with `options`).
+    pub config: Option<&'a Path>,
+    /// The robot file given on the command line (`--robot`), when one was: it must be the
+    /// configuration's robot.
+    pub robot_file: Option<&'a Path>,
+    /// How the configuration is written when none is given.
+    pub options: ConfigOptions,
+    /// The program, as named on the command line (run on LinuxCNC's planner unless streamed).
+    pub program: &'a Path,
+    /// The stream to play instead of running `program`.
+    pub stream: Option<Stream<'a>>,
+    /// A program to run on LinuxCNC's planner after the stream.
+    pub then: Option<&'a Path>,
+    /// A G54 offset before the program.
+    pub origin: Option<[f64; 4]>,
+    /// How long the program or the stream may take, s.
+    pub timeout: f64,
+    /// A commissioning event: E-stop or machine off this long after the start, s.
+    pub event: Option<(runner::Event, f64)>,
+}
+
+/// A finished job: LinuxCNC's recording, and the robot it ran.
+#[derive(Debug)]
+pub struct Finished {
+    run: runner::Run,
+    model: RobotModel,
+    start: RecordingStart,
+}
+
+impl Finished {
+    /// What stopped the stream or the program early (an E-stop, the machine switched off, a
+    /// following error), when something did: the recording still holds what the joints did.
+    pub fn stop(&self) -> Option<&runner::Stop> {
+        self.run.stop.as_ref()
+    }
+
+    /// The robot the job ran (the configuration's).
+    pub fn model(&self) -> &RobotModel {
+        &self.model
+    }
+
+    /// LinuxCNC's messages that were not errors.
+    pub fn notes(&self) -> impl Iterator<Item = &str> {
+        self.run.messages.iter().filter(|message| !message.error).map(|m| m.text.as_str())
+    }
+
+    fn recording(&self) -> Result<BufReader<fs::File>, LinuxcncError> {
+        let path = self.run.samples();
+        fs::File::open(&path).map(BufReader::new).map_err(|err| LinuxcncError::io(&path, err))
+    }
+
+    /// Writes what the joints did as a joint CSV (the columns of `biscara joints`), and returns
+    /// the recording's summary.
+    pub fn write_joints<E: From<LinuxcncError> + From<std::io::Error>>(
+        &self,
+        out: &mut dyn Write,
+        format: JointCsvFormat,
+    ) -> Result<RecordingSummary, E> {
+        let mut joints = JointCsvWriter::new(out, format)?;
+        let summary = read_recording(self.recording()?, self.start, self.model.robot(), |s, _| {
+            joints.write(s).map_err(E::from)
+        })?;
+        joints.finish()?;
+        Ok(summary)
+    }
+
+    /// Writes LinuxCNC's commanded Cartesian position every cycle as a path CSV
+    /// (`t_s,x_mm,y_mm,z_mm,c_deg`) with `decimals` decimals.
+    pub fn write_path<E: From<LinuxcncError> + From<std::io::Error>>(
+        &self,
+        out: &mut dyn Write,
+        decimals: usize,
+    ) -> Result<(), E> {
+        writeln!(out, "t_s,x_mm,y_mm,z_mm,c_deg")?;
+        read_recording(self.recording()?, self.start, self.model.robot(), |sample, recorded| {
+            let [x, y, z, c] = recorded.axes;
+            let t = sample.t;
+            writeln!(
+                out,
+                "{t:.decimals$},{x:.decimals$},{y:.decimals$},{z:.decimals$},{c:.decimals$}"
+            )
+            .map_err(E::from)
+        })?;
+        Ok(())
+    }
+}
+
+/// Writes `configuration` into `folder` (created if missing; its files replaced, each whole or
+/// not at all).
+pub fn write_configuration(
+    configuration: &Configuration,
+    folder: &Path,
+) -> Result<(), LinuxcncError> {
+    fs::create_dir_all(folder).map_err(|err| LinuxcncError::io(folder, err))?;
+    for file in &configuration.files {
+        let path = folder.join(file.name);
+        write_output(Some(&path), |out| {
+            out.write_all(file.contents.as_bytes()).map_err(FileError::Io)
+        })?;
+        if file.executable {
+            use std::os::unix::fs::PermissionsExt as _;
+            fs::set_permissions(&path, fs::Permissions::from_mode(0o755))
+                .map_err(|err| LinuxcncError::io(&path, err))?;
+        }
+    }
+    Ok(())
+}
+
+/// The robot of the configuration in `folder` (its `robot.json`, checked against its INI and
+/// HAL); when the command line named a robot file too, it must be the same robot.
+pub fn folder_robot(
+    folder: &Path,
+    model: &RobotModel,
+    robot_file: Option<&Path>,
+) -> Result<RobotModel, LinuxcncError> {
+    let name = display_path(folder);
+    let read = |file: &str| {
+        let path = folder.join(file);
+        fs::read_to_string(&path).map_err(|err| match err.kind() {
+            std::io::ErrorKind::NotFound if file == ROBOT_FILE => LinuxcncError::Robot {
+                message: format!(
+                    "{name} has no {ROBOT_FILE}: not a configuration of this version of biscara \
+                     (write it again with `biscara linuxcnc config`)"
+                ),
+            },
+            _ => LinuxcncError::io(&path, err),
+        })
+    };
+    let robot_json = read(ROBOT_FILE)?;
+    let configured =
+        configuration_robot(&name, &robot_json, &read(INI_FILE)?, &read("biscara.hal")?)?;
+    if let Some(file) = robot_file
+        && configured.robot() != model.robot()
+    {
+        return Err(LinuxcncError::Robot {
+            message: format!(
+                "the configuration {name} was written for the robot \"{}\" ({name}/{ROBOT_FILE}), \
+                 not for --robot {} (\"{}\"): run without --robot to use the configuration's, or \
+                 write a configuration for {} with `biscara --robot {} linuxcnc config`",
+                configured.robot().name,
+                display_path(file),
+                model.robot().name,
+                display_path(file),
+                display_path(file),
+            ),
+        });
+    }
+    Ok(configured)
+}
+
+/// The region a program works in, and where the robot parks for it.
+///
+/// The robot's home pose (all joints 0) is at the edge of its reach, where no useful axis
+/// limit holds; a program's moves to and from it are left out, as `--fit` leaves them out. The
+/// region is the XY extent of the program's moves (placed as `sampling` says, arcs included)
+/// grown by `margin` mm on every side, or by less where the margin would leave the workspace;
+/// the park pose is the end of the program's first move away from home.
+pub fn program_region<E: From<PipelineError>>(
+    model: &RobotModel,
+    source: &dyn ProgramSource,
+    kind: ProgramKind,
+    sampling: SamplingConfig,
+    margin: f64,
+    notes: impl FnMut(Note) + 'static,
+) -> Result<Region, E> {
+    let pipeline = Pipeline::new(model, sampling);
+    let home = model.home_position();
+    let mut bounds = Bounds::new(home);
+    let mut park = None;
+    for motion in pipeline.motions(source, kind, notes)? {
+        let motion = motion?;
+        bounds.push(&motion);
+        if park.is_none()
+            && let Some(end) = motion.kind.end()
+            && (end[0] - home[0]).hypot(end[1] - home[1]) > 1e-6
+        {
+            park = Some(end);
+        }
+    }
+    let extent = if bounds.is_empty() {
+        Rectangle { min: [home[0], home[1]], max: [home[0], home[1]] }
+    } else {
+        Rectangle { min: bounds.min, max: bounds.max }
+    };
+    let name = source.name().to_owned();
+    let region = |margin: f64| Region {
+        rectangle: grow(&extent, margin),
+        origin: format!("{name} (its extent plus {margin} mm)"),
+        park,
+    };
+    // Where the margin would reach beyond the workspace, a smaller one (to 0.1 mm).
+    let step = ConfigOptions::default().step;
+    let fits = |margin: f64| check_region(model, &region(margin), step).is_ok();
+    if margin > 0.0 && !fits(margin) && fits(0.0) {
+        let (mut low, mut high) = (0.0, margin);
+        while high - low > 0.1 {
+            let middle = 0.5 * (low + high);
+            if fits(middle) {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        return Ok(region((low * 10.0).floor() / 10.0));
+    }
+    Ok(region(margin))
+}
+
+/// Writes the stream file of `stream` for `model` into `path`; returns the first sample's
+/// joints and the number of samples.
+fn write_stream<E: From<LinuxcncError> + From<PipelineError>>(
+    model: &RobotModel,
+    stream: &Stream<'_>,
+    path: &Path,
+    notes: impl FnMut(Note) + 'static,
+) -> Result<(Joints, usize), E> {
+    let file = fs::File::create(path).map_err(|err| LinuxcncError::io(path, err))?;
+    let mut out = BufWriter::new(file);
+    let (first, count) = match stream {
+        Stream::Program { source, kind, sampling } => {
+            let mut sampling = sampling.clone();
+            sampling.dt = SERVO_PERIOD;
+            let pipeline = Pipeline::new(model, sampling);
+            let mut samples = pipeline.joints(*source, *kind, notes)?.without_derivatives();
+            let mut first = None;
+            let mut count = 0;
+            while let Some(sample) = samples.next_sample() {
+                let joints = sample?.joints;
+                first.get_or_insert(joints);
+                write_stream_sample(&mut out, &joints)
+                    .map_err(|err| LinuxcncError::io(path, err))?;
+                count += 1;
+            }
+            (first.unwrap_or_default(), count)
+        }
+        Stream::Csv { path: csv } => {
+            let name = display_path(csv);
+            let reader = fs::File::open(csv)
+                .map(BufReader::new)
+                .map_err(|err| LinuxcncError::io(csv, err))?;
+            crate::stream::check_joint_csv(&name, reader, model.robot(), &mut out)?
+        }
+    };
+    out.flush().map_err(|err| LinuxcncError::io(path, err))?;
+    Ok((first, count))
+}
+
+/// Where the joints stand after homing: `[JOINT_n] HOME` of the configuration's INI (θ1 θ2 d4
+/// θ3, degrees and mm; 0 where it says nothing).
+fn homed_joints(config: &Path) -> Result<[f64; 4], LinuxcncError> {
+    let path = config.join(INI_FILE);
+    let ini = fs::read_to_string(&path).map_err(|err| LinuxcncError::io(&path, err))?;
+    Ok(std::array::from_fn(|joint| {
+        ini_value(&ini, &format!("JOINT_{joint}"), "HOME")
+            .and_then(|value| value.parse().ok())
+            .unwrap_or(0.0)
+    }))
+}
+
+/// Runs `job` on LinuxCNC: resolves the configuration and its robot, builds and installs the
+/// kinematics component when needed, writes the stream, runs LinuxCNC headless and turns its
+/// refusals into [`LinuxcncError::Refused`]. `notes` receives the pipeline's notes, `say`
+/// this function's (the component installed, the samples streamed).
+pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
+    model: &RobotModel,
+    job: &Job<'_>,
+    notes: impl FnMut(Note) + 'static,
+    say: &mut dyn FnMut(String),
+) -> Result<Finished, E> {
+    if !(job.timeout > 0.0 && job.timeout.is_finite()) {
+        return Err(LinuxcncError::Usage {
+            message: format!(
+                "--timeout must be a positive number of seconds (got {})",
+                job.timeout
+            ),
+        }
+        .into());
+    }
+    for program in std::iter::once(&job.program).chain(&job.then) {
+        fs::File::open(program).map_err(|err| LinuxcncError::io(program, err))?;
+    }
+    runner::check_installed()?;
+    let work = TempFolder::new("biscara-linuxcnc-run")?;
+    let (config, model) = match job.config {
+        Some(folder) => (folder.to_owned(), folder_robot(folder, model, job.robot_file)?),
+        None => {
+            let folder = work.path().join("config");
+            write_configuration(&configuration(model, &job.options)?, &folder)?;
+            (folder, model.clone())
+        }
+    };
+    if runner::ensure_component(&config)? == ComponentStatus::Updated {
+        say("built and installed the kinematics component biscarakins".to_owned());
+    }
+    let stream = match &job.stream {
+        Some(stream) => {
+            let path = work.path().join("stream.txt");
+            let (first, samples) = write_stream::<E>(&model, stream, &path, notes)?;
+            let homed = homed_joints(&config)?;
+            if homed != [0.0; 4] {
+                return Err(LinuxcncError::Usage {
+                    message: format!(
+                        "{} parks the robot away from its home pose (a configuration made for a \
+                         region): stream with a configuration for the whole workspace",
+                        display_path(&config)
+                    ),
+                }
+                .into());
+            }
+            crate::stream::check_start(&first, homed)?;
+            let what = match stream {
+                Stream::Program { .. } => "`biscara joints`".to_owned(),
+                Stream::Csv { path } => display_path(path),
+            };
+            say(format!("streaming {samples} samples of {what}"));
+            Some(path)
+        }
+        None => None,
+    };
+    let program: Option<PathBuf> =
+        if stream.is_some() { job.then.map(Path::to_owned) } else { Some(job.program.to_owned()) };
+    let start = if stream.is_some() { RecordingStart::Stream } else { RecordingStart::FirstMotion };
+    let request = RunRequest {
+        config,
+        program: program.clone(),
+        origin: if stream.is_some() { None } else { job.origin },
+        stream,
+        timeout: job.timeout,
+        event: job.event,
+    };
+    let run = runner::run(&request)?;
+    if !run.ok && run.stop.is_none() {
+        let errors: Vec<&str> =
+            run.messages.iter().filter(|m| m.error).map(|m| m.text.as_str()).collect();
+        let message = if errors.is_empty() {
+            run.failure.clone().unwrap_or_else(|| "stopped".to_owned())
+        } else {
+            errors.join("; ")
+        };
+        let line = line_of(&errors).unwrap_or(run.line);
+        let name = display_path(program.as_deref().unwrap_or(job.program));
+        return Err(LinuxcncError::Refused { program: name, line, message }.into());
+    }
+    Ok(Finished { run, model, start })
+}
+
+/// The program line a LinuxCNC message names (`… on line 12 …`).
+pub fn line_of(messages: &[&str]) -> Option<usize> {
+    messages.iter().find_map(|text| {
+        let rest = &text[text.find("line ")? + 5..];
+        let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+        digits.parse().ok()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_is_the_first_line_number_a_message_names() {
+        assert_eq!(line_of(&["joint 0 on limit switch error"]), None);
+        assert_eq!(line_of(&["no line", "Can't move on line 12 of the program"]), Some(12));
+        assert_eq!(line_of(&["on line x", "line 3"]), Some(3));
+        assert_eq!(line_of(&[]), None);
+    }
+
+    #[test]
+    fn a_region_is_the_program_extent_plus_the_margin_without_the_moves_home() {
+        let model = RobotModel::default();
+        let source = biscara_pipeline::TextSource::new(
+            "job.ngc",
+            "G21 G90\nG0 X-50 Y250 Z50\nG1 X50 Y300 F3000\nG2 X50 Y200 J-50\nG28\nM2\n",
+        );
+        let sampling = SamplingConfig::default();
+        let region = program_region::<PipelineError>(
+            &model,
+            &source,
+            ProgramKind::Gcode,
+            sampling,
+            10.0,
+            |_| {},
+        )
+        .unwrap();
+        let r = region.rectangle;
+        // The arc from (50, 300) around (50, 250) clockwise reaches x = 100.
+        for (got, want) in
+            [(r.min[0], -60.0), (r.max[0], 110.0), (r.min[1], 190.0), (r.max[1], 310.0)]
+        {
+            assert!((got - want).abs() < 1e-3, "{r:?}");
+        }
+        assert_eq!(region.origin, "job.ngc (its extent plus 10 mm)");
+        assert_eq!(region.park, Some([-50.0, 250.0, 50.0, 0.0]));
+    }
+}
