@@ -12,7 +12,6 @@ use biscara::robot::Scene;
 use biscara::view::{ImageFormat, MAX_MESH_TRIANGLES, Viewer, read_stl};
 pub(crate) use biscara_files::{display_path, file_name};
 
-use super::args::InputKind;
 use super::diag::located;
 
 /// A program file (or standard input for `-`) as the pipeline's source.
@@ -27,9 +26,9 @@ impl FileSource {
     }
 
     /// The program's kind: `from` when given, else from its name and first bytes.
-    pub(crate) fn kind(&self, from: Option<InputKind>) -> anyhow::Result<ProgramKind> {
+    pub(crate) fn kind(&self, from: Option<ProgramKind>) -> anyhow::Result<ProgramKind> {
         if let Some(kind) = from {
-            return Ok(kind.into());
+            return Ok(kind);
         }
         let mut input = open_input(&self.path)?;
         let head = input.fill_buf()?;

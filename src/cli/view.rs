@@ -123,7 +123,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     };
     // The program sampled as `joints` sampled it, at the trajectory's time step.
     let source = FileSource::new(program);
-    let kind = source.kind(args.from)?;
+    let kind = source.kind(args.from.map(ProgramKind::from))?;
     let config = SamplingConfig {
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: args.profile.into(),
