@@ -9,7 +9,7 @@
 
 use std::hint::black_box;
 
-use biscara::design::{DesignGrid, Evaluator, ParamRange, Shard, Sweep};
+use biscara::design::{DesignGrid, Evaluator, ParamRange, Shard, Sweep, SweepOptions};
 use biscara::kinematics::{Kinematics, Robot};
 use biscara::robot::{Workspace, reachable};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
@@ -78,10 +78,13 @@ fn design(c: &mut Criterion) {
                 b.iter(|| {
                     let mut sum = 0.0;
                     sweep
-                        .run(threads, |e| -> Result<(), biscara::design::DesignError> {
-                            sum += e.gci;
-                            Ok(())
-                        })
+                        .run(
+                            &SweepOptions { threads, ..SweepOptions::default() },
+                            |e| -> Result<(), biscara::design::DesignError> {
+                                sum += e.gci;
+                                Ok(())
+                            },
+                        )
                         .expect("sweep");
                     sum
                 });
