@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
 use biscara::view::{
     JointCurves, ProcessStrokes, ProgramTrace, TopView, draw_joints, draw_top_view, zoom_region,
@@ -111,7 +111,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             rectangle: Some(&rectangle),
             path: &trace.path,
             process: process.strokes(),
-            process_label: ToolState::legend(tool),
+            process_label: tool.legend(),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
             region: if args.zoom { zoom_region(process.strokes(), &trace.path) } else { None },

@@ -225,13 +225,13 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
     biscara(&dir, &["demo", "out"]).success();
     std::fs::write(
         dir.join("report.json"),
-        r#"{"ok":false,"problems":[{"kind":"collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
+        r#"{"ok":false,"problems":[{"kind":"scene_collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
     )
     .expect("write report");
     let run = biscara(&dir, &["view", "out/traj.csv", "--check", "report.json"]);
     run.success();
     assert!(
-        run.stdout.contains(r#""problems":[[3.2500,"collision","the tool hits pallet"]]"#),
+        run.stdout.contains(r#""problems":[[3.2500,"scene_collision","the tool hits pallet"]]"#),
         "problems"
     );
     // The demo's own report is clean: no problem to mark.
@@ -240,8 +240,15 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
     assert!(clean.stdout.contains(r#""problems":[]"#));
     let cases = [
         ("{\"problems\": [\n  {\"kind\": }]}", "bad.json:2:12: not a check --json report"),
-        ("{\"ok\": true}", "bad.json:1: not a check --json report: no \"problems\" array"),
-        ("{\"problems\":[{\"kind\":\"limit\"}]}", "bad.json: problem 1 has no number \"t_s\""),
+        ("{\"ok\": true}", "bad.json:1:12: not a check --json report: .: missing field `problems`"),
+        (
+            "{\"problems\":[{\"kind\":\"tool\"}]}",
+            "bad.json:1:28: not a check --json report: problems[0]: missing field `t_s`",
+        ),
+        (
+            "{\"problems\":[{\"kind\":\"limit\",\"t_s\":1}]}",
+            "bad.json:1:28: not a check --json report: problems[0].kind: unknown kind `limit`",
+        ),
     ];
     for (text, expected) in cases {
         std::fs::write(dir.join("bad.json"), text).expect("write bad report");

@@ -6,7 +6,8 @@ use std::io::BufRead;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Kinematics, MeshSpec, Meshes, Robot, RobotModel};
+use biscara_kinematics::{Kinematics, MeshSpec, Part, Robot, RobotModel, ToolKind};
+use biscara_robot::ReportedProblem;
 
 use crate::{MAX_MESH_TRIANGLES, Scene, StlMesh, ViewError};
 
@@ -121,8 +122,8 @@ struct ProcessPoint {
 /// every other inner point dropped, when full), and the times its state changes.
 #[derive(Debug)]
 struct Process {
-    /// The tool's name and the legend of its work.
-    tool: Option<(String, String)>,
+    /// The tool whose work this is.
+    tool: Option<ToolKind>,
     points: Vec<ProcessPoint>,
     /// The last point kept and the latest sample not kept, of the stroke being drawn.
     last: Option<ProcessPoint>,
@@ -238,12 +239,12 @@ pub struct Viewer {
     time_step: Option<f64>,
     previous_t: Option<f64>,
     process: Process,
-    /// `check`'s problems: time, kind, message.
-    problems: Vec<(f64, String, String)>,
+    /// `check`'s problems (messages shortened to 200 characters).
+    problems: Vec<ReportedProblem>,
     /// The objects' size (width x, length y, height z; mm), when given.
     object: Option<[f64; 3]>,
-    /// The parts' meshes: part name and its triangles' corners in the part's frame (mm).
-    meshes: Vec<(&'static str, Vec<f32>)>,
+    /// The parts' meshes: the part and its triangles' corners in the part's frame (mm).
+    meshes: Vec<(Part, Vec<f32>)>,
 }
 
 impl Viewer {
@@ -270,34 +271,20 @@ impl Viewer {
         }
     }
 
-    /// Draws `mesh` in place of the box or cylinder of `part` (one of
-    /// [`Meshes::PART_NAMES`]), placed in the part's frame by `spec` (scale, rotation, offset;
-    /// the file is not read here). Fails for an unknown part, a part given twice, or when the
-    /// meshes together would hold more than [`MAX_MESH_TRIANGLES`] triangles.
+    /// Draws `mesh` in place of the box or cylinder of `part`, placed in the part's frame by
+    /// `spec` (scale, rotation, offset; the file is not read here). Fails for a part given twice,
+    /// or when the meshes together would hold more than [`MAX_MESH_TRIANGLES`] triangles.
     pub fn add_mesh(
         &mut self,
-        part: &str,
+        part: Part,
         spec: &MeshSpec,
         mesh: &StlMesh,
     ) -> Result<(), ViewError> {
-        let Some(&name) = Meshes::PART_NAMES.iter().find(|&&name| name == part) else {
-            return Err(ViewError::Mesh {
-                message: format!(
-                    "no part `{part}` to draw a mesh for; the parts are {}",
-                    Meshes::PART_NAMES.join(", ")
-                ),
-            });
-        };
-        if self.meshes.iter().any(|(other, _)| *other == name) {
-            return Err(ViewError::Mesh { message: format!("part `{part}` has a mesh already") });
+        if self.meshes.iter().any(|(other, _)| *other == part) {
+            return Err(ViewError::MeshTwice { part });
         }
         if self.mesh_triangles() + mesh.triangles() > MAX_MESH_TRIANGLES {
-            return Err(ViewError::Mesh {
-                message: format!(
-                    "the meshes hold more than {MAX_MESH_TRIANGLES} triangles, what the viewer \
-                     takes: simplify them first"
-                ),
-            });
+            return Err(ViewError::TooManyTriangles { max: MAX_MESH_TRIANGLES });
         }
         let m = spec.transform();
         let mut corners = Vec::with_capacity(mesh.positions().len());
@@ -307,7 +294,7 @@ impl Viewer {
                 corners.push((row[0] * v[0] + row[1] * v[1] + row[2] * v[2] + row[3]) as f32);
             }
         }
-        self.meshes.push((name, corners));
+        self.meshes.push((part, corners));
         Ok(())
     }
 
@@ -322,13 +309,13 @@ impl Viewer {
         self.object = Some(size);
     }
 
-    /// Adds one of `check`'s problems (README.md's `check --json`): its time (s), kind and
-    /// message. The page marks it in the scene, where the tool is at that time, and on the
-    /// timeline. At most `max_events` are kept.
-    pub fn add_problem(&mut self, t: f64, kind: &str, message: &str) {
+    /// Adds one of `check`'s problems (README.md's `check --json`, read by
+    /// [`biscara_robot::Report::read_problems`]). The page marks it in the scene, where the tool
+    /// is at that time, and on the timeline. At most `max_events` are kept.
+    pub fn add_problem(&mut self, problem: &ReportedProblem) {
         if self.problems.len() < self.options.max_events {
-            let message: String = message.chars().take(200).collect();
-            self.problems.push((t, kind.to_owned(), message));
+            let message: String = problem.message.chars().take(200).collect();
+            self.problems.push(ReportedProblem { message, ..problem.clone() });
         }
     }
 
@@ -373,10 +360,10 @@ impl Viewer {
         self.gripper = gripper;
     }
 
-    /// Names the tool whose work the page shows (docs/motion.md: `laser`, `extruder`, `pen`,
-    /// `spindle`) and the legend of its work; without it the page shows no process.
-    pub fn set_tool(&mut self, tool: &str, label: &str) {
-        self.process.tool = Some((tool.to_owned(), label.to_owned()));
+    /// The tool whose work the page shows (docs/motion.md: a laser, an extruder, a pen, a
+    /// spindle), with its legend; without it (or for the gripper) the page shows no process.
+    pub fn set_tool(&mut self, tool: ToolKind) {
+        self.process.tool = (tool != ToolKind::Gripper).then_some(tool);
     }
 
     /// Adds the tool's work at one sample of the program: time (s), pose `[x, y, z, c]` (mm,
@@ -518,8 +505,9 @@ impl Viewer {
         }
         json.push_str("],\"tool\":");
         match &self.process.tool {
-            Some((name, label)) => {
-                let _ = write!(json, "{{\"kind\":{},\"label\":{}}}", string(name), string(label));
+            Some(tool) => {
+                let (kind, label) = (tool.name(), tool.legend());
+                let _ = write!(json, "{{\"kind\":\"{kind}\",\"label\":{}}}", string(label));
             }
             None => json.push_str("null"),
         }
@@ -536,11 +524,12 @@ impl Viewer {
         json.push_str("],\"work\":[");
         push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
         json.push_str("],\"problems\":[");
-        for (index, (t, kind, message)) in self.problems.iter().enumerate() {
+        for (index, problem) in self.problems.iter().enumerate() {
             if index > 0 {
                 json.push(',');
             }
-            let _ = write!(json, "[{t:.4},{},{}]", string(kind), string(message));
+            let (t, kind) = (problem.t, problem.kind.name());
+            let _ = write!(json, "[{t:.4},\"{kind}\",{}]", string(&problem.message));
         }
         json.push_str("],\"object\":");
         match self.object {
@@ -671,7 +660,11 @@ mod tests {
             viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
         }
         viewer.set_line_text(7, "G1 Z10 (pick)");
-        viewer.add_problem(1.5, "collision", "the tool hits <pallet>");
+        viewer.add_problem(&ReportedProblem {
+            t: 1.5,
+            kind: biscara_robot::ProblemKind::SceneCollision,
+            message: "the tool hits <pallet>".to_owned(),
+        });
         assert_eq!(viewer.referenced_lines(), [7]);
         assert_eq!(viewer.time_step(), Some(0.5));
         let mut page = Vec::new();
@@ -688,7 +681,7 @@ mod tests {
         assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
         assert!(page.contains(
-            "\"problems\":[[1.5000,\"collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
+            "\"problems\":[[1.5000,\"scene_collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
         ));
         assert_eq!(page.matches("</script>").count(), 4, "the scene name must not end a script");
         // The only address is the XHTML namespace three.js names (never fetched).
@@ -750,18 +743,18 @@ mod tests {
             rotation: [0.0, 0.0, 90.0],
             ..MeshSpec::new("t.stl")
         };
-        viewer.add_mesh("distal2", &spec, &mesh).unwrap();
+        viewer.add_mesh(Part::Distal2, &spec, &mesh).unwrap();
         let corners = &viewer.meshes[0].1;
         // (1, 0, 0) mm turned to (0, 1, 0), (0, 2, 0) to (-2, 0, 0), then moved by the offset.
         let expected = [5.0, 0.0, 1.0, 5.0, 1.0, 1.0, 3.0, 0.0, 1.0];
         assert!(corners.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-5), "{corners:?}");
         assert_eq!(viewer.mesh_triangles(), 1);
-        for (part, message) in [("distal2", "has a mesh already"), ("elbow", "no part `elbow`")] {
-            let err = viewer.add_mesh(part, &spec, &mesh).unwrap_err();
-            assert!(err.to_string().contains(message), "{err}");
-        }
+        let err = viewer.add_mesh(Part::Distal2, &spec, &mesh).unwrap_err();
+        assert!(matches!(err, ViewError::MeshTwice { part: Part::Distal2 }), "{err}");
+        assert_eq!(err.to_string(), "part `distal2` has a mesh already");
         let big = StlMesh::from_positions(vec![0.0; 9 * MAX_MESH_TRIANGLES]);
-        let err = viewer.add_mesh("tool", &spec, &big).unwrap_err();
+        let err = viewer.add_mesh(Part::Tool, &spec, &big).unwrap_err();
+        assert!(matches!(err, ViewError::TooManyTriangles { max: MAX_MESH_TRIANGLES }), "{err}");
         assert!(err.to_string().contains("more than 200000 triangles"), "{err}");
         viewer.push_row(&row(0.0, 0.0)).unwrap();
         let mut page = Vec::new();
