@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::gcode::Tool;
 use biscara::joints::read_joint_csv;
 use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
 use biscara::robot::Report;
@@ -131,28 +130,19 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         blend: args.blend.blend,
         ..placed_reading(&args.placement, &args.dialect, &args.files)?
     };
-    let mut end = 0.0;
     let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
     let tool = samples.tool();
-    viewer.set_tool(tool);
+    let mut overlay = viewer.overlay(tool);
     let max_power = model.robot().tool.max_power;
     for sample in samples {
         let (sample, state) = sample?;
-        // Past the trajectory's end nothing is shown: a program that runs longer (one that
-        // loops forever while moving) is sampled no further, and the warning below says so.
-        if sample.t > duration + 1.0 {
-            end = sample.t;
+        if !overlay.push(&sample, state.strength(tool, max_power)) {
             break;
         }
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
-        if tool != Tool::Gripper {
-            let strength = state.strength(tool, max_power);
-            viewer.push_process_sample(sample.t, sample.pose, sample.line, strength);
-        }
-        end = sample.t;
     }
-    if (duration - end).abs() > 1e-6 + viewer.time_step().unwrap_or(0.0) {
-        let name = source.name();
+    if overlay.ends_apart_from(duration, viewer.time_step().unwrap_or(0.0)) {
+        let (name, end) = (source.name(), overlay.end());
         report(
             Level::Warning,
             format_args!(
@@ -162,6 +152,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
             ),
         );
     }
+    viewer.set_overlay(overlay);
     if kind != ProgramKind::Path {
         viewer.read_line_texts(source.open()?)?;
     }

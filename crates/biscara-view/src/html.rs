@@ -9,7 +9,8 @@ use biscara_joints::JointCsvRow;
 use biscara_kinematics::{Kinematics, MeshSpec, Part, Robot, RobotModel, ToolKind};
 use biscara_robot::ReportedProblem;
 
-use crate::{MAX_MESH_TRIANGLES, Scene, StlMesh, ViewError};
+use crate::decimate::Decimator;
+use crate::{MAX_MESH_TRIANGLES, ProgramOverlay, Scene, StlMesh, ToolWork, ViewError};
 
 /// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data,
 /// `/*BISCARA_FRAMES*/` by the frames (base64 of little-endian `f32`s) and `/*BISCARA_THREE*/`
@@ -23,7 +24,8 @@ const THREE: &str = include_str!("../assets/three.min.js");
 /// Numbers per frame: t (s), θ1, θ2, θ3 (degrees), d4 (mm), tool x, y, z (mm), c (degrees).
 const FRAME_WIDTH: usize = 9;
 
-/// Limits on what the page holds, so that an hour-long program stays a few megabytes.
+/// Limits on what the page holds: at most about 51 MB however long the program (1 048 576
+/// frames of 48 bytes as base64, and the bounded path, lines, events and work).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewerOptions {
     /// Title shown at the top of the page.
@@ -55,47 +57,6 @@ impl Default for ViewerOptions {
     }
 }
 
-/// Keeps every `stride`-th item pushed; when full, drops every other kept item and doubles the
-/// stride, so memory stays bounded however many items arrive. The last item is kept aside.
-#[derive(Debug, Clone)]
-struct Decimator<T> {
-    kept: Vec<T>,
-    last: Option<T>,
-    stride: usize,
-    seen: usize,
-    capacity: usize,
-}
-
-impl<T: Clone> Decimator<T> {
-    fn new(capacity: usize) -> Self {
-        Decimator { kept: Vec::new(), last: None, stride: 1, seen: 0, capacity: capacity.max(2) }
-    }
-
-    fn push(&mut self, item: T) {
-        if self.seen.is_multiple_of(self.stride) {
-            if self.kept.len() >= self.capacity {
-                let mut index = 0;
-                self.kept.retain(|_| {
-                    index += 1;
-                    index % 2 == 1
-                });
-                self.stride *= 2;
-            }
-            if self.seen.is_multiple_of(self.stride) {
-                self.kept.push(item.clone());
-            }
-        }
-        self.last = Some(item);
-        self.seen += 1;
-    }
-
-    /// The kept items and the last one (when it was not kept already).
-    fn items(&self) -> impl Iterator<Item = &T> {
-        let last_kept = self.seen > 0 && (self.seen - 1).is_multiple_of(self.stride);
-        self.kept.iter().chain(self.last.iter().filter(move |_| !last_kept))
-    }
-}
-
 /// One robot frame: t, θ1, θ2, θ3, d4, and the tool pose x, y, z, c from forward kinematics
 /// (s, degrees, mm). The page puts each elbow at its base plus `l1` along θ1 or θ2 and draws
 /// the distal links from the elbows to the tool point, so every passive joint follows from FK.
@@ -107,113 +68,6 @@ struct Event {
     t: f64,
     pick: bool,
     at: [f64; 3],
-}
-
-/// One point of the tool's work: time, where, how strongly (0…1), whether a stroke starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct ProcessPoint {
-    t: f64,
-    at: [f64; 3],
-    strength: f64,
-    start: bool,
-}
-
-/// The tool's work (docs/motion.md) as strokes of points at least `spacing` apart (doubled, and
-/// every other inner point dropped, when full), and the times its state changes.
-#[derive(Debug)]
-struct Process {
-    /// The tool whose work this is.
-    tool: Option<ToolKind>,
-    points: Vec<ProcessPoint>,
-    /// The last point kept and the latest sample not kept, of the stroke being drawn.
-    last: Option<ProcessPoint>,
-    pending: Option<ProcessPoint>,
-    spacing: f64,
-    capacity: usize,
-    /// The previous sample's program line.
-    line: Option<usize>,
-    /// (time, strength; −1 when the tool stops working).
-    changes: Vec<(f64, f64)>,
-    max_changes: usize,
-}
-
-impl Process {
-    fn new(capacity: usize, max_changes: usize) -> Process {
-        Process {
-            tool: None,
-            points: Vec::new(),
-            last: None,
-            pending: None,
-            spacing: 0.5,
-            capacity: capacity.max(4),
-            line: None,
-            changes: Vec::new(),
-            max_changes,
-        }
-    }
-
-    fn push(&mut self, t: f64, pose: [f64; 4], line: usize, strength: Option<f64>) {
-        let at = [pose[0], pose[1], pose[2]];
-        // A corner: the previous sample ended a move; keep it.
-        let corner = self.line.replace(line).is_some_and(|previous| previous != line);
-        let was = self.last.map(|point| point.strength);
-        if was != strength && self.changes.len() < self.max_changes {
-            self.changes.push((t, strength.unwrap_or(-1.0)));
-        }
-        let Some(strength) = strength else {
-            self.end_stroke();
-            return;
-        };
-        let point = ProcessPoint { t, at, strength, start: false };
-        match self.last {
-            Some(mut last) if last.strength == strength => {
-                if corner && let Some(pending) = self.pending {
-                    self.keep(pending);
-                    last = pending;
-                }
-                let far = (0..3).map(|k| (at[k] - last.at[k]).powi(2)).sum::<f64>().sqrt()
-                    >= self.spacing;
-                if far {
-                    self.keep(point);
-                } else {
-                    self.pending = Some(point);
-                }
-            }
-            _ => {
-                self.end_stroke();
-                self.keep(ProcessPoint { start: true, ..point });
-            }
-        }
-    }
-
-    /// Keeps the stroke's last sample, so that it ends where the tool stopped.
-    fn end_stroke(&mut self) {
-        if let Some(pending) = self.pending.take() {
-            self.keep(pending);
-        }
-        self.last = None;
-    }
-
-    fn keep(&mut self, point: ProcessPoint) {
-        self.pending = None;
-        self.last = Some(point);
-        self.points.push(point);
-        if self.points.len() > self.capacity {
-            // Every other point inside a stroke goes; a stroke's first and last stay.
-            let points = std::mem::take(&mut self.points);
-            let count = points.len();
-            self.points = points
-                .iter()
-                .enumerate()
-                .filter(|&(index, point)| {
-                    let last_of_stroke = index + 1 == count || points[index + 1].start;
-                    point.start || last_of_stroke || index % 2 == 0
-                })
-                .map(|(_, point)| *point)
-                .collect();
-            self.spacing *= 2.0;
-        }
-    }
 }
 
 /// Gathers a joint trajectory, the programmed path and a scene, and writes the viewer page.
@@ -238,7 +92,9 @@ pub struct Viewer {
     line_text: BTreeMap<usize, String>,
     time_step: Option<f64>,
     previous_t: Option<f64>,
-    process: Process,
+    /// The tool whose work is shown, and the work.
+    tool: Option<ToolKind>,
+    process: ToolWork,
     /// `check`'s problems (messages shortened to 200 characters).
     problems: Vec<ReportedProblem>,
     /// The objects' size (width x, length y, height z; mm), when given.
@@ -257,7 +113,8 @@ impl Viewer {
             frames: Decimator::new(options.max_frames),
             path: Decimator::new(options.max_path_points),
             lines: Decimator::new(options.max_line_changes),
-            process: Process::new(options.max_process_points, options.max_events),
+            tool: None,
+            process: ToolWork::new(options.max_process_points, options.max_events),
             options,
             current_line: None,
             events: Vec::new(),
@@ -360,25 +217,20 @@ impl Viewer {
         self.gripper = gripper;
     }
 
-    /// The tool whose work the page shows (docs/motion.md: a laser, an extruder, a pen, a
-    /// spindle), with its legend; without it (or for the gripper) the page shows no process.
-    pub fn set_tool(&mut self, tool: ToolKind) {
-        self.process.tool = (tool != ToolKind::Gripper).then_some(tool);
+    /// A [`ProgramOverlay`] of `tool`'s work within this page's bounds, sampled up to a second
+    /// past the trajectory's last row: push the program's samples into it, then
+    /// [`Viewer::set_overlay`].
+    pub fn overlay(&self, tool: ToolKind) -> ProgramOverlay {
+        let options = &self.options;
+        ProgramOverlay::new(tool, options.max_process_points, options.max_events, self.duration())
     }
 
-    /// Adds the tool's work at one sample of the program: time (s), pose `[x, y, z, c]` (mm,
-    /// degrees), the program line it belongs to (the last sample of a line is kept: a corner)
-    /// and how strongly the tool works there, 0…1 (`None` while it does not: travel). The page
-    /// draws the work done so far, apart from travel: the burnt trace, the deposited track layer
-    /// by layer, the pen's strokes.
-    pub fn push_process_sample(
-        &mut self,
-        t: f64,
-        pose: [f64; 4],
-        line: usize,
-        strength: Option<f64>,
-    ) {
-        self.process.push(t, pose, line, strength);
+    /// Shows the tool's work of `overlay` (docs/motion.md: for a laser, an extruder, a pen, a
+    /// spindle; the gripper leaves none): the burnt trace, the deposited track layer by layer,
+    /// the pen's strokes, the cuts, apart from travel.
+    pub fn set_overlay(&mut self, overlay: ProgramOverlay) {
+        self.tool = Some(overlay.tool()).filter(|&tool| tool != ToolKind::Gripper);
+        self.process = overlay.work().clone();
     }
 
     /// The program lines the page refers to (those of the kept line changes), ascending.
@@ -504,25 +356,23 @@ impl Viewer {
             );
         }
         json.push_str("],\"tool\":");
-        match &self.process.tool {
+        match &self.tool {
             Some(tool) => {
                 let (kind, label) = (tool.name(), tool.legend());
                 let _ = write!(json, "{{\"kind\":\"{kind}\",\"label\":{}}}", string(label));
             }
             None => json.push_str("null"),
         }
-        let mut points = self.process.points.clone();
-        points.extend(self.process.pending);
         json.push_str(",\"process\":[");
         push_numbers(
             &mut json,
-            points.iter().flat_map(|p| {
+            self.process.points().flat_map(|p| {
                 [p.t, p.at[0], p.at[1], p.at[2], p.strength, f64::from(u8::from(p.start))]
             }),
             4,
         );
         json.push_str("],\"work\":[");
-        push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
+        push_numbers(&mut json, self.process.changes().iter().flat_map(|&(t, s)| [t, s]), 4);
         json.push_str("],\"problems\":[");
         for (index, problem) in self.problems.iter().enumerate() {
             if index > 0 {
@@ -629,20 +479,6 @@ mod tests {
     }
 
     #[test]
-    fn decimation_keeps_a_bounded_uniform_subset_and_the_last_item() {
-        let mut decimator = Decimator::new(8);
-        for item in 0..100 {
-            decimator.push(item);
-        }
-        let items: Vec<i32> = decimator.items().copied().collect();
-        assert!(items.len() <= 9, "{items:?}");
-        assert_eq!(items[0], 0);
-        assert_eq!(*items.last().unwrap(), 99);
-        let step = items[1] - items[0];
-        assert!(items[..items.len() - 1].windows(2).all(|w| w[1] - w[0] == step), "{items:?}");
-    }
-
-    #[test]
     fn the_page_holds_frames_path_events_and_no_raw_angle_brackets_in_data() {
         let mut viewer = Viewer::new(
             &RobotModel::default(),
@@ -687,47 +523,6 @@ mod tests {
         // The only address is the XHTML namespace three.js names (never fetched).
         let addresses = page.replace("http://www.w3.org/1999/xhtml", "");
         assert!(!addresses.contains("http://") && !addresses.contains("https://"), "no network");
-    }
-
-    #[test]
-    fn the_process_is_kept_as_strokes_apart_from_travel_and_stays_bounded() {
-        let mut process = Process::new(100, 10);
-        // Burn along x from 0 to 10 mm (0.1 mm a sample), travel, burn at half power.
-        for step in 0..=100 {
-            process.push(f64::from(step), [f64::from(step) * 0.1, 0.0, 0.0, 0.0], 1, Some(1.0));
-        }
-        process.push(101.0, [20.0, 0.0, 0.0, 0.0], 2, None);
-        for step in 0..=10 {
-            process.push(200.0 + f64::from(step), [0.0, f64::from(step), 0.0, 0.0], 3, Some(0.5));
-        }
-        process.end_stroke();
-        let starts: Vec<f64> = process.points.iter().filter(|p| p.start).map(|p| p.t).collect();
-        assert_eq!(starts, [0.0, 200.0], "two strokes");
-        // Points 0.5 mm apart, each stroke ending where the tool stopped.
-        let first: Vec<&ProcessPoint> = process.points.iter().filter(|p| p.t < 150.0).collect();
-        assert_eq!(first.len(), 21);
-        assert_eq!(first.last().map(|p| p.at[0]), Some(10.0));
-        assert!(process.points.iter().all(|p| p.at[0] <= 10.0), "travel is not work");
-        assert_eq!(process.changes, [(0.0, 1.0), (101.0, -1.0), (200.0, 0.5)]);
-        // A corner is kept: the last sample of a line, however close to the last point.
-        let mut corner = Process::new(100, 10);
-        for step in 0..=34 {
-            let x = (f64::from(step) * 0.3).min(10.0);
-            corner.push(f64::from(step), [x, 0.0, 0.0, 0.0], 1, Some(1.0));
-        }
-        for step in 1..=10 {
-            corner.push(40.0 + f64::from(step), [10.0, f64::from(step), 0.0, 0.0], 2, Some(1.0));
-        }
-        assert!(corner.points.iter().any(|p| p.at == [10.0, 0.0, 0.0]), "{:?}", corner.points);
-        // A long job: thinned to the capacity, both ends of every stroke kept.
-        for step in 0..100_000 {
-            let t = 1000.0 + f64::from(step);
-            let strength = if step % 5000 < 4000 { Some(1.0) } else { None };
-            process.push(t, [f64::from(step) * 0.3, 5.0, 0.0, 0.0], 4, strength);
-        }
-        assert!(process.points.len() <= 101, "{}", process.points.len());
-        assert!(process.points.iter().any(|p| p.start && p.t > 90_000.0));
-        assert!(process.changes.len() <= 10);
     }
 
     #[test]
