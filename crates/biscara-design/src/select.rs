@@ -44,8 +44,8 @@ impl Objective {
         Some(if self == Objective::Time { -value } else { value })
     }
 
-    /// The objective as `--objective` spells it (the CSV column it reads; `rect` is
-    /// `rect_w_mm × rect_h_mm`).
+    /// The objective as `--objective` spells it. The CSV columns it reads: `rect_w_mm ×
+    /// rect_h_mm` (rect), `gci`, `area_mm2` (area), `lci_min` (lci-min), `time_s` (time).
     pub fn name(self) -> &'static str {
         match self {
             Objective::Rectangle => "rect",
