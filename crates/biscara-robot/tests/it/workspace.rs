@@ -1,4 +1,4 @@
-//! The workspace grid, its area and its largest rectangle (SPEC §8.2).
+//! The workspace grid, its area and its largest rectangle (docs/virtual-robot.md).
 
 use biscara_kinematics::{Kinematics, Robot};
 use biscara_robot::Workspace;
