@@ -7,6 +7,7 @@
 use std::sync::Once;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -226,6 +227,9 @@ fn top_view_extent(view: &TopView<'_>) -> ((f64, f64), (f64, f64)) {
     ((min[0] - margin, max[0] + margin), (min[1] - margin, max[1] + margin))
 }
 
+/// The top view's chart: x and y in millimetres.
+type TopChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
 fn top_view_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     view: &TopView<'_>,
@@ -251,64 +255,106 @@ fn top_view_on<DB: DrawingBackend>(
         .draw()
         .map_err(e)?;
     if let Some(workspace) = view.workspace {
-        let half = 0.5 * workspace.step();
-        let (_, rows) = workspace.size();
-        let mut cells = Vec::new();
-        for j in 0..rows {
-            for (first, last) in workspace.runs(j) {
-                let [x0, y] = workspace.point(first, j);
-                let [x1, _] = workspace.point(last, j);
-                cells.push(Rectangle::new(
-                    [(x0 - half, y - half), (x1 + half, y + half)],
-                    WORKSPACE_FILL.filled(),
-                ));
-            }
-        }
-        chart
-            .draw_series(cells)
-            .map_err(e)?
-            .label(format!("reachable ({:.0} mm²)", workspace.area_mm2()))
-            .legend(|(x, y)| {
-                Rectangle::new([(x, y - 6), (x + 16, y + 6)], WORKSPACE_FILL.filled())
-            });
+        workspace_layer(&mut chart, workspace)?;
     }
     if let Some(scene) = view.scene {
-        let boxes = scene.boxes.iter().map(|b| {
-            Rectangle::new(
-                [(b.min[0], b.min[1]), (b.max[0], b.max[1])],
-                SCENE_FILL.mix(0.7).filled(),
-            )
-        });
-        chart.draw_series(boxes).map_err(e)?;
-        let names = scene.boxes.iter().map(|b| {
-            Text::new(b.name.clone(), (b.min[0], b.max[1]), (FAMILY, 13).into_font().color(&BLACK))
-        });
-        chart.draw_series(names).map_err(e)?;
+        scene_layer(&mut chart, scene)?;
     }
-    if let Some(r) = view.rectangle {
-        let corners = [
-            (r.min[0], r.min[1]),
-            (r.max[0], r.min[1]),
-            (r.max[0], r.max[1]),
-            (r.min[0], r.max[1]),
-            (r.min[0], r.min[1]),
-        ];
-        chart
-            .draw_series(LineSeries::new(corners, RECTANGLE_COLOUR.stroke_width(2)))
-            .map_err(e)?
-            .label(format!(
-                "largest rectangle {:.0} x {:.0} mm, x {:.0}..{:.0}, y {:.0}..{:.0}",
-                r.width(),
-                r.height(),
-                r.min[0],
-                r.max[0],
-                r.min[1],
-                r.max[1]
-            ))
-            .legend(|(x, y)| {
-                PathElement::new([(x, y), (x + 16, y)], RECTANGLE_COLOUR.stroke_width(2))
-            });
+    if let Some(rectangle) = view.rectangle {
+        rectangle_layer(&mut chart, rectangle)?;
     }
+    path_and_work_layers(&mut chart, view)?;
+    bodies_layer(&mut chart, view.bodies)?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .label_font((FAMILY, 13))
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
+/// The reachable region, filled, run by run of each grid row.
+fn workspace_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    workspace: &Workspace,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let half = 0.5 * workspace.step();
+    let (_, rows) = workspace.size();
+    let mut cells = Vec::new();
+    for j in 0..rows {
+        for (first, last) in workspace.runs(j) {
+            let [x0, y] = workspace.point(first, j);
+            let [x1, _] = workspace.point(last, j);
+            cells.push(Rectangle::new(
+                [(x0 - half, y - half), (x1 + half, y + half)],
+                WORKSPACE_FILL.filled(),
+            ));
+        }
+    }
+    chart
+        .draw_series(cells)
+        .map_err(e)?
+        .label(format!("reachable ({:.0} mm²)", workspace.area_mm2()))
+        .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 16, y + 6)], WORKSPACE_FILL.filled()));
+    Ok(())
+}
+
+/// The scene's boxes as footprints, with their names.
+fn scene_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    scene: &Scene,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let boxes = scene.boxes.iter().map(|b| {
+        Rectangle::new([(b.min[0], b.min[1]), (b.max[0], b.max[1])], SCENE_FILL.mix(0.7).filled())
+    });
+    chart.draw_series(boxes).map_err(e)?;
+    let names = scene.boxes.iter().map(|b| {
+        Text::new(b.name.clone(), (b.min[0], b.max[1]), (FAMILY, 13).into_font().color(&BLACK))
+    });
+    chart.draw_series(names).map_err(e)?;
+    Ok(())
+}
+
+/// The largest rectangle, outlined, its size and place in the legend.
+fn rectangle_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    r: &WorkspaceRectangle,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let corners = [
+        (r.min[0], r.min[1]),
+        (r.max[0], r.min[1]),
+        (r.max[0], r.max[1]),
+        (r.min[0], r.max[1]),
+        (r.min[0], r.min[1]),
+    ];
+    chart
+        .draw_series(LineSeries::new(corners, RECTANGLE_COLOUR.stroke_width(2)))
+        .map_err(e)?
+        .label(format!(
+            "largest rectangle {:.0} x {:.0} mm, x {:.0}..{:.0}, y {:.0}..{:.0}",
+            r.width(),
+            r.height(),
+            r.min[0],
+            r.max[0],
+            r.min[1],
+            r.max[1]
+        ))
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], RECTANGLE_COLOUR.stroke_width(2)));
+    Ok(())
+}
+
+/// The programmed path and, over it, the tool's work.
+fn path_and_work_layers<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    view: &TopView<'_>,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
     let work = view.process.filter(|work| !work.is_empty());
     if !view.path.is_empty() {
         // With the tool's work drawn over it, the path shows the travel: thin.
@@ -340,7 +386,16 @@ fn top_view_on<DB: DrawingBackend>(
             PathElement::new([(x, y), (x + 16, y)], process_colour(1.0).stroke_width(3))
         });
     }
-    for (index, (t, body)) in view.bodies.iter().enumerate() {
+    Ok(())
+}
+
+/// The robot at each wanted time: links, joints, base joints, the gripper with a tick for c.
+fn bodies_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    bodies: &[(f64, Body)],
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    for (index, (t, body)) in bodies.iter().enumerate() {
         let colour = ROBOT_COLOURS[index % ROBOT_COLOURS.len()];
         let width_px = 5;
         for link in body.links() {
@@ -381,14 +436,6 @@ fn top_view_on<DB: DrawingBackend>(
             .label(format!("robot at t = {t} s"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(4)));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .label_font((FAMILY, 13))
-        .draw()
-        .map_err(e)?;
     Ok(())
 }
 
