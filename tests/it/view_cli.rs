@@ -224,7 +224,7 @@ fn view_samples_the_program_as_the_trajectory_was_made() {
 fn page_events(page: &str) -> Vec<f64> {
     let rest = page.split("\"events\":[").nth(1).expect("events");
     let list = &rest[..rest.find("]]").map_or(0, |end| end + 1)];
-    let numbers = list.split(|c| matches!(c, ',' | '[' | ']')).filter(|v| !v.is_empty());
+    let numbers = list.split([',', '[', ']']).filter(|v| !v.is_empty());
     numbers.map(|v| v.parse().expect("number")).collect()
 }
 
