@@ -297,7 +297,7 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
     let run = biscara(&dir, &["view", "out/traj.csv", "--check", "report.json"]);
     run.success();
     assert!(
-        run.stdout.contains(r#""problems":[[3.2500,"scene_collision","the tool hits pallet"]]"#),
+        run.stdout.contains(r#""problems":[[3.25,"scene_collision","the tool hits pallet"]]"#),
         "problems"
     );
     // The demo's own report is clean: no problem to mark.

@@ -1,13 +1,13 @@
 //! The self-contained HTML viewer (`biscara view`, docs/virtual-robot.md).
 
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::io::BufRead;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
 use biscara_kinematics::{Kinematics, MeshSpec, Part, Robot, RobotModel, ToolKind};
 use biscara_robot::ReportedProblem;
+use biscara_text::round_to;
 
 use crate::decimate::Decimator;
 use crate::{MAX_MESH_TRIANGLES, ProgramOverlay, Scene, StlMesh, ToolWork, ViewError};
@@ -294,135 +294,164 @@ impl Viewer {
         Ok(())
     }
 
-    /// The page's data as one JSON object (numbers with fixed decimals, `<` escaped so the text
-    /// cannot close the script element).
+    /// The page's data as one JSON object (numbers with fixed decimals, `<` and `>` escaped so
+    /// the text cannot close the script element).
     fn data_json(&self) -> String {
-        let mut json = String::with_capacity(self.frames.kept.len() * 100 + 4096);
         let robot = &self.robot;
         let bases = self.model.bases();
-        let _ = write!(
-            json,
-            "{{\"title\":{},\"robot\":{{\"name\":{},\"l1\":{},\"l2\":{},\"bases\":[[{},{}],[{},{}]],\
-             \"lp\":{},\"link_width\":{},\"link_height\":{},\"gripper_radius\":{},\
-             \"gripper_length\":{},\"limits\":{}}},",
-            string(&self.options.title),
-            string(&robot.name),
-            robot.links.l1,
-            robot.links.l2,
-            bases[0].x,
-            bases[0].y,
-            bases[1].x,
-            bases[1].y,
-            robot.lp,
-            robot.geometry.link_width,
-            robot.geometry.link_height,
-            robot.geometry.gripper_radius,
-            robot.geometry.gripper_length,
-            serde_json::to_string(&robot.joint_limits.to_array()).unwrap_or_default(),
-        );
-        let _ = write!(
-            json,
-            "\"frames\":{{\"count\":{},\"width\":{FRAME_WIDTH},\"stride\":{},\"rows\":{},\
-             \"dt\":{}}},",
-            self.frames.items().count(),
-            self.frames.stride,
-            self.frames.seen,
-            self.time_step.unwrap_or(0.0)
-        );
-        json.push_str("\"path\":[");
-        push_numbers(&mut json, self.path.items().flat_map(|p| [p[0], p[1], p[2]]), 2);
-        json.push_str("],\"lines\":[");
-        push_numbers(&mut json, self.lines.items().flat_map(|&(t, line)| [t, line as f64]), 4);
-        json.push_str("],\"line_text\":{");
-        for (index, (line, text)) in self.line_text.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(json, "\"{line}\":{}", string(text));
-        }
-        json.push_str("},\"events\":[");
-        for (index, event) in self.events.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(
-                json,
-                "[{:.4},{},{:.2},{:.2},{:.2}]",
-                event.t,
-                u8::from(event.pick),
-                event.at[0],
-                event.at[1],
-                event.at[2]
-            );
-        }
-        json.push_str("],\"tool\":");
-        match &self.tool {
-            Some(tool) => {
-                let (kind, label) = (tool.name(), tool.legend());
-                let _ = write!(json, "{{\"kind\":\"{kind}\",\"label\":{}}}", string(label));
-            }
-            None => json.push_str("null"),
-        }
-        json.push_str(",\"process\":[");
-        push_numbers(
-            &mut json,
-            self.process.points().flat_map(|p| {
+        let limits = robot.joint_limits.to_array().map(|limit| limit.map(Num::<15>));
+        let flat = |values: &mut dyn Iterator<Item = f64>| values.map(Num::<4>).collect();
+        let data = PageData {
+            title: &self.options.title,
+            robot: RobotData {
+                name: &robot.name,
+                l1: Num(robot.links.l1),
+                l2: Num(robot.links.l2),
+                bases: bases.map(|base| [Num(base.x), Num(base.y)]),
+                lp: Num(robot.lp),
+                link_width: Num(robot.geometry.link_width),
+                link_height: Num(robot.geometry.link_height),
+                gripper_radius: Num(robot.geometry.gripper_radius),
+                gripper_length: Num(robot.geometry.gripper_length),
+                limits,
+            },
+            frames: FramesData {
+                count: self.frames.items().count(),
+                width: FRAME_WIDTH,
+                stride: self.frames.stride,
+                rows: self.frames.seen,
+                dt: Num(self.time_step.unwrap_or(0.0)),
+            },
+            path: self.path.items().flat_map(|p| [p[0], p[1], p[2]]).map(Num::<2>).collect(),
+            lines: flat(&mut self.lines.items().flat_map(|&(t, line)| [t, line as f64])),
+            line_text: &self.line_text,
+            events: self
+                .events
+                .iter()
+                .map(|e| (Num(e.t), u8::from(e.pick), e.at.map(Num::<2>)))
+                .map(|(t, pick, [x, y, z])| (t, pick, x, y, z))
+                .collect(),
+            tool: self.tool.map(|tool| ToolData { kind: tool.name(), label: tool.legend() }),
+            process: flat(&mut self.process.points().flat_map(|p| {
                 [p.t, p.at[0], p.at[1], p.at[2], p.strength, f64::from(u8::from(p.start))]
-            }),
-            4,
-        );
-        json.push_str("],\"work\":[");
-        push_numbers(&mut json, self.process.changes().iter().flat_map(|&(t, s)| [t, s]), 4);
-        json.push_str("],\"problems\":[");
-        for (index, problem) in self.problems.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let (t, kind) = (problem.t, problem.kind.name());
-            let _ = write!(json, "[{t:.4},\"{kind}\",{}]", string(&problem.message));
-        }
-        json.push_str("],\"object\":");
-        match self.object {
-            Some([w, l, h]) => {
-                let _ = write!(json, "[{w},{l},{h}]");
-            }
-            None => json.push_str("null"),
-        }
-        json.push_str(",\"meshes\":[");
-        for (index, (part, corners)) in self.meshes.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let bytes: Vec<u8> = corners.iter().flat_map(|value| value.to_le_bytes()).collect();
-            let mut text = Vec::with_capacity(bytes.len() / 3 * 4 + 4);
-            base64(&bytes, &mut text);
-            let _ = write!(
-                json,
-                "{{\"part\":\"{part}\",\"triangles\":{},\"data\":\"{}\"}}",
-                corners.len() / 9,
-                String::from_utf8_lossy(&text)
-            );
-        }
-        json.push_str("],\"scene\":[");
-        for (index, scene_box) in self.scene.boxes.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(
-                json,
-                "{{\"name\":{},\"min\":[{},{},{}],\"max\":[{},{},{}]}}",
-                string(&scene_box.name),
-                scene_box.min[0],
-                scene_box.min[1],
-                scene_box.min[2],
-                scene_box.max[0],
-                scene_box.max[1],
-                scene_box.max[2]
-            );
-        }
-        json.push_str("]}");
-        json
+            })),
+            work: flat(&mut self.process.changes().iter().flat_map(|&(t, s)| [t, s])),
+            problems: self
+                .problems
+                .iter()
+                .map(|problem| (Num(problem.t), problem.kind.name(), problem.message.as_str()))
+                .collect(),
+            object: self.object.map(|size| size.map(Num::<15>)),
+            meshes: self
+                .meshes
+                .iter()
+                .map(|(part, corners)| {
+                    let bytes: Vec<u8> = corners.iter().flat_map(|v| v.to_le_bytes()).collect();
+                    let mut text = Vec::with_capacity(bytes.len() / 3 * 4 + 4);
+                    base64(&bytes, &mut text);
+                    let data = String::from_utf8_lossy(&text).into_owned();
+                    MeshData { part: part.name(), triangles: corners.len() / 9, data }
+                })
+                .collect(),
+            scene: self
+                .scene
+                .boxes
+                .iter()
+                .map(|b| SceneData { name: &b.name, min: b.min.map(Num), max: b.max.map(Num) })
+                .collect(),
+        };
+        let json = serde_json::to_string(&data).unwrap_or_default();
+        json.replace('<', "\\u003c").replace('>', "\\u003e")
     }
+}
+
+/// A number of the page: rounded to `D` decimals, written without trailing zeros (an integer
+/// without a decimal point) and never as `-0`. `Num<15>` keeps a robot file's numbers as given.
+#[derive(Debug, Clone, Copy)]
+struct Num<const D: usize>(f64);
+
+impl<const D: usize> serde::Serialize for Num<D> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let value = if D >= 15 { self.0 + 0.0 } else { round_to(self.0, D) };
+        if value == value.trunc() && value.abs() < 1e15 {
+            serializer.serialize_i64(value as i64)
+        } else {
+            serializer.serialize_f64(value)
+        }
+    }
+}
+
+/// The page's data (`D` in viewer.html).
+#[derive(serde::Serialize)]
+struct PageData<'a> {
+    title: &'a str,
+    robot: RobotData<'a>,
+    frames: FramesData,
+    /// x, y, z of each kept point, in a row.
+    path: Vec<Num<2>>,
+    /// t, line of each kept line change, in a row.
+    lines: Vec<Num<4>>,
+    line_text: &'a BTreeMap<usize, String>,
+    /// t, pick (1) or place (0), x, y, z.
+    events: Vec<(Num<4>, u8, Num<2>, Num<2>, Num<2>)>,
+    tool: Option<ToolData>,
+    /// t, x, y, z, strength, start of each point of the tool's work, in a row.
+    process: Vec<Num<4>>,
+    /// t, strength (−1: stops) of each change of the tool's work, in a row.
+    work: Vec<Num<4>>,
+    /// t, kind, message of each of `check`'s problems.
+    problems: Vec<(Num<4>, &'static str, &'a str)>,
+    object: Option<[Num<15>; 3]>,
+    meshes: Vec<MeshData>,
+    scene: Vec<SceneData<'a>>,
+}
+
+/// The robot's sizes the page draws (mm) and its joint limits (degrees, mm).
+#[derive(serde::Serialize)]
+struct RobotData<'a> {
+    name: &'a str,
+    l1: Num<15>,
+    l2: Num<15>,
+    bases: [[Num<15>; 2]; 2],
+    lp: Num<15>,
+    link_width: Num<15>,
+    link_height: Num<15>,
+    gripper_radius: Num<15>,
+    gripper_length: Num<15>,
+    limits: [[Num<15>; 2]; 4],
+}
+
+/// How the frames (base64 after the data) are laid out.
+#[derive(serde::Serialize)]
+struct FramesData {
+    count: usize,
+    width: usize,
+    stride: usize,
+    rows: usize,
+    dt: Num<15>,
+}
+
+/// The tool whose work is shown.
+#[derive(serde::Serialize)]
+struct ToolData {
+    kind: &'static str,
+    label: &'static str,
+}
+
+/// One part's mesh: its triangles' corners as base64 of little-endian `f32`s.
+#[derive(serde::Serialize)]
+struct MeshData {
+    part: &'static str,
+    triangles: usize,
+    data: String,
+}
+
+/// One box of the scene (mm).
+#[derive(serde::Serialize)]
+struct SceneData<'a> {
+    name: &'a str,
+    min: [Num<15>; 3],
+    max: [Num<15>; 3],
 }
 
 /// Appends the base64 text of `bytes` (standard alphabet, `=` padding) to `text`.
@@ -437,28 +466,6 @@ fn base64(bytes: &[u8], text: &mut Vec<u8>) {
             } else {
                 text.push(b'=');
             }
-        }
-    }
-}
-
-/// A JSON string that is also safe inside a `<script>` element.
-fn string(text: &str) -> String {
-    serde_json::to_string(text).unwrap_or_default().replace('<', "\\u003c").replace('>', "\\u003e")
-}
-
-/// Appends numbers separated by commas with `decimals` decimals (no negative zero).
-fn push_numbers(json: &mut String, values: impl Iterator<Item = f64>, decimals: usize) {
-    let mut first = true;
-    for value in values {
-        if !first {
-            json.push(',');
-        }
-        first = false;
-        let text = format!("{value:.decimals$}");
-        let text = text.trim_end_matches('0').trim_end_matches('.');
-        match text {
-            "-0" | "" | "-" => json.push('0'),
-            text => json.push_str(text),
         }
     }
 }
@@ -514,10 +521,10 @@ mod tests {
         assert_eq!(frames.len(), (5 * 9 * 4usize).div_ceil(3) * 4, "base64 of 45 f32");
         // The first frame's t = 0 and θ1 = 0: eight zero bytes, "AAAAAAAAAAA".
         assert!(frames.starts_with("AAAAAAAAAAA"), "{}", &frames[..20]);
-        assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
+        assert!(page.contains("\"events\":[[1,1,0,400,50]]"));
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
         assert!(page.contains(
-            "\"problems\":[[1.5000,\"scene_collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
+            "\"problems\":[[1.5,\"scene_collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
         ));
         assert_eq!(page.matches("</script>").count(), 4, "the scene name must not end a script");
         // The only address is the XHTML namespace three.js names (never fetched).
