@@ -1,11 +1,12 @@
 //! The report of `check` as the user reads it: JSON (README.md) and text.
 
 use biscara_kinematics::Joint;
-use biscara_text::{fixed, round_to, strip_position};
+use biscara_text::{fixed, round_to};
 use serde_json::{Value, json};
 
 use std::io::Write;
 
+use crate::scene::read_json;
 use crate::{Peak, Problem, ProblemKind, Rectangle, Report, VirtualRobotError, Workspace};
 
 /// A number rounded to 6 decimals, negative zero cleaned, for JSON.
@@ -73,19 +74,13 @@ impl Report {
     /// start time, kind and message; the other keys are not read. Fails with the line, column
     /// and key of what is not such a report.
     pub fn read_problems(json: &[u8]) -> Result<Vec<ReportedProblem>, VirtualRobotError> {
-        let error = |key: String, inner: serde_json::Error| VirtualRobotError::CheckReport {
-            line: inner.line().max(1),
-            column: inner.column().max(1),
-            key,
-            message: strip_position(&inner.to_string()),
-        };
-        let mut deserializer = serde_json::Deserializer::from_slice(json);
-        let report: ReportedProblems = serde_path_to_error::deserialize(&mut deserializer)
-            .map_err(|err| {
-                let path = err.path().to_string();
-                error(path, err.into_inner())
+        let report: ReportedProblems =
+            read_json(json).map_err(|error| VirtualRobotError::CheckReport {
+                line: error.line,
+                column: error.column,
+                key: error.key,
+                message: error.message,
             })?;
-        deserializer.end().map_err(|inner| error(".".to_owned(), inner))?;
         Ok(report.problems)
     }
 
