@@ -52,7 +52,7 @@ impl Default for ViewerOptions {
             max_path_points: 20_000,
             max_line_changes: 20_000,
             max_events: 5_000,
-            max_process_points: 40_000,
+            max_process_points: crate::MAX_WORK_POINTS,
         }
     }
 }
