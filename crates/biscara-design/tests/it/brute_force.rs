@@ -1,5 +1,5 @@
 //! Area, largest rectangle and GCI of random designs, against a brute-force scalar evaluation
-//! written here: its own grid, the scalar IK test of each point (`biscara_robot::reachable`, with
+//! written here: its own grid, the scalar IK test of each point (`Kinematics::reachable`, with
 //! libm's atan2), every rectangle of the grid tried, and cond(J) from nalgebra's SVD.
 
 use biscara_design::{Design, DesignStatus, Evaluator};
