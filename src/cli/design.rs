@@ -232,7 +232,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     })?;
     let outcome = outcome.expect("the sweep ran");
     progress.finish_and_clear();
-    summarise(objective, &outcome);
+    report(Level::Note, &outcome);
     if let Some(path) = &args.pareto {
         write_output(Some(path), |out| {
             writeln!(out, "{}", header(columns))?;
@@ -243,7 +243,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
         })?;
     }
     if let Some(path) = &args.atlas {
-        write_atlas(path, objective, &outcome)?;
+        write_atlas(path, &outcome)?;
     }
     if let Some(path) = &args.best {
         let Some(chosen) = outcome.best else {
@@ -261,7 +261,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
 }
 
 /// Draws the atlas of `outcome`'s cells, the best design ringed, to `path` (SVG or PNG).
-fn write_atlas(path: &Path, objective: Objective, outcome: &SweepOutcome) -> anyhow::Result<()> {
+fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
     let cells: Vec<AtlasCell> = outcome
         .cells
         .iter()
@@ -272,39 +272,13 @@ fn write_atlas(path: &Path, objective: Objective, outcome: &SweepOutcome) -> any
             value: c.value,
         })
         .collect();
-    let index = objective.description();
+    let index = outcome.objective.description();
     let title = format!("Design atlas: {index} over l1 × l2, per base distance");
     let chosen = outcome.best.map(|e| [e.design.l1, e.design.l2, e.design.base]);
     let atlas = Atlas { title: &title, index, cells: &cells, chosen };
     let bytes = draw_atlas(&atlas, format_of(Some(path)))
         .with_context(|| format!("drawing {}", display_path(path)))?;
     write_output(Some(path), |out| Ok(out.write_all(&bytes)?))
-}
-
-fn summarise(objective: Objective, outcome: &SweepOutcome) {
-    let count = outcome.count;
-    let Some(best) = outcome.best else {
-        report(Level::Note, format!("{count} designs evaluated; none has a rectangle"));
-        return;
-    };
-    let d = best.design;
-    let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
-    report(
-        Level::Note,
-        format!(
-            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
-             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}{}); Pareto front of \
-             rectangle area and GCI: {} designs",
-            objective.name(),
-            d.l1,
-            d.l2,
-            d.base,
-            best.gci,
-            best.lci_min,
-            best.time_s.map(|t| format!(", programs {t:.3} s")).unwrap_or_default(),
-            outcome.pareto.len()
-        ),
-    );
 }
 
 fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
@@ -331,5 +305,5 @@ fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
     if outcome.cells.is_empty() {
         anyhow::bail!("{}: no designs to draw", display_path(&args.input));
     }
-    write_atlas(&args.output, objective, &outcome)
+    write_atlas(&args.output, &outcome)
 }

@@ -179,11 +179,14 @@ pub struct Collector {
     count: u64,
 }
 
-/// What a sweep found ([`Collector::finish`], [`crate::Sweep::run`]).
+/// What a sweep found ([`Collector::finish`], [`crate::Sweep::run`]); its `Display` is the
+/// one-line summary `design` notes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepOutcome {
     /// How many designs were evaluated (read).
     pub count: u64,
+    /// What the best design maximises.
+    pub objective: Objective,
     /// The best eligible design by the objective.
     pub best: Option<Evaluation>,
     /// The Pareto front ([`ParetoFront::designs`]).
@@ -219,10 +222,37 @@ impl Collector {
     pub fn finish(self) -> SweepOutcome {
         SweepOutcome {
             count: self.count,
+            objective: self.best.objective,
             best: self.best.get().copied(),
             pareto: self.pareto.designs(),
             cells: self.cells.unwrap_or_default(),
         }
+    }
+}
+
+impl std::fmt::Display for SweepOutcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = self.count;
+        let Some(best) = self.best else {
+            return write!(f, "{count} designs evaluated; none has a rectangle");
+        };
+        let d = best.design;
+        let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
+        write!(
+            f,
+            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
+             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}",
+            self.objective.name(),
+            d.l1,
+            d.l2,
+            d.base,
+            best.gci,
+            best.lci_min,
+        )?;
+        if let Some(time) = best.time_s {
+            write!(f, ", programs {time:.3} s")?;
+        }
+        write!(f, "); Pareto front of rectangle area and GCI: {} designs", self.pareto.len())
     }
 }
 
@@ -300,8 +330,16 @@ mod tests {
         assert_eq!(front, [2, 0]);
         let values: Vec<Option<f64>> = outcome.cells.iter().map(|c| c.value).collect();
         assert_eq!(values, [Some(0.5), None, Some(0.4)], "a refused design has no value");
+        assert_eq!(
+            outcome.to_string(),
+            "3 designs evaluated; best by gci: l1 = 1 mm, l2 = 1 mm, base = 1 mm (rectangle \
+             10 × 10 mm, GCI 0.500, worst LCI 0.250, programs 0.000 s); Pareto front of \
+             rectangle area and GCI: 2 designs"
+        );
         let without = Collector::new(Objective::Gci, false);
-        assert!(without.finish().cells.is_empty());
+        let outcome = without.finish();
+        assert!(outcome.cells.is_empty());
+        assert_eq!(outcome.to_string(), "0 designs evaluated; none has a rectangle");
     }
 
     #[test]
