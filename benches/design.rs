@@ -9,9 +9,9 @@
 
 use std::hint::black_box;
 
-use biscara::design::{DesignGrid, Evaluator, ParamRange, Shard, Sweep};
+use biscara::design::{DesignGrid, Evaluator, ParamRange, Shard, Sweep, SweepOptions};
 use biscara::kinematics::{Kinematics, Robot};
-use biscara::robot::{Workspace, reachable};
+use biscara::robot::Workspace;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 /// The default robot's reachable grid at `step`, one scalar IK per point after a quick test of
@@ -27,7 +27,7 @@ fn scalar_grid(model: &Kinematics, step: f64) -> usize {
         for i in i0..=i1 {
             let (x, y) = (i as f64 * step, j as f64 * step);
             let far = |b: biscara::kinematics::na::Point2<f64>| (x - b.x).hypot(y - b.y) > reach;
-            count += usize::from(!far(b1) && !far(b2) && reachable(model, x, y));
+            count += usize::from(!far(b1) && !far(b2) && model.reachable(x, y));
         }
     }
     count
@@ -78,10 +78,13 @@ fn design(c: &mut Criterion) {
                 b.iter(|| {
                     let mut sum = 0.0;
                     sweep
-                        .run(threads, |e| -> Result<(), biscara::design::DesignError> {
-                            sum += e.gci;
-                            Ok(())
-                        })
+                        .run(
+                            &SweepOptions { threads, ..SweepOptions::default() },
+                            |e| -> Result<(), biscara::design::DesignError> {
+                                sum += e.gci;
+                                Ok(())
+                            },
+                        )
                         .expect("sweep");
                     sum
                 });

@@ -1,5 +1,5 @@
 //! IK and FK throughput over 1 M random reachable poses, against a hand-written scalar loop of
-//! the same formulas (SPEC §10: IK within 1.5× of it).
+//! the same formulas (docs/performance.md: IK within 1.5× of it).
 //!
 //! Run: `cargo bench --bench kinematics`. Figures are ns per pose (criterion reports the time of
 //! one pass over 1 M poses; divide by 1e6, or read the "thrpt" line in Melem/s).
@@ -71,7 +71,7 @@ fn reachable_poses(model: &Kinematics) -> Vec<Pose> {
     poses
 }
 
-/// The reference: SPEC §1.4's formulas as one plain scalar function, no types, no checks
+/// The reference: docs/kinematics.md's inverse formulas as one plain scalar function, no types, no checks
 /// beyond the reach test, with the same `atan2` (libm's) as the library. Default robot, working
 /// mode "+-".
 #[inline(never)]

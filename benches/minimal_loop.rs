@@ -1,4 +1,4 @@
-//! The minimal end-to-end loop of SPEC §10, the reference `joints` is measured against: G-code
+//! The minimal end-to-end loop (docs/performance.md), the reference `joints` is measured against: G-code
 //! in, joint CSV out, doing the same work with no checks — read G0/G1/G2/G3 with X Y Z C I J F
 //! (absolute millimetres), time every move with a trapezoid at the default robot's limits (exact
 //! stop, duration rounded up to whole 1 ms steps), solve IK with the branch-free closed form of

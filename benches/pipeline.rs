@@ -1,4 +1,4 @@
-//! The `joints` pipeline stage by stage, on one core (SPEC §10: 5 M samples/s end to end):
+//! The `joints` pipeline stage by stage, on one core (docs/performance.md: 5 M samples/s end to end):
 //! interpreting G-code, interpolating, IK (joint trajectory) and formatting the CSV, each timed
 //! on its own over the same generated program, and the whole chain into `io::sink()`.
 //!

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# End-to-end figures of SPEC §10, median of 5 runs each, on deterministic generated programs:
+# End-to-end figures (docs/performance.md), median of 5 runs each, on deterministic generated programs:
 #   mixed      1,000,000 lines of G0/G1/G2/G3 with X Y Z C (scripts/gen-program.sh mixed)
 #   engraving    200,000 lines of short G1 strokes, laser-engraving style
 # For `interpret`, `interpolate` and `joints` (G-code in, CSV out to /dev/null, one core): wall
-# time, MB/s and lines/s of G-code, samples/s, and peak resident memory (GNU time); then SPEC §10's
+# time, MB/s and lines/s of G-code, samples/s, and peak resident memory (GNU time); then the
 # minimal loop (benches/minimal_loop.rs: the same work with no checks) and `joints` as a fraction
 # of its speed (target ≥ 0.55); and, where LinuxCNC's rs274 is installed, `interpret` against it
 # on the same file (target ≥ 6×).
@@ -51,7 +51,7 @@ for spec in "mixed 1000000" "engraving 200000"; do
       printf "%-10s %-12s %9.2f %10.1f %12.0f %14s %10.1f\n", p, c, s, b / s / 1e6, l / s, rate, k / 1024
     }'
     if [ "$command" = interpret ] && [ -x /usr/bin/rs274 ]; then
-      # SPEC §10: interpret against LinuxCNC's standalone interpreter on the same file.
+      # interpret against LinuxCNC's standalone interpreter on the same file.
       read -r theirs _ <<< "$(measure /usr/bin/rs274 -g "$program" "$work/rs274.out")"
       echo "  interpret at $(awk -v o="$seconds" -v r="$theirs" 'BEGIN { if (o > 0) printf "%.1f", r / o; else printf "?" }')x rs274's speed (rs274: $theirs s)"
     fi

@@ -88,7 +88,7 @@ impl ProgramArgs {
     /// The program as the pipeline's source, and its kind.
     pub(crate) fn open(&self) -> anyhow::Result<(FileSource, ProgramKind)> {
         let source = FileSource::new(&self.program);
-        let kind = source.kind(self.from)?;
+        let kind = source.kind(self.from.map(ProgramKind::from))?;
         Ok((source, kind))
     }
 }

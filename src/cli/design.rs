@@ -1,12 +1,12 @@
 //! `biscara design`: sweeps link lengths and base distance, `design merge` joins shards,
 //! `design atlas` draws a sweep.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use biscara::design::{
-    Best, DesignGrid, Evaluation, Evaluator, Objective, ParamRange, ParetoFront, ProgramTimer,
-    RowReader, Shard, Sweep, Task, eligible, header, merge, write_row,
+    Collector, DesignGrid, Evaluator, Objective, ParamRange, ProgramTimer, RowReader, Shard, Sweep,
+    SweepOptions, SweepOutcome, Task, header, merge, write_row,
 };
 use biscara::kinematics::RobotModel;
 use biscara::view::{Atlas, AtlasCell, draw_atlas};
@@ -171,16 +171,6 @@ impl From<ObjectiveArg> for Objective {
     }
 }
 
-fn index_name(objective: Objective) -> &'static str {
-    match objective {
-        Objective::Rectangle => "largest rectangle, mm²",
-        Objective::Gci => "GCI",
-        Objective::Area => "reachable area, mm²",
-        Objective::LciMin => "worst LCI",
-        Objective::Time => "time of the programs, s",
-    }
-}
-
 fn range_l1(text: &str) -> Result<ParamRange, String> {
     ParamRange::parse("l1", text).map_err(|err| err.to_string())
 }
@@ -227,49 +217,36 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     }
     let columns = evaluator.columns();
     let sweep = Sweep::new(evaluator, grid, args.shard);
-    let mut best = Best::new(objective);
-    let mut pareto = ParetoFront::new();
-    let mut cells = Vec::new();
+    let options = SweepOptions { threads: args.threads, objective, cells: args.atlas.is_some() };
     let progress = biscara_files::progress(sweep.count(), "designs");
+    let mut outcome = None;
     write_output(args.output.as_deref(), |out| {
         writeln!(out, "{}", header(columns))?;
-        sweep.run(args.threads, |evaluation| -> anyhow::Result<()> {
+        let found = sweep.run(&options, |evaluation| -> anyhow::Result<()> {
             write_row(out, columns, evaluation)?;
-            best.consider(evaluation);
-            pareto.consider(evaluation);
-            if args.atlas.is_some() {
-                cells.push(cell(evaluation, objective));
-            }
             progress.inc(1);
             Ok(())
-        })
+        })?;
+        outcome = Some(found);
+        Ok(())
     })?;
+    let outcome = outcome.expect("the sweep ran");
     progress.finish_and_clear();
-    let chosen = best.get().copied();
-    summarise(sweep.count(), objective, chosen.as_ref(), &pareto);
+    report(Level::Note, &outcome);
     if let Some(path) = &args.pareto {
         write_output(Some(path), |out| {
             writeln!(out, "{}", header(columns))?;
-            for evaluation in pareto.designs() {
-                write_row(out, columns, &evaluation)?;
+            for evaluation in &outcome.pareto {
+                write_row(out, columns, evaluation)?;
             }
             Ok(())
         })?;
     }
     if let Some(path) = &args.atlas {
-        let title =
-            format!("Design atlas: {} over l1 × l2, per base distance", index_name(objective));
-        let atlas = Atlas {
-            title: &title,
-            index: index_name(objective),
-            cells: &cells,
-            chosen: chosen.map(|e| [e.design.l1, e.design.l2, e.design.base]),
-        };
-        let bytes = draw_atlas(&atlas, format_of(Some(path)))?;
-        write_output(Some(path), |out| Ok(out.write_all(&bytes)?))?;
+        write_atlas(path, &outcome)?;
     }
     if let Some(path) = &args.best {
-        let Some(chosen) = chosen else {
+        let Some(chosen) = outcome.best else {
             anyhow::bail!(
                 "no design has a rectangle{}{}: {} not written",
                 if args.task.is_some() { " and covers the task" } else { "" },
@@ -283,35 +260,25 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn cell(evaluation: &Evaluation, objective: Objective) -> AtlasCell {
-    let d = evaluation.design;
-    let value = if eligible(evaluation) { objective.value(evaluation) } else { None };
-    AtlasCell { l1: d.l1, l2: d.l2, base: d.base, value }
-}
-
-fn summarise(count: u64, objective: Objective, best: Option<&Evaluation>, pareto: &ParetoFront) {
-    let Some(best) = best else {
-        report(Level::Note, format!("{count} designs evaluated; none has a rectangle"));
-        return;
-    };
-    let d = best.design;
-    let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
-    report(
-        Level::Note,
-        format!(
-            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
-             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}{}); Pareto front of \
-             rectangle area and GCI: {} designs",
-            objective.name(),
-            d.l1,
-            d.l2,
-            d.base,
-            best.gci,
-            best.lci_min,
-            best.time_s.map(|t| format!(", programs {t:.3} s")).unwrap_or_default(),
-            pareto.designs().len()
-        ),
-    );
+/// Draws the atlas of `outcome`'s cells, the best design ringed, to `path` (SVG or PNG).
+fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
+    let cells: Vec<AtlasCell> = outcome
+        .cells
+        .iter()
+        .map(|c| AtlasCell {
+            l1: c.design.l1,
+            l2: c.design.l2,
+            base: c.design.base,
+            value: c.value,
+        })
+        .collect();
+    let index = outcome.objective.description();
+    let title = format!("Design atlas: {index} over l1 × l2, per base distance");
+    let chosen = outcome.best.map(|e| [e.design.l1, e.design.l2, e.design.base]);
+    let atlas = Atlas { title: &title, index, cells: &cells, chosen };
+    let bytes = draw_atlas(&atlas, format_of(Some(path)))
+        .with_context(|| format!("drawing {}", display_path(path)))?;
+    write_output(Some(path), |out| Ok(out.write_all(&bytes)?))
 }
 
 fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
@@ -330,24 +297,13 @@ fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
     let objective = Objective::from(args.index);
     let reader =
         RowReader::new(open_input(&args.input)?).map_err(|err| located(&args.input, err))?;
-    let mut best = Best::new(objective);
-    let mut cells = Vec::new();
+    let mut collector = Collector::new(objective, true);
     for row in reader {
-        let evaluation = row.map_err(|err| located(&args.input, err))?;
-        best.consider(&evaluation);
-        cells.push(cell(&evaluation, objective));
+        collector.consider(&row.map_err(|err| located(&args.input, err))?);
     }
-    if cells.is_empty() {
+    let outcome = collector.finish();
+    if outcome.cells.is_empty() {
         anyhow::bail!("{}: no designs to draw", display_path(&args.input));
     }
-    let title = format!("Design atlas: {} over l1 × l2, per base distance", index_name(objective));
-    let atlas = Atlas {
-        title: &title,
-        index: index_name(objective),
-        cells: &cells,
-        chosen: best.get().map(|e| [e.design.l1, e.design.l2, e.design.base]),
-    };
-    let bytes = draw_atlas(&atlas, format_of(Some(&args.output)))
-        .with_context(|| format!("drawing {}", display_path(&args.output)))?;
-    write_output(Some(&args.output), |out| Ok(out.write_all(&bytes)?))
+    write_atlas(&args.output, &outcome)
 }

@@ -6,8 +6,7 @@ use std::path::Path;
 
 use biscara::pipeline::{Hint, Note, PipelineError};
 use biscara::post::PostError;
-
-use super::files::display_path;
+use biscara_files::display_path;
 
 /// How a diagnostic is labelled.
 #[derive(Debug, Clone, Copy)]

@@ -9,10 +9,9 @@ use biscara::gcode::{Environment, Seekable};
 use biscara::kinematics::Robot;
 use biscara::pipeline::{ProgramKind, ProgramSource};
 use biscara::robot::Scene;
-use biscara::view::{ImageFormat, MAX_MESH_TRIANGLES, Viewer, read_stl};
+use biscara::view::{ImageFormat, MAX_MESH_TRIANGLES, StlError, Viewer, read_stl};
 pub(crate) use biscara_files::{display_path, file_name};
 
-use super::args::InputKind;
 use super::diag::located;
 
 /// A program file (or standard input for `-`) as the pipeline's source.
@@ -27,9 +26,9 @@ impl FileSource {
     }
 
     /// The program's kind: `from` when given, else from its name and first bytes.
-    pub(crate) fn kind(&self, from: Option<InputKind>) -> anyhow::Result<ProgramKind> {
+    pub(crate) fn kind(&self, from: Option<ProgramKind>) -> anyhow::Result<ProgramKind> {
         if let Some(kind) = from {
-            return Ok(kind.into());
+            return Ok(kind);
         }
         let mut input = open_input(&self.path)?;
         let head = input.fill_buf()?;
@@ -138,16 +137,12 @@ pub(crate) fn resolve_meshes(robot: &mut Robot, path: &Path, text: &str) -> anyh
 pub(crate) fn load_meshes(robot: &Robot, viewer: &mut Viewer) -> anyhow::Result<()> {
     for (part, spec) in robot.meshes.parts() {
         let path = Path::new(&spec.file);
-        let mesh = read_stl(open_input(path)?, MAX_MESH_TRIANGLES).map_err(|err| {
-            // Binary errors say `byte N:`; a space after the name reads better there.
-            let err = err.to_string();
-            if err.starts_with("byte ") {
-                located(path, format!(" {err}"))
-            } else {
-                located(path, err)
-            }
+        let mesh = read_stl(open_input(path)?, MAX_MESH_TRIANGLES).map_err(|err| match err {
+            // A byte offset reads better after a space: `part.stl: byte 84: …`.
+            StlError::Binary { .. } => located(path, format_args!(" {err}")),
+            _ => located(path, err),
         })?;
-        viewer.add_mesh(part, spec, &mesh).map_err(|err| located(path, format!(" {err}")))?;
+        viewer.add_mesh(part, spec, &mesh).map_err(|err| located(path, format_args!(" {err}")))?;
     }
     Ok(())
 }

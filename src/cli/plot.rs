@@ -3,10 +3,11 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::pipeline::{Pipeline, ProgramSource, RobotModel, ToolState};
+use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
 use biscara::view::{
-    JointCurves, ProcessStrokes, ProgramTrace, TopView, draw_joints, draw_top_view, zoom_region,
+    JointCurves, MAX_WORK_POINTS, ProgramOverlay, ProgramTrace, TopView, draw_joints,
+    draw_top_view, zoom_region,
 };
 use clap::Args;
 
@@ -80,14 +81,14 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
         Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
     let tool = samples.tool();
     let max_power = model.robot().tool.max_power;
-    let mut process = ProcessStrokes::default();
+    let mut overlay = ProgramOverlay::new(tool, MAX_WORK_POINTS, 0, None);
     for sample in samples {
         let (sample, state) = sample?;
         args.time_limit.check(source.name(), sample.t, sample.line)?;
         trace.push(&sample);
-        let point = [sample.pose[0], sample.pose[1]];
-        process.push(point, sample.line, state.strength(tool, max_power));
+        overlay.push(&sample, state.strength(tool, max_power));
     }
+    let work = overlay.into_work();
     for t in trace.missed_times() {
         let end = trace.duration();
         report(
@@ -110,11 +111,11 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             workspace: Some(&workspace),
             rectangle: Some(&rectangle),
             path: &trace.path,
-            process: process.strokes(),
-            process_label: ToolState::legend(tool),
+            process: Some(&work),
+            process_label: tool.legend(),
             bodies: &trace.bodies,
             scene: scene.as_ref(),
-            region: if args.zoom { zoom_region(process.strokes(), &trace.path) } else { None },
+            region: if args.zoom { zoom_region(&work, &trace.path) } else { None },
         };
         draw_top_view(&view, format).map_err(|err| anyhow!("{err}"))?
     };

@@ -3,11 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::gcode::Tool;
 use biscara::joints::read_joint_csv;
-use biscara::pipeline::{
-    Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig, ToolState,
-};
+use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::robot::Report;
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
@@ -114,8 +112,9 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         viewer.set_object_size(size);
     }
     if let Some(path) = &args.check {
-        for (t, kind, message) in read_check_problems(path)? {
-            viewer.add_problem(t, &kind, &message);
+        let report = biscara_files::read_bytes(path)?;
+        for problem in Report::read_problems(&report).map_err(|err| located(path, err))? {
+            viewer.add_problem(&problem);
         }
     }
     let Some(program) = &args.program else {
@@ -123,7 +122,7 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     };
     // The program sampled as `joints` sampled it, at the trajectory's time step.
     let source = FileSource::new(program);
-    let kind = source.kind(args.from)?;
+    let kind = source.kind(args.from.map(ProgramKind::from))?;
     let config = SamplingConfig {
         dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: args.profile.into(),
@@ -131,30 +130,19 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         blend: args.blend.blend,
         ..placed_reading(&args.placement, &args.dialect, &args.files)?
     };
-    let mut end = 0.0;
     let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
     let tool = samples.tool();
-    if tool != Tool::Gripper {
-        viewer.set_tool(tool.name(), ToolState::legend(tool));
-    }
+    let mut overlay = viewer.overlay(tool);
     let max_power = model.robot().tool.max_power;
     for sample in samples {
         let (sample, state) = sample?;
-        // Past the trajectory's end nothing is shown: a program that runs longer (one that
-        // loops forever while moving) is sampled no further, and the warning below says so.
-        if sample.t > duration + 1.0 {
-            end = sample.t;
+        if !overlay.push(&sample, state.strength(tool, max_power)) {
             break;
         }
         viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
-        if tool != Tool::Gripper {
-            let strength = state.strength(tool, max_power);
-            viewer.push_process_sample(sample.t, sample.pose, sample.line, strength);
-        }
-        end = sample.t;
     }
-    if (duration - end).abs() > 1e-6 + viewer.time_step().unwrap_or(0.0) {
-        let name = source.name();
+    if overlay.ends_apart_from(duration, viewer.time_step().unwrap_or(0.0)) {
+        let (name, end) = (source.name(), overlay.end());
         report(
             Level::Warning,
             format_args!(
@@ -164,39 +152,11 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
             ),
         );
     }
+    viewer.set_overlay(overlay);
     if kind != ProgramKind::Path {
         viewer.read_line_texts(source.open()?)?;
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
-}
-
-/// The problems of a `check --json` report: (t_s, kind, message) each.
-fn read_check_problems(path: &std::path::Path) -> anyhow::Result<Vec<(f64, String, String)>> {
-    let name = display_path(path);
-    let bytes = biscara_files::read_bytes(path)?;
-    let report: serde_json::Value = serde_json::from_slice(&bytes).map_err(|err| {
-        anyhow!("{name}:{}:{}: not a check --json report: {err}", err.line(), err.column())
-    })?;
-    let Some(problems) = report.get("problems").and_then(|p| p.as_array()) else {
-        return Err(anyhow!("{name}:1: not a check --json report: no \"problems\" array"));
-    };
-    problems
-        .iter()
-        .enumerate()
-        .map(|(index, problem)| {
-            let field = |key: &str| problem.get(key);
-            let t = field("t_s").and_then(|t| t.as_f64()).filter(|t| t.is_finite());
-            let kind = field("kind").and_then(|k| k.as_str());
-            let message = field("message").and_then(|m| m.as_str()).unwrap_or("");
-            match (t, kind) {
-                (Some(t), Some(kind)) => Ok((t, kind.to_owned(), message.to_owned())),
-                _ => Err(anyhow!(
-                    "{name}: problem {} has no number \"t_s\" or no string \"kind\"",
-                    index + 1
-                )),
-            }
-        })
-        .collect()
 }
 
 /// `WxLxH`: three positive sizes in mm, e.g. `30x20x15`.

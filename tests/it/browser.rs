@@ -1,4 +1,4 @@
-//! The viewer in a real browser (SPEC §8.3, issue 7): Debian's headless `chromium` opens the
+//! The viewer in a real browser (docs/virtual-robot.md, issue 7): Debian's headless `chromium` opens the
 //! demo's `view.html` at `#t=0` and at a later moment, and the test asserts that the page loaded
 //! without console errors (the page sets `data-status="ready"` when it has drawn, `error` on an
 //! uncaught exception; Chromium's `--enable-logging=stderr` prints every console message as a

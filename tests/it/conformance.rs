@@ -30,7 +30,7 @@ pub(crate) enum Verdict {
     /// We refuse a value LinuxCNC would pass on: not finite, or a position beyond ±1e6 mm.
     Stricter,
     /// rs274 refuses a user M code (M100–M199) for want of its program; we record it as an
-    /// event (SPEC §4.2) and match up to it.
+    /// event (docs/gcode.md) and match up to it.
     UserMCode,
     /// We refuse what this robot cannot do (lathe, spindle-synchronised motion).
     CannotRun,

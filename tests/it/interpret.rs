@@ -38,7 +38,7 @@ fn generated_programs_interpret_from_standard_input() {
     let run =
         biscara_with_input(&dir, &["interpret", "-"], Some(gcode.success().stdout.as_bytes()));
     let lines: Vec<&str> = run.success().stdout.lines().collect();
-    // The SPEC §4.1 program: first a rapid to the job's home pose, last the end.
+    // The bundled job's program: first a rapid to the job's home pose, last the end.
     assert_eq!(lines[0], r#"{"line":4,"kind":"rapid","end":[0.0,400.0,100.0,0.0]}"#, "{run}");
     assert!(lines.contains(&r#"{"line":7,"kind":"pick"}"#), "{run}");
     assert!(lines.contains(&r#"{"line":8,"kind":"dwell","seconds":0.3}"#), "{run}");

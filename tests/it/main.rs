@@ -1,5 +1,6 @@
 //! Integration tests of the `biscara` binary: one test binary, one module per feature.
 
+mod architecture;
 mod bad_input;
 mod blending;
 mod browser;

@@ -267,7 +267,7 @@ fn origin_shifts_a_gcode_program() {
 
 /// Every velocity and acceleration column of a joint CSV written with `--derivatives` (finite
 /// differences of the positions) within the default robot's limits: the default profile keeps
-/// them (SPEC §6). At 10 ms the differences average the motion over a step, so they stay within
+/// them (docs/motion.md). At 10 ms the differences average the motion over a step, so they stay within
 /// what holds at every instant; the slack covers the printed decimals.
 fn within_default_limits(name: &str, csv: &str) {
     let robot = biscara::kinematics::Robot::default();

@@ -1,4 +1,4 @@
-//! MuJoCo checks of `biscara mjcf` (SPEC §8.3, issue 7) on the demo's trajectory: the model and
+//! MuJoCo checks of `biscara mjcf` (docs/virtual-robot.md, issue 7) on the demo's trajectory: the model and
 //! its companion trajectory file go through `tests/mujoco/check_model.py`, which asserts
 //! (a) kinematic: the `tool` site within 0.001 mm of our FK and the loop's `connect` residual
 //! below 0.001 mm at every row; (b) dynamic: actuators driven along the trajectory with gravity

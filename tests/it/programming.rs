@@ -77,11 +77,11 @@ fn cl_files_in_data_match_their_golden_files() {
 }
 
 #[test]
-fn the_spec_job_gives_the_spec_program() {
-    let dir = temp_dir("spec-job");
+fn the_bundled_job_gives_its_pick_and_place_program() {
+    let dir = temp_dir("bundled-job");
     let run = biscara(&dir, &["gen", path_arg(&repo_root().join("data/jobs/pick_place.txt"))]);
     let gcode = &run.success().stdout;
-    // SPEC §4.1, lines before and after its `...`.
+    // The program's first lines and its last.
     assert!(gcode.starts_with(
         "%\n(PICK AND PLACE)\nG21 G17 G90 G94\nG0 X0.000 Y400.000 Z100.000 C0.000\n\
          G0 X150.000 Y320.000 Z60.000 C30.000\nG1 Z10.000 F3000.0\nM3 (pick)\nG4 P0.300\n\

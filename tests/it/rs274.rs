@@ -4,7 +4,7 @@
 //!
 //! Invocation: `HOME=DIR rs274 -t DIR/tools.tbl -g PROGRAM OUTPUT < /dev/null` (`-g`: batch, no
 //! prompts; a HOME of its own because rs274 maps `$HOME/.tool.mmap`; a tool table holding tools
-//! 0–999, because `interpret` has no tool table — T words have no effect, SPEC §4.2 — and the
+//! 0–999, because `interpret` has no tool table — T words have no effect (docs/gcode.md) — and the
 //! standalone's default table refuses `T5`). It writes one
 //! canonical command a line (`STRAIGHT_FEED(x, y, z, a, b, c)`, `ARC_FEED(…)`, …) to OUTPUT,
 //! positions in program units relative to the active offsets, 4 decimals; errors go to stderr

@@ -1,4 +1,4 @@
-//! The tool (SPEC §1.6) from the command line: `--tool`, `interpolate --events` columns, and
+//! The tool (docs/motion.md) from the command line: `--tool`, `interpolate --events` columns, and
 //! what `check` finds that only a tool can get wrong.
 
 use crate::util::{biscara, repo_root, temp_dir};

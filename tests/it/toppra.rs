@@ -7,7 +7,7 @@
 //! The moves go to toppra as joints sampled by IK along each move (every 0.25 mm of path,
 //! 0.25° of C and 1° of turning, at least 50 samples), with the path coordinate (mm) and C
 //! (degrees) as two more "joints" carrying the feed or rapid speed, the path acceleration and
-//! C's limits (SPEC §1.3, §6), from the robot file: nothing of our planner is used.
+//! C's limits (docs/motion.md), from the robot file: nothing of our planner is used.
 //!
 //! Needs `python3` with the `toppra` package (`.ci/run` installs it from PyPI). When either is
 //! missing the test prints why and passes, except under `CI=true`, where it fails.

@@ -157,9 +157,75 @@ fn view_samples_the_program_as_the_trajectory_was_made() {
     );
     same.success();
     assert!(!same.stderr.contains("warning"), "{same}");
-    assert_ne!(defaults.stdout, same.stdout);
+    // Each pick and place is where the trajectory's tool is at that time (FK of its row), and
+    // when the gripper's state changes in the samples `interpolate --events` writes.
+    let trajectory = std::fs::read_to_string(dir.join("slow.csv")).expect("trajectory");
+    let model = biscara::kinematics::RobotModel::default().kinematics();
+    let tool_at = |t: f64| -> [f64; 3] {
+        let row: Vec<f64> = trajectory
+            .lines()
+            .skip(1)
+            .map(|line| line.split(',').map(|v| v.parse().expect("number")).collect::<Vec<f64>>())
+            .find(|row| (row[0] - t).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no row at t = {t}"));
+        let joints = biscara::kinematics::Joints {
+            theta1: row[1],
+            theta2: row[2],
+            theta3: row[3],
+            d4: row[4],
+        };
+        let pose = model.forward(&joints).expect("FK").pose;
+        [pose.x, pose.y, pose.z]
+    };
+    let samples = biscara(
+        &dir,
+        &["interpolate", "out/job.ngc", "--profile", "constant", "--grip-time", "0.3", "--events"],
+    );
+    let mut changes = Vec::new();
+    let mut gripper = "0";
+    for line in samples.success().stdout.lines().skip(1) {
+        let (t, state) =
+            line.split_once(',').map(|(t, rest)| (t, rest.rsplit(',').next())).unwrap();
+        let state = state.expect("gripper");
+        if state != gripper {
+            changes.push(t.parse::<f64>().expect("time"));
+            gripper = if state == "0" { "0" } else { "1" };
+        }
+    }
+    let events = page_events(&same.stdout);
+    let events: Vec<&[f64]> = events.chunks(5).collect();
+    assert_eq!(events.len(), 4, "two picks and two places");
+    for (event, change) in events.iter().zip(&changes) {
+        assert!((event[0] - change).abs() < 1e-9, "event at {} s, change at {change} s", event[0]);
+        let at = tool_at(event[0]);
+        let off = (0..3).map(|k| (at[k] - event[2 + k]).powi(2)).sum::<f64>().sqrt();
+        assert!(off < 1e-3, "event {event:?}: the tool is at {at:?}");
+    }
+    // Sampled otherwise, the events fall where the trajectory's tool is not.
+    let elsewhere = page_events(&defaults.stdout);
+    let off = elsewhere.chunks(5).map(|event| {
+        let at = trajectory
+            .lines()
+            .skip(1)
+            .any(|line| {
+                line.split(',').next().and_then(|t| t.parse::<f64>().ok()) == Some(event[0])
+            })
+            .then(|| tool_at(event[0]));
+        at.map_or(f64::INFINITY, |at| {
+            (0..3).map(|k| (at[k] - event[2 + k]).powi(2)).sum::<f64>().sqrt()
+        })
+    });
+    assert!(off.fold(0.0, f64::max) > 1.0, "the default sampling's events matched too");
     let bad = biscara(&dir, &["view", "slow.csv", "--program", "out/job.ngc", "--grip-time", "-1"]);
     assert_eq!(bad.code, 2, "{bad}");
+}
+
+/// The numbers of a page's events, `"events":[[t,pick,x,y,z],…]`, in a row.
+fn page_events(page: &str) -> Vec<f64> {
+    let rest = page.split("\"events\":[").nth(1).expect("events");
+    let list = &rest[..rest.find("]]").map_or(0, |end| end + 1)];
+    let numbers = list.split([',', '[', ']']).filter(|v| !v.is_empty());
+    numbers.map(|v| v.parse().expect("number")).collect()
 }
 
 /// The numbers of a page's data array `"name":[…]`.
@@ -225,13 +291,13 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
     biscara(&dir, &["demo", "out"]).success();
     std::fs::write(
         dir.join("report.json"),
-        r#"{"ok":false,"problems":[{"kind":"collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
+        r#"{"ok":false,"problems":[{"kind":"scene_collision","line":9,"t_s":3.25,"message":"the tool hits pallet"}],"summary":{}}"#,
     )
     .expect("write report");
     let run = biscara(&dir, &["view", "out/traj.csv", "--check", "report.json"]);
     run.success();
     assert!(
-        run.stdout.contains(r#""problems":[[3.2500,"collision","the tool hits pallet"]]"#),
+        run.stdout.contains(r#""problems":[[3.25,"scene_collision","the tool hits pallet"]]"#),
         "problems"
     );
     // The demo's own report is clean: no problem to mark.
@@ -240,8 +306,15 @@ fn view_marks_the_problems_of_a_check_report_and_rejects_bad_reports() {
     assert!(clean.stdout.contains(r#""problems":[]"#));
     let cases = [
         ("{\"problems\": [\n  {\"kind\": }]}", "bad.json:2:12: not a check --json report"),
-        ("{\"ok\": true}", "bad.json:1: not a check --json report: no \"problems\" array"),
-        ("{\"problems\":[{\"kind\":\"limit\"}]}", "bad.json: problem 1 has no number \"t_s\""),
+        ("{\"ok\": true}", "bad.json:1:12: not a check --json report: .: missing field `problems`"),
+        (
+            "{\"problems\":[{\"kind\":\"tool\"}]}",
+            "bad.json:1:28: not a check --json report: problems[0]: missing field `t_s`",
+        ),
+        (
+            "{\"problems\":[{\"kind\":\"limit\",\"t_s\":1}]}",
+            "bad.json:1:28: not a check --json report: problems[0].kind: unknown kind `limit`",
+        ),
     ];
     for (text, expected) in cases {
         std::fs::write(dir.join("bad.json"), text).expect("write bad report");

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""MuJoCo checks of the model `biscara mjcf` writes (SPEC §8.3).
+"""MuJoCo checks of the model `biscara mjcf` writes (docs/virtual-robot.md).
 
 Usage: check_model.py MODEL.xml TRAJ.traj.csv [--json]
 

@@ -5,7 +5,7 @@ use std::io::{BufRead, Write};
 
 use biscara_robot::Rectangle;
 
-use crate::{Design, DesignError, DesignStatus, Evaluation};
+use crate::{CsvFault, Design, DesignError, DesignStatus, Evaluation, MergeFault};
 
 /// The columns every design CSV has, in order (`task_ok` follows when a task is given, then
 /// `time_s` when programs are timed).
@@ -84,35 +84,32 @@ pub fn write_row(
 
 /// Reads one data line of a design CSV with `columns` (`line` from 1, for errors).
 pub fn parse_row(text: &str, line: usize, columns: Columns) -> Result<Evaluation, DesignError> {
-    let fail = |message: String| DesignError::Csv { line, message };
+    let fail = |fault: CsvFault| DesignError::Csv { line, fault };
     let fields: Vec<&str> = text.split(',').collect();
     let expected = columns.count();
     if fields.len() != expected {
-        return Err(fail(format!("{} fields, the header has {expected}", fields.len())));
+        return Err(fail(CsvFault::FieldCount { found: fields.len(), expected }));
     }
     let number = |k: usize| -> Result<f64, DesignError> {
-        let value: f64 = fields[k]
-            .trim()
-            .parse()
-            .map_err(|_| fail(format!("{} '{}' is no number", column(k), fields[k])))?;
+        let value: f64 = fields[k].trim().parse().map_err(|_| {
+            fail(CsvFault::NotANumber { column: column(k), text: fields[k].into() })
+        })?;
         if value.is_finite() {
             Ok(value)
         } else {
-            Err(fail(format!("{} '{}' is not finite", column(k), fields[k])))
+            Err(fail(CsvFault::NotFinite { column: column(k), text: fields[k].into() }))
         }
     };
-    let index: u64 = fields[0]
-        .trim()
-        .parse()
-        .map_err(|_| fail(format!("index '{}' is no design number", fields[0])))?;
+    let index: u64 =
+        fields[0].trim().parse().map_err(|_| fail(CsvFault::Index { text: fields[0].into() }))?;
     let status = DesignStatus::parse(fields[11].trim())
-        .ok_or_else(|| fail(format!("status '{}' is not ok, empty or invalid", fields[11])))?;
+        .ok_or_else(|| fail(CsvFault::Status { text: fields[11].into() }))?;
     let (w, h, x0, y0) = (number(5)?, number(6)?, number(7)?, number(8)?);
     let task_ok = if columns.task {
         match fields[12].trim() {
             "1" => Some(true),
             "0" => Some(false),
-            other => return Err(fail(format!("task_ok '{other}' is not 0 or 1"))),
+            other => return Err(fail(CsvFault::TaskOk { text: other.into() })),
         }
     } else {
         None
@@ -162,10 +159,7 @@ impl<R: BufRead> RowReader<R> {
         input.read_line(&mut buffer)?;
         let columns = read_header(buffer.trim_end()).ok_or_else(|| DesignError::Csv {
             line: 1,
-            message: format!(
-                "not a design CSV: the header is not '{}'",
-                header(Columns::default())
-            ),
+            fault: CsvFault::Header { expected: header(Columns::default()) },
         })?;
         Ok(RowReader { input, line: 1, columns, buffer })
     }
@@ -219,7 +213,7 @@ pub fn merge(
             return Err(DesignError::Merge {
                 file: name,
                 line: 1,
-                message: "its header differs from the first file's".to_owned(),
+                fault: MergeFault::HeaderDiffers,
             });
         }
         columns = Some(reader.columns());
@@ -245,7 +239,7 @@ pub fn merge(
             return Err(DesignError::Merge {
                 file: name.clone(),
                 line,
-                message: format!("design {index} is in another file too"),
+                fault: MergeFault::Repeated { index },
             });
         }
         if index > expected {
@@ -260,8 +254,8 @@ pub fn merge(
 
 fn in_file(name: &str, err: DesignError) -> DesignError {
     match err {
-        DesignError::Csv { line, message } => {
-            DesignError::Merge { file: name.to_owned(), line, message }
+        DesignError::Csv { line, fault } => {
+            DesignError::Merge { file: name.to_owned(), line, fault: fault.into() }
         }
         other => other,
     }
@@ -280,10 +274,7 @@ fn advance<R: BufRead>(
         return Err(DesignError::Merge {
             file: name.to_owned(),
             line,
-            message: format!(
-                "design {index} follows design {}: rows out of order or repeated",
-                previous.unwrap_or(0)
-            ),
+            fault: MergeFault::OutOfOrder { index, previous: previous.unwrap_or(0) },
         });
     }
     Ok(Some((index, line, reader.text().to_owned())))

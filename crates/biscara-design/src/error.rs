@@ -39,22 +39,22 @@ pub enum DesignError {
         max: u64,
     },
     /// A line of a design CSV that cannot be read.
-    #[error("{line}: {message}")]
+    #[error("{line}: {fault}")]
     Csv {
         /// The line, from 1.
         line: usize,
         /// What is wrong with it.
-        message: String,
+        fault: CsvFault,
     },
     /// A line of one of several design CSVs (`design merge`) that cannot be taken.
-    #[error("{file}:{line}: {message}")]
+    #[error("{file}:{line}: {fault}")]
     Merge {
         /// The file's name.
         file: String,
         /// The line, from 1.
         line: usize,
         /// What is wrong with it.
-        message: String,
+        fault: MergeFault,
     },
     /// Merged shards that leave a design out.
     #[error("design {index} is in none of the files: a shard is missing")]
@@ -79,4 +79,84 @@ pub enum DesignError {
     /// The robot the designs start from is invalid.
     #[error(transparent)]
     Robot(#[from] biscara_kinematics::RobotError),
+}
+
+/// What is wrong with a line of a design CSV ([`DesignError::Csv`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CsvFault {
+    /// Occurs when the first line is not a design CSV's header.
+    #[error("not a design CSV: the header is not '{expected}'")]
+    Header {
+        /// The header of a sweep without optional columns.
+        expected: String,
+    },
+    /// Occurs when a row has another number of fields than the header.
+    #[error("{found} fields, the header has {expected}")]
+    FieldCount {
+        /// The row's fields.
+        found: usize,
+        /// The header's.
+        expected: usize,
+    },
+    /// Occurs when a field that holds a number does not.
+    #[error("{column} '{text}' is no number")]
+    NotANumber {
+        /// The column.
+        column: &'static str,
+        /// The field.
+        text: String,
+    },
+    /// Occurs when a number is infinite or NaN.
+    #[error("{column} '{text}' is not finite")]
+    NotFinite {
+        /// The column.
+        column: &'static str,
+        /// The field.
+        text: String,
+    },
+    /// Occurs when the index is not a design number.
+    #[error("index '{text}' is no design number")]
+    Index {
+        /// The field.
+        text: String,
+    },
+    /// Occurs when the status is not one a sweep writes.
+    #[error("status '{text}' is not ok, empty or invalid")]
+    Status {
+        /// The field.
+        text: String,
+    },
+    /// Occurs when task_ok is neither 0 nor 1.
+    #[error("task_ok '{text}' is not 0 or 1")]
+    TaskOk {
+        /// The field.
+        text: String,
+    },
+}
+
+/// Why a line of one of the merged CSVs cannot be taken ([`DesignError::Merge`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MergeFault {
+    /// Occurs when the line cannot be read.
+    #[error(transparent)]
+    Row(#[from] CsvFault),
+    /// Occurs when a file's header differs from the first file's.
+    #[error("its header differs from the first file's")]
+    HeaderDiffers,
+    /// Occurs when a design is in two files.
+    #[error("design {index} is in another file too")]
+    Repeated {
+        /// The design.
+        index: u64,
+    },
+    /// Occurs when a file's rows do not rise.
+    #[error("design {index} follows design {previous}: rows out of order or repeated")]
+    OutOfOrder {
+        /// The design on this line.
+        index: u64,
+        /// The design on the line before.
+        previous: u64,
+    },
 }

@@ -2,7 +2,7 @@
 //! rectangle, and the conditioning of the Jacobian over that rectangle.
 
 use biscara_kinematics::{Chain, Kinematics, PlanarConfiguration, Robot};
-use biscara_robot::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, VirtualRobotError, Workspace};
+use biscara_robot::{Rectangle, Workspace};
 
 use crate::{Columns, Design, DesignError, ProgramTimer, Task};
 
@@ -82,14 +82,7 @@ impl Evaluator {
     /// Designs on `robot` (everything but l1, l2 and the base taken from it), workspaces on a
     /// grid of `step` mm, and a task rectangle to cover when given.
     pub fn new(robot: Robot, step: f64, task: Option<Task>) -> Result<Evaluator, DesignError> {
-        if !(MIN_STEP_MM..=MAX_STEP_MM).contains(&step) {
-            return Err(VirtualRobotError::Step {
-                step_mm: step,
-                min_mm: MIN_STEP_MM,
-                max_mm: MAX_STEP_MM,
-            }
-            .into());
-        }
+        Workspace::check_step(step)?;
         Ok(Evaluator { robot, step, task, timer: None })
     }
 

@@ -38,9 +38,9 @@ mod sweep;
 mod time;
 
 pub use csv::{COLUMNS, Columns, RowReader, header, merge, parse_row, read_header, write_row};
-pub use error::DesignError;
+pub use error::{CsvFault, DesignError, MergeFault};
 pub use evaluate::{DesignStatus, Evaluation, Evaluator, conditioning, covers, lci};
 pub use grid::{Design, DesignGrid, MAX_DESIGNS, ParamRange, Shard, Task};
-pub use select::{Best, Objective, ParetoFront, eligible};
-pub use sweep::Sweep;
+pub use select::{AtlasValue, Best, Collector, Objective, ParetoFront, SweepOutcome, eligible};
+pub use sweep::{Sweep, SweepOptions};
 pub use time::ProgramTimer;

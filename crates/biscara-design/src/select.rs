@@ -3,7 +3,7 @@
 
 use std::str::FromStr;
 
-use crate::{DesignStatus, Evaluation};
+use crate::{Design, DesignStatus, Evaluation};
 
 /// What `--best` maximises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -22,8 +22,9 @@ pub enum Objective {
 }
 
 impl Objective {
-    /// Every objective, as `--objective` spells it.
-    pub const NAMES: [&'static str; 5] = ["rect", "gci", "area", "lci-min", "time"];
+    /// Every objective.
+    pub const ALL: [Objective; 5] =
+        [Objective::Rectangle, Objective::Gci, Objective::Area, Objective::LciMin, Objective::Time];
 
     /// The index this objective reads for `evaluation` (the time for [`Objective::Time`]);
     /// `None` when the design has none (no timed run).
@@ -43,9 +44,27 @@ impl Objective {
         Some(if self == Objective::Time { -value } else { value })
     }
 
-    /// The CSV column this objective reads (`rect` is `rect_w_mm × rect_h_mm`).
+    /// The objective as `--objective` spells it. The CSV columns it reads: `rect_w_mm ×
+    /// rect_h_mm` (rect), `gci`, `area_mm2` (area), `lci_min` (lci-min), `time_s` (time).
     pub fn name(self) -> &'static str {
-        Objective::NAMES[self as usize]
+        match self {
+            Objective::Rectangle => "rect",
+            Objective::Gci => "gci",
+            Objective::Area => "area",
+            Objective::LciMin => "lci-min",
+            Objective::Time => "time",
+        }
+    }
+
+    /// What the objective's index is, with its unit, as a picture's legend says it.
+    pub fn description(self) -> &'static str {
+        match self {
+            Objective::Rectangle => "largest rectangle, mm²",
+            Objective::Gci => "GCI",
+            Objective::Area => "reachable area, mm²",
+            Objective::LciMin => "worst LCI",
+            Objective::Time => "time of the programs, s",
+        }
     }
 }
 
@@ -53,14 +72,10 @@ impl FromStr for Objective {
     type Err = String;
 
     fn from_str(text: &str) -> Result<Objective, String> {
-        match text {
-            "rect" => Ok(Objective::Rectangle),
-            "gci" => Ok(Objective::Gci),
-            "area" => Ok(Objective::Area),
-            "lci-min" => Ok(Objective::LciMin),
-            "time" => Ok(Objective::Time),
-            _ => Err(format!("expected one of {}", Objective::NAMES.join(", "))),
-        }
+        Objective::ALL.into_iter().find(|objective| objective.name() == text).ok_or_else(|| {
+            let names: Vec<&str> = Objective::ALL.iter().map(|o| o.name()).collect();
+            format!("expected one of {}", names.join(", "))
+        })
     }
 }
 
@@ -143,12 +158,109 @@ impl ParetoFront {
     }
 }
 
+/// One cell of a design atlas: a design and its objective's index (`None` when the design may
+/// not be chosen or has no such index).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtlasValue {
+    /// The design.
+    pub design: Design,
+    /// The objective's index ([`Objective::value`]) of an [`eligible`] design.
+    pub value: Option<f64>,
+}
+
+/// What a sweep (or a design CSV read back) keeps as its rows go by: the best design, the
+/// Pareto front and, when asked, every design's atlas value.
+#[derive(Debug, Clone)]
+pub struct Collector {
+    best: Best,
+    pareto: ParetoFront,
+    /// The atlas values, kept when asked for (memory grows with the designs then).
+    cells: Option<Vec<AtlasValue>>,
+    count: u64,
+}
+
+/// What a sweep found ([`Collector::finish`], [`crate::Sweep::run`]); its `Display` is the
+/// one-line summary `design` notes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepOutcome {
+    /// How many designs were evaluated (read).
+    pub count: u64,
+    /// What the best design maximises.
+    pub objective: Objective,
+    /// The best eligible design by the objective.
+    pub best: Option<Evaluation>,
+    /// The Pareto front ([`ParetoFront::designs`]).
+    pub pareto: Vec<Evaluation>,
+    /// Every design's atlas value in order, when asked for (else empty).
+    pub cells: Vec<AtlasValue>,
+}
+
+impl Collector {
+    /// Nothing seen yet; `cells`: keep every design's value for an atlas.
+    pub fn new(objective: Objective, cells: bool) -> Collector {
+        Collector {
+            best: Best::new(objective),
+            pareto: ParetoFront::new(),
+            cells: cells.then(Vec::new),
+            count: 0,
+        }
+    }
+
+    /// Takes one design's evaluation.
+    pub fn consider(&mut self, evaluation: &Evaluation) {
+        self.count += 1;
+        self.best.consider(evaluation);
+        self.pareto.consider(evaluation);
+        if let Some(cells) = &mut self.cells {
+            let value =
+                if eligible(evaluation) { self.best.objective.value(evaluation) } else { None };
+            cells.push(AtlasValue { design: evaluation.design, value });
+        }
+    }
+
+    /// What was found.
+    pub fn finish(self) -> SweepOutcome {
+        SweepOutcome {
+            count: self.count,
+            objective: self.best.objective,
+            best: self.best.get().copied(),
+            pareto: self.pareto.designs(),
+            cells: self.cells.unwrap_or_default(),
+        }
+    }
+}
+
+impl std::fmt::Display for SweepOutcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = self.count;
+        let Some(best) = self.best else {
+            return write!(f, "{count} designs evaluated; none has a rectangle");
+        };
+        let d = best.design;
+        let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
+        write!(
+            f,
+            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
+             (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}",
+            self.objective.name(),
+            d.l1,
+            d.l2,
+            d.base,
+            best.gci,
+            best.lci_min,
+        )?;
+        if let Some(time) = best.time_s {
+            write!(f, ", programs {time:.3} s")?;
+        }
+        write!(f, "); Pareto front of rectangle area and GCI: {} designs", self.pareto.len())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use biscara_robot::Rectangle;
 
     use super::*;
-    use crate::Design;
 
     fn design(index: u64, side: f64, gci: f64) -> Evaluation {
         Evaluation {
@@ -201,5 +313,43 @@ mod tests {
         }
         let indices: Vec<u64> = front.designs().iter().map(|e| e.design.index).collect();
         assert_eq!(indices, [1, 4, 3]);
+    }
+
+    #[test]
+    fn the_collector_keeps_the_best_the_front_and_each_designs_value() {
+        let mut refused = design(1, 100.0, 0.95);
+        refused.task_ok = Some(false);
+        let mut collector = Collector::new(Objective::Gci, true);
+        for evaluation in [design(0, 10.0, 0.5), refused, design(2, 20.0, 0.4)] {
+            collector.consider(&evaluation);
+        }
+        let outcome = collector.finish();
+        assert_eq!(outcome.count, 3);
+        assert_eq!(outcome.best.map(|e| e.design.index), Some(0), "the largest GCI allowed");
+        let front: Vec<u64> = outcome.pareto.iter().map(|e| e.design.index).collect();
+        assert_eq!(front, [2, 0]);
+        let values: Vec<Option<f64>> = outcome.cells.iter().map(|c| c.value).collect();
+        assert_eq!(values, [Some(0.5), None, Some(0.4)], "a refused design has no value");
+        assert_eq!(
+            outcome.to_string(),
+            "3 designs evaluated; best by gci: l1 = 1 mm, l2 = 1 mm, base = 1 mm (rectangle \
+             10 × 10 mm, GCI 0.500, worst LCI 0.250, programs 0.000 s); Pareto front of \
+             rectangle area and GCI: 2 designs"
+        );
+        let without = Collector::new(Objective::Gci, false);
+        let outcome = without.finish();
+        assert!(outcome.cells.is_empty());
+        assert_eq!(outcome.to_string(), "0 designs evaluated; none has a rectangle");
+    }
+
+    #[test]
+    fn objectives_are_named_as_the_command_line_spells_them() {
+        for objective in Objective::ALL {
+            assert_eq!(objective.name().parse::<Objective>(), Ok(objective));
+        }
+        assert_eq!(Objective::LciMin.name(), "lci-min");
+        assert!(
+            "best".parse::<Objective>().unwrap_err().contains("rect, gci, area, lci-min, time")
+        );
     }
 }

@@ -3,11 +3,24 @@
 
 use rayon::prelude::*;
 
-use crate::{DesignError, DesignGrid, Evaluation, Evaluator, Shard};
+use crate::{
+    Collector, DesignError, DesignGrid, Evaluation, Evaluator, Objective, Shard, SweepOutcome,
+};
 
 /// How many designs each worker thread gets per block: the memory a sweep holds is one block
 /// of evaluations, whatever the number of designs.
 const BLOCK_PER_THREAD: usize = 16;
+
+/// How a sweep runs and what it keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SweepOptions {
+    /// Worker threads (0: one per core).
+    pub threads: usize,
+    /// What the best design maximises.
+    pub objective: Objective,
+    /// Keep every design's atlas value ([`SweepOutcome::cells`]).
+    pub cells: bool,
+}
 
 /// A sweep over a grid of designs.
 #[derive(Debug, Clone)]
@@ -33,14 +46,17 @@ impl Sweep {
         &self.evaluator
     }
 
-    /// Evaluates every design of the shard on `threads` worker threads (0: one per core) and
-    /// calls `each` with the evaluations in index order, as they are ready; stops at the first
-    /// error `each` returns.
+    /// Evaluates every design of the shard on `options.threads` worker threads and calls `each`
+    /// with the evaluations in index order, as they are ready (to write the rows); stops at the
+    /// first error `each` returns. Returns the best design, the Pareto front and, when asked,
+    /// the atlas values.
     pub fn run<E: From<DesignError> + Send>(
         &self,
-        threads: usize,
+        options: &SweepOptions,
         mut each: impl FnMut(&Evaluation) -> Result<(), E>,
-    ) -> Result<(), E> {
+    ) -> Result<SweepOutcome, E> {
+        let threads = options.threads;
+        let mut collector = Collector::new(options.objective, options.cells);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -60,8 +76,9 @@ impl Sweep {
             });
             for evaluation in &evaluations {
                 each(evaluation)?;
+                collector.consider(evaluation);
             }
         }
-        Ok(())
+        Ok(collector.finish())
     }
 }

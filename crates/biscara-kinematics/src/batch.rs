@@ -96,7 +96,8 @@ fn status_of(code: u8) -> BatchStatus {
 /// Which machine code runs the batch loops.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Dispatch {
-    /// The best the CPU offers, detected at run time (x86-64-v3 when present).
+    /// The best the CPU offers, detected at run time: AVX-512 (x86-64-v4), else AVX2 + FMA
+    /// (x86-64-v3), else the portable code.
     #[default]
     Detect,
     /// The portable build, whatever the CPU (for comparisons and benchmarks).
@@ -614,14 +615,7 @@ impl Kinematics {
     #[cold]
     #[inline(never)]
     fn reachable_scalar(&self, x: f64, y: f64) -> bool {
-        let middle = |[min, max]: [f64; 2]| 0.5 * (min + max);
-        self.inverse(&Pose::new(x, y, 0.0, 0.0)).is_ok_and(|ik| {
-            let joints =
-                Joints { theta3: middle(self.limits[2]), d4: middle(self.limits[3]), ..ik.joints };
-            self.check_assembly(&ik).is_ok()
-                && self.check_limits(&joints).is_ok()
-                && self.check_singularity(&ik.configuration).is_ok()
-        })
+        self.reachable(x, y)
     }
 }
 
@@ -922,7 +916,9 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::{KinematicsError, Robot, WorkingMode};
+    use std::f64::consts::TAU;
+
+    use crate::{Chain, Joint, KinematicsError, Robot, Sign, WorkingMode, na};
 
     /// Whether two angles are the same double (NaN equal to NaN).
     fn same(a: f64, b: f64) -> bool {
@@ -996,6 +992,97 @@ mod tests {
         Kinematics::new(&robot).unwrap()
     }
 
+    /// Whether `(x, y)` is reachable as the workspace counts it, from the five-bar's geometry
+    /// alone, apart from `inverse`: each elbow where the circles of radius l1 about its base and
+    /// l2 about the point meet, on the working mode's side; θ its direction from +Y, moved by 2π into
+    /// the limits when that fits; the assembly mode the sign of distal 2 × distal 1; the
+    /// singularity angles those between the lines of each proximal and distal link, and of the
+    /// two distal links. Also returns how clear the verdict is: the least distance of a deciding
+    /// quantity from its threshold (mm, radians or a sine).
+    fn reachable_by_geometry(model: &Kinematics, x: f64, y: f64) -> (bool, f64) {
+        type V = na::Vector2<f64>;
+        let cross = |a: V, b: V| a.x * b.y - a.y * b.x;
+        let line_angle = |a: V, b: V| cross(a, b).abs().atan2(a.dot(&b).abs());
+        let (l1, l2) = (model.l1(), model.l2());
+        let p = na::Point2::new(x, y);
+        let mut clear = f64::INFINITY;
+        let mut verdict = true;
+        let mut links = Vec::new();
+        for (chain, joint) in [(Chain::One, Joint::Theta1), (Chain::Two, Joint::Theta2)] {
+            let base = model.bases()[chain.index()];
+            let v = p - base;
+            let d = v.norm();
+            clear = clear.min((d - (l1 + l2)).abs()).min((d - (l1 - l2).abs()).abs());
+            if d > l1 + l2 || d < (l1 - l2).abs() {
+                return (false, clear);
+            }
+            let a = (l1 * l1 - l2 * l2 + d * d) / (2.0 * d);
+            let h = (l1 * l1 - a * a).max(0.0).sqrt();
+            let (u, n) = (v / d, V::new(-v.y / d, v.x / d));
+            let sigma = model.working_mode().of(chain);
+            let elbow = [base + a * u + h * n, base + a * u - h * n]
+                .into_iter()
+                .find(|e| Sign::of(cross(e - base, p - e)) == sigma)
+                .expect("one elbow bends each way");
+            let (proximal, distal) = (elbow - base, p - elbow);
+            let [min, max] = model.limits(joint);
+            // The proximal link points along (−sin θ, cos θ): θ = 0 along +Y.
+            let mut theta = (-proximal.x).atan2(proximal.y);
+            if theta < min && theta + TAU <= max {
+                theta += TAU;
+            } else if theta > max && theta - TAU >= min {
+                theta -= TAU;
+            }
+            clear = clear.min((theta - min).abs()).min((max - theta).abs());
+            verdict &= min <= theta && theta <= max;
+            links.push((proximal, distal));
+        }
+        let (distal1, distal2) = (links[0].1, links[1].1);
+        let assembly = cross(distal2, distal1);
+        clear = clear.min(assembly.abs() / (l2 * l2));
+        verdict &= Sign::of(assembly) == model.assembly_mode().0;
+        let margin = model.singularity_margin();
+        for angle in [
+            line_angle(links[0].0, distal1),
+            line_angle(links[1].0, distal2),
+            line_angle(distal2, distal1),
+        ] {
+            clear = clear.min((angle - margin).abs());
+            verdict &= angle >= margin;
+        }
+        (verdict, clear)
+    }
+
+    #[test]
+    fn reachability_agrees_with_the_five_bars_geometry() {
+        let (mut all_inside, mut all_outside) = (0, 0);
+        for mode in ["++", "+-", "-+", "--"] {
+            for assembly in ["+", "-"] {
+                let model = model_in(mode, assembly);
+                let (mut compared, mut inside, mut total) = (0, 0, 0);
+                for i in 0..161 {
+                    for j in 0..101 {
+                        // Off the grid's round numbers, so that no point sits on a boundary.
+                        let x = -640.0 + 8.0 * f64::from(i) + 0.123;
+                        let y = -400.0 + 10.0 * f64::from(j) + 0.0456;
+                        total += 1;
+                        let (expected, clear) = reachable_by_geometry(&model, x, y);
+                        if clear < 1e-9 {
+                            continue;
+                        }
+                        compared += 1;
+                        inside += usize::from(expected);
+                        assert_eq!(model.reachable(x, y), expected, "{mode}{assembly} ({x}, {y})");
+                    }
+                }
+                assert!(compared * 100 >= total * 99, "{mode}{assembly}: {compared} of {total}");
+                (all_inside, all_outside) = (all_inside + inside, all_outside + compared - inside);
+            }
+        }
+        // (Some modes reach little within these limits; together both verdicts are many.)
+        assert!(all_inside > 10_000 && all_outside > 10_000, "{all_inside}, {all_outside}");
+    }
+
     fn check_against_scalar(model: &Kinematics, poses: &[Pose]) {
         for dispatch in [Dispatch::Detect, Dispatch::Portable] {
             let mut out = vec![BatchSolution::default(); poses.len()];
@@ -1032,18 +1119,8 @@ mod tests {
                         assert!(same(*batch, scalar), "{pose:?}: {batch} vs {scalar}");
                     }
                 }
-                let workspace = model.inverse(pose).is_ok_and(|ik| {
-                    let middle = |[min, max]: [f64; 2]| 0.5 * (min + max);
-                    let joints = Joints {
-                        theta3: middle(model.limits[2]),
-                        d4: middle(model.limits[3]),
-                        ..ik.joints
-                    };
-                    model.check_assembly(&ik).is_ok()
-                        && model.check_limits(&joints).is_ok()
-                        && model.check_singularity(&ik.configuration).is_ok()
-                });
-                assert_eq!(*reachable, workspace, "{pose:?} {dispatch:?}");
+                let scalar = model.reachable(pose.x, pose.y);
+                assert_eq!(*reachable, scalar, "{pose:?} {dispatch:?}");
             }
         }
     }

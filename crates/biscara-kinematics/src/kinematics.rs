@@ -341,6 +341,22 @@ impl Kinematics {
             && inside(joints.d4, self.limits[3])
     }
 
+    /// Whether the platform point `(x, y)` (mm) counts as reachable in the workspace: IK in the
+    /// working mode, in the robot's assembly mode, θ1 and θ2 inside their limits and outside
+    /// the singularity margin. z and c are free: d4 and θ3 are taken at the middle of their
+    /// ranges (some z and c always give that), so they never decide. The one definition the
+    /// workspace, [`Kinematics::reachable_batch`] and the design sweeps count by.
+    pub fn reachable(&self, x: f64, y: f64) -> bool {
+        let middle = |[min, max]: [f64; 2]| 0.5 * (min + max);
+        self.inverse(&Pose::new(x, y, 0.0, 0.0)).is_ok_and(|ik| {
+            let joints =
+                Joints { theta3: middle(self.limits[2]), d4: middle(self.limits[3]), ..ik.joints };
+            self.check_assembly(&ik).is_ok()
+                && self.check_limits(&joints).is_ok()
+                && self.check_singularity(&ik.configuration).is_ok()
+        })
+    }
+
     /// Fails with [`KinematicsError::JointLimit`] for the first joint outside its limits.
     pub fn check_limits(&self, joints: &Joints) -> Result<(), KinematicsError> {
         for joint in Joint::ALL {

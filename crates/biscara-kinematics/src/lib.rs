@@ -47,7 +47,7 @@ pub use kinematics::{
     FkSolution, IkSolution, Kinematics, PassiveJoints, PlanarConfiguration, SingularityAngles,
     wrap_angle,
 };
-pub use meshes::{MeshSpec, Meshes};
+pub use meshes::{MeshSpec, Meshes, Part};
 pub use mode::{AssemblyMode, ParseModeError, Sign, WorkingMode};
 pub use model::RobotModel;
 pub use pose::{Chain, Joint, Joints, Pose};

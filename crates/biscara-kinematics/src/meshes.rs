@@ -40,51 +40,89 @@ pub struct Meshes {
     pub tool: Option<MeshSpec>,
 }
 
-impl Meshes {
-    /// The part names, in the order [`Meshes::parts`] gives them.
-    pub const PART_NAMES: [&'static str; 7] =
-        ["base", "proximal1", "proximal2", "distal1", "distal2", "column", "tool"];
+/// A part of the robot the viewer draws, and so may have a mesh (see [`Meshes`]'s fields for
+/// each part's frame).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Part {
+    /// The fixed base (pillars and beam).
+    Base,
+    /// Chain 1's proximal link.
+    Proximal1,
+    /// Chain 2's proximal link.
+    Proximal2,
+    /// Chain 1's distal link.
+    Distal1,
+    /// Chain 2's distal link.
+    Distal2,
+    /// The Z column.
+    Column,
+    /// The tool with its flange.
+    Tool,
+}
 
-    /// The parts that have a mesh: `(name, spec)` in the order of [`Meshes::PART_NAMES`].
-    pub fn parts(&self) -> impl Iterator<Item = (&'static str, &MeshSpec)> {
-        Self::PART_NAMES
-            .into_iter()
-            .zip(self.slots())
-            .filter_map(|(name, spec)| Some((name, spec?)))
+impl Part {
+    /// Every part, in the order of `robot.json`'s `meshes`.
+    pub const ALL: [Part; 7] = [
+        Part::Base,
+        Part::Proximal1,
+        Part::Proximal2,
+        Part::Distal1,
+        Part::Distal2,
+        Part::Column,
+        Part::Tool,
+    ];
+
+    /// The part's key in `robot.json`'s `meshes` and the viewer's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Part::Base => "base",
+            Part::Proximal1 => "proximal1",
+            Part::Proximal2 => "proximal2",
+            Part::Distal1 => "distal1",
+            Part::Distal2 => "distal2",
+            Part::Column => "column",
+            Part::Tool => "tool",
+        }
+    }
+}
+
+impl fmt::Display for Part {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Meshes {
+    /// The mesh of `part`, if it has one.
+    pub fn get(&self, part: Part) -> Option<&MeshSpec> {
+        match part {
+            Part::Base => self.base.as_ref(),
+            Part::Proximal1 => self.proximal1.as_ref(),
+            Part::Proximal2 => self.proximal2.as_ref(),
+            Part::Distal1 => self.distal1.as_ref(),
+            Part::Distal2 => self.distal2.as_ref(),
+            Part::Column => self.column.as_ref(),
+            Part::Tool => self.tool.as_ref(),
+        }
+    }
+
+    /// The parts that have a mesh, in the order of [`Part::ALL`].
+    pub fn parts(&self) -> impl Iterator<Item = (Part, &MeshSpec)> {
+        Part::ALL.into_iter().filter_map(|part| Some((part, self.get(part)?)))
     }
 
     /// The parts that have a mesh, mutably (to resolve their paths).
-    pub fn parts_mut(&mut self) -> impl Iterator<Item = (&'static str, &mut MeshSpec)> {
-        let slots = [
-            &mut self.base,
-            &mut self.proximal1,
-            &mut self.proximal2,
-            &mut self.distal1,
-            &mut self.distal2,
-            &mut self.column,
-            &mut self.tool,
-        ];
-        Self::PART_NAMES
+    pub fn parts_mut(&mut self) -> impl Iterator<Item = (Part, &mut MeshSpec)> {
+        let Meshes { base, proximal1, proximal2, distal1, distal2, column, tool } = self;
+        Part::ALL
             .into_iter()
-            .zip(slots)
-            .filter_map(|(name, spec)| Some((name, spec.as_mut()?)))
+            .zip([base, proximal1, proximal2, distal1, distal2, column, tool])
+            .filter_map(|(part, spec)| Some((part, spec.as_mut()?)))
     }
 
     /// Whether no part has a mesh.
     pub fn is_empty(&self) -> bool {
         self.parts().next().is_none()
-    }
-
-    fn slots(&self) -> [Option<&MeshSpec>; 7] {
-        [
-            self.base.as_ref(),
-            self.proximal1.as_ref(),
-            self.proximal2.as_ref(),
-            self.distal1.as_ref(),
-            self.distal2.as_ref(),
-            self.column.as_ref(),
-            self.tool.as_ref(),
-        ]
     }
 }
 

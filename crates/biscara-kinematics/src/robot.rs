@@ -557,8 +557,16 @@ mod tests {
         let json = r#"{"meshes": {"base": "base.stl",
             "proximal1": {"file": "arm.stl", "scale": 1000, "offset": [0, 0, -5], "rotation": [0, 0, 90]}}}"#;
         let robot = Robot::from_json(json).unwrap();
-        let parts: Vec<&str> = robot.meshes.parts().map(|(name, _)| name).collect();
+        let parts: Vec<&str> = robot.meshes.parts().map(|(part, _)| part.name()).collect();
         assert_eq!(parts, ["base", "proximal1"]);
+        // Each part's name is its key in the file.
+        for part in crate::Part::ALL {
+            let json = format!(r#"{{"meshes": {{"{part}": "{part}.stl"}}}}"#);
+            let meshes = Robot::from_json(&json).unwrap().meshes;
+            let found: Vec<_> =
+                meshes.parts().map(|(found, spec)| (found, spec.file.clone())).collect();
+            assert_eq!(found, [(part, format!("{part}.stl"))]);
+        }
         assert_eq!(robot.meshes.base, Some(crate::MeshSpec::new("base.stl")));
         let arm = robot.meshes.proximal1.as_ref().unwrap();
         assert_eq!(

@@ -352,7 +352,13 @@ mod tests {
         assert!(limits.c_velocity > 0.0 && limits.c_velocity <= motion.rapid_rotation);
         assert!(limits.c_acceleration > 0.0);
         assert_eq!(limits.z_velocity, model.robot().joint_max_velocity.d4);
-        assert!(limits.derivation.velocity_bound.contains("limit"));
+        // The symmetric default robot's θ1 and θ2 bend alike: their acceleration limits through
+        // the path's curvature bound the speed (θ2 by rounding), and the speed is what it gives.
+        let derivation = &limits.derivation;
+        assert_eq!(derivation.velocity_bound, "theta2's acceleration limit");
+        let acceleration = model.robot().joint_max_acceleration.theta2;
+        let bound = (CURVATURE_SHARE * acceleration / derivation.curvature[1]).sqrt();
+        assert!((limits.xy_velocity - GRID_MARGIN * bound).abs() < 1e-9, "{limits:?}");
         assert!(limits.derivation.centre_speed > limits.xy_velocity);
     }
 

@@ -43,6 +43,18 @@ impl Tool {
         }
     }
 
+    /// What a picture calls this tool's work in its legend ("" for the gripper, which leaves
+    /// none).
+    pub fn legend(self) -> &'static str {
+        match self {
+            Tool::Laser => "laser: burnt trace (darker: more power)",
+            Tool::Extruder => "extruder: deposited track",
+            Tool::Pen => "pen: strokes (pen down)",
+            Tool::Spindle => "spindle: cutting moves",
+            Tool::Gripper => "",
+        }
+    }
+
     /// The kind named `name` (see [`Tool::name`]); `None` for any other name.
     pub fn from_name(name: &str) -> Option<Tool> {
         Tool::ALL.into_iter().find(|tool| tool.name() == name)
@@ -68,6 +80,8 @@ mod tests {
             assert_eq!(serde_json::from_str::<Tool>(&json).unwrap(), tool);
         }
         assert_eq!(Tool::from_name("torch"), None);
+        assert_eq!(Tool::Gripper.legend(), "");
+        assert!(Tool::ALL[1..].iter().all(|tool| tool.legend().starts_with(tool.name())));
         assert_eq!(Tool::default(), Tool::Gripper);
     }
 }

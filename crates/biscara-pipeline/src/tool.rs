@@ -87,17 +87,6 @@ impl ToolState {
         }
     }
 
-    /// What a picture calls `tool`'s work in its legend ("" for the gripper, which leaves none).
-    pub fn legend(tool: Tool) -> &'static str {
-        match tool {
-            Tool::Laser => "laser: burnt trace (darker: more power)",
-            Tool::Extruder => "extruder: deposited track",
-            Tool::Pen => "pen: strokes (pen down)",
-            Tool::Spindle => "spindle: cutting moves",
-            Tool::Gripper => "",
-        }
-    }
-
     /// The state after `kind` (an event; moves change nothing).
     pub fn after(mut self, kind: &MotionKind) -> ToolState {
         match *kind {
@@ -342,8 +331,6 @@ mod tests {
         // Filament fed before does not make a travel move a track.
         assert_eq!(ToolState { extruded_mm: 5.0, ..off }.strength(Tool::Extruder, 1000.0), None);
         assert_eq!(ToolState { pen_down: true, ..off }.strength(Tool::Pen, 1000.0), Some(1.0));
-        assert_eq!(ToolState::legend(Tool::Gripper), "");
-        assert!(ToolState::legend(Tool::Laser).starts_with("laser"));
     }
 
     #[test]

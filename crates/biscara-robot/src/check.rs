@@ -32,6 +32,23 @@ pub enum ProblemKind {
 }
 
 impl ProblemKind {
+    /// Every kind, in the order reports list them at equal times.
+    pub const ALL: [ProblemKind; 8] = [
+        ProblemKind::Unreachable,
+        ProblemKind::JointLimit,
+        ProblemKind::VelocityLimit,
+        ProblemKind::AccelerationLimit,
+        ProblemKind::Singularity,
+        ProblemKind::SelfCollision,
+        ProblemKind::SceneCollision,
+        ProblemKind::Tool,
+    ];
+
+    /// The kind whose [`ProblemKind::name`] is `name`.
+    pub fn from_name(name: &str) -> Option<ProblemKind> {
+        ProblemKind::ALL.into_iter().find(|kind| kind.name() == name)
+    }
+
     /// The `kind` string of `check --json` (README.md).
     pub fn name(self) -> &'static str {
         match self {

@@ -20,6 +20,19 @@ pub enum VirtualRobotError {
         /// What is wrong and what would be right.
         message: String,
     },
+    /// Occurs when a `check --json` report read back is not JSON, has no `problems` array, or
+    /// a problem without a number `t_s` or with an unknown `kind`.
+    #[error("{line}:{column}: not a check --json report: {key}: {message}")]
+    CheckReport {
+        /// 1-based line of the error.
+        line: usize,
+        /// 1-based column of the error.
+        column: usize,
+        /// Dotted path of the offending key (`problems[0].kind`), or `.` for the whole document.
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
     /// Occurs when the robot file is invalid.
     #[error(transparent)]
     Robot(#[from] RobotError),

@@ -48,5 +48,6 @@ pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
 pub use error::VirtualRobotError;
 pub use fit::{Bounds, Fit, Transform, fit, place_motion, shift_motion};
+pub use report::ReportedProblem;
 pub use scene::{Scene, SceneBox};
-pub use workspace::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, Workspace, reachable};
+pub use workspace::{MAX_STEP_MM, MIN_STEP_MM, Rectangle, Workspace};

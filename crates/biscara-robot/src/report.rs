@@ -6,7 +6,8 @@ use serde_json::{Value, json};
 
 use std::io::Write;
 
-use crate::{Peak, Problem, Rectangle, Report, Workspace};
+use crate::scene::read_json;
+use crate::{Peak, Problem, ProblemKind, Rectangle, Report, VirtualRobotError, Workspace};
 
 /// A number rounded to 6 decimals, negative zero cleaned, for JSON.
 fn round6(value: f64) -> Value {
@@ -36,7 +37,53 @@ fn problem_json(problem: &Problem) -> Value {
     })
 }
 
+/// One problem of a `check --json` report read back ([`Report::read_problems`]).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+pub struct ReportedProblem {
+    /// When it starts, s.
+    #[serde(rename = "t_s")]
+    pub t: f64,
+    /// What kind of problem.
+    pub kind: ProblemKind,
+    /// What it is, as the report says it (empty when the report has none).
+    #[serde(default)]
+    pub message: String,
+}
+
+/// The part of a `check --json` report the viewer reads.
+#[derive(serde::Deserialize)]
+struct ReportedProblems {
+    problems: Vec<ReportedProblem>,
+}
+
+impl<'de> serde::Deserialize<'de> for ProblemKind {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        ProblemKind::from_name(&name).ok_or_else(|| {
+            let names: Vec<&str> = ProblemKind::ALL.iter().map(|kind| kind.name()).collect();
+            serde::de::Error::custom(format!(
+                "unknown kind `{name}`, expected one of {}",
+                names.join(", ")
+            ))
+        })
+    }
+}
+
 impl Report {
+    /// Reads the problems of a `check --json` report ([`Report::to_json`]) back: each one's
+    /// start time, kind and message; the other keys are not read. Fails with the line, column
+    /// and key of what is not such a report.
+    pub fn read_problems(json: &[u8]) -> Result<Vec<ReportedProblem>, VirtualRobotError> {
+        let report: ReportedProblems =
+            read_json(json).map_err(|error| VirtualRobotError::CheckReport {
+                line: error.line,
+                column: error.column,
+                key: error.key,
+                message: error.message,
+            })?;
+        Ok(report.problems)
+    }
+
     /// The report as README.md's `{"ok":…,"problems":[…],"summary":{…}}` (`check --json`).
     pub fn to_json(&self) -> Value {
         let report = self;
@@ -210,5 +257,56 @@ impl Workspace {
             fixed(rectangle.width() * rectangle.height(), 0)
         )?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_problems_written_are_read_back() {
+        let json = br#"{"ok":false,"problems":[{"kind":"joint_limit","line":3,"t_s":1.25,
+            "message":"theta1 beyond its limit"},{"kind":"tool","t_s":2}],"summary":{}}"#;
+        let problems = Report::read_problems(json).unwrap();
+        assert_eq!(
+            problems,
+            [
+                ReportedProblem {
+                    t: 1.25,
+                    kind: ProblemKind::JointLimit,
+                    message: "theta1 beyond its limit".to_owned()
+                },
+                ReportedProblem { t: 2.0, kind: ProblemKind::Tool, message: String::new() },
+            ]
+        );
+        for kind in ProblemKind::ALL {
+            assert_eq!(ProblemKind::from_name(kind.name()), Some(kind));
+        }
+    }
+
+    #[test]
+    fn what_is_not_a_report_is_refused_at_its_line_column_and_key() {
+        // (Each message starts so; the list of kinds goes on.)
+        for (json, expected) in [
+            (
+                "{\"problems\": [\n  {\"kind\": }]}",
+                "2:12: not a check --json report: problems[0].kind: expected value",
+            ),
+            ("{\"ok\": true}", "1:12: not a check --json report: .: missing field `problems`"),
+            (
+                "{\"problems\":[{\"kind\":\"tool\"}]}",
+                "1:28: not a check --json report: problems[0]: missing field `t_s`",
+            ),
+            (
+                "{\"problems\":[{\"kind\":\"limit\",\"t_s\":1}]}",
+                "1:28: not a check --json report: problems[0].kind: unknown kind `limit`, \
+                 expected one of unreachable, joint_limit, ",
+            ),
+            ("{\"problems\":[]} x", "1:17: not a check --json report: .: trailing characters"),
+        ] {
+            let err = Report::read_problems(json.as_bytes()).unwrap_err();
+            assert!(err.to_string().starts_with(expected), "{json}: {err}");
+        }
     }
 }

@@ -69,19 +69,12 @@ impl Scene {
     ///
     /// Errors carry the 1-based line and column and the key they are about (`boxes[0].max`).
     pub fn from_json(bytes: &[u8]) -> Result<Scene, VirtualRobotError> {
-        let error = |key: String, inner: serde_json::Error| VirtualRobotError::Scene {
-            line: inner.line().max(1),
-            column: inner.column().max(1),
-            key,
-            message: strip_position(&inner.to_string()),
-        };
-        let mut deserializer = serde_json::Deserializer::from_slice(bytes);
-        let mut scene: Scene =
-            serde_path_to_error::deserialize(&mut deserializer).map_err(|err| {
-                let path = err.path().to_string();
-                error(path, err.into_inner())
-            })?;
-        deserializer.end().map_err(|inner| error(".".to_owned(), inner))?;
+        let mut scene: Scene = read_json(bytes).map_err(|error| VirtualRobotError::Scene {
+            line: error.line,
+            column: error.column,
+            key: error.key,
+            message: error.message,
+        })?;
         for (index, scene_box) in scene.boxes.iter_mut().enumerate() {
             if scene_box.name.is_empty() {
                 scene_box.name = format!("box {}", index + 1);
@@ -89,6 +82,35 @@ impl Scene {
         }
         Ok(scene)
     }
+}
+
+/// Where and why a JSON document could not be read ([`read_json`]).
+pub(crate) struct JsonError {
+    /// 1-based line.
+    pub(crate) line: usize,
+    /// 1-based column.
+    pub(crate) column: usize,
+    /// Dotted path of the offending key (`boxes[1].max`), or `.` for the whole document.
+    pub(crate) key: String,
+    /// What is wrong, without serde's position.
+    pub(crate) message: String,
+}
+
+/// Reads `bytes` as one JSON document of `T`: the reader of the scene and of `check`'s report.
+pub(crate) fn read_json<T: serde::de::DeserializeOwned>(bytes: &[u8]) -> Result<T, JsonError> {
+    let error = |key: String, inner: serde_json::Error| JsonError {
+        line: inner.line().max(1),
+        column: inner.column().max(1),
+        key,
+        message: strip_position(&inner.to_string()),
+    };
+    let mut deserializer = serde_json::Deserializer::from_slice(bytes);
+    let value = serde_path_to_error::deserialize(&mut deserializer).map_err(|err| {
+        let path = err.path().to_string();
+        error(path, err.into_inner())
+    })?;
+    deserializer.end().map_err(|inner| error(".".to_owned(), inner))?;
+    Ok(value)
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! The reachable region in the XY plane (docs/virtual-robot.md) and the largest rectangle inside
 //! it.
 
-use biscara_kinematics::{Joint, Joints, Kinematics, Pose};
+use biscara_kinematics::Kinematics;
 
 use crate::VirtualRobotError;
 
@@ -9,26 +9,6 @@ use crate::VirtualRobotError;
 pub const MIN_STEP_MM: f64 = 0.1;
 /// Largest grid step accepted, millimetres.
 pub const MAX_STEP_MM: f64 = 100.0;
-
-/// Whether the platform point `(x, y)` is reachable: IK in the working mode, in the robot's
-/// assembly mode, θ1 and θ2 inside their limits and outside the singularity margin.
-///
-/// z and c are free: d4 and θ3 are taken at the middle of their ranges (some z and c always
-/// give that), so they never decide.
-pub fn reachable(model: &Kinematics, x: f64, y: f64) -> bool {
-    let Ok(mut solution) = model.inverse(&Pose { x, y, z: 0.0, phi: 0.0 }) else {
-        return false;
-    };
-    let middle = |joint| {
-        let [min, max] = model.limits(joint);
-        0.5 * (min + max)
-    };
-    solution.joints =
-        Joints { theta3: middle(Joint::Theta3), d4: middle(Joint::D4), ..solution.joints };
-    model.check_assembly(&solution).is_ok()
-        && model.check_limits(&solution.joints).is_ok()
-        && model.check_singularity(&solution.configuration).is_ok()
-}
 
 /// The workspace as a grid of points at multiples of `step` in X and Y, each reachable or not.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,16 +51,20 @@ impl Rectangle {
 }
 
 impl Workspace {
+    /// Fails with [`VirtualRobotError::Step`] unless `step` (mm) lies in
+    /// [[`MIN_STEP_MM`], [`MAX_STEP_MM`]]: the grid steps a workspace is computed at.
+    pub fn check_step(step: f64) -> Result<(), VirtualRobotError> {
+        if (MIN_STEP_MM..=MAX_STEP_MM).contains(&step) {
+            Ok(())
+        } else {
+            Err(VirtualRobotError::Step { step_mm: step, min_mm: MIN_STEP_MM, max_mm: MAX_STEP_MM })
+        }
+    }
+
     /// The workspace of `model` on a grid of `step` millimetres covering everything the chains
     /// can reach (each chain reaches at most `l1 + l2` from its base joint).
     pub fn compute(model: &Kinematics, step: f64) -> Result<Workspace, VirtualRobotError> {
-        if !(MIN_STEP_MM..=MAX_STEP_MM).contains(&step) {
-            return Err(VirtualRobotError::Step {
-                step_mm: step,
-                min_mm: MIN_STEP_MM,
-                max_mm: MAX_STEP_MM,
-            });
-        }
+        Workspace::check_step(step)?;
         let reach = model.l1() + model.l2();
         let [b1, b2] = model.bases();
         let index = |value: f64, up: bool| {
@@ -303,7 +287,7 @@ mod tests {
         for j in 0..rows {
             for i in 0..columns {
                 let [x, y] = workspace.point(i, j);
-                assert_eq!(workspace.is_reachable(i, j), reachable(&model, x, y), "({x}, {y})");
+                assert_eq!(workspace.is_reachable(i, j), model.reachable(x, y), "({x}, {y})");
             }
         }
         assert!(workspace.count() > 1000);
@@ -312,8 +296,8 @@ mod tests {
     #[test]
     fn home_is_reachable_and_the_base_is_not() {
         let model = Kinematics::default();
-        assert!(reachable(&model, 0.0, 400.0));
-        assert!(!reachable(&model, 0.0, 0.0));
-        assert!(!reachable(&model, 0.0, 600.0));
+        assert!(model.reachable(0.0, 400.0));
+        assert!(!model.reachable(0.0, 0.0));
+        assert!(!model.reachable(0.0, 600.0));
     }
 }

@@ -23,13 +23,19 @@ pub enum ViewError {
     /// Occurs when writing the output fails.
     #[error(transparent)]
     Io(#[from] io::Error),
-    /// Occurs when a mesh is given for a part the viewer does not draw (see
-    /// [`biscara_kinematics::Meshes::PART_NAMES`]), or the meshes together hold more than
-    /// [`crate::MAX_MESH_TRIANGLES`] triangles.
-    #[error("{message}")]
-    Mesh {
-        /// What is wrong.
-        message: String,
+    /// Occurs when a part is given a second mesh.
+    #[error("part `{part}` has a mesh already")]
+    MeshTwice {
+        /// The part.
+        part: biscara_kinematics::Part,
+    },
+    /// Occurs when the meshes together hold more triangles than the viewer takes.
+    #[error(
+        "the meshes hold more than {max} triangles, what the viewer takes: simplify them first"
+    )]
+    TooManyTriangles {
+        /// The most the viewer takes ([`crate::MAX_MESH_TRIANGLES`]).
+        max: usize,
     },
     /// Occurs when a plot cannot be drawn (the plotting backend failed).
     #[error("cannot draw the plot: {message}")]

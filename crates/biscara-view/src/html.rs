@@ -1,14 +1,16 @@
 //! The self-contained HTML viewer (`biscara view`, docs/virtual-robot.md).
 
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::io::BufRead;
 use std::io::Write;
 
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Kinematics, MeshSpec, Meshes, Robot, RobotModel};
+use biscara_kinematics::{Kinematics, MeshSpec, Part, Robot, RobotModel, ToolKind};
+use biscara_robot::ReportedProblem;
+use biscara_text::round_to;
 
-use crate::{MAX_MESH_TRIANGLES, Scene, StlMesh, ViewError};
+use crate::decimate::Decimator;
+use crate::{MAX_MESH_TRIANGLES, ProgramOverlay, Scene, StlMesh, ToolWork, ViewError};
 
 /// The page: HTML, CSS and hand-written JavaScript; `/*BISCARA_DATA*/` is replaced by the data,
 /// `/*BISCARA_FRAMES*/` by the frames (base64 of little-endian `f32`s) and `/*BISCARA_THREE*/`
@@ -22,7 +24,8 @@ const THREE: &str = include_str!("../assets/three.min.js");
 /// Numbers per frame: t (s), θ1, θ2, θ3 (degrees), d4 (mm), tool x, y, z (mm), c (degrees).
 const FRAME_WIDTH: usize = 9;
 
-/// Limits on what the page holds, so that an hour-long program stays a few megabytes.
+/// Limits on what the page holds: at most about 51 MB however long the program (1 048 576
+/// frames of 48 bytes as base64, and the bounded path, lines, events and work).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewerOptions {
     /// Title shown at the top of the page.
@@ -49,49 +52,8 @@ impl Default for ViewerOptions {
             max_path_points: 20_000,
             max_line_changes: 20_000,
             max_events: 5_000,
-            max_process_points: 40_000,
+            max_process_points: crate::MAX_WORK_POINTS,
         }
-    }
-}
-
-/// Keeps every `stride`-th item pushed; when full, drops every other kept item and doubles the
-/// stride, so memory stays bounded however many items arrive. The last item is kept aside.
-#[derive(Debug, Clone)]
-struct Decimator<T> {
-    kept: Vec<T>,
-    last: Option<T>,
-    stride: usize,
-    seen: usize,
-    capacity: usize,
-}
-
-impl<T: Clone> Decimator<T> {
-    fn new(capacity: usize) -> Self {
-        Decimator { kept: Vec::new(), last: None, stride: 1, seen: 0, capacity: capacity.max(2) }
-    }
-
-    fn push(&mut self, item: T) {
-        if self.seen.is_multiple_of(self.stride) {
-            if self.kept.len() >= self.capacity {
-                let mut index = 0;
-                self.kept.retain(|_| {
-                    index += 1;
-                    index % 2 == 1
-                });
-                self.stride *= 2;
-            }
-            if self.seen.is_multiple_of(self.stride) {
-                self.kept.push(item.clone());
-            }
-        }
-        self.last = Some(item);
-        self.seen += 1;
-    }
-
-    /// The kept items and the last one (when it was not kept already).
-    fn items(&self) -> impl Iterator<Item = &T> {
-        let last_kept = self.seen > 0 && (self.seen - 1).is_multiple_of(self.stride);
-        self.kept.iter().chain(self.last.iter().filter(move |_| !last_kept))
     }
 }
 
@@ -106,113 +68,6 @@ struct Event {
     t: f64,
     pick: bool,
     at: [f64; 3],
-}
-
-/// One point of the tool's work: time, where, how strongly (0…1), whether a stroke starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct ProcessPoint {
-    t: f64,
-    at: [f64; 3],
-    strength: f64,
-    start: bool,
-}
-
-/// The tool's work (docs/motion.md) as strokes of points at least `spacing` apart (doubled, and
-/// every other inner point dropped, when full), and the times its state changes.
-#[derive(Debug)]
-struct Process {
-    /// The tool's name and the legend of its work.
-    tool: Option<(String, String)>,
-    points: Vec<ProcessPoint>,
-    /// The last point kept and the latest sample not kept, of the stroke being drawn.
-    last: Option<ProcessPoint>,
-    pending: Option<ProcessPoint>,
-    spacing: f64,
-    capacity: usize,
-    /// The previous sample's program line.
-    line: Option<usize>,
-    /// (time, strength; −1 when the tool stops working).
-    changes: Vec<(f64, f64)>,
-    max_changes: usize,
-}
-
-impl Process {
-    fn new(capacity: usize, max_changes: usize) -> Process {
-        Process {
-            tool: None,
-            points: Vec::new(),
-            last: None,
-            pending: None,
-            spacing: 0.5,
-            capacity: capacity.max(4),
-            line: None,
-            changes: Vec::new(),
-            max_changes,
-        }
-    }
-
-    fn push(&mut self, t: f64, pose: [f64; 4], line: usize, strength: Option<f64>) {
-        let at = [pose[0], pose[1], pose[2]];
-        // A corner: the previous sample ended a move; keep it.
-        let corner = self.line.replace(line).is_some_and(|previous| previous != line);
-        let was = self.last.map(|point| point.strength);
-        if was != strength && self.changes.len() < self.max_changes {
-            self.changes.push((t, strength.unwrap_or(-1.0)));
-        }
-        let Some(strength) = strength else {
-            self.end_stroke();
-            return;
-        };
-        let point = ProcessPoint { t, at, strength, start: false };
-        match self.last {
-            Some(mut last) if last.strength == strength => {
-                if corner && let Some(pending) = self.pending {
-                    self.keep(pending);
-                    last = pending;
-                }
-                let far = (0..3).map(|k| (at[k] - last.at[k]).powi(2)).sum::<f64>().sqrt()
-                    >= self.spacing;
-                if far {
-                    self.keep(point);
-                } else {
-                    self.pending = Some(point);
-                }
-            }
-            _ => {
-                self.end_stroke();
-                self.keep(ProcessPoint { start: true, ..point });
-            }
-        }
-    }
-
-    /// Keeps the stroke's last sample, so that it ends where the tool stopped.
-    fn end_stroke(&mut self) {
-        if let Some(pending) = self.pending.take() {
-            self.keep(pending);
-        }
-        self.last = None;
-    }
-
-    fn keep(&mut self, point: ProcessPoint) {
-        self.pending = None;
-        self.last = Some(point);
-        self.points.push(point);
-        if self.points.len() > self.capacity {
-            // Every other point inside a stroke goes; a stroke's first and last stay.
-            let points = std::mem::take(&mut self.points);
-            let count = points.len();
-            self.points = points
-                .iter()
-                .enumerate()
-                .filter(|&(index, point)| {
-                    let last_of_stroke = index + 1 == count || points[index + 1].start;
-                    point.start || last_of_stroke || index % 2 == 0
-                })
-                .map(|(_, point)| *point)
-                .collect();
-            self.spacing *= 2.0;
-        }
-    }
 }
 
 /// Gathers a joint trajectory, the programmed path and a scene, and writes the viewer page.
@@ -237,13 +92,15 @@ pub struct Viewer {
     line_text: BTreeMap<usize, String>,
     time_step: Option<f64>,
     previous_t: Option<f64>,
-    process: Process,
-    /// `check`'s problems: time, kind, message.
-    problems: Vec<(f64, String, String)>,
+    /// The tool whose work is shown, and the work.
+    tool: Option<ToolKind>,
+    process: ToolWork,
+    /// `check`'s problems (messages shortened to 200 characters).
+    problems: Vec<ReportedProblem>,
     /// The objects' size (width x, length y, height z; mm), when given.
     object: Option<[f64; 3]>,
-    /// The parts' meshes: part name and its triangles' corners in the part's frame (mm).
-    meshes: Vec<(&'static str, Vec<f32>)>,
+    /// The parts' meshes: the part and its triangles' corners in the part's frame (mm).
+    meshes: Vec<(Part, Vec<f32>)>,
 }
 
 impl Viewer {
@@ -256,7 +113,8 @@ impl Viewer {
             frames: Decimator::new(options.max_frames),
             path: Decimator::new(options.max_path_points),
             lines: Decimator::new(options.max_line_changes),
-            process: Process::new(options.max_process_points, options.max_events),
+            tool: None,
+            process: ToolWork::new(options.max_process_points, options.max_events),
             options,
             current_line: None,
             events: Vec::new(),
@@ -270,34 +128,20 @@ impl Viewer {
         }
     }
 
-    /// Draws `mesh` in place of the box or cylinder of `part` (one of
-    /// [`Meshes::PART_NAMES`]), placed in the part's frame by `spec` (scale, rotation, offset;
-    /// the file is not read here). Fails for an unknown part, a part given twice, or when the
-    /// meshes together would hold more than [`MAX_MESH_TRIANGLES`] triangles.
+    /// Draws `mesh` in place of the box or cylinder of `part`, placed in the part's frame by
+    /// `spec` (scale, rotation, offset; the file is not read here). Fails for a part given twice,
+    /// or when the meshes together would hold more than [`MAX_MESH_TRIANGLES`] triangles.
     pub fn add_mesh(
         &mut self,
-        part: &str,
+        part: Part,
         spec: &MeshSpec,
         mesh: &StlMesh,
     ) -> Result<(), ViewError> {
-        let Some(&name) = Meshes::PART_NAMES.iter().find(|&&name| name == part) else {
-            return Err(ViewError::Mesh {
-                message: format!(
-                    "no part `{part}` to draw a mesh for; the parts are {}",
-                    Meshes::PART_NAMES.join(", ")
-                ),
-            });
-        };
-        if self.meshes.iter().any(|(other, _)| *other == name) {
-            return Err(ViewError::Mesh { message: format!("part `{part}` has a mesh already") });
+        if self.meshes.iter().any(|(other, _)| *other == part) {
+            return Err(ViewError::MeshTwice { part });
         }
         if self.mesh_triangles() + mesh.triangles() > MAX_MESH_TRIANGLES {
-            return Err(ViewError::Mesh {
-                message: format!(
-                    "the meshes hold more than {MAX_MESH_TRIANGLES} triangles, what the viewer \
-                     takes: simplify them first"
-                ),
-            });
+            return Err(ViewError::TooManyTriangles { max: MAX_MESH_TRIANGLES });
         }
         let m = spec.transform();
         let mut corners = Vec::with_capacity(mesh.positions().len());
@@ -307,7 +151,7 @@ impl Viewer {
                 corners.push((row[0] * v[0] + row[1] * v[1] + row[2] * v[2] + row[3]) as f32);
             }
         }
-        self.meshes.push((name, corners));
+        self.meshes.push((part, corners));
         Ok(())
     }
 
@@ -322,13 +166,13 @@ impl Viewer {
         self.object = Some(size);
     }
 
-    /// Adds one of `check`'s problems (README.md's `check --json`): its time (s), kind and
-    /// message. The page marks it in the scene, where the tool is at that time, and on the
-    /// timeline. At most `max_events` are kept.
-    pub fn add_problem(&mut self, t: f64, kind: &str, message: &str) {
+    /// Adds one of `check`'s problems (README.md's `check --json`, read by
+    /// [`biscara_robot::Report::read_problems`]). The page marks it in the scene, where the tool
+    /// is at that time, and on the timeline. At most `max_events` are kept.
+    pub fn add_problem(&mut self, problem: &ReportedProblem) {
         if self.problems.len() < self.options.max_events {
-            let message: String = message.chars().take(200).collect();
-            self.problems.push((t, kind.to_owned(), message));
+            let message: String = problem.message.chars().take(200).collect();
+            self.problems.push(ReportedProblem { message, ..problem.clone() });
         }
     }
 
@@ -373,25 +217,20 @@ impl Viewer {
         self.gripper = gripper;
     }
 
-    /// Names the tool whose work the page shows (docs/motion.md: `laser`, `extruder`, `pen`,
-    /// `spindle`) and the legend of its work; without it the page shows no process.
-    pub fn set_tool(&mut self, tool: &str, label: &str) {
-        self.process.tool = Some((tool.to_owned(), label.to_owned()));
+    /// A [`ProgramOverlay`] of `tool`'s work within this page's bounds, sampled up to a second
+    /// past the trajectory's last row: push the program's samples into it, then
+    /// [`Viewer::set_overlay`].
+    pub fn overlay(&self, tool: ToolKind) -> ProgramOverlay {
+        let options = &self.options;
+        ProgramOverlay::new(tool, options.max_process_points, options.max_events, self.duration())
     }
 
-    /// Adds the tool's work at one sample of the program: time (s), pose `[x, y, z, c]` (mm,
-    /// degrees), the program line it belongs to (the last sample of a line is kept: a corner)
-    /// and how strongly the tool works there, 0…1 (`None` while it does not: travel). The page
-    /// draws the work done so far, apart from travel: the burnt trace, the deposited track layer
-    /// by layer, the pen's strokes.
-    pub fn push_process_sample(
-        &mut self,
-        t: f64,
-        pose: [f64; 4],
-        line: usize,
-        strength: Option<f64>,
-    ) {
-        self.process.push(t, pose, line, strength);
+    /// Shows the tool's work of `overlay` (docs/motion.md: for a laser, an extruder, a pen, a
+    /// spindle; the gripper leaves none): the burnt trace, the deposited track layer by layer,
+    /// the pen's strokes, the cuts, apart from travel.
+    pub fn set_overlay(&mut self, overlay: ProgramOverlay) {
+        self.tool = Some(overlay.tool()).filter(|&tool| tool != ToolKind::Gripper);
+        self.process = overlay.work().clone();
     }
 
     /// The program lines the page refers to (those of the kept line changes), ascending.
@@ -455,135 +294,164 @@ impl Viewer {
         Ok(())
     }
 
-    /// The page's data as one JSON object (numbers with fixed decimals, `<` escaped so the text
-    /// cannot close the script element).
+    /// The page's data as one JSON object (numbers with fixed decimals, `<` and `>` escaped so
+    /// the text cannot close the script element).
     fn data_json(&self) -> String {
-        let mut json = String::with_capacity(self.frames.kept.len() * 100 + 4096);
         let robot = &self.robot;
         let bases = self.model.bases();
-        let _ = write!(
-            json,
-            "{{\"title\":{},\"robot\":{{\"name\":{},\"l1\":{},\"l2\":{},\"bases\":[[{},{}],[{},{}]],\
-             \"lp\":{},\"link_width\":{},\"link_height\":{},\"gripper_radius\":{},\
-             \"gripper_length\":{},\"limits\":{}}},",
-            string(&self.options.title),
-            string(&robot.name),
-            robot.links.l1,
-            robot.links.l2,
-            bases[0].x,
-            bases[0].y,
-            bases[1].x,
-            bases[1].y,
-            robot.lp,
-            robot.geometry.link_width,
-            robot.geometry.link_height,
-            robot.geometry.gripper_radius,
-            robot.geometry.gripper_length,
-            serde_json::to_string(&robot.joint_limits.to_array()).unwrap_or_default(),
-        );
-        let _ = write!(
-            json,
-            "\"frames\":{{\"count\":{},\"width\":{FRAME_WIDTH},\"stride\":{},\"rows\":{},\
-             \"dt\":{}}},",
-            self.frames.items().count(),
-            self.frames.stride,
-            self.frames.seen,
-            self.time_step.unwrap_or(0.0)
-        );
-        json.push_str("\"path\":[");
-        push_numbers(&mut json, self.path.items().flat_map(|p| [p[0], p[1], p[2]]), 2);
-        json.push_str("],\"lines\":[");
-        push_numbers(&mut json, self.lines.items().flat_map(|&(t, line)| [t, line as f64]), 4);
-        json.push_str("],\"line_text\":{");
-        for (index, (line, text)) in self.line_text.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(json, "\"{line}\":{}", string(text));
-        }
-        json.push_str("},\"events\":[");
-        for (index, event) in self.events.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(
-                json,
-                "[{:.4},{},{:.2},{:.2},{:.2}]",
-                event.t,
-                u8::from(event.pick),
-                event.at[0],
-                event.at[1],
-                event.at[2]
-            );
-        }
-        json.push_str("],\"tool\":");
-        match &self.process.tool {
-            Some((name, label)) => {
-                let _ = write!(json, "{{\"kind\":{},\"label\":{}}}", string(name), string(label));
-            }
-            None => json.push_str("null"),
-        }
-        let mut points = self.process.points.clone();
-        points.extend(self.process.pending);
-        json.push_str(",\"process\":[");
-        push_numbers(
-            &mut json,
-            points.iter().flat_map(|p| {
+        let limits = robot.joint_limits.to_array().map(|limit| limit.map(Num::<15>));
+        let flat = |values: &mut dyn Iterator<Item = f64>| values.map(Num::<4>).collect();
+        let data = PageData {
+            title: &self.options.title,
+            robot: RobotData {
+                name: &robot.name,
+                l1: Num(robot.links.l1),
+                l2: Num(robot.links.l2),
+                bases: bases.map(|base| [Num(base.x), Num(base.y)]),
+                lp: Num(robot.lp),
+                link_width: Num(robot.geometry.link_width),
+                link_height: Num(robot.geometry.link_height),
+                gripper_radius: Num(robot.geometry.gripper_radius),
+                gripper_length: Num(robot.geometry.gripper_length),
+                limits,
+            },
+            frames: FramesData {
+                count: self.frames.items().count(),
+                width: FRAME_WIDTH,
+                stride: self.frames.stride,
+                rows: self.frames.seen,
+                dt: Num(self.time_step.unwrap_or(0.0)),
+            },
+            path: self.path.items().flat_map(|p| [p[0], p[1], p[2]]).map(Num::<2>).collect(),
+            lines: flat(&mut self.lines.items().flat_map(|&(t, line)| [t, line as f64])),
+            line_text: &self.line_text,
+            events: self
+                .events
+                .iter()
+                .map(|e| (Num(e.t), u8::from(e.pick), e.at.map(Num::<2>)))
+                .map(|(t, pick, [x, y, z])| (t, pick, x, y, z))
+                .collect(),
+            tool: self.tool.map(|tool| ToolData { kind: tool.name(), label: tool.legend() }),
+            process: flat(&mut self.process.points().flat_map(|p| {
                 [p.t, p.at[0], p.at[1], p.at[2], p.strength, f64::from(u8::from(p.start))]
-            }),
-            4,
-        );
-        json.push_str("],\"work\":[");
-        push_numbers(&mut json, self.process.changes.iter().flat_map(|&(t, s)| [t, s]), 4);
-        json.push_str("],\"problems\":[");
-        for (index, (t, kind, message)) in self.problems.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(json, "[{t:.4},{},{}]", string(kind), string(message));
-        }
-        json.push_str("],\"object\":");
-        match self.object {
-            Some([w, l, h]) => {
-                let _ = write!(json, "[{w},{l},{h}]");
-            }
-            None => json.push_str("null"),
-        }
-        json.push_str(",\"meshes\":[");
-        for (index, (part, corners)) in self.meshes.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let bytes: Vec<u8> = corners.iter().flat_map(|value| value.to_le_bytes()).collect();
-            let mut text = Vec::with_capacity(bytes.len() / 3 * 4 + 4);
-            base64(&bytes, &mut text);
-            let _ = write!(
-                json,
-                "{{\"part\":\"{part}\",\"triangles\":{},\"data\":\"{}\"}}",
-                corners.len() / 9,
-                String::from_utf8_lossy(&text)
-            );
-        }
-        json.push_str("],\"scene\":[");
-        for (index, scene_box) in self.scene.boxes.iter().enumerate() {
-            if index > 0 {
-                json.push(',');
-            }
-            let _ = write!(
-                json,
-                "{{\"name\":{},\"min\":[{},{},{}],\"max\":[{},{},{}]}}",
-                string(&scene_box.name),
-                scene_box.min[0],
-                scene_box.min[1],
-                scene_box.min[2],
-                scene_box.max[0],
-                scene_box.max[1],
-                scene_box.max[2]
-            );
-        }
-        json.push_str("]}");
-        json
+            })),
+            work: flat(&mut self.process.changes().iter().flat_map(|&(t, s)| [t, s])),
+            problems: self
+                .problems
+                .iter()
+                .map(|problem| (Num(problem.t), problem.kind.name(), problem.message.as_str()))
+                .collect(),
+            object: self.object.map(|size| size.map(Num::<15>)),
+            meshes: self
+                .meshes
+                .iter()
+                .map(|(part, corners)| {
+                    let bytes: Vec<u8> = corners.iter().flat_map(|v| v.to_le_bytes()).collect();
+                    let mut text = Vec::with_capacity(bytes.len() / 3 * 4 + 4);
+                    base64(&bytes, &mut text);
+                    let data = String::from_utf8_lossy(&text).into_owned();
+                    MeshData { part: part.name(), triangles: corners.len() / 9, data }
+                })
+                .collect(),
+            scene: self
+                .scene
+                .boxes
+                .iter()
+                .map(|b| SceneData { name: &b.name, min: b.min.map(Num), max: b.max.map(Num) })
+                .collect(),
+        };
+        let json = serde_json::to_string(&data).unwrap_or_default();
+        json.replace('<', "\\u003c").replace('>', "\\u003e")
     }
+}
+
+/// A number of the page: rounded to `D` decimals, written without trailing zeros (an integer
+/// without a decimal point) and never as `-0`. `Num<15>` keeps a robot file's numbers as given.
+#[derive(Debug, Clone, Copy)]
+struct Num<const D: usize>(f64);
+
+impl<const D: usize> serde::Serialize for Num<D> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let value = if D >= 15 { self.0 + 0.0 } else { round_to(self.0, D) };
+        if value == value.trunc() && value.abs() < 1e15 {
+            serializer.serialize_i64(value as i64)
+        } else {
+            serializer.serialize_f64(value)
+        }
+    }
+}
+
+/// The page's data (`D` in viewer.html).
+#[derive(serde::Serialize)]
+struct PageData<'a> {
+    title: &'a str,
+    robot: RobotData<'a>,
+    frames: FramesData,
+    /// x, y, z of each kept point, in a row.
+    path: Vec<Num<2>>,
+    /// t, line of each kept line change, in a row.
+    lines: Vec<Num<4>>,
+    line_text: &'a BTreeMap<usize, String>,
+    /// t, pick (1) or place (0), x, y, z.
+    events: Vec<(Num<4>, u8, Num<2>, Num<2>, Num<2>)>,
+    tool: Option<ToolData>,
+    /// t, x, y, z, strength, start of each point of the tool's work, in a row.
+    process: Vec<Num<4>>,
+    /// t, strength (−1: stops) of each change of the tool's work, in a row.
+    work: Vec<Num<4>>,
+    /// t, kind, message of each of `check`'s problems.
+    problems: Vec<(Num<4>, &'static str, &'a str)>,
+    object: Option<[Num<15>; 3]>,
+    meshes: Vec<MeshData>,
+    scene: Vec<SceneData<'a>>,
+}
+
+/// The robot's sizes the page draws (mm) and its joint limits (degrees, mm).
+#[derive(serde::Serialize)]
+struct RobotData<'a> {
+    name: &'a str,
+    l1: Num<15>,
+    l2: Num<15>,
+    bases: [[Num<15>; 2]; 2],
+    lp: Num<15>,
+    link_width: Num<15>,
+    link_height: Num<15>,
+    gripper_radius: Num<15>,
+    gripper_length: Num<15>,
+    limits: [[Num<15>; 2]; 4],
+}
+
+/// How the frames (base64 after the data) are laid out.
+#[derive(serde::Serialize)]
+struct FramesData {
+    count: usize,
+    width: usize,
+    stride: usize,
+    rows: usize,
+    dt: Num<15>,
+}
+
+/// The tool whose work is shown.
+#[derive(serde::Serialize)]
+struct ToolData {
+    kind: &'static str,
+    label: &'static str,
+}
+
+/// One part's mesh: its triangles' corners as base64 of little-endian `f32`s.
+#[derive(serde::Serialize)]
+struct MeshData {
+    part: &'static str,
+    triangles: usize,
+    data: String,
+}
+
+/// One box of the scene (mm).
+#[derive(serde::Serialize)]
+struct SceneData<'a> {
+    name: &'a str,
+    min: [Num<15>; 3],
+    max: [Num<15>; 3],
 }
 
 /// Appends the base64 text of `bytes` (standard alphabet, `=` padding) to `text`.
@@ -598,28 +466,6 @@ fn base64(bytes: &[u8], text: &mut Vec<u8>) {
             } else {
                 text.push(b'=');
             }
-        }
-    }
-}
-
-/// A JSON string that is also safe inside a `<script>` element.
-fn string(text: &str) -> String {
-    serde_json::to_string(text).unwrap_or_default().replace('<', "\\u003c").replace('>', "\\u003e")
-}
-
-/// Appends numbers separated by commas with `decimals` decimals (no negative zero).
-fn push_numbers(json: &mut String, values: impl Iterator<Item = f64>, decimals: usize) {
-    let mut first = true;
-    for value in values {
-        if !first {
-            json.push(',');
-        }
-        first = false;
-        let text = format!("{value:.decimals$}");
-        let text = text.trim_end_matches('0').trim_end_matches('.');
-        match text {
-            "-0" | "" | "-" => json.push('0'),
-            text => json.push_str(text),
         }
     }
 }
@@ -640,20 +486,6 @@ mod tests {
     }
 
     #[test]
-    fn decimation_keeps_a_bounded_uniform_subset_and_the_last_item() {
-        let mut decimator = Decimator::new(8);
-        for item in 0..100 {
-            decimator.push(item);
-        }
-        let items: Vec<i32> = decimator.items().copied().collect();
-        assert!(items.len() <= 9, "{items:?}");
-        assert_eq!(items[0], 0);
-        assert_eq!(*items.last().unwrap(), 99);
-        let step = items[1] - items[0];
-        assert!(items[..items.len() - 1].windows(2).all(|w| w[1] - w[0] == step), "{items:?}");
-    }
-
-    #[test]
     fn the_page_holds_frames_path_events_and_no_raw_angle_brackets_in_data() {
         let mut viewer = Viewer::new(
             &RobotModel::default(),
@@ -671,7 +503,11 @@ mod tests {
             viewer.push_path_sample(f64::from(step) * 0.5, [0.0, 400.0, 50.0, 0.0], 7, step >= 2);
         }
         viewer.set_line_text(7, "G1 Z10 (pick)");
-        viewer.add_problem(1.5, "collision", "the tool hits <pallet>");
+        viewer.add_problem(&ReportedProblem {
+            t: 1.5,
+            kind: biscara_robot::ProblemKind::SceneCollision,
+            message: "the tool hits <pallet>".to_owned(),
+        });
         assert_eq!(viewer.referenced_lines(), [7]);
         assert_eq!(viewer.time_step(), Some(0.5));
         let mut page = Vec::new();
@@ -685,56 +521,15 @@ mod tests {
         assert_eq!(frames.len(), (5 * 9 * 4usize).div_ceil(3) * 4, "base64 of 45 f32");
         // The first frame's t = 0 and θ1 = 0: eight zero bytes, "AAAAAAAAAAA".
         assert!(frames.starts_with("AAAAAAAAAAA"), "{}", &frames[..20]);
-        assert!(page.contains("\"events\":[[1.0000,1,0.00,400.00,50.00]]"));
+        assert!(page.contains("\"events\":[[1,1,0,400,50]]"));
         assert!(page.contains("\"7\":\"G1 Z10 (pick)\""));
         assert!(page.contains(
-            "\"problems\":[[1.5000,\"collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
+            "\"problems\":[[1.5,\"scene_collision\",\"the tool hits \\u003cpallet\\u003e\"]]"
         ));
         assert_eq!(page.matches("</script>").count(), 4, "the scene name must not end a script");
         // The only address is the XHTML namespace three.js names (never fetched).
         let addresses = page.replace("http://www.w3.org/1999/xhtml", "");
         assert!(!addresses.contains("http://") && !addresses.contains("https://"), "no network");
-    }
-
-    #[test]
-    fn the_process_is_kept_as_strokes_apart_from_travel_and_stays_bounded() {
-        let mut process = Process::new(100, 10);
-        // Burn along x from 0 to 10 mm (0.1 mm a sample), travel, burn at half power.
-        for step in 0..=100 {
-            process.push(f64::from(step), [f64::from(step) * 0.1, 0.0, 0.0, 0.0], 1, Some(1.0));
-        }
-        process.push(101.0, [20.0, 0.0, 0.0, 0.0], 2, None);
-        for step in 0..=10 {
-            process.push(200.0 + f64::from(step), [0.0, f64::from(step), 0.0, 0.0], 3, Some(0.5));
-        }
-        process.end_stroke();
-        let starts: Vec<f64> = process.points.iter().filter(|p| p.start).map(|p| p.t).collect();
-        assert_eq!(starts, [0.0, 200.0], "two strokes");
-        // Points 0.5 mm apart, each stroke ending where the tool stopped.
-        let first: Vec<&ProcessPoint> = process.points.iter().filter(|p| p.t < 150.0).collect();
-        assert_eq!(first.len(), 21);
-        assert_eq!(first.last().map(|p| p.at[0]), Some(10.0));
-        assert!(process.points.iter().all(|p| p.at[0] <= 10.0), "travel is not work");
-        assert_eq!(process.changes, [(0.0, 1.0), (101.0, -1.0), (200.0, 0.5)]);
-        // A corner is kept: the last sample of a line, however close to the last point.
-        let mut corner = Process::new(100, 10);
-        for step in 0..=34 {
-            let x = (f64::from(step) * 0.3).min(10.0);
-            corner.push(f64::from(step), [x, 0.0, 0.0, 0.0], 1, Some(1.0));
-        }
-        for step in 1..=10 {
-            corner.push(40.0 + f64::from(step), [10.0, f64::from(step), 0.0, 0.0], 2, Some(1.0));
-        }
-        assert!(corner.points.iter().any(|p| p.at == [10.0, 0.0, 0.0]), "{:?}", corner.points);
-        // A long job: thinned to the capacity, both ends of every stroke kept.
-        for step in 0..100_000 {
-            let t = 1000.0 + f64::from(step);
-            let strength = if step % 5000 < 4000 { Some(1.0) } else { None };
-            process.push(t, [f64::from(step) * 0.3, 5.0, 0.0, 0.0], 4, strength);
-        }
-        assert!(process.points.len() <= 101, "{}", process.points.len());
-        assert!(process.points.iter().any(|p| p.start && p.t > 90_000.0));
-        assert!(process.changes.len() <= 10);
     }
 
     #[test]
@@ -750,18 +545,18 @@ mod tests {
             rotation: [0.0, 0.0, 90.0],
             ..MeshSpec::new("t.stl")
         };
-        viewer.add_mesh("distal2", &spec, &mesh).unwrap();
+        viewer.add_mesh(Part::Distal2, &spec, &mesh).unwrap();
         let corners = &viewer.meshes[0].1;
         // (1, 0, 0) mm turned to (0, 1, 0), (0, 2, 0) to (-2, 0, 0), then moved by the offset.
         let expected = [5.0, 0.0, 1.0, 5.0, 1.0, 1.0, 3.0, 0.0, 1.0];
         assert!(corners.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-5), "{corners:?}");
         assert_eq!(viewer.mesh_triangles(), 1);
-        for (part, message) in [("distal2", "has a mesh already"), ("elbow", "no part `elbow`")] {
-            let err = viewer.add_mesh(part, &spec, &mesh).unwrap_err();
-            assert!(err.to_string().contains(message), "{err}");
-        }
+        let err = viewer.add_mesh(Part::Distal2, &spec, &mesh).unwrap_err();
+        assert!(matches!(err, ViewError::MeshTwice { part: Part::Distal2 }), "{err}");
+        assert_eq!(err.to_string(), "part `distal2` has a mesh already");
         let big = StlMesh::from_positions(vec![0.0; 9 * MAX_MESH_TRIANGLES]);
-        let err = viewer.add_mesh("tool", &spec, &big).unwrap_err();
+        let err = viewer.add_mesh(Part::Tool, &spec, &big).unwrap_err();
+        assert!(matches!(err, ViewError::TooManyTriangles { max: MAX_MESH_TRIANGLES }), "{err}");
         assert!(err.to_string().contains("more than 200000 triangles"), "{err}");
         viewer.push_row(&row(0.0, 0.0)).unwrap();
         let mut page = Vec::new();

@@ -24,20 +24,23 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod decimate;
 mod error;
 mod html;
 mod mjcf;
 mod plot;
 mod stl;
 mod trace;
+mod work;
 
 pub use biscara_robot::{Scene, SceneBox};
 pub use error::ViewError;
 pub use html::{Viewer, ViewerOptions};
 pub use mjcf::{MjcfOptions, QPOS_HEADER, QposWriter, write_mjcf};
 pub use plot::{
-    ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, ProcessStroke, ProcessStrokes,
-    TopView, draw_atlas, draw_joints, draw_top_view, draw_workspace, zoom_region,
+    ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, TopView, draw_atlas, draw_joints,
+    draw_top_view, draw_workspace, zoom_region,
 };
-pub use stl::{MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
+pub use stl::{BinaryFault, MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
 pub use trace::ProgramTrace;
+pub use work::{MAX_WORK_POINTS, ProgramOverlay, ToolWork, WorkPoint};

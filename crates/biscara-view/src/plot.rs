@@ -7,12 +7,13 @@
 use std::sync::Once;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use biscara_robot::{Body, Rectangle as WorkspaceRectangle, Scene, Workspace};
 
-use crate::ViewError;
+use crate::{ToolWork, ViewError, WorkPoint};
 
 /// DejaVu Sans (Bitstream Vera licence, see `fonts/DejaVuSans-LICENSE.txt`).
 static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
@@ -48,9 +49,9 @@ pub struct TopView<'a> {
     /// The programmed path in XY, millimetres (a polyline).
     pub path: &'a [[f64; 2]],
     /// What the tool did (docs/motion.md): the laser's burnt trace, the extruded track, the pen's
-    /// strokes, the cut; drawn over the path, which then shows the travel. Empty for the
-    /// gripper.
-    pub process: &'a [ProcessStroke],
+    /// strokes, the cut; drawn over the path, which then shows the travel. `None` or empty for
+    /// the gripper.
+    pub process: Option<&'a ToolWork>,
     /// The legend of the process strokes (`laser: burnt trace, darker for more power`).
     pub process_label: &'a str,
     /// The robot at chosen times: `(t, body)`.
@@ -62,87 +63,14 @@ pub struct TopView<'a> {
     pub region: Option<((f64, f64), (f64, f64))>,
 }
 
-/// A piece of the tool's work in XY (see [`TopView::process`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ProcessStroke {
-    /// Where it starts, millimetres.
-    pub from: [f64; 2],
-    /// Where it ends, millimetres.
-    pub to: [f64; 2],
-    /// How strong, 0 … 1 (a laser's power over its maximum; 1 for the other tools): drawn
-    /// darker when stronger.
-    pub strength: f64,
-}
-
-/// A tool's work gathered as [`ProcessStroke`]s from a stream of samples: a point at least
-/// [`ProcessStrokes::SPACING_MM`] from the last (a picture's resolution) and at every corner (the
-/// last sample of a move), a new stroke where the strength changes.
-#[derive(Debug, Default)]
-pub struct ProcessStrokes {
-    strokes: Vec<ProcessStroke>,
-    /// The stroke's last point and strength.
-    last: Option<([f64; 2], f64)>,
-    /// The previous sample's point and line.
-    previous: Option<([f64; 2], usize)>,
-}
-
-impl ProcessStrokes {
-    /// The least distance between two points of a stroke, millimetres.
-    pub const SPACING_MM: f64 = 0.5;
-
-    /// Adds the sample at XY `point` of program line `line`, where the tool works with
-    /// `strength` (`None`: it does not work there).
-    pub fn push(&mut self, point: [f64; 2], line: usize, strength: Option<f64>) {
-        let previous = self.previous.replace((point, line));
-        let Some(strength) = strength else {
-            // The stroke ends at the last sample that worked.
-            if let (Some((from, was)), Some((end, _))) = (self.last, previous) {
-                self.stroke(from, end, was);
-            }
-            self.last = None;
-            return;
-        };
-        match self.last {
-            Some((mut from, was)) if was == strength => {
-                if let Some((corner, previous_line)) = previous
-                    && previous_line != line
-                {
-                    from = self.stroke(from, corner, strength);
-                }
-                if (point[0] - from[0]).hypot(point[1] - from[1]) >= Self::SPACING_MM {
-                    self.stroke(from, point, strength);
-                }
-            }
-            _ => self.last = Some((point, strength)),
-        }
-    }
-
-    /// The strokes so far.
-    pub fn strokes(&self) -> &[ProcessStroke] {
-        &self.strokes
-    }
-
-    /// Adds the stroke `from` → `to` unless it is empty; returns where the stroke now ends.
-    fn stroke(&mut self, from: [f64; 2], to: [f64; 2], strength: f64) -> [f64; 2] {
-        if from != to {
-            self.strokes.push(ProcessStroke { from, to, strength });
-            self.last = Some((to, strength));
-        }
-        to
-    }
-}
-
-/// The region a zoomed picture shows, `((x_min, x_max), (y_min, y_max))`: the tool's `strokes`,
+/// The region a zoomed picture shows, `((x_min, x_max), (y_min, y_max))`: the tool's `work`,
 /// else the `path` but its first and last points (the travel from and back to the home pose),
 /// with a margin of a tenth (at least 5 mm); `None` when there is nothing to show.
-pub fn zoom_region(
-    strokes: &[ProcessStroke],
-    path: &[[f64; 2]],
-) -> Option<((f64, f64), (f64, f64))> {
-    let points: Vec<[f64; 2]> = if strokes.is_empty() {
+pub fn zoom_region(work: &ToolWork, path: &[[f64; 2]]) -> Option<((f64, f64), (f64, f64))> {
+    let points: Vec<[f64; 2]> = if work.is_empty() {
         path.get(1..path.len().saturating_sub(1)).unwrap_or_default().to_vec()
     } else {
-        strokes.iter().flat_map(|stroke| [stroke.from, stroke.to]).collect()
+        work.points().map(|point| [point.at[0], point.at[1]]).collect()
     };
     let mut min = [f64::INFINITY; 2];
     let mut max = [f64::NEG_INFINITY; 2];
@@ -299,6 +227,9 @@ fn top_view_extent(view: &TopView<'_>) -> ((f64, f64), (f64, f64)) {
     ((min[0] - margin, max[0] + margin), (min[1] - margin, max[1] + margin))
 }
 
+/// The top view's chart: x and y in millimetres.
+type TopChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
 fn top_view_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     view: &TopView<'_>,
@@ -324,68 +255,110 @@ fn top_view_on<DB: DrawingBackend>(
         .draw()
         .map_err(e)?;
     if let Some(workspace) = view.workspace {
-        let half = 0.5 * workspace.step();
-        let (_, rows) = workspace.size();
-        let mut cells = Vec::new();
-        for j in 0..rows {
-            for (first, last) in workspace.runs(j) {
-                let [x0, y] = workspace.point(first, j);
-                let [x1, _] = workspace.point(last, j);
-                cells.push(Rectangle::new(
-                    [(x0 - half, y - half), (x1 + half, y + half)],
-                    WORKSPACE_FILL.filled(),
-                ));
-            }
-        }
-        chart
-            .draw_series(cells)
-            .map_err(e)?
-            .label(format!("reachable ({:.0} mm²)", workspace.area_mm2()))
-            .legend(|(x, y)| {
-                Rectangle::new([(x, y - 6), (x + 16, y + 6)], WORKSPACE_FILL.filled())
-            });
+        workspace_layer(&mut chart, workspace)?;
     }
     if let Some(scene) = view.scene {
-        let boxes = scene.boxes.iter().map(|b| {
-            Rectangle::new(
-                [(b.min[0], b.min[1]), (b.max[0], b.max[1])],
-                SCENE_FILL.mix(0.7).filled(),
-            )
-        });
-        chart.draw_series(boxes).map_err(e)?;
-        let names = scene.boxes.iter().map(|b| {
-            Text::new(b.name.clone(), (b.min[0], b.max[1]), (FAMILY, 13).into_font().color(&BLACK))
-        });
-        chart.draw_series(names).map_err(e)?;
+        scene_layer(&mut chart, scene)?;
     }
-    if let Some(r) = view.rectangle {
-        let corners = [
-            (r.min[0], r.min[1]),
-            (r.max[0], r.min[1]),
-            (r.max[0], r.max[1]),
-            (r.min[0], r.max[1]),
-            (r.min[0], r.min[1]),
-        ];
-        chart
-            .draw_series(LineSeries::new(corners, RECTANGLE_COLOUR.stroke_width(2)))
-            .map_err(e)?
-            .label(format!(
-                "largest rectangle {:.0} x {:.0} mm, x {:.0}..{:.0}, y {:.0}..{:.0}",
-                r.width(),
-                r.height(),
-                r.min[0],
-                r.max[0],
-                r.min[1],
-                r.max[1]
-            ))
-            .legend(|(x, y)| {
-                PathElement::new([(x, y), (x + 16, y)], RECTANGLE_COLOUR.stroke_width(2))
-            });
+    if let Some(rectangle) = view.rectangle {
+        rectangle_layer(&mut chart, rectangle)?;
     }
+    path_and_work_layers(&mut chart, view)?;
+    bodies_layer(&mut chart, view.bodies)?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .label_font((FAMILY, 13))
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
+/// The reachable region, filled, run by run of each grid row.
+fn workspace_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    workspace: &Workspace,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let half = 0.5 * workspace.step();
+    let (_, rows) = workspace.size();
+    let mut cells = Vec::new();
+    for j in 0..rows {
+        for (first, last) in workspace.runs(j) {
+            let [x0, y] = workspace.point(first, j);
+            let [x1, _] = workspace.point(last, j);
+            cells.push(Rectangle::new(
+                [(x0 - half, y - half), (x1 + half, y + half)],
+                WORKSPACE_FILL.filled(),
+            ));
+        }
+    }
+    chart
+        .draw_series(cells)
+        .map_err(e)?
+        .label(format!("reachable ({:.0} mm²)", workspace.area_mm2()))
+        .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 16, y + 6)], WORKSPACE_FILL.filled()));
+    Ok(())
+}
+
+/// The scene's boxes as footprints, with their names.
+fn scene_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    scene: &Scene,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let boxes = scene.boxes.iter().map(|b| {
+        Rectangle::new([(b.min[0], b.min[1]), (b.max[0], b.max[1])], SCENE_FILL.mix(0.7).filled())
+    });
+    chart.draw_series(boxes).map_err(e)?;
+    let names = scene.boxes.iter().map(|b| {
+        Text::new(b.name.clone(), (b.min[0], b.max[1]), (FAMILY, 13).into_font().color(&BLACK))
+    });
+    chart.draw_series(names).map_err(e)?;
+    Ok(())
+}
+
+/// The largest rectangle, outlined, its size and place in the legend.
+fn rectangle_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    r: &WorkspaceRectangle,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let corners = [
+        (r.min[0], r.min[1]),
+        (r.max[0], r.min[1]),
+        (r.max[0], r.max[1]),
+        (r.min[0], r.max[1]),
+        (r.min[0], r.min[1]),
+    ];
+    chart
+        .draw_series(LineSeries::new(corners, RECTANGLE_COLOUR.stroke_width(2)))
+        .map_err(e)?
+        .label(format!(
+            "largest rectangle {:.0} x {:.0} mm, x {:.0}..{:.0}, y {:.0}..{:.0}",
+            r.width(),
+            r.height(),
+            r.min[0],
+            r.max[0],
+            r.min[1],
+            r.max[1]
+        ))
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], RECTANGLE_COLOUR.stroke_width(2)));
+    Ok(())
+}
+
+/// The programmed path and, over it, the tool's work.
+fn path_and_work_layers<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    view: &TopView<'_>,
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let work = view.process.filter(|work| !work.is_empty());
     if !view.path.is_empty() {
         // With the tool's work drawn over it, the path shows the travel: thin.
-        let (width, label) =
-            if view.process.is_empty() { (2, "programmed path") } else { (1, "travel") };
+        let (width, label) = if work.is_none() { (2, "programmed path") } else { (1, "travel") };
         chart
             .draw_series(LineSeries::new(
                 view.path.iter().map(|p| (p[0], p[1])),
@@ -397,21 +370,32 @@ fn top_view_on<DB: DrawingBackend>(
                 PathElement::new([(x, y), (x + 16, y)], PATH_COLOUR.stroke_width(width))
             });
     }
-    if !view.process.is_empty() {
-        chart
-            .draw_series(view.process.iter().map(|stroke| {
-                PathElement::new(
-                    [(stroke.from[0], stroke.from[1]), (stroke.to[0], stroke.to[1])],
-                    process_colour(stroke.strength).stroke_width(3),
-                )
-            }))
-            .map_err(e)?
-            .label(view.process_label)
-            .legend(|(x, y)| {
-                PathElement::new([(x, y), (x + 16, y)], process_colour(1.0).stroke_width(3))
-            });
+    if let Some(work) = work {
+        // A segment from each point to the next of its stroke, unless it is vertical (a
+        // plunge, a point in top view).
+        let points: Vec<&WorkPoint> = work.points().collect();
+        let drawn = |pair: &&[&WorkPoint]| !pair[1].start && pair[0].at[..2] != pair[1].at[..2];
+        let segments = points.windows(2).filter(drawn).map(|pair| {
+            let [from, to] = [pair[0].at, pair[1].at];
+            PathElement::new(
+                [(from[0], from[1]), (to[0], to[1])],
+                process_colour(pair[0].strength).stroke_width(3),
+            )
+        });
+        chart.draw_series(segments).map_err(e)?.label(view.process_label).legend(|(x, y)| {
+            PathElement::new([(x, y), (x + 16, y)], process_colour(1.0).stroke_width(3))
+        });
     }
-    for (index, (t, body)) in view.bodies.iter().enumerate() {
+    Ok(())
+}
+
+/// The robot at each wanted time: links, joints, base joints, the gripper with a tick for c.
+fn bodies_layer<DB: DrawingBackend>(
+    chart: &mut TopChart<'_, DB>,
+    bodies: &[(f64, Body)],
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    for (index, (t, body)) in bodies.iter().enumerate() {
         let colour = ROBOT_COLOURS[index % ROBOT_COLOURS.len()];
         let width_px = 5;
         for link in body.links() {
@@ -452,14 +436,6 @@ fn top_view_on<DB: DrawingBackend>(
             .label(format!("robot at t = {t} s"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(4)));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .label_font((FAMILY, 13))
-        .draw()
-        .map_err(e)?;
     Ok(())
 }
 
@@ -529,7 +505,7 @@ pub fn draw_workspace(
 ) -> Result<Vec<u8>, ViewError> {
     let bodies: Vec<(f64, Body)> = home.map(|body| (0.0, *body)).into_iter().collect();
     let view = TopView {
-        process: &[],
+        process: None,
         process_label: "",
         region: None,
         title,
@@ -547,40 +523,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn process_strokes_keep_corners_and_split_where_the_strength_changes() {
-        let mut process = ProcessStrokes::default();
-        // A move along X on line 1 (samples 0.1 mm apart), a corner, a move along Y on line 2.
-        for i in 0..=20 {
-            process.push([f64::from(i) * 0.1, 0.0], 1, Some(1.0));
-        }
-        for i in 1..=20 {
-            process.push([2.0, f64::from(i) * 0.1], 2, Some(1.0));
-        }
-        // Travel, then work at half strength.
-        process.push([5.0, 5.0], 3, None);
-        process.push([6.0, 5.0], 4, Some(0.5));
-        process.push([7.0, 5.0], 4, Some(0.5));
-        let strokes = process.strokes();
-        assert!(strokes.iter().any(|s| s.to == [2.0, 0.0]), "the corner is a point: {strokes:?}");
-        for stroke in strokes.iter().filter(|s| s.strength == 1.0) {
-            let length = (stroke.to[0] - stroke.from[0]).hypot(stroke.to[1] - stroke.from[1]);
-            assert!(length >= ProcessStrokes::SPACING_MM - 1e-9 || stroke.to == [2.0, 0.0]);
-        }
-        assert_eq!(
-            strokes.last().map(|s| (s.from, s.to, s.strength)),
-            Some(([6.0, 5.0], [7.0, 5.0], 0.5))
-        );
-        // No stroke crosses the travel.
-        assert!(!strokes.iter().any(|s| s.to == [5.0, 5.0] || s.from == [5.0, 5.0]));
-    }
-
-    #[test]
     fn the_zoom_region_holds_the_work_with_a_margin() {
-        let strokes = [ProcessStroke { from: [0.0, 0.0], to: [100.0, 20.0], strength: 1.0 }];
-        assert_eq!(zoom_region(&strokes, &[]), Some(((-10.0, 110.0), (-10.0, 30.0))));
+        let mut work = ToolWork::new(100, 10);
+        work.push(0.0, [0.0, 0.0, 0.0, 0.0], 1, Some(1.0));
+        work.push(1.0, [100.0, 20.0, 0.0, 0.0], 1, Some(1.0));
+        assert_eq!(zoom_region(&work, &[]), Some(((-10.0, 110.0), (-10.0, 30.0))));
         // Without work: the path but its travel from and back to home, at least 5 mm around.
+        let none = ToolWork::new(100, 10);
         let path = [[500.0, 500.0], [1.0, 1.0], [2.0, 2.0], [500.0, 500.0]];
-        assert_eq!(zoom_region(&[], &path), Some(((-4.0, 7.0), (-4.0, 7.0))));
-        assert_eq!(zoom_region(&[], &path[..2]), None);
+        assert_eq!(zoom_region(&none, &path), Some(((-4.0, 7.0), (-4.0, 7.0))));
+        assert_eq!(zoom_region(&none, &path[..2]), None);
     }
 }

@@ -56,12 +56,72 @@ pub enum StlError {
     Ascii(Located<String>),
     /// Occurs when a binary STL is shorter or longer than its header's triangle count says, a
     /// vertex is not a finite number, it holds too many triangles, or the file is no STL at all.
-    #[error("byte {byte}: {message}")]
+    #[error("byte {byte}: {fault}")]
     Binary {
         /// 0-based offset in the file.
         byte: u64,
-        /// What is wrong.
-        message: String,
+        /// What is wrong there.
+        fault: BinaryFault,
+    },
+}
+
+/// What is wrong at a byte of a binary STL ([`StlError::Binary`]).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BinaryFault {
+    /// Occurs when the file cannot be read.
+    #[error("cannot read the STL file: {0}")]
+    Io(io::Error),
+    /// Occurs when the file is shorter than a binary STL's header.
+    #[error(
+        "not an STL file: a binary STL begins with an 84-byte header, this file has {bytes} bytes"
+    )]
+    ShortHeader {
+        /// The file's length.
+        bytes: usize,
+    },
+    /// Occurs when the header's triangle count is zero.
+    #[error("the header announces no triangles")]
+    NoTriangles,
+    /// Occurs when the header announces more triangles than the caller takes.
+    #[error("the header announces {count} triangles: {}", too_many(*.max))]
+    TooManyTriangles {
+        /// The header's count.
+        count: usize,
+        /// The most taken.
+        max: usize,
+    },
+    /// Occurs when the file ends before the triangles its header announces.
+    #[error(
+        "the file ends inside triangle {triangle} of the {count} its header announces \
+         (truncated, or a wrong triangle count)"
+    )]
+    Truncated {
+        /// The triangle cut short, from 1.
+        triangle: usize,
+        /// The header's count.
+        count: usize,
+    },
+    /// Occurs when a vertex coordinate is infinite or not a number.
+    #[error("triangle {triangle}, corner {corner}: {axis} = {value} is not a finite number")]
+    NotFinite {
+        /// The triangle, from 1.
+        triangle: usize,
+        /// The corner, 1 to 3.
+        corner: usize,
+        /// The coordinate: `x`, `y` or `z`.
+        axis: &'static str,
+        /// What the file holds.
+        value: f32,
+    },
+    /// Occurs when bytes follow the triangles the header announces.
+    #[error(
+        "the header announces {count} triangles, but more bytes follow (a wrong triangle \
+         count, or not an STL file)"
+    )]
+    TrailingBytes {
+        /// The header's count.
+        count: usize,
     },
 }
 
@@ -94,24 +154,17 @@ pub fn read_stl(mut input: impl BufRead, max_triangles: usize) -> Result<StlMesh
         return Err(StlError::Ascii(Located::at(1, 1, message)));
     }
     if header.len() < 84 {
-        return Err(binary(
-            header.len() as u64,
-            format!(
-                "not an STL file: a binary STL begins with an 84-byte header, this file has {} \
-                 bytes",
-                header.len()
-            ),
-        ));
+        return Err(binary(header.len() as u64, BinaryFault::ShortHeader { bytes: header.len() }));
     }
     read_binary(&header, input, max_triangles)
 }
 
-fn binary(byte: u64, message: String) -> StlError {
-    StlError::Binary { byte, message }
+fn binary(byte: u64, fault: BinaryFault) -> StlError {
+    StlError::Binary { byte, fault }
 }
 
 fn binary_io(byte: u64, err: io::Error) -> StlError {
-    binary(byte, format!("cannot read the STL file: {err}"))
+    binary(byte, BinaryFault::Io(err))
 }
 
 fn too_many(max_triangles: usize) -> String {
@@ -124,13 +177,10 @@ fn too_many(max_triangles: usize) -> String {
 fn read_binary(header: &[u8], mut input: impl BufRead, max: usize) -> Result<StlMesh, StlError> {
     let count = u32::from_le_bytes([header[80], header[81], header[82], header[83]]) as usize;
     if count == 0 {
-        return Err(binary(80, "the header announces no triangles".to_owned()));
+        return Err(binary(80, BinaryFault::NoTriangles));
     }
     if count > max {
-        return Err(binary(
-            80,
-            format!("the header announces {count} triangles: {}", too_many(max)),
-        ));
+        return Err(binary(80, BinaryFault::TooManyTriangles { count, max }));
     }
     let mut positions = Vec::with_capacity(count * 9);
     let mut record = [0u8; 50];
@@ -138,14 +188,7 @@ fn read_binary(header: &[u8], mut input: impl BufRead, max: usize) -> Result<Stl
         let start = 84 + 50 * index as u64;
         if let Err(err) = input.read_exact(&mut record) {
             return Err(if err.kind() == io::ErrorKind::UnexpectedEof {
-                binary(
-                    start,
-                    format!(
-                        "the file ends inside triangle {} of the {count} its header announces \
-                         (truncated, or a wrong triangle count)",
-                        index + 1
-                    ),
-                )
+                binary(start, BinaryFault::Truncated { triangle: index + 1, count })
             } else {
                 binary_io(start, err)
             });
@@ -163,12 +206,12 @@ fn read_binary(header: &[u8], mut input: impl BufRead, max: usize) -> Result<Stl
                 if !value.is_finite() {
                     return Err(binary(
                         start + at as u64,
-                        format!(
-                            "triangle {}, corner {}: {} = {value} is not a finite number",
-                            index + 1,
-                            corner + 1,
-                            ["x", "y", "z"][axis]
-                        ),
+                        BinaryFault::NotFinite {
+                            triangle: index + 1,
+                            corner: corner + 1,
+                            axis: ["x", "y", "z"][axis],
+                            value,
+                        },
                     ));
                 }
                 positions.push(value);
@@ -178,13 +221,7 @@ fn read_binary(header: &[u8], mut input: impl BufRead, max: usize) -> Result<Stl
     let end = 84 + 50 * count as u64;
     let more = input.fill_buf().map_err(|err| binary_io(end, err))?;
     if !more.is_empty() {
-        return Err(binary(
-            end,
-            format!(
-                "the header announces {count} triangles, but more bytes follow (a wrong triangle \
-                 count, or not an STL file)"
-            ),
-        ));
+        return Err(binary(end, BinaryFault::TrailingBytes { count }));
     }
     Ok(StlMesh { positions })
 }

@@ -5,6 +5,8 @@ use biscara_joints::{CartesianSample, JointSolver};
 use biscara_kinematics::RobotModel;
 use biscara_robot::{Body, VirtualRobot};
 
+use crate::decimate::thin;
+
 /// Most points a trace keeps of the path and of the joint curves: past it every other point is
 /// dropped and the spacing doubled.
 const MAX_POINTS: usize = 20_000;
@@ -61,7 +63,7 @@ impl ProgramTrace {
         if self.path.last().is_none_or(|p| (p[0] - x).hypot(p[1] - y) >= self.path_spacing) {
             self.path.push([x, y]);
             if self.path.len() > MAX_POINTS {
-                thin(&mut self.path);
+                thin(&mut self.path, |_, _| false);
                 self.path_spacing *= 2.0;
             }
         }
@@ -70,8 +72,8 @@ impl ProgramTrace {
             self.t.push(sample.t);
             self.q.push(solution.joints.to_degrees());
             if self.t.len() > MAX_POINTS {
-                thin(&mut self.t);
-                thin(&mut self.q);
+                thin(&mut self.t, |_, _| false);
+                thin(&mut self.q, |_, _| false);
                 self.time_spacing *= 2.0;
             }
         }
@@ -94,25 +96,9 @@ impl ProgramTrace {
     }
 }
 
-/// Keeps every other element (the first, the third, …).
-fn thin<T>(points: &mut Vec<T>) {
-    let mut keep = false;
-    points.retain(|_| {
-        keep = !keep;
-        keep
-    });
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn thin_keeps_every_other_point() {
-        let mut points: Vec<u32> = (0..7).collect();
-        thin(&mut points);
-        assert_eq!(points, [0, 2, 4, 6]);
-    }
 
     #[test]
     fn a_long_program_keeps_a_bounded_trace_and_bodies_at_the_wanted_times() {

@@ -1,10 +1,9 @@
 //! Area, largest rectangle and GCI of random designs, against a brute-force scalar evaluation
-//! written here: its own grid, the scalar IK test of each point (`biscara_robot::reachable`, with
+//! written here: its own grid, the scalar IK test of each point (`Kinematics::reachable`, with
 //! libm's atan2), every rectangle of the grid tried, and cond(J) from nalgebra's SVD.
 
 use biscara_design::{Design, DesignStatus, Evaluator};
 use biscara_kinematics::{Kinematics, PlanarJacobian, Robot};
-use biscara_robot::reachable;
 
 /// xorshift64*, so every run draws the same designs.
 struct Rng(u64);
@@ -35,7 +34,7 @@ fn brute_grid(model: &Kinematics, step: f64) -> Grid {
     for j in 0..n {
         for i in 0..n {
             let (x, y) = ((i0 + i as i64) as f64 * step, (j0 + j as i64) as f64 * step);
-            cells.push(reachable(model, x, y));
+            cells.push(model.reachable(x, y));
         }
     }
     Grid { i0, j0, columns: n, rows: n, cells }

@@ -1,4 +1,4 @@
-//! SPEC §6: end points hit exactly, durations in whole steps, speeds never above the programmed
+//! Interpolation (docs/motion.md): end points hit exactly, durations in whole steps, speeds never above the programmed
 //! ones, the paper's constant profile, the trapezoid, dwells, grip time and events.
 
 use std::convert::Infallible;
@@ -289,7 +289,7 @@ fn input_errors_and_bad_feeds_stop_the_stream() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
-    /// SPEC §6/§11: every programmed end point is hit exactly by a sample, times are whole steps,
+    /// Every programmed end point is hit exactly by a sample, times are whole steps,
     /// and no step moves faster than the programmed speed allows.
     #[test]
     fn every_end_point_is_hit(

@@ -1,4 +1,4 @@
-//! SPEC §7: FK of every row on the programmed path, θ3 continuous, derivatives consistent with the
+//! Joint trajectories: FK of every row on the programmed path, θ3 continuous, derivatives consistent with the
 //! positions, joint-velocity slow-down, failures naming line and time.
 
 use std::convert::Infallible;
@@ -283,7 +283,7 @@ fn random_program() -> impl Strategy<Value = Vec<Motion>> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
-    /// SPEC §7: FK of every joint row lies on the programmed segment or arc, within 1e-6 mm
+    /// FK of every joint row lies on the programmed segment or arc, within 1e-6 mm
     /// (before rounding), and its C is the sample's.
     #[test]
     fn fk_of_every_row_lies_on_its_motion(motions in random_program()) {

@@ -1,4 +1,4 @@
-//! The paper's equations against SPEC §1.5: eq. (7) corrected, eq. (8)'s roots at home, and
+//! The paper's equations against docs/kinematics.md: eq. (7) corrected, eq. (8)'s roots at home, and
 //! eq. (14) equal to θ3 in the default mode only.
 
 use std::f64::consts::{FRAC_PI_2, TAU};
@@ -17,7 +17,7 @@ fn eq8_theta(x: f64, y: f64, bx: f64, c: f64, sign: f64) -> f64 {
     2.0 * t.atan()
 }
 
-/// C of eq. (7) as SPEC §1.5 corrects it: `(l2² − l1² − (x − b)² − y²) / (2 l1)`.
+/// C of eq. (7) as docs/kinematics.md corrects it: `(l2² − l1² − (x − b)² − y²) / (2 l1)`.
 fn corrected_c(x: f64, y: f64, bx: f64) -> f64 {
     (L2 * L2 - L1 * L1 - (x - bx).powi(2) - y * y) / (2.0 * L1)
 }
@@ -115,7 +115,7 @@ fn eq14_is_wrong_when_chain1_bends_the_other_way() {
     let paper = eq14_theta3(x, y, phi, ik.joints.theta1, 100.0);
     let difference = wrap_angle(paper - ik.joints.theta3);
     assert!(difference.abs() > 1e-3, "eq. (14) should differ in mode --, differs by {difference}");
-    // SPEC §1.1's θ3 still closes the round trip there.
+    // Our θ3 (docs/kinematics.md) still closes the round trip there.
     let fk = model.forward_in(&ik.joints, ik.assembly_mode()).expect("FK");
     assert_relative_eq!(wrap_angle(fk.pose.phi - phi), 0.0, epsilon = 1e-12);
 }

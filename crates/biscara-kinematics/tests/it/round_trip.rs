@@ -1,4 +1,4 @@
-//! SPEC §1.4's round trips, in all four working modes, on a symmetric and an asymmetric robot.
+//! IK and FK round trips, in all four working modes, on a symmetric and an asymmetric robot.
 
 use std::f64::consts::TAU;
 

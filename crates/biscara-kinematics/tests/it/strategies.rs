@@ -3,7 +3,7 @@
 use biscara_kinematics::{AssemblyMode, Joints, Kinematics, Pose, Robot, Sign, WorkingMode};
 use proptest::prelude::*;
 
-/// The default robot of SPEC §1.3.
+/// The default robot (`biscara robot`).
 pub fn default_robot() -> Robot {
     Robot::default()
 }

@@ -1,7 +1,7 @@
-//! The workspace grid, its area and its largest rectangle (SPEC §8.2).
+//! The workspace grid, its area and its largest rectangle (docs/virtual-robot.md).
 
 use biscara_kinematics::{Kinematics, Robot};
-use biscara_robot::{Workspace, reachable};
+use biscara_robot::Workspace;
 
 fn default_model() -> Kinematics {
     Kinematics::new(&Robot::default()).expect("default robot")
@@ -32,7 +32,7 @@ fn the_rectangle_is_reachable_and_maximal_on_the_grid() {
         // Every corner reachable, by the grid and by an independent call.
         for x in [rectangle.min[0], rectangle.max[0]] {
             for y in [rectangle.min[1], rectangle.max[1]] {
-                assert!(reachable(&model, x, y), "corner ({x}, {y}) of {rectangle:?}");
+                assert!(model.reachable(x, y), "corner ({x}, {y}) of {rectangle:?}");
             }
         }
         // Every grid point inside reachable.

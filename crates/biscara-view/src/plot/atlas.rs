@@ -183,6 +183,62 @@ mod tests {
         assert!(values.windows(2).all(|w| w[1] > w[0]), "{values:?}");
     }
 
+    /// The centre (x, y pixels) and count of the PNG's pixels of colour `rgb`.
+    fn pixels_of(png: &[u8], rgb: [u8; 3]) -> ([f64; 2], usize) {
+        let mut reader = png::Decoder::new(std::io::Cursor::new(png)).read_info().unwrap();
+        let mut buffer = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buffer).unwrap();
+        let (mut sum, mut count) = ([0.0, 0.0], 0);
+        for (index, pixel) in buffer[..info.buffer_size()].chunks(3).enumerate() {
+            if pixel == rgb {
+                let index = index as u32;
+                sum[0] += f64::from(index % info.width);
+                sum[1] += f64::from(index / info.width);
+                count += 1;
+            }
+        }
+        ([sum[0] / count.max(1) as f64, sum[1] / count.max(1) as f64], count)
+    }
+
+    #[test]
+    fn each_design_is_drawn_in_its_values_colour_where_its_links_put_it() {
+        // One base, l1 ∈ {200, 300} across, l2 ∈ {250, 350} up: the lowest value at (200, 250),
+        // the highest at (300, 350), the middle one at (200, 350), no rectangle at (300, 250).
+        let cell = |l1, l2, value| AtlasCell { l1, l2, base: 150.0, value };
+        let cells = [
+            cell(200.0, 250.0, Some(0.2)),
+            cell(300.0, 250.0, None),
+            cell(200.0, 350.0, Some(0.5)),
+            cell(300.0, 350.0, Some(0.8)),
+        ];
+        let atlas = Atlas {
+            title: "atlas",
+            index: "GCI",
+            cells: &cells,
+            chosen: Some([300.0, 350.0, 150.0]),
+        };
+        let png = draw_atlas(&atlas, ImageFormat::Png).unwrap();
+        let RGBColor(r, g, b) = ramp(0.0);
+        let (low, low_count) = pixels_of(&png, [r, g, b]);
+        let RGBColor(r, g, b) = ramp(0.5);
+        let (middle, middle_count) = pixels_of(&png, [r, g, b]);
+        let RGBColor(r, g, b) = ramp(1.0);
+        let (high, high_count) = pixels_of(&png, [r, g, b]);
+        let (grey, grey_count) = pixels_of(&png, [200, 200, 200]);
+        let (ring, ring_count) = pixels_of(&png, [255, 0, 0]);
+        for count in [low_count, middle_count, high_count, grey_count] {
+            assert!(count > 5_000, "a cell of {count} pixels");
+        }
+        assert!(ring_count > 500, "the chosen design's ring: {ring_count} pixels");
+        let close =
+            |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 3.0 && (a[1] - b[1]).abs() < 3.0;
+        // Columns by l1, rows by l2 (up: smaller pixel y).
+        assert!(close([low[0], 0.0], [middle[0], 0.0]) && close([grey[0], 0.0], [high[0], 0.0]));
+        assert!(close([0.0, low[1]], [0.0, grey[1]]) && close([0.0, middle[1]], [0.0, high[1]]));
+        assert!(high[0] > low[0] + 50.0 && low[1] > high[1] + 50.0, "{low:?} {high:?}");
+        assert!(close(ring, high), "the ring {ring:?} around the best {high:?}");
+    }
+
     #[test]
     fn an_atlas_draws_a_panel_per_base() {
         let mut cells = Vec::new();
