@@ -8,9 +8,6 @@ use std::path::Path;
 /// parent that dispatches to them).
 const SHARED: [&str; 3] = ["args", "files", "diag"];
 
-/// Imports between command modules that another branch removes (issue 41 moves `AngleUnitArg`
-/// into `args.rs`); each is reported if it is gone, so that the exception goes with it.
-const PENDING: [(&str, &str); 1] = [("linuxcnc", "trajectory")];
 
 /// The modules named by one file's `use` declarations among `siblings`: `use super::NAME…`,
 /// `use super::{NAME…, …}`, `use crate::cli::NAME…` (for `src/cli/`), `use crate::NAME…`.
@@ -133,16 +130,12 @@ fn no_command_module_imports_another() {
         }
         for target in edges {
             let shared = SHARED.contains(&target.as_str()) || target == "mod";
-            if !shared && !PENDING.contains(&(module.as_str(), target.as_str())) {
+            if !shared {
                 wrong.push(format!("{module} imports {target}"));
             }
         }
     }
     assert!(wrong.is_empty(), "command modules import each other: {wrong:?}");
-    for (module, target) in PENDING {
-        let still = graph.get(module).is_some_and(|edges| edges.contains(target));
-        assert!(still, "{module} no longer imports {target}: remove it from PENDING");
-    }
 }
 
 #[test]
