@@ -10,7 +10,7 @@ mod source;
 use std::path::PathBuf;
 
 use biscara_design::{
-    Best, DesignGrid, Evaluator, Objective, ParamRange, ProgramTimer, Shard, Sweep, Task,
+    DesignGrid, Evaluator, Objective, ParamRange, ProgramTimer, Shard, Sweep, SweepOptions, Task,
 };
 use biscara_pipeline::{GenerateError, generate};
 use biscara_post::{PostOptions, post as post_cl};
@@ -75,17 +75,16 @@ fn design<'py>(
                 return Err(Failure::Value("objective \"time\" needs programs".to_owned()));
             }
             let sweep = Sweep::new(evaluator, grid, Shard::ALL);
-            let mut best = Best::new(objective);
             let mut rows = Vec::new();
-            sweep.run(threads, |evaluation| -> Result<(), Failure> {
-                best.consider(evaluation);
+            let options = SweepOptions { threads, objective, cells: false };
+            let outcome = sweep.run(&options, |evaluation| -> Result<(), Failure> {
                 rows.push(*evaluation);
                 if rows.len() % 256 == 0 {
                     check_signals()?;
                 }
                 Ok(())
             })?;
-            let chosen = best.get().map(|chosen| chosen.design.index);
+            let chosen = outcome.best.map(|chosen| chosen.design.index);
             Ok((rows, chosen, task.is_some(), !programs.is_empty()))
         })
         .map_err(|failure| failure.into_py(py))?;

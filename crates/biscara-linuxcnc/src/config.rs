@@ -1,7 +1,7 @@
 //! The configuration's files, rendered from the templates with a robot's numbers.
 
 use biscara_kinematics::{Pose, Robot, RobotModel, Sign, ToolKind};
-use biscara_robot::{Rectangle, Workspace, reachable};
+use biscara_robot::{Rectangle, Workspace};
 
 use crate::LinuxcncError;
 use crate::limits::{AxisLimits, derive_axis_limits};
@@ -121,7 +121,7 @@ pub(crate) fn check_region(
         for j in 0..=rows {
             let x = rectangle.min[0] + rectangle.width() * i as f64 / columns as f64;
             let y = rectangle.min[1] + rectangle.height() * j as f64 / rows as f64;
-            if !reachable(&kinematics, x, y) {
+            if !kinematics.reachable(x, y) {
                 return Err(LinuxcncError::Region {
                     region: region.origin.clone(),
                     message: format!(
