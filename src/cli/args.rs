@@ -169,6 +169,18 @@ pub(crate) struct GcodeFilesArgs {
         help = "Jumps back without a motion before a loop is an endless one (error)"
     )]
     pub(crate) max_idle_jumps: u64,
+    /// How many motions one run of a G-code program may make: the motion after them is an
+    /// error naming its line, so that a program that never ends (a loop that moves and
+    /// changes something at every pass) stops within seconds instead of writing without end.
+    /// (A loop that comes back to the same state is stopped at its second pass, whatever
+    /// this says.)
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "10000000",
+        help = "Most motions one run of a G-code program may make (error past them)"
+    )]
+    pub(crate) max_motions: u64,
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
@@ -265,6 +277,7 @@ pub(crate) fn placed_reading(
         tool_table: read_with(files.tool_table.as_deref(), ToolTable::read)?,
         ini: read_with(files.ini.as_deref(), IniFile::read)?,
         max_idle_jumps: files.max_idle_jumps,
+        max_motions: files.max_motions,
         ..SamplingConfig::default()
     })
 }

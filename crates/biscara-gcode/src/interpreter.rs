@@ -12,7 +12,7 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use crate::dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect,
 };
-use crate::error::{GcodeError, Location};
+use crate::error::{GcodeError, Location, Setting};
 use crate::ini_file::IniFile;
 use crate::syntax::lexer::{
     Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
@@ -37,6 +37,8 @@ mod control;
 mod cutter_comp;
 /// The dialects' hooks: one implementation of `DialectHooks` per dialect.
 mod dialects;
+/// Loops that can only repeat: the same state at the same jump back.
+mod endless;
 /// A block executed in LinuxCNC's order.
 mod execute;
 /// The Fanuc/Haas dialect: Macro B control flow, M97, machine M-codes, look-ahead codes.
@@ -130,6 +132,10 @@ pub struct Config {
     /// without a motion in between before it is stopped as an endless loop
     /// ([`MAX_IDLE_JUMPS`](crate::MAX_IDLE_JUMPS) by default).
     pub max_idle_jumps: u64,
+    /// How many motions one run may make ([`MAX_MOTIONS`](crate::MAX_MOTIONS) by default):
+    /// the motion after them is an error, so that a program that never ends (a loop that moves
+    /// and changes its state at every pass) stops instead of writing without end.
+    pub max_motions: u64,
     /// LinuxCNC's INI file (`--ini`): the values of `#<_ini[SECTION]NAME>` (its INI_VARS
     /// feature), read-only, and the Python plug-ins its `[PYTHON]` section loads (a program's
     /// Python runs only with them; read the file with [`IniFile::read`] so that their relative
@@ -151,6 +157,7 @@ impl Default for Config {
             blend: None,
             tool_table: None,
             max_idle_jumps: crate::MAX_IDLE_JUMPS,
+            max_motions: crate::MAX_MOTIONS,
             ini: None,
         }
     }
@@ -288,6 +295,8 @@ impl<R: BufRead> Interpreter<R> {
                     finished: false,
                     moved: false,
                     idle_jumps: 0,
+                    given: 0,
+                    max_motions: config.max_motions,
                     last_end: None,
                 },
                 hooks: hooks::Hooks::new(config),
@@ -783,6 +792,10 @@ impl<R: BufRead> Iterator for Interpreter<R> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if let Some(motion) = self.machine.output.queue.pop_front() {
+                if self.machine.output.given == self.machine.output.max_motions {
+                    return Some(Err(self.too_many_motions(motion.line)));
+                }
+                self.machine.output.given += 1;
                 return Some(Ok(motion));
             }
             if self.machine.output.finished {
@@ -794,6 +807,27 @@ impl<R: BufRead> Iterator for Interpreter<R> {
                 return Some(Err(err));
             }
         }
+    }
+}
+
+impl<R: BufRead> Interpreter<R> {
+    /// The error of a program that goes on past [`Config::max_motions`] motions, at the line
+    /// of the first motion past them; nothing more is read.
+    #[cold]
+    #[inline(never)]
+    fn too_many_motions(&mut self, line: usize) -> GcodeError {
+        self.machine.output.finished = true;
+        self.machine.output.queue.clear();
+        let max = self.machine.output.max_motions;
+        let message = format!(
+            "the program goes on past {max} motions, the most one run may make (line {line} \
+             makes the next): an endless loop that moves? (a longer program needs more \
+             motions allowed)"
+        );
+        self.error(Fault {
+            kind: FaultKind::Needs(Setting::MaxMotions),
+            ..self.machine.line_fault(message)
+        })
     }
 }
 

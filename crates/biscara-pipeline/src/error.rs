@@ -119,6 +119,9 @@ pub enum Hint {
     /// [`max_idle_jumps`](crate::SamplingConfig::max_idle_jumps) allows a loop that computes
     /// long.
     MoreIdleJumps,
+    /// A program went on past the motions one run may make: a larger
+    /// [`max_motions`](crate::SamplingConfig::max_motions) allows a longer program.
+    MoreMotions,
     /// The dialect was chosen from the program's content (the error may be the dialect's, not
     /// the program's): another can be set ([`dialect`](crate::SamplingConfig::dialect)).
     DialectDetected(Detection),
@@ -140,6 +143,7 @@ impl Hint {
     pub(crate) fn for_setting(setting: Setting) -> Option<Hint> {
         match setting {
             Setting::MaxIdleJumps => Some(Hint::MoreIdleJumps),
+            Setting::MaxMotions => Some(Hint::MoreMotions),
             Setting::Ini => Some(Hint::GiveIni),
             Setting::SubroutinePath => Some(Hint::AddSubroutineFolder),
             _ => None,
@@ -152,6 +156,9 @@ impl fmt::Display for Hint {
         match self {
             Hint::MoreIdleJumps => {
                 f.write_str("(a larger max_idle_jumps allows more, for a loop that computes long)")
+            }
+            Hint::MoreMotions => {
+                f.write_str("(a larger max_motions allows more, for a program that long)")
             }
             Hint::DialectDetected(detection) => write!(
                 f,

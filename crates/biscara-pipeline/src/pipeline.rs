@@ -59,6 +59,9 @@ pub struct SamplingConfig {
     /// Jumps back a G-code program may make without a motion before it is stopped as an
     /// endless loop (`--max-idle-jumps`; [`biscara_gcode::MAX_IDLE_JUMPS`] by default).
     pub max_idle_jumps: u64,
+    /// The most motions one run of a G-code program may make before it is stopped as a
+    /// program that never ends (`--max-motions`; [`biscara_gcode::MAX_MOTIONS`] by default).
+    pub max_motions: u64,
 }
 
 /// The most motions `--fit` reads to find a program's extent, by default: 100 million (a
@@ -83,6 +86,7 @@ impl Default for SamplingConfig {
             ini: None,
             max_fit_motions: MAX_FIT_MOTIONS,
             max_idle_jumps: biscara_gcode::MAX_IDLE_JUMPS,
+            max_motions: biscara_gcode::MAX_MOTIONS,
         }
     }
 }

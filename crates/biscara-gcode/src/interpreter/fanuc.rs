@@ -170,7 +170,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         if rest.starts_with(b"goto") {
             let target = self.fanuc_integer(at + 4)?;
-            self.fanuc_goto(target)?;
+            self.fanuc_goto(target, true)?;
             return Ok(FanucLine::Done);
         }
         if let Some(rest) = rest.strip_prefix(b"do")
@@ -280,7 +280,7 @@ impl<R: BufRead> Interpreter<R> {
         if bytes[after..].starts_with(b"goto") {
             let target = self.fanuc_integer(after + 4)?;
             if value != 0.0 {
-                self.fanuc_goto(target)?;
+                self.fanuc_goto(target, true)?;
             }
             return Ok(FanucLine::Done);
         }
@@ -467,7 +467,7 @@ impl<R: BufRead> Interpreter<R> {
             target,
             repeats: repeats - 1,
         });
-        self.fanuc_goto(target)?;
+        self.fanuc_goto(target, false)?;
         Ok(FanucLine::Done)
     }
 
@@ -476,14 +476,18 @@ impl<R: BufRead> Interpreter<R> {
         let Some(call) = self.machine.hooks.fanuc.calls.pop() else { return Ok(()) };
         if call.repeats > 0 {
             self.machine.hooks.fanuc.calls.push(LocalCall { repeats: call.repeats - 1, ..call });
-            return self.fanuc_goto(call.target);
+            return self.fanuc_goto(call.target, false);
         }
         self.go_to(call.offset, call.line)
     }
 
     /// `GOTO n`: reads the program again from its start, passing over the lines before the
     /// block numbered `N n` (an error at the end of the input if there is none).
-    fn fanuc_goto(&mut self, target: u32) -> Result<(), Fault> {
+    /// `looping`: a `GOTO` (which may close a loop), not an M97 call.
+    fn fanuc_goto(&mut self, target: u32, looping: bool) -> Result<(), Fault> {
+        if looping {
+            self.repeats_forever(self.lines.number)?;
+        }
         self.count_jump(self.lines.number)?;
         self.machine.hooks.fanuc.seeking = Some((target, self.lines.number));
         self.go_to(0, 0)

@@ -33,11 +33,29 @@ pub(crate) fn axis_slot(axis: usize) -> usize {
 pub(crate) struct Params {
     numbered: Box<[f64]>,
     named: HashMap<Vec<u8>, f64>,
+    /// How many times a value changed (or the local names were swapped): equal counts at two
+    /// moments mean no parameter changed in between (an endless loop's test).
+    changes: u64,
+}
+
+/// The parameters' values at one moment ([`Params::snapshot`]).
+#[derive(Debug)]
+pub(crate) struct ParamsSnapshot {
+    /// The change count then: the same count now means nothing changed.
+    changes: u64,
+    /// The numbered values' bits.
+    numbered: Box<[u64]>,
+    /// The named values' bits, by name.
+    named: Vec<(Vec<u8>, u64)>,
 }
 
 impl Params {
     pub(crate) fn new() -> Params {
-        Params { numbered: vec![0.0; MAX_PARAMETERS].into_boxed_slice(), named: HashMap::new() }
+        Params {
+            numbered: vec![0.0; MAX_PARAMETERS].into_boxed_slice(),
+            named: HashMap::new(),
+            changes: 0,
+        }
     }
 
     /// Numbered parameter `index` (checked by the caller to lie in `1..MAX_PARAMETERS`).
@@ -47,9 +65,46 @@ impl Params {
 
     /// Sets numbered parameter `index`.
     pub(crate) fn set(&mut self, index: usize, value: f64) {
+        if let Some(slot) = self.numbered.get_mut(index)
+            && slot.to_bits() != value.to_bits()
+        {
+            *slot = value;
+            self.changes += 1;
+        }
+    }
+
+    /// Sets numbered parameter `index` to a value that mirrors state kept elsewhere (the
+    /// current position, #5420…): not counted as a change, since that state is compared
+    /// itself.
+    pub(crate) fn set_mirror(&mut self, index: usize, value: f64) {
         if let Some(slot) = self.numbered.get_mut(index) {
             *slot = value;
         }
+    }
+
+    /// The values as they are now, to compare with later ([`Params::same_as`]).
+    pub(crate) fn snapshot(&self) -> ParamsSnapshot {
+        let mut named: Vec<(Vec<u8>, u64)> =
+            self.named.iter().map(|(name, value)| (name.clone(), value.to_bits())).collect();
+        named.sort_unstable();
+        ParamsSnapshot {
+            changes: self.changes,
+            numbered: self.numbered.iter().map(|value| value.to_bits()).collect(),
+            named,
+        }
+    }
+
+    /// Whether every value is what it was at `snapshot` (bit for bit).
+    pub(crate) fn same_as(&self, snapshot: &ParamsSnapshot) -> bool {
+        if snapshot.changes == self.changes {
+            return true;
+        }
+        self.numbered.iter().zip(&snapshot.numbered).all(|(value, bits)| value.to_bits() == *bits)
+            && self.named.len() == snapshot.named.len()
+            && snapshot
+                .named
+                .iter()
+                .all(|(name, bits)| self.named.get(name).is_some_and(|v| v.to_bits() == *bits))
     }
 
     /// A named parameter set by the program, if it was.
@@ -60,9 +115,14 @@ impl Params {
     /// Sets a named parameter (allocates only the first time a name is set).
     pub(crate) fn set_named(&mut self, name: &[u8], value: f64) {
         match self.named.get_mut(name) {
-            Some(slot) => *slot = value,
+            Some(slot) if slot.to_bits() == value.to_bits() => {}
+            Some(slot) => {
+                *slot = value;
+                self.changes += 1;
+            }
             None => {
                 self.named.insert(name.to_vec(), value);
+                self.changes += 1;
             }
         }
     }
@@ -83,6 +143,7 @@ impl Params {
     /// Takes out the local named parameters (names not starting with `_`): a subroutine call
     /// hides its caller's locals, as LinuxCNC's call frames do.
     pub(crate) fn take_locals(&mut self) -> HashMap<Vec<u8>, f64> {
+        self.changes += 1;
         let mut locals = HashMap::new();
         self.named.retain(|name, value| {
             if name.first() == Some(&b'_') {
@@ -96,6 +157,7 @@ impl Params {
 
     /// Puts back locals taken by [`Params::take_locals`] (after dropping the current ones).
     pub(crate) fn restore_locals(&mut self, locals: HashMap<Vec<u8>, f64>) {
+        self.changes += 1;
         self.named.retain(|name, _| name.first() == Some(&b'_'));
         self.named.extend(locals);
     }

@@ -2,6 +2,7 @@
 
 mod conformance;
 mod dialects;
+mod endless;
 mod fanuc;
 mod features;
 mod memory;
