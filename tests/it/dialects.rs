@@ -49,7 +49,8 @@ const PROGRAMS: &[(&str, Expect)] = &[
     ("mill/fusion-linuxcnc-inch-hema-p030.ngc", Expect::Read("linuxcnc")),
     // G41 with a P word (Mach3's compensation radius) says Mach3.
     ("mill/fusion-mach3-eccentric-g41p.tap", Expect::Read("mach3")),
-    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("linuxcnc")),
+    // Nothing in it tells the dialects apart but `.tap`, Mach3's own extension.
+    ("mill/fusion-mach3-heatsink-bottom.tap", Expect::Read("mach3")),
     ("mill/gcodetools-puzzle03.gcode", Expect::Read("linuxcnc")),
     ("mill/jscut-jsdc-engrave.gcode", Expect::Read("grbl")),
     ("mill/openvoronoi-ttt-vcarve.ngc", Expect::Read("linuxcnc")),

@@ -318,7 +318,19 @@ impl<R: BufRead> Interpreter<R> {
         Location { line: self.lines.number, column: start + 1, span: (start, end), text, file }
     }
 
-    fn error(&self, fault: Fault) -> GcodeError {
+    fn error(&self, mut fault: Fault) -> GcodeError {
+        let raw = &self.lines.line;
+        let e_word = fault.message.contains(" e word") || fault.message.contains("E word");
+        if !self.machine.hooks.rules.reads_exponents
+            && (exponent_at(raw, fault.start)
+                || (e_word && (0..raw.len()).any(|at| exponent_at(raw, at))))
+        {
+            fault.message.push_str(&format!(
+                " (the `e` right after a number is read as an E word: {} G-code has no numbers \
+                 with an exponent, as Marlin's has; write the number in plain decimals)",
+                self.machine.hooks.rules.dialect
+            ));
+        }
         let at = self.location(fault.start, fault.end);
         match fault.kind {
             FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
@@ -498,7 +510,8 @@ impl<R: BufRead> Interpreter<R> {
                 &self.machine.state.params,
                 &self.machine.state,
             )
-            .mach3(self.machine.hooks.rules.reads_mach3_codes);
+            .mach3(self.machine.hooks.rules.reads_mach3_codes)
+            .exponents(self.machine.hooks.rules.reads_exponents);
             reader.read_block(&mut self.machine.syntax.block)
         };
         result.map_err(|fault| self.error(fault))?;
@@ -656,7 +669,11 @@ impl<R: BufRead> Interpreter<R> {
             .source()
             .read_ahead(LOOKAHEAD_BYTES)
             .map_err(|source| GcodeError::Read { line: 1, source })?;
-        match detect_dialect(self.lines.source().head(), complete) {
+        if let Some(lathe) = crate::dialect::lathe_evidence(self.lines.source().head(), complete) {
+            return Err(self.lathe_program(lathe));
+        }
+        let found = detect_dialect(self.lines.source().head(), complete);
+        match crate::dialect::weigh_extension(found, self.control.program()) {
             Some(detection) => {
                 self.machine.hooks.set_dialect(detection.dialect);
                 self.machine.hooks.makerbot = detection.makerbot;
@@ -670,6 +687,27 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         Ok(())
+    }
+
+    /// The refusal of a lathe program, before its first line is run, at the line of its
+    /// evidence.
+    #[cold]
+    fn lathe_program(&mut self, lathe: crate::dialect::Lathe) -> GcodeError {
+        self.machine.output.finished = true;
+        let end = lathe.text.trim_ascii_end().len().max(1);
+        let text: String = lathe
+            .text
+            .chars()
+            .take(MAX_LINE + 1)
+            .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
+            .collect();
+        let file = self.control.file.as_ref().map(|path| path.display().to_string().into());
+        let at = Location { line: lathe.line, column: 1, span: (0, end), text, file };
+        let message = format!(
+            "a lathe program ({}): this robot is an X Y Z C arm, not a lathe, and turns no part",
+            lathe.why
+        );
+        GcodeError::Invalid { at, message }
     }
 
     /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
@@ -829,6 +867,17 @@ impl<R: BufRead> Interpreter<R> {
             ..self.machine.line_fault(message)
         })
     }
+}
+
+/// Whether `raw[at..]` is an exponent written right after a number (`e-15` in `6.2e-15`).
+fn exponent_at(raw: &[u8], at: usize) -> bool {
+    let Some(rest) = raw.get(at..) else { return false };
+    let after_number = at > 0 && matches!(raw[at - 1], b'0'..=b'9' | b'.');
+    let rest = match rest {
+        [b'e' | b'E', b'+' | b'-', rest @ ..] | [b'e' | b'E', rest @ ..] => rest,
+        _ => return false,
+    };
+    after_number && rest.first().is_some_and(u8::is_ascii_digit)
 }
 
 /// LinuxCNC's `round_to_int`: `floor(x + 0.5)` (as a float: the caller bounds it).

@@ -267,6 +267,11 @@ impl Control {
         }
     }
 
+    /// The program's path, when the caller gave it.
+    pub(super) fn program(&self) -> Option<&Path> {
+        self.program.as_deref()
+    }
+
     /// Whether lines are being skipped (then every line goes through the control flow).
     pub(super) fn engaged(&self) -> bool {
         self.skipping_o.is_some() || self.skipping_to_sub.is_some()

@@ -506,6 +506,18 @@ impl super::Machine {
     ///   Fanuc and Mach3 do (Autodesk's posts write G80 and go on with `X… Y…`);
     /// - G53 with no axis word moves nowhere (a Mach3 post's `G53 G90 G40` preamble): dropped.
     pub(super) fn adapt_fanuc_style_block(&mut self) {
+        if let Some(code) =
+            self.syntax.block.extra.as_mut().and_then(|extra| extra.user_macro.take())
+        {
+            // Mach3 runs a user macro from the machine's macro folder: an event here, noted.
+            let name = format!("M{}", code.code);
+            self.hooks.summary.count_adapted(&format!(
+                "{name} (a user macro: the machine's own macro file, not run in the simulation)"
+            ));
+            if let Some(code) = biscara_motion::CodeName::new(&name) {
+                self.emit(biscara_motion::MotionKind::Code { code });
+            }
+        }
         let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
         if let Some(code) = self.syntax.block.g[1]
             && matches!(code.code, 0 | 10 | 20 | 30)

@@ -5,6 +5,7 @@ mod dialects;
 mod endless;
 mod fanuc;
 mod features;
+mod fourth_round;
 mod memory;
 mod no_panic;
 mod owords;
