@@ -515,6 +515,11 @@ impl<R: BufRead> Interpreter<R> {
             reader.read_block(&mut self.machine.syntax.block)
         };
         result.map_err(|fault| self.error(fault))?;
+        if self.machine.hooks.provisional
+            && let Some(why) = self.machine.mach3_only_block()
+        {
+            self.mach3_decides(why);
+        }
         let dialect = self.machine.hooks.dialect;
         if self.machine.hooks.rules.adapts_blocks
             && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
@@ -687,6 +692,28 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and the block just read is one LinuxCNC refuses
+    /// and Mach3 reads (`why`): the program is Mach3's from here (every line before read the
+    /// same in both).
+    #[cold]
+    #[inline(never)]
+    fn mach3_decides(&mut self, why: &str) {
+        self.machine.hooks.provisional = false;
+        self.machine.hooks.set_dialect(Dialect::Mach3);
+        self.machine.hooks.detection = Some(Detection {
+            dialect: Dialect::Mach3,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} has {why}, \
+                 which LinuxCNC refuses and Mach3 reads",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
     }
 
     /// The refusal of a lathe program, before its first line is run, at the line of its

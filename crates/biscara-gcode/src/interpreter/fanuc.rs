@@ -546,6 +546,29 @@ impl super::Machine {
         }
     }
 
+    /// While `auto` has found nothing that tells the dialects apart: what of the block just
+    /// read only Mach3 (and Fanuc) read, if anything — G53 with no axis word, axis words with
+    /// no motion code after G80 — keeping the last G0–G3 mode as Mach3 keeps it.
+    pub(super) fn mach3_only_block(&mut self) -> Option<&'static str> {
+        if let Some(code) = self.syntax.block.g[1]
+            && matches!(code.code, 0 | 10 | 20 | 30)
+        {
+            self.hooks.fanuc.plain_motion = Some(code.code);
+        }
+        let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
+        if group0 == Some(530) && !axis_words {
+            return Some("G53 with no axis word");
+        }
+        let uses_axes = group0.is_some_and(|code| matches!(code, 100 | 280 | 300 | 520 | 920));
+        (axis_words
+            && self.syntax.block.g[1].is_none()
+            && self.state.motion.is_none()
+            && !uses_axes
+            && self.hooks.fanuc.plain_motion.is_some())
+        .then_some("axis words with no motion G-code after G80")
+    }
+
     /// The Fanuc dialect's changes to the block just read, after
     /// [`Self::adapt_fanuc_style_block`]: G04 P is milliseconds and X seconds; a canned cycle's
     /// K is its repeat count.

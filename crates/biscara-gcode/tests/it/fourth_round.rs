@@ -216,3 +216,32 @@ fn real_world_fourth_round() {
         }
     }
 }
+
+/// Mach3's evidence past the look-ahead: the program is read as LinuxCNC (nothing told the
+/// dialects apart) until a block only Mach3 reads, then as Mach3 — not refused.
+#[test]
+fn mach3_evidence_past_the_look_ahead_decides_there() {
+    let mut program = String::from("G21 G90\nG0 X0 Y400\n");
+    while program.len() < biscara_gcode::LOOKAHEAD_BYTES + 1000 {
+        program.push_str("G1 X1 F500\nG1 X0\n");
+    }
+    let lines = program.lines().count();
+    program.push_str("G81 X2 Y400 Z90 R95\nG80\nX3 Y401\nM30\n");
+    let config = Config { home: HOME, dialect: Dialect::Auto, ..Config::default() };
+    let mut interpreter = interpret_seekable(Cursor::new(program.clone()), &config);
+    let motions: Vec<Motion> = interpreter.by_ref().collect::<Result<_, _>>().expect("read");
+    assert_eq!(interpreter.dialect(), Dialect::Mach3);
+    let detection = interpreter.detection().expect("a detection");
+    assert_eq!(detection.line, Some(lines + 3), "{detection:?}");
+    assert!(
+        detection.reason.contains("axis words with no motion G-code after G80"),
+        "{detection:?}"
+    );
+    let last = motions.iter().filter_map(|motion| motion.kind.end()).next_back();
+    assert_eq!(last, Some([3.0, 401.0, 95.0, 0.0]));
+    // Read as LinuxCNC, the same program is refused there.
+    let config = Config { home: HOME, dialect: Dialect::Linuxcnc, ..Config::default() };
+    let err = interpret_seekable(Cursor::new(program), &config).find_map(Result::err);
+    let err = err.expect("refused as LinuxCNC");
+    assert!(err.to_string().starts_with(&format!("{}:", lines + 3)), "{err}");
+}
