@@ -1,4 +1,4 @@
-//! Real programs in their firmware's dialect (SPEC §4.3, issue 14): every program of
+//! Real programs in their firmware's dialect (docs/gcode.md, issue 14): every program of
 //! `../shared/realworld` (beside the clone; never copied into the project) goes through
 //! `biscara interpret` with no flag. Each must be read as the dialect this table names (the
 //! note on stderr says which `auto` chose), exit 0, and its moves and dwells must be what the

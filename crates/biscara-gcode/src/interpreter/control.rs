@@ -807,63 +807,10 @@ impl<R: BufRead> Interpreter<R> {
         {
             return Ok(());
         }
-        let line = self.lines.number;
-        let level = self.control.level();
         match block.kind {
             OType::None => {}
-            OType::Sub | OType::Fanuc => {
-                let call_type = self.control.frames[level].call_type;
-                if block.kind == OType::Fanuc
-                    && !matches!(call_type, CallType::M98 | CallType::G65 | CallType::None)
-                {
-                    return Err(
-                        self.line_fault("Fanuc 'O....' subroutine must be called with 'M98'")
-                    );
-                }
-                if block.kind == OType::Sub
-                    && !matches!(call_type, CallType::Oword | CallType::None)
-                {
-                    return Err(
-                        self.line_fault("'O.... sub' subroutine must be called with 'O.... call'")
-                    );
-                }
-                if self.control.skipping_o.is_some() {
-                    self.save_offset(block)?;
-                    self.control.skipping_o = None;
-                }
-                self.control.skipping_to_sub = None;
-                if block.kind == OType::Sub && level == 0 {
-                    if self.control.defining_sub {
-                        return Err(self.line_fault("Nested subroutine definition"));
-                    }
-                    self.save_offset(block)?;
-                    self.skip_to(block);
-                    self.control.defining_sub = true;
-                    self.control.sub_name = Some(block.name.clone());
-                    self.machine.state.owords.defining = true;
-                }
-            }
-            OType::EndSub | OType::Return | OType::M99 => {
-                if level == 0 && self.control.sub_name.is_none() {
-                    return Err(self.line_fault(format!(
-                        "{line}: not in a subroutine definition: '{}'",
-                        self.line_text()
-                    )));
-                }
-                let call_type = self.control.frames[level].call_type;
-                if matches!(call_type, CallType::M98 | CallType::G65) && block.kind != OType::M99 {
-                    return Err(
-                        self.line_fault("Fanuc 'O....' subroutine definition must end with 'M99'")
-                    );
-                }
-                if call_type == CallType::Oword && block.kind == OType::M99 {
-                    return Err(self.line_fault(
-                        "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine \
-                         definition",
-                    ));
-                }
-                self.execute_return(block, call_type)?;
-            }
+            OType::Sub | OType::Fanuc => self.convert_sub(block)?,
+            OType::EndSub | OType::Return | OType::M99 => self.convert_return(block)?,
             OType::Call if self.python_callable(&block.name)? => {
                 // LinuxCNC asks its Python plug-ins first.
                 self.enter_context(block)?;
@@ -873,6 +820,75 @@ impl<R: BufRead> Interpreter<R> {
                 self.enter_context(block)?;
                 self.execute_call(block)?;
             }
+            OType::Do | OType::Repeat | OType::While => self.convert_loop_start(block)?,
+            OType::If | OType::ElseIf | OType::Else | OType::EndIf => self.convert_if(block)?,
+            OType::Break | OType::Continue | OType::EndWhile | OType::EndRepeat => {
+                self.convert_loop_end(block)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `sub` and a Fanuc-style `O` label: a definition passed over, or the subroutine a call
+    /// looked for.
+    fn convert_sub(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let level = self.control.level();
+        let call_type = self.control.frames[level].call_type;
+        if block.kind == OType::Fanuc
+            && !matches!(call_type, CallType::M98 | CallType::G65 | CallType::None)
+        {
+            return Err(self.line_fault("Fanuc 'O....' subroutine must be called with 'M98'"));
+        }
+        if block.kind == OType::Sub && !matches!(call_type, CallType::Oword | CallType::None) {
+            return Err(self.line_fault("'O.... sub' subroutine must be called with 'O.... call'"));
+        }
+        if self.control.skipping_o.is_some() {
+            self.save_offset(block)?;
+            self.control.skipping_o = None;
+        }
+        self.control.skipping_to_sub = None;
+        if block.kind == OType::Sub && level == 0 {
+            if self.control.defining_sub {
+                return Err(self.line_fault("Nested subroutine definition"));
+            }
+            self.save_offset(block)?;
+            self.skip_to(block);
+            self.control.defining_sub = true;
+            self.control.sub_name = Some(block.name.clone());
+            self.machine.state.owords.defining = true;
+        }
+        Ok(())
+    }
+
+    /// `endsub`, `return` and `M99`: back to the caller.
+    fn convert_return(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        let level = self.control.level();
+        if level == 0 && self.control.sub_name.is_none() {
+            return Err(self.line_fault(format!(
+                "{line}: not in a subroutine definition: '{}'",
+                self.line_text()
+            )));
+        }
+        let call_type = self.control.frames[level].call_type;
+        if matches!(call_type, CallType::M98 | CallType::G65) && block.kind != OType::M99 {
+            return Err(self.line_fault("Fanuc 'O....' subroutine definition must end with 'M99'"));
+        }
+        if call_type == CallType::Oword && block.kind == OType::M99 {
+            return Err(self.line_fault(
+                "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine \
+                 definition",
+            ));
+        }
+        self.execute_return(block, call_type)?;
+        Ok(())
+    }
+
+    /// A loop's start (`do`, `repeat`) and `while`, which starts a `while` loop or closes a
+    /// `do`.
+    fn convert_loop_start(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::Do => {
                 self.track_loop(&block.name, true);
                 self.control.skipping_o = None;
@@ -916,6 +932,15 @@ impl<R: BufRead> Interpreter<R> {
                     self.track_loop(&block.name, false);
                 }
             }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `if`, `elseif`, `else` and `endif`.
+    fn convert_if(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::If => {
                 match self.label_of(&block.name) {
                     Some(label) if label.line != line => {
@@ -973,6 +998,15 @@ impl<R: BufRead> Interpreter<R> {
                 self.control.skipping_o = None;
                 self.control.executed_if = true;
             }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `break`, `continue`, `endwhile` and `endrepeat`.
+    fn convert_loop_end(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::Break | OType::Continue => {
                 let Some(label) = self.label_of(&block.name) else { return Err(self.undefined()) };
                 if !matches!(label.kind, OType::While | OType::Do) {
@@ -1015,6 +1049,7 @@ impl<R: BufRead> Interpreter<R> {
                     self.back_to(&block.name, true)?;
                 }
             }
+            _ => {}
         }
         Ok(())
     }

@@ -88,8 +88,8 @@ impl Machine {
         (self.state.current.map(f64::to_bits), self.hooks.e_position.to_bits())
     }
 
-    /// The machine's whole state but the parameters (compared apart) and what only reports (the counts of codes for the notes, the motions waiting to
-    /// be given), written out.
+    /// The machine's whole state but the parameters (compared apart) and what only reports (the
+    /// counts of codes for the notes, the motions waiting to be given), written out.
     fn write_state(&self, out: &mut String) {
         let s = &self.state;
         let _ = write!(
