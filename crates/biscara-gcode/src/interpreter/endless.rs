@@ -38,9 +38,11 @@ pub(super) struct Visits {
 struct Visit {
     /// What is compared first: the position's bits.
     quick: Quick,
-    /// The whole state, when it was taken (only after a quick match is it needed): written
-    /// out but the parameters, and their values.
-    whole: Option<(String, ParamsSnapshot)>,
+    /// The parameters' values at the last jump (kept up to date by the changes since).
+    params: ParamsSnapshot,
+    /// The rest of the state written out, when it was taken at the last jump (only when the
+    /// position and the parameters were the same as at the jump before is it needed).
+    text: Option<String>,
 }
 
 /// The position (bits of `[x, y, z, c]`) and the extruder's position (bits).
@@ -57,27 +59,38 @@ impl Visits {
         control: impl FnOnce(&mut String),
     ) -> bool {
         let quick = machine.quick_state();
+        let params = &machine.state.params;
         if self.last.len() >= MAX_POINTS && !self.last.contains_key(&point) {
             self.last.clear();
         }
-        let visit = self.last.entry(point).or_insert(Visit { quick, whole: None });
+        let Some(visit) = self.last.get_mut(&point) else {
+            let mut text = String::new();
+            machine.write_state(&mut text);
+            control(&mut text);
+            self.last.insert(point, Visit { quick, params: params.snapshot(), text: Some(text) });
+            return false;
+        };
         if visit.quick != quick {
-            // Changed: what follows may differ; no need to write the state out.
-            *visit = Visit { quick, whole: None };
+            // Moved on: what follows may differ.
+            visit.quick = quick;
+            visit.text = None;
+            return false;
+        }
+        if !params.same_as(&visit.params) {
+            params.refresh(&mut visit.params);
+            visit.text = None;
             return false;
         }
         self.scratch.clear();
         machine.write_state(&mut self.scratch);
         control(&mut self.scratch);
-        if let Some((text, params)) = &visit.whole
-            && *text == self.scratch
-            && machine.state.params.same_as(params)
-        {
+        if visit.text.as_deref() == Some(self.scratch.as_str()) {
             return true;
         }
-        // The first jump from here, or the first since the quick state last changed: kept to
-        // compare the next one with.
-        visit.whole = Some((std::mem::take(&mut self.scratch), machine.state.params.snapshot()));
+        // The first jump with this position and these parameters: kept to compare the next
+        // one with.
+        params.refresh(&mut visit.params);
+        visit.text = Some(std::mem::take(&mut self.scratch));
         false
     }
 }

@@ -149,3 +149,16 @@ fn the_bound_counts_every_motion() {
     let exact = Config { max_motions: 3, ..Config::default() };
     assert!(interpret("G0 X1\nG0 X2\nM2\n".as_bytes(), &exact).all(|m| m.is_ok()));
 }
+
+/// A pass that changes more parameters than the interpreter's log of changes holds (600
+/// changes), and sets them back: compared in full, and refused at the second pass.
+#[test]
+fn a_loop_that_changes_many_parameters_and_sets_them_back_repeats() {
+    let program = "G21\no1 while [1]\n#2 = 0\no2 while [#2 LT 300]\n#[#2 + 1000] = 1\n\
+                   #2 = [#2 + 1]\no2 endwhile\n#2 = 0\no3 while [#2 LT 300]\n#[#2 + 1000] = 0\n\
+                   #2 = [#2 + 1]\no3 endwhile\nG0 X1\nG0 X0\no1 endwhile\nM2\n";
+    let results: Vec<_> = interpret_seekable(Cursor::new(program), &Config::default()).collect();
+    assert_eq!(results.iter().filter(|result| result.is_ok()).count(), 4);
+    let err = results.last().expect("a result").as_ref().expect_err("an error");
+    assert!(err.to_string().starts_with("15:1: the loop at line 2 repeats forever"), "{err}");
+}
