@@ -177,7 +177,7 @@ pub(crate) struct GcodeFilesArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value = "5000000",
+        default_value = "10000000",
         help = "Most motions one run of a G-code program may make (error past them)"
     )]
     pub(crate) max_motions: u64,
