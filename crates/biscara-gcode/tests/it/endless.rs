@@ -55,6 +55,12 @@ const CASES: &[(&str, Dialect, &str, Outcome)] = &[
         Outcome::Repeats { loop_line: 2, at: 8, motions: 10 },
     ),
     (
+        "a Fanuc Macro B WHILE loop that moves",
+        Dialect::Fanuc,
+        "G21\nWHILE [1] DO1\nG0 X1\nG0 X0\nEND1\nM30\n",
+        Outcome::Repeats { loop_line: 2, at: 5, motions: 4 },
+    ),
+    (
         "a Fanuc GOTO loop that moves",
         Dialect::Fanuc,
         "G21\nN10 G0 X1\nG0 X0\nGOTO 10\nM30\n",
