@@ -188,24 +188,37 @@ pub(crate) struct GcodeFilesArgs {
         help = "Jumps back without a motion before a loop is an endless one (error)"
     )]
     pub(crate) max_idle_jumps: u64,
+    /// How many motions one run of a G-code program may make: the motion after them is an
+    /// error naming its line, so that a program that never ends (a loop that moves and
+    /// changes something at every pass) stops within seconds instead of writing without end.
+    /// (A loop that comes back to the same state is stopped at its second pass, whatever
+    /// this says.)
+    #[arg(
+        long,
+        value_name = "N",
+        default_value = "10000000",
+        help = "Most motions one run of a G-code program may make (error past them)"
+    )]
+    pub(crate) max_motions: u64,
 }
 
 fn parse_dialect(text: &str) -> Result<Dialect, String> {
     text.parse::<Dialect>().map_err(|err| err.to_string())
 }
 
-/// The bound on robot time of the commands that need the whole program (check, plot, view).
+/// The bound on robot time of the commands that sample a program (interpolate, joints, check,
+/// plot).
 #[derive(Debug, Args)]
 pub(crate) struct TimeLimitArgs {
-    /// Stop with an error once the program has run this long in robot time (seconds; 48 h by
-    /// default): this command needs the whole program, and a program that loops forever while
-    /// moving never ends (`interpret` and `joints` stream such a program as long as it is read).
+    /// Stop with an error once the program has run this long in robot time (seconds; 4 h by
+    /// default, 14.4 million samples at 1 ms): a program that loops forever while moving never
+    /// ends, and this bounds what one run writes.
     #[arg(
         long,
         value_name = "SECONDS",
-        default_value = "172800",
+        default_value = "14400",
         value_parser = parse_time_limit,
-        help = "Most robot time to sample, s (default 48 h): an endless program stops here"
+        help = "Most robot time to sample, s (default 4 h): an endless program stops here"
     )]
     pub(crate) time_limit: f64,
 }
@@ -217,8 +230,8 @@ impl TimeLimitArgs {
         if t > self.time_limit {
             anyhow::bail!(
                 "{name}:{line}: the program has run {} s of robot time, past --time-limit: an \
-                 endless loop that moves? This command needs the whole program (interpret and \
-                 joints stream it)",
+                 endless loop that moves? (--time-limit SECONDS allows more, for a program that \
+                 long)",
                 self.time_limit
             );
         }
@@ -284,6 +297,7 @@ pub(crate) fn placed_reading(
         tool_table: read_with(files.tool_table.as_deref(), ToolTable::read)?,
         ini: read_with(files.ini.as_deref(), IniFile::read)?,
         max_idle_jumps: files.max_idle_jumps,
+        max_motions: files.max_motions,
         ..SamplingConfig::default()
     })
 }

@@ -54,6 +54,8 @@ fn hint_text(hint: &Hint) -> String {
         Hint::MoreIdleJumps => {
             "(--max-idle-jumps N allows more, for a loop that computes long)".to_owned()
         }
+        Hint::MoreMotions => "(--max-motions N allows more, for a program that long)".to_owned(),
+        Hint::MoreTime => "(--time-limit SECONDS allows more, for a program that long)".to_owned(),
         Hint::DialectDetected(detection) => format!(
             "(read as {} G-code by --dialect auto: {}; give --dialect to choose another)",
             detection.dialect, detection.reason

@@ -6,7 +6,7 @@ use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::pipeline::{Pipeline, RobotModel};
 use clap::Args;
 
-use super::args::{AngleUnitArg, ProgramArgs, SamplingArgs};
+use super::args::{AngleUnitArg, ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::NoteReporter;
 use super::files::write_output;
 
@@ -34,6 +34,8 @@ pub(crate) struct InterpolateArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    time_limit: TimeLimitArgs,
     /// Add the tool's column: `gripper` (1 from a pick to the next place),
     /// `laser_power` (the S power while on, 0 off), `spindle_rpm` (negative: M4),
     /// `extruded_mm` (filament fed since the start) or `pen_down` (1 down, 0 up).
@@ -69,6 +71,8 @@ pub(crate) struct JointsArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    time_limit: TimeLimitArgs,
     /// Add velocity and acceleration columns for every joint.
     #[arg(long)]
     derivatives: bool,
@@ -87,7 +91,10 @@ pub(crate) struct JointsArgs {
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    let config = args.sampling.config()?;
+    let config =
+        biscara::pipeline::SamplingConfig { time_limit: args.time_limit.time_limit, ..config };
+    let pipeline = Pipeline::new(model, config);
     let decimals = usize::from(args.sampling.precision);
     write_output(args.output.as_deref(), |out| {
         Ok(pipeline.write_path_csv(&source, kind, out, decimals, args.events, notes.sink())?)
@@ -99,7 +106,10 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    let config = args.sampling.config()?;
+    let config =
+        biscara::pipeline::SamplingConfig { time_limit: args.time_limit.time_limit, ..config };
+    let pipeline = Pipeline::new(model, config);
     let format = JointCsvFormat {
         angle_unit: match args.angle_unit {
             AngleUnitArg::Rad => AngleUnit::Radians,

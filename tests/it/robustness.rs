@@ -128,24 +128,66 @@ fn an_output_that_is_not_a_regular_file_is_written_in_place() {
     assert_eq!(written.lines().count(), 3, "{written}");
 }
 
-/// No input makes a command hang: a program that loops forever while moving stops `check` and
-/// `plot` (which need the whole program) at --time-limit, and `--fit` at its bound of motions
-/// in `interpret`; one that loops without moving stops at its bound of jumps everywhere.
+/// No input makes a command hang. A loop that comes back to the same state stops at its second
+/// pass in every command; one that moves and changes stops at the bound on motions in every
+/// command, and the commands that sample it in time at --time-limit too; one
+/// that loops without moving stops at its bound of jumps everywhere. No output file is left.
 #[test]
 fn endless_programs_stop_with_an_error_naming_where() {
     let dir = temp_dir("endless");
-    let moving = "G21 G90\nG0 X0 Y400\no1 while [1]\nG1 X10 F6000\nG1 X0\no1 endwhile\nM2\n";
+    let repeating = "G21 G90\nG0 X0 Y400\no1 while [1]\nG1 X10 F6000\nG1 X0\no1 endwhile\nM2\n";
+    std::fs::write(dir.join("repeating.ngc"), repeating).expect("write");
+    let moving =
+        "G21 G90\nG0 X0 Y400\no1 while [1]\n#1 = [#1 + 1]\nG1 X10 F6000\nG1 X0\no1 endwhile\nM2\n";
     std::fs::write(dir.join("moving.ngc"), moving).expect("write");
-    for command in [
-        &["check", "--time-limit", "2", "moving.ngc"][..],
-        &["plot", "--time-limit", "2", "moving.ngc", "-o", "moving.svg"],
-    ] {
-        let run = crate::util::biscara(&dir, command);
+    let outputs = [
+        ("interpret", "out.jsonl"),
+        ("interpolate", "out.csv"),
+        ("joints", "out.csv"),
+        ("check", "out.json"),
+        ("plot", "out.svg"),
+        ("view", "out.html"),
+    ];
+    // `view` reads the program beside a joint trajectory.
+    std::fs::write(dir.join("short.ngc"), "G21 G90\nG0 X0 Y400\nM2\n").expect("write");
+    crate::util::biscara(&dir, &["joints", "short.ngc", "-o", "traj.csv"]).expect_code(0);
+    for (command, output) in outputs {
+        let program =
+            |name| if command == "view" { vec!["traj.csv", "--program", name] } else { vec![name] };
+        let mut args = vec![command];
+        args.extend(program("repeating.ngc"));
+        args.extend(["-o", output]);
+        let run = crate::util::biscara(&dir, &args);
         run.expect_code(1);
-        assert!(run.stderr.contains("past --time-limit: an endless loop that moves?"), "{run}");
-        assert!(run.stderr.contains("moving.ngc:"), "{run}");
+        let message = "repeating.ngc:6:1: the loop at line 3 repeats forever";
+        assert!(run.stderr.contains(message), "{run}");
+        assert!(!dir.join(output).exists(), "{command} left {output}");
+        if command == "view" {
+            // `view` reads the program only as far as the trajectory goes.
+            continue;
+        }
+        let mut bounded = vec![command, "--max-motions", "300"];
+        bounded.extend(program("moving.ngc"));
+        bounded.extend(["-o", output]);
+        let run = crate::util::biscara(&dir, &bounded);
+        run.expect_code(1);
+        assert!(
+            run.stderr.contains("moving.ngc:6:1: the program goes on past 300 motions"),
+            "{run}"
+        );
+        assert!(run.stderr.contains("(--max-motions N allows more"), "{run}");
+        assert!(!dir.join(output).exists(), "{command} left {output}");
     }
-    assert!(!dir.join("moving.svg").exists());
+    for (command, output) in &outputs[1..5] {
+        let limited = [*command, "--time-limit", "2", "moving.ngc", "-o", *output];
+        let run = crate::util::biscara(&dir, &limited);
+        run.expect_code(1);
+        assert!(run.stderr.contains("s of robot time, past"), "{run}");
+        assert!(run.stderr.contains("an endless loop that moves?"), "{run}");
+        assert!(run.stderr.contains("(--time-limit SECONDS allows more"), "{run}");
+        assert!(run.stderr.contains("moving.ngc:"), "{run}");
+        assert!(!dir.join(output).exists(), "{command} left {output}");
+    }
     let idle = "G21\no1 while [1]\n#1 = [#1 + 1]\no1 endwhile\nM2\n";
     std::fs::write(dir.join("idle.ngc"), idle).expect("write");
     for command in ["interpret", "joints", "check"] {

@@ -1,6 +1,6 @@
-//! `interpret` throughput (SPEC §10: at least 50 MB/s of G-code on one core) on a generated
-//! 1,000,000-line program of mixed G0/G1/G2/G3 moves, with parameters and an expression every
-//! few lines, interpreted into motions (no output formatting).
+//! `interpret` throughput (the goal, docs/performance.md: at least 50 MB/s of G-code on one
+//! core) on a generated 1,000,000-line program of mixed G0/G1/G2/G3 moves, with parameters and an
+//! expression every few lines, interpreted into motions (no output formatting).
 //!
 //! Run: `cargo bench -p biscara-gcode --bench interpret`; criterion's "thrpt" line gives MiB/s
 //! of G-code; lines/s = 1e6 / time.
@@ -11,7 +11,7 @@
 //! the inter-file takes 0.47–0.49 s on the same program (49–51 MB/s, 2.1 M lines/s, peak RSS
 //! 4.6 MiB): the JSON writer's float formatting is then the larger half.
 //!
-//! 2026-11-23, with the dialects (SPEC §4.3) in, `linuxcnc` dialect: wall time could not be
+//! 2026-11-23, with the dialects (docs/gcode.md) in, `linuxcnc` dialect: wall time could not be
 //! compared (load 8 on 2 cores: passes of 0.5–1.5 s for both builds, interleaved), so the
 //! interpreter's instructions were counted with callgrind on this program, one pass, the
 //! program's generation subtracted: 2,913 M before, 2,986 M after (+2.5 %).

@@ -185,6 +185,8 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     let mut plane_xy = true;
     let (mut fanuc, mut machine_m): (Option<Detection>, Option<Detection>) = (None, None);
     let mut long_comment: Option<(usize, usize)> = None;
+    // What only Mach3 (and Fanuc) read, and whether a G80 ended a plain motion mode.
+    let (mut mach3, mut after_g80): (Option<Detection>, Option<bool>) = (None, None);
     for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
         let line = index + 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
@@ -223,6 +225,11 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
         {
             fanuc = Some(located(why));
         }
+        if let Some(why) = mach3_only(squeezed, code, &mut after_g80)
+            && mach3.is_none()
+        {
+            mach3 = Some(Detection { dialect: Dialect::Mach3, ..located(why) });
+        }
         if machine_m.is_none() && has_machine_m(squeezed) {
             machine_m = Some(located("a machine M-code only Fanuc and Haas controls have"));
         }
@@ -259,6 +266,12 @@ pub fn detect_dialect(text: &[u8], complete: bool) -> Option<Detection> {
     // Fanuc's and Haas's own codes (look-ahead, M97, Macro B) outweigh an `O` program number
     // (Mach3's too) and numbered parameters (LinuxCNC's too).
     if let Some(found) = fanuc {
+        return Some(found);
+    }
+    // What LinuxCNC refuses and Mach3 reads outweighs what both read, and a printer M-code
+    // (a CNC post's controller code: no printer writes G80 or G53).
+    let printer_only = content.as_ref().is_some_and(|found| found.reason.contains(PRINTER_M_CODE));
+    if let Some(found) = mach3.filter(|_| mach3_reads_too(content.as_ref()) || printer_only) {
         return Some(found);
     }
     // A machine M-code no other dialect has (Haas's M31 chip conveyor) says Fanuc where
@@ -327,6 +340,161 @@ fn is_text(raw: &[u8], return_too: bool) -> bool {
         || std::str::from_utf8(raw).is_ok_and(|text| {
             text.chars().all(|c| !c.is_control() || c == '\t' || (return_too && c == '\r'))
         })
+}
+
+/// The evidence an expression or a numbered parameter gives: LinuxCNC's language, and Mach3's
+/// too (which says so by other signs).
+const LINUXCNC_EXPRESSION: &str = "a LinuxCNC expression or numbered parameter";
+
+/// Whether `found` says LinuxCNC only by what Mach3 reads too (an expression or a numbered
+/// parameter), or says nothing.
+fn mach3_reads_too(found: Option<&Detection>) -> bool {
+    found.is_none_or(|found| found.reason.contains(LINUXCNC_EXPRESSION))
+}
+
+/// The file's extension as evidence, weighed after the content ([`detect_dialect`]): `.tap` is
+/// Mach3's own extension, so a `.tap` program in which nothing tells the dialects apart, or
+/// only what Mach3 reads too (or a printer M-code, which a Mach3 user macro looks like), is
+/// read as Mach3's. `file` is the program's name.
+pub(crate) fn weigh_extension(
+    found: Option<Detection>,
+    file: Option<&std::path::Path>,
+) -> Option<Detection> {
+    let tap = file
+        .and_then(std::path::Path::extension)
+        .is_some_and(|extension| extension.eq_ignore_ascii_case("tap"));
+    // A printer M-code alone in a `.tap` file is a CNC post's controller code (Mach3's user
+    // macros are M-codes above 199, as many of Marlin's are).
+    let printer_only = found.as_ref().is_some_and(|found| found.reason.contains(PRINTER_M_CODE));
+    if !tap || !(mach3_reads_too(found.as_ref()) || printer_only) {
+        return found;
+    }
+    let but = found
+        .map_or_else(String::new, |found| format!(" ({}, which Mach3 reads too)", found.reason));
+    Some(Detection {
+        dialect: Dialect::Mach3,
+        reason: format!(
+            "the file's extension `.tap` is Mach3's, and nothing in it says another dialect{but}"
+        ),
+        line: None,
+        makerbot: false,
+    })
+}
+
+/// What LinuxCNC refuses and Mach3 reads, on a line (`squeezed`: lower case, outside comments,
+/// without blanks), given whether a G80 ended the last motion mode after a G0–G3 (`after_g80`,
+/// kept from line to line): bare axis words after G80 (Mach3 runs them in the motion from
+/// before the cycle), G53 with no axis word (a Mach3 post's `G53 G90 G40`: no move).
+fn mach3_only(squeezed: &[u8], code: &[u8], after_g80: &mut Option<bool>) -> Option<&'static str> {
+    let mut g53 = false;
+    let mut g_codes = false;
+    for (at, &byte) in squeezed.iter().enumerate() {
+        if byte != b'g' || (at > 0 && squeezed[at - 1].is_ascii_alphabetic()) {
+            continue;
+        }
+        g_codes = true;
+        match number_after(squeezed, at) {
+            // `G0`–`G3` (not G2.5…): a plain motion mode, from now on.
+            Some(0..=3) => *after_g80 = Some(false),
+            Some(73 | 76 | 81..=89) if *after_g80 == Some(true) => *after_g80 = Some(false),
+            Some(80) if after_g80.is_some() => *after_g80 = Some(true),
+            Some(53) => g53 = true,
+            _ => {}
+        }
+    }
+    let axis_word = squeezed.iter().enumerate().any(|(at, &byte)| {
+        matches!(byte, b'x' | b'y' | b'z' | b'a' | b'b' | b'c')
+            && (at == 0 || !squeezed[at - 1].is_ascii_alphabetic())
+    });
+    if g53 && !axis_word {
+        return Some("G53 with no axis word, which LinuxCNC refuses and Mach3 reads as no move");
+    }
+    if !g_codes && *after_g80 == Some(true) && continues_motion(code) {
+        return Some(
+            "axis words with no motion G-code after G80, which LinuxCNC refuses and Mach3 runs \
+             in the motion from before the cycle",
+        );
+    }
+    None
+}
+
+/// A lathe program's evidence ([`lathe_evidence`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Lathe {
+    /// The 1-based line of the evidence.
+    pub(crate) line: usize,
+    /// What it is.
+    pub(crate) why: String,
+    /// The line's text.
+    pub(crate) text: String,
+}
+
+/// The first sign that a program turns a part on a lathe, with its line, in its first bytes
+/// (`complete`: the whole program): the XZ plane (G18, or LinuxCNC's G7 diameter mode) with,
+/// from then on, threading (G32, G33, G76), feed per revolution (G99 in the XZ plane: Fanuc's
+/// lathe G-code), a turret tool number (`T0101`: tool and offset), or a diameter or Z
+/// increment word (U, W). A mill never writes these; a printer M-code in the same program
+/// (Haas's M17 turret rotation) is outweighed.
+pub(crate) fn lathe_evidence(text: &[u8], complete: bool) -> Option<Lathe> {
+    let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
+    let end = if complete {
+        text.len()
+    } else {
+        text.iter().rposition(|&byte| byte == b'\n').map_or(0, |index| index + 1)
+    };
+    let mut parts = LineParts::default();
+    let mut turning_plane: Option<usize> = None;
+    let mut xz = false;
+    for (index, raw) in text[..end].split(|&byte| byte == b'\n').enumerate() {
+        let line = index + 1;
+        parts.split(raw.strip_suffix(b"\r").unwrap_or(raw));
+        let squeezed = &parts.squeezed[..];
+        let mut why = None;
+        for (at, &byte) in squeezed.iter().enumerate() {
+            if at > 0 && squeezed[at - 1].is_ascii_alphabetic() {
+                continue;
+            }
+            let number = number_after(squeezed, at);
+            let fraction = squeezed.get(at + 1..).is_some_and(|rest| {
+                let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
+                rest.get(digits) == Some(&b'.')
+            });
+            match (byte, number) {
+                (b'g', Some(7 | 18)) if !fraction => {
+                    xz = true;
+                    turning_plane = turning_plane.or(Some(line));
+                }
+                (b'g', Some(17 | 19)) if !fraction => xz = false,
+                (b'g', Some(32)) if !fraction => why = why.or(Some("G32 threading")),
+                (b'g', Some(33)) if !fraction => why = why.or(Some("G33 threading")),
+                (b'g', Some(76)) if !fraction => why = why.or(Some("a G76 threading cycle")),
+                (b'g', Some(99)) if xz => why = why.or(Some("G99 feed per revolution")),
+                (b't', Some(_)) => {
+                    let digits = squeezed[at + 1..].iter().take_while(|b| b.is_ascii_digit());
+                    if digits.count() == 4 && !contains(squeezed, "m6") {
+                        why = why.or(Some("a turret tool number (tool and offset, `T0101`)"));
+                    }
+                }
+                (b'u' | b'w', _)
+                    if squeezed.get(at + 1).is_some_and(|b| {
+                        b.is_ascii_digit() || matches!(*b, b'-' | b'+' | b'.')
+                    }) =>
+                {
+                    why = why.or(Some("a U or W word (a lathe's diameter or Z increment)"));
+                }
+                _ => {}
+            }
+        }
+        if let (Some(why), Some(plane)) = (why, turning_plane) {
+            let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+            return Some(Lathe {
+                line,
+                why: format!("{why} after the lathe's XZ plane (G18, line {plane})"),
+                text: String::from_utf8_lossy(raw).into_owned(),
+            });
+        }
+    }
+    None
 }
 
 /// The evidence an `O0001` line gives (Mach3's, and Fanuc's).
@@ -664,7 +832,7 @@ fn evidence(
         squeezed.windows(2).any(|pair| pair[0].is_ascii_alphabetic() && pair[1] == b'[');
     let parameter = squeezed.windows(2).any(|pair| pair[0] == b'#' && pair[1].is_ascii_digit());
     if expression || parameter {
-        return Some((Dialect::Linuxcnc, "a LinuxCNC expression or numbered parameter"));
+        return Some((Dialect::Linuxcnc, LINUXCNC_EXPRESSION));
     }
     None
 }

@@ -169,6 +169,9 @@ pub enum Setting {
     /// How many jumps back without a motion are allowed
     /// ([`Config::max_idle_jumps`](crate::Config::max_idle_jumps)).
     MaxIdleJumps,
+    /// How many motions one run may make
+    /// ([`Config::max_motions`](crate::Config::max_motions)).
+    MaxMotions,
 }
 
 fn note_suffix(note: &str) -> String {

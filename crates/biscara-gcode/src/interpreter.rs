@@ -12,7 +12,7 @@ use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use crate::dialect::{
     Detection, Dialect, LOOKAHEAD_BYTES, MAX_LONG_LINE, Prelude, Summary, detect_dialect,
 };
-use crate::error::{GcodeError, Location};
+use crate::error::{GcodeError, Location, Setting};
 use crate::ini_file::IniFile;
 use crate::syntax::lexer::{
     Compact, Fault, FaultKind, LineReader, MAX_LINE, Seekable, UNCLOSED_COMMENT, compact,
@@ -37,6 +37,8 @@ mod control;
 mod cutter_comp;
 /// The dialects' hooks: one implementation of `DialectHooks` per dialect.
 mod dialects;
+/// Loops that can only repeat: the same state at the same jump back.
+mod endless;
 /// A block executed in LinuxCNC's order.
 mod execute;
 /// The Fanuc/Haas dialect: Macro B control flow, M97, machine M-codes, look-ahead codes.
@@ -130,6 +132,10 @@ pub struct Config {
     /// without a motion in between before it is stopped as an endless loop
     /// ([`MAX_IDLE_JUMPS`](crate::MAX_IDLE_JUMPS) by default).
     pub max_idle_jumps: u64,
+    /// How many motions one run may make ([`MAX_MOTIONS`](crate::MAX_MOTIONS) by default):
+    /// the motion after them is an error, so that a program that never ends (a loop that moves
+    /// and changes its state at every pass) stops instead of writing without end.
+    pub max_motions: u64,
     /// LinuxCNC's INI file (`--ini`): the values of `#<_ini[SECTION]NAME>` (its INI_VARS
     /// feature), read-only, and the Python plug-ins its `[PYTHON]` section loads (a program's
     /// Python runs only with them; read the file with [`IniFile::read`] so that their relative
@@ -151,6 +157,7 @@ impl Default for Config {
             blend: None,
             tool_table: None,
             max_idle_jumps: crate::MAX_IDLE_JUMPS,
+            max_motions: crate::MAX_MOTIONS,
             ini: None,
         }
     }
@@ -288,6 +295,8 @@ impl<R: BufRead> Interpreter<R> {
                     finished: false,
                     moved: false,
                     idle_jumps: 0,
+                    given: 0,
+                    max_motions: config.max_motions,
                     last_end: None,
                 },
                 hooks: hooks::Hooks::new(config),
@@ -309,7 +318,19 @@ impl<R: BufRead> Interpreter<R> {
         Location { line: self.lines.number, column: start + 1, span: (start, end), text, file }
     }
 
-    fn error(&self, fault: Fault) -> GcodeError {
+    fn error(&self, mut fault: Fault) -> GcodeError {
+        let raw = &self.lines.line;
+        let e_word = fault.message.contains(" e word") || fault.message.contains("E word");
+        if !self.machine.hooks.rules.reads_exponents
+            && (exponent_at(raw, fault.start)
+                || (e_word && (0..raw.len()).any(|at| exponent_at(raw, at))))
+        {
+            fault.message.push_str(&format!(
+                " (the `e` right after a number is read as an E word: {} G-code has no numbers \
+                 with an exponent, as Marlin's has; write the number in plain decimals)",
+                self.machine.hooks.rules.dialect
+            ));
+        }
         let at = self.location(fault.start, fault.end);
         match fault.kind {
             FaultKind::Syntax => GcodeError::Syntax { at, message: fault.message },
@@ -489,10 +510,16 @@ impl<R: BufRead> Interpreter<R> {
                 &self.machine.state.params,
                 &self.machine.state,
             )
-            .mach3(self.machine.hooks.rules.reads_mach3_codes);
+            .mach3(self.machine.hooks.rules.reads_mach3_codes)
+            .exponents(self.machine.hooks.rules.reads_exponents);
             reader.read_block(&mut self.machine.syntax.block)
         };
         result.map_err(|fault| self.error(fault))?;
+        if self.machine.hooks.provisional
+            && let Some(why) = self.machine.mach3_only_block()
+        {
+            self.mach3_decides(why);
+        }
         let dialect = self.machine.hooks.dialect;
         if self.machine.hooks.rules.adapts_blocks
             && dialect.adapt_block(&mut self.machine).map_err(|fault| self.error(fault))?
@@ -647,7 +674,11 @@ impl<R: BufRead> Interpreter<R> {
             .source()
             .read_ahead(LOOKAHEAD_BYTES)
             .map_err(|source| GcodeError::Read { line: 1, source })?;
-        match detect_dialect(self.lines.source().head(), complete) {
+        if let Some(lathe) = crate::dialect::lathe_evidence(self.lines.source().head(), complete) {
+            return Err(self.lathe_program(lathe));
+        }
+        let found = detect_dialect(self.lines.source().head(), complete);
+        match crate::dialect::weigh_extension(found, self.control.program()) {
             Some(detection) => {
                 self.machine.hooks.set_dialect(detection.dialect);
                 self.machine.hooks.makerbot = detection.makerbot;
@@ -661,6 +692,49 @@ impl<R: BufRead> Interpreter<R> {
             }
         }
         Ok(())
+    }
+
+    /// `auto` found nothing in its look-ahead, and the block just read is one LinuxCNC refuses
+    /// and Mach3 reads (`why`): the program is Mach3's from here (every line before read the
+    /// same in both).
+    #[cold]
+    #[inline(never)]
+    fn mach3_decides(&mut self, why: &str) {
+        self.machine.hooks.provisional = false;
+        self.machine.hooks.set_dialect(Dialect::Mach3);
+        self.machine.hooks.detection = Some(Detection {
+            dialect: Dialect::Mach3,
+            reason: format!(
+                "nothing in the first {} KiB tells the dialects apart, and line {} has {why}, \
+                 which LinuxCNC refuses and Mach3 reads",
+                LOOKAHEAD_BYTES / 1024,
+                self.lines.number
+            ),
+            line: Some(self.lines.number),
+            makerbot: false,
+        });
+        self.apply_dialect();
+    }
+
+    /// The refusal of a lathe program, before its first line is run, at the line of its
+    /// evidence.
+    #[cold]
+    fn lathe_program(&mut self, lathe: crate::dialect::Lathe) -> GcodeError {
+        self.machine.output.finished = true;
+        let end = lathe.text.trim_ascii_end().len().max(1);
+        let text: String = lathe
+            .text
+            .chars()
+            .take(MAX_LINE + 1)
+            .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
+            .collect();
+        let file = self.control.file.as_ref().map(|path| path.display().to_string().into());
+        let at = Location { line: lathe.line, column: 1, span: (0, end), text, file };
+        let message = format!(
+            "a lathe program ({}): this robot is an X Y Z C arm, not a lathe, and turns no part",
+            lathe.why
+        );
+        GcodeError::Invalid { at, message }
     }
 
     /// `auto` found nothing in its look-ahead, and a line further on is longer than LinuxCNC's
@@ -783,6 +857,10 @@ impl<R: BufRead> Iterator for Interpreter<R> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if let Some(motion) = self.machine.output.queue.pop_front() {
+                if self.machine.output.given == self.machine.output.max_motions {
+                    return Some(Err(self.too_many_motions(motion.line)));
+                }
+                self.machine.output.given += 1;
                 return Some(Ok(motion));
             }
             if self.machine.output.finished {
@@ -795,6 +873,38 @@ impl<R: BufRead> Iterator for Interpreter<R> {
             }
         }
     }
+}
+
+impl<R: BufRead> Interpreter<R> {
+    /// The error of a program that goes on past [`Config::max_motions`] motions, at the line
+    /// of the first motion past them; nothing more is read.
+    #[cold]
+    #[inline(never)]
+    fn too_many_motions(&mut self, line: usize) -> GcodeError {
+        self.machine.output.finished = true;
+        self.machine.output.queue.clear();
+        let max = self.machine.output.max_motions;
+        let message = format!(
+            "the program goes on past {max} motions, the most one run may make (line {line} \
+             makes the next): an endless loop that moves? (a longer program needs more \
+             motions allowed)"
+        );
+        self.error(Fault {
+            kind: FaultKind::Needs(Setting::MaxMotions),
+            ..self.machine.line_fault(message)
+        })
+    }
+}
+
+/// Whether `raw[at..]` is an exponent written right after a number (`e-15` in `6.2e-15`).
+fn exponent_at(raw: &[u8], at: usize) -> bool {
+    let Some(rest) = raw.get(at..) else { return false };
+    let after_number = at > 0 && matches!(raw[at - 1], b'0'..=b'9' | b'.');
+    let rest = match rest {
+        [b'e' | b'E', b'+' | b'-', rest @ ..] | [b'e' | b'E', rest @ ..] => rest,
+        _ => return false,
+    };
+    after_number && rest.first().is_some_and(u8::is_ascii_digit)
 }
 
 /// LinuxCNC's `round_to_int`: `floor(x + 0.5)` (as a float: the caller bounds it).

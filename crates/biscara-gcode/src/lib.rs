@@ -117,3 +117,8 @@ pub use tool_table::{ToolEntry, ToolTable, ToolTableError};
 /// with no motion in between before it is stopped as an endless loop, by default
 /// ([`Config::max_idle_jumps`]): a loop that computes without moving may turn this often.
 pub const MAX_IDLE_JUMPS: u64 = 100_000;
+
+/// How many motions one run may make, by default ([`Config::max_motions`]): ten million, many
+/// times the longest print or CAM program (a few hundred thousand moves; a five-million-line
+/// program still runs), about 0.7 GB of inter-file, written in about 25 s of CPU.
+pub const MAX_MOTIONS: u64 = 10_000_000;

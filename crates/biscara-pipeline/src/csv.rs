@@ -12,6 +12,21 @@ use biscara_joints::{JointCsvFormat, JointCsvWriter};
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, ToolState};
 
 impl Pipeline<'_> {
+    /// An error once a sample's time `t` (s) is past the configured
+    /// [`time_limit`](crate::SamplingConfig::time_limit): a program that never ends stops
+    /// there, its partial output left to the caller to throw away.
+    #[inline(always)]
+    fn within_time_limit(&self, file: &str, t: f64, line: usize) -> Result<(), PipelineError> {
+        if t > self.config().time_limit {
+            return Err(PipelineError::TimeLimit {
+                file: file.to_owned(),
+                line,
+                limit: self.config().time_limit,
+            });
+        }
+        Ok(())
+    }
+
     /// Writes the program's Cartesian samples ([`Pipeline::samples`]) to `out` as a path CSV
     /// with `decimals` decimals; with `events`, the tool's column after the pose
     /// ([`ToolState::columns`]: `gripper`, `laser_power`, …). Nothing is written when the
@@ -35,8 +50,10 @@ impl Pipeline<'_> {
         if !events {
             let mut samples = self.samples(source, kind, notes)?;
             let mut writer = PathCsvWriter::new(out, decimals, false)?;
-            samples
-                .try_for_each_sample(|sample| writer.write(sample).map_err(PipelineError::from))?;
+            samples.try_for_each_sample(|sample| {
+                self.within_time_limit(source.name(), sample.t, sample.line)?;
+                writer.write(sample).map_err(PipelineError::from)
+            })?;
             writer.finish()?;
             return Ok(());
         }
@@ -49,6 +66,7 @@ impl Pipeline<'_> {
         };
         for sample in samples {
             let (sample, state) = sample?;
+            self.within_time_limit(source.name(), sample.t, sample.line)?;
             if tool == Tool::Gripper {
                 writer.write(&sample)?;
             } else {
@@ -79,6 +97,7 @@ impl Pipeline<'_> {
             let mut writer = JointCsvWriter::with_columns(out, format, ToolState::columns(tool))?;
             while let Some(row) = samples.next_sample() {
                 let (row, state) = row?;
+                self.within_time_limit(source.name(), row.t, row.line)?;
                 writer.write_with(row, &[state.value(tool)])?;
             }
             writer.finish()?;
@@ -90,7 +109,9 @@ impl Pipeline<'_> {
         }
         let mut writer = JointCsvWriter::new(out, format)?;
         while let Some(row) = samples.next_sample() {
-            writer.write(row?)?;
+            let row = row?;
+            self.within_time_limit(source.name(), row.t, row.line)?;
+            writer.write(row)?;
         }
         writer.finish()?;
         Ok(())

@@ -32,6 +32,20 @@ pub enum PipelineError {
         /// What the user can change about it, for the caller to word ([`PipelineError::hints`]).
         hints: Vec<Hint>,
     },
+    /// Occurs when a program has been sampled past the configured robot time
+    /// ([`time_limit`](crate::SamplingConfig::time_limit)): a program that never ends.
+    #[error(
+        "{file}:{line}: the program has run {limit} s of robot time, past the time limit: an \
+         endless loop that moves?"
+    )]
+    TimeLimit {
+        /// The program's name.
+        file: String,
+        /// The line of the first sample past the limit.
+        line: usize,
+        /// The limit, seconds.
+        limit: f64,
+    },
     /// Occurs when the program cannot be opened or read.
     #[error("cannot read {file}")]
     Io {
@@ -104,6 +118,7 @@ impl PipelineError {
                 hints
             }
             PipelineError::Fit { error: VirtualRobotError::NoMoves, .. } => &[Hint::DoNotFit],
+            PipelineError::TimeLimit { .. } => &[Hint::MoreTime],
             _ => &[],
         }
     }
@@ -119,6 +134,12 @@ pub enum Hint {
     /// [`max_idle_jumps`](crate::SamplingConfig::max_idle_jumps) allows a loop that computes
     /// long.
     MoreIdleJumps,
+    /// A program went on past the motions one run may make: a larger
+    /// [`max_motions`](crate::SamplingConfig::max_motions) allows a longer program.
+    MoreMotions,
+    /// A program was sampled past the robot time allowed: a larger
+    /// [`time_limit`](crate::SamplingConfig::time_limit) allows a longer program.
+    MoreTime,
     /// The dialect was chosen from the program's content (the error may be the dialect's, not
     /// the program's): another can be set ([`dialect`](crate::SamplingConfig::dialect)).
     DialectDetected(Detection),
@@ -140,6 +161,7 @@ impl Hint {
     pub(crate) fn for_setting(setting: Setting) -> Option<Hint> {
         match setting {
             Setting::MaxIdleJumps => Some(Hint::MoreIdleJumps),
+            Setting::MaxMotions => Some(Hint::MoreMotions),
             Setting::Ini => Some(Hint::GiveIni),
             Setting::SubroutinePath => Some(Hint::AddSubroutineFolder),
             _ => None,
@@ -152,6 +174,12 @@ impl fmt::Display for Hint {
         match self {
             Hint::MoreIdleJumps => {
                 f.write_str("(a larger max_idle_jumps allows more, for a loop that computes long)")
+            }
+            Hint::MoreMotions => {
+                f.write_str("(a larger max_motions allows more, for a program that long)")
+            }
+            Hint::MoreTime => {
+                f.write_str("(a larger time_limit allows more, for a program that long)")
             }
             Hint::DialectDetected(detection) => write!(
                 f,

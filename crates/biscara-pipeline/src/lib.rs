@@ -51,7 +51,8 @@ pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
 pub use pipeline::{
-    JointSamples, MAX_FIT_MOTIONS, Motions, Pipeline, Samples, SamplingConfig, SlowDownNotes,
+    DEFAULT_TIME_LIMIT, JointSamples, MAX_FIT_MOTIONS, Motions, Pipeline, Samples, SamplingConfig,
+    SlowDownNotes,
 };
 pub use placement::{Placement, place};
 pub use source::{ProgramSource, TextSource};

@@ -63,6 +63,8 @@ pub(crate) struct Reading<'a> {
     pub(crate) blend: Option<f64>,
     /// Jumps back allowed without a motion (endless loops).
     pub(crate) max_idle_jumps: u64,
+    /// Motions allowed in one run (programs that never end).
+    pub(crate) max_motions: u64,
 }
 
 impl<'a> Reading<'a> {
@@ -83,6 +85,7 @@ impl<'a> Reading<'a> {
             ini: config.ini.as_ref(),
             blend: config.blend,
             max_idle_jumps: config.max_idle_jumps,
+            max_motions: config.max_motions,
         }
     }
 }
@@ -126,6 +129,7 @@ pub(crate) fn read_motions(
                 ini: reading.ini.cloned(),
                 blend: reading.blend,
                 max_idle_jumps: reading.max_idle_jumps,
+                max_motions: reading.max_motions,
                 ..GcodeConfig::default()
             };
             // A file is read with jumps (O-word loops and calls); standard input only forwards.

@@ -179,3 +179,70 @@ fn grbl_real_time_command_lines_are_events() {
     assert_eq!(prelude(Dialect::Grbl, b"? (open comment"), Prelude::Block);
     assert_eq!(prelude(Dialect::Linuxcnc, b"?"), Prelude::Block);
 }
+
+/// What LinuxCNC refuses and Mach3 reads says Mach3, over what both read and over a printer
+/// M-code; Fanuc's own codes and Grbl's or Marlin's own evidence still win.
+#[test]
+fn what_only_mach3_reads_says_mach3() {
+    let drilled = "G0 X1 Y1\nG81 X2 Y2 Z-1 R1 F100\nX3\nG80\nX4 Y4\nM30\n";
+    check(drilled, Some(Dialect::Mach3));
+    let found = detect_dialect(drilled.as_bytes(), true).expect("found");
+    assert!(
+        found.reason.starts_with("line 5: axis words with no motion G-code after G80"),
+        "{found:?}"
+    );
+    check("G53 G90 G40\nG0 X1\nM30\n", Some(Dialect::Mach3));
+    // A G53 that moves, and axis words after a G0 that follows the G80, are LinuxCNC's too.
+    check("G53 G0 Z0\nG0 X1\nM30\n", None);
+    check("G0 X1\nG81 X2 Z-1 R1\nG80\nG0 X1\nY2\nM30\n", None);
+    // Axis words after a cycle (no G80) repeat the cycle, in LinuxCNC too.
+    check("G0 X1\nG81 X2 Z-1 R1\nX3\nM30\n", None);
+    // A G80 with no plain motion before it gives Mach3 nothing to run the axis words in.
+    check("G80\nX1\nM30\n", None);
+    // What both read (a numbered parameter) and a CNC post's M-code weigh less.
+    check("#1 = 2\nG0 X#1\nG80\nX1\nM30\n", Some(Dialect::Mach3));
+    check("M42\nG0 X1\nG80\nY1\nM30\n", Some(Dialect::Mach3));
+    // LinuxCNC's O-words, Fanuc's codes, Grbl's `$` lines keep their dialect.
+    check("o1 if [1]\no1 endif\nG53 G90\nM30\n", Some(Dialect::Linuxcnc));
+    check("G187 P1\nG53 G90\nM30\n", Some(Dialect::Fanuc));
+    check("$H\nG53 G90\nM30\n", Some(Dialect::Grbl));
+}
+
+/// `.tap` is Mach3's extension: evidence where the content says nothing, or only what Mach3
+/// reads too.
+#[test]
+fn a_tap_extension_says_mach3_where_the_content_does_not() {
+    use std::path::Path;
+    let tap = Some(Path::new("job.TAP"));
+    let weighed = |text: &str, file| {
+        weigh_extension(detect_dialect(text.as_bytes(), true), file).map(|d| d.dialect)
+    };
+    assert_eq!(weighed("G0 X1\nM30\n", tap), Some(Dialect::Mach3));
+    assert_eq!(weighed("#1 = 2\nG0 X#1\nM30\n", tap), Some(Dialect::Mach3));
+    assert_eq!(weighed("G0 X1\nM30\n", Some(Path::new("job.ngc"))), None);
+    assert_eq!(weighed("G0 X1\nM30\n", None), None);
+    assert_eq!(weighed("o1 sub\no1 endsub\nM30\n", tap), Some(Dialect::Linuxcnc));
+    assert_eq!(weighed("G1 X1 E2\n", tap), Some(Dialect::Marlin));
+    assert_eq!(weighed("; LightBurn\nG0 X1\n", tap), Some(Dialect::Grbl));
+    let found = weigh_extension(None, tap).expect("found");
+    assert!(found.reason.contains("extension `.tap` is Mach3's"), "{found:?}");
+}
+
+#[test]
+fn lathe_programs_are_told_by_the_xz_plane_and_turning() {
+    let lathe = |text: &str| lathe_evidence(text.as_bytes(), true).map(|found| found.line);
+    assert_eq!(lathe("G18\nG32 X1 Z-1 F0.05\n"), Some(2));
+    assert_eq!(lathe("G7 G18\nG76 P0.05 Z-1\n"), Some(2));
+    assert_eq!(lathe("G18 G99\n"), Some(1));
+    assert_eq!(lathe("G18\nT0101\n"), Some(2));
+    assert_eq!(lathe("G18\nG1 U-1 F1\n"), Some(2));
+    // No XZ plane, or a mill's own uses: no lathe.
+    assert_eq!(lathe("G32 X1\nG99 G81 X1 Z-1 R1\nT0101\n"), None);
+    assert_eq!(lathe("G18\nG2 X1 Z1 I1 K0\nG17 G99 G81 X1 Z-1 R1\n"), None);
+    assert_eq!(lathe("G18\nT0101 M6\n"), None);
+    assert_eq!(lathe("G18\n(U1 W2 G32)\nG18.1\n"), None);
+    let found = lathe_evidence(b"G18 G20\nM17\nG32 X1 Z-1\r\n", true).expect("a lathe");
+    assert_eq!(found.text, "G32 X1 Z-1");
+    let why = found.why;
+    assert!(why.starts_with("G32 threading after the lathe's XZ plane (G18, line 1)"), "{why}");
+}

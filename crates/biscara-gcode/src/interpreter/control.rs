@@ -217,6 +217,8 @@ pub(super) struct Control {
     /// A call in the main program reads on to find its subroutine: the lines from the call on
     /// are kept (an input read only forwards), to come back to.
     forward: bool,
+    /// The state at the last jump back from each line (loops that can only repeat).
+    visits: super::endless::Visits,
 }
 
 impl Default for Control {
@@ -243,6 +245,7 @@ impl Default for Control {
             recording: None,
             max_idle_jumps: crate::MAX_IDLE_JUMPS,
             forward: false,
+            visits: super::endless::Visits::default(),
         }
     }
 }
@@ -262,6 +265,11 @@ impl Control {
             max_idle_jumps,
             ..Control::default()
         }
+    }
+
+    /// The program's path, when the caller gave it.
+    pub(super) fn program(&self) -> Option<&Path> {
+        self.program.as_deref()
     }
 
     /// Whether lines are being skipped (then every line goes through the control flow).
@@ -285,6 +293,30 @@ impl Control {
 
     fn level(&self) -> usize {
         self.frames.len() - 1
+    }
+
+    /// The control flow's state, written out for [`super::endless::Visits`]: all of it but
+    /// the labels' places (only their count and the `repeat` counts, which change as loops
+    /// turn) and what only finds files.
+    fn write_state(&self, out: &mut String) {
+        use std::fmt::Write as _;
+        let mut repeats: Vec<(usize, i64)> = self
+            .labels
+            .values()
+            .filter(|label| label.kind == OType::Repeat)
+            .map(|label| (label.line, label.repeat_count))
+            .collect();
+        repeats.sort_unstable();
+        let _ = write!(
+            out,
+            "{:?}",
+            (
+                (&self.skipping_o, &self.skipping_to_sub, self.skipping_start, self.defining_sub),
+                (&self.sub_name, self.executed_if, self.doing_break, self.doing_continue),
+                (&self.frames, self.test_value, &self.file, &self.open_loops, self.recording),
+                (self.forward, self.labels.len(), repeats),
+            )
+        );
     }
 }
 
@@ -537,6 +569,30 @@ impl<R: BufRead> Interpreter<R> {
         Ok(())
     }
 
+    /// An error when this jump back (to `loop_line`) is made with the same state as the last
+    /// one from this line: the program can only repeat the same pass forever. (A program with
+    /// Python plug-ins is not judged: their own state is not seen.)
+    pub(super) fn repeats_forever(&mut self, loop_line: usize) -> Result<(), Fault> {
+        if self.python.is_some() {
+            return Ok(());
+        }
+        let point = (self.control.file.clone(), self.lines.number);
+        let mut visits = std::mem::take(&mut self.control.visits);
+        let control = &self.control;
+        let repeats =
+            visits.repeats(point, &self.machine, |out: &mut String| control.write_state(out));
+        self.control.visits = visits;
+        if repeats {
+            return Err(self.line_fault(format!(
+                "the loop at line {loop_line} repeats forever: the machine's state (position, \
+                 parameters, modes) as line {} jumps back is the same as at its previous jump \
+                 back, so every pass from here is the same",
+                self.lines.number
+            )));
+        }
+        Ok(())
+    }
+
     /// Goes to byte offset `offset`, the next line read being line `line + 1`.
     pub(super) fn go_to(&mut self, offset: u64, line: usize) -> Result<(), Fault> {
         if let Err(err) = self.lines.seek(offset) {
@@ -557,9 +613,13 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     /// Jumps to a label seen before, or else reads on to find it — in a file subroutine
-    /// `NAME.ngc` if there is one (`control_back_to`).
-    fn back_to(&mut self, name: &Rc<str>) -> Result<(), Fault> {
+    /// `NAME.ngc` if there is one (`control_back_to`). `looping`: a loop's turn (whose state
+    /// is compared with its last turn's), not a call.
+    fn back_to(&mut self, name: &Rc<str>, looping: bool) -> Result<(), Fault> {
         if let Some(label) = self.label_of(name).cloned() {
+            if looping {
+                self.repeats_forever(label.line)?;
+            }
             self.count_jump(label.line)?;
             self.switch_to(label.file)?;
             return self.go_to(label.offset, label.line - 1);
@@ -677,7 +737,7 @@ impl<R: BufRead> Interpreter<R> {
             // `M98 … L0`: no call — and, as in LinuxCNC, the call level entered stays.
             return Ok(());
         }
-        self.back_to(&block.name)
+        self.back_to(&block.name, false)
     }
 
     /// `endsub`, `return`, `M99` (`execute_return`).
@@ -747,63 +807,10 @@ impl<R: BufRead> Interpreter<R> {
         {
             return Ok(());
         }
-        let line = self.lines.number;
-        let level = self.control.level();
         match block.kind {
             OType::None => {}
-            OType::Sub | OType::Fanuc => {
-                let call_type = self.control.frames[level].call_type;
-                if block.kind == OType::Fanuc
-                    && !matches!(call_type, CallType::M98 | CallType::G65 | CallType::None)
-                {
-                    return Err(
-                        self.line_fault("Fanuc 'O....' subroutine must be called with 'M98'")
-                    );
-                }
-                if block.kind == OType::Sub
-                    && !matches!(call_type, CallType::Oword | CallType::None)
-                {
-                    return Err(
-                        self.line_fault("'O.... sub' subroutine must be called with 'O.... call'")
-                    );
-                }
-                if self.control.skipping_o.is_some() {
-                    self.save_offset(block)?;
-                    self.control.skipping_o = None;
-                }
-                self.control.skipping_to_sub = None;
-                if block.kind == OType::Sub && level == 0 {
-                    if self.control.defining_sub {
-                        return Err(self.line_fault("Nested subroutine definition"));
-                    }
-                    self.save_offset(block)?;
-                    self.skip_to(block);
-                    self.control.defining_sub = true;
-                    self.control.sub_name = Some(block.name.clone());
-                    self.machine.state.owords.defining = true;
-                }
-            }
-            OType::EndSub | OType::Return | OType::M99 => {
-                if level == 0 && self.control.sub_name.is_none() {
-                    return Err(self.line_fault(format!(
-                        "{line}: not in a subroutine definition: '{}'",
-                        self.line_text()
-                    )));
-                }
-                let call_type = self.control.frames[level].call_type;
-                if matches!(call_type, CallType::M98 | CallType::G65) && block.kind != OType::M99 {
-                    return Err(
-                        self.line_fault("Fanuc 'O....' subroutine definition must end with 'M99'")
-                    );
-                }
-                if call_type == CallType::Oword && block.kind == OType::M99 {
-                    return Err(self.line_fault(
-                        "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine \
-                         definition",
-                    ));
-                }
-                self.execute_return(block, call_type)?;
-            }
+            OType::Sub | OType::Fanuc => self.convert_sub(block)?,
+            OType::EndSub | OType::Return | OType::M99 => self.convert_return(block)?,
             OType::Call if self.python_callable(&block.name)? => {
                 // LinuxCNC asks its Python plug-ins first.
                 self.enter_context(block)?;
@@ -813,6 +820,75 @@ impl<R: BufRead> Interpreter<R> {
                 self.enter_context(block)?;
                 self.execute_call(block)?;
             }
+            OType::Do | OType::Repeat | OType::While => self.convert_loop_start(block)?,
+            OType::If | OType::ElseIf | OType::Else | OType::EndIf => self.convert_if(block)?,
+            OType::Break | OType::Continue | OType::EndWhile | OType::EndRepeat => {
+                self.convert_loop_end(block)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `sub` and a Fanuc-style `O` label: a definition passed over, or the subroutine a call
+    /// looked for.
+    fn convert_sub(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let level = self.control.level();
+        let call_type = self.control.frames[level].call_type;
+        if block.kind == OType::Fanuc
+            && !matches!(call_type, CallType::M98 | CallType::G65 | CallType::None)
+        {
+            return Err(self.line_fault("Fanuc 'O....' subroutine must be called with 'M98'"));
+        }
+        if block.kind == OType::Sub && !matches!(call_type, CallType::Oword | CallType::None) {
+            return Err(self.line_fault("'O.... sub' subroutine must be called with 'O.... call'"));
+        }
+        if self.control.skipping_o.is_some() {
+            self.save_offset(block)?;
+            self.control.skipping_o = None;
+        }
+        self.control.skipping_to_sub = None;
+        if block.kind == OType::Sub && level == 0 {
+            if self.control.defining_sub {
+                return Err(self.line_fault("Nested subroutine definition"));
+            }
+            self.save_offset(block)?;
+            self.skip_to(block);
+            self.control.defining_sub = true;
+            self.control.sub_name = Some(block.name.clone());
+            self.machine.state.owords.defining = true;
+        }
+        Ok(())
+    }
+
+    /// `endsub`, `return` and `M99`: back to the caller.
+    fn convert_return(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        let level = self.control.level();
+        if level == 0 && self.control.sub_name.is_none() {
+            return Err(self.line_fault(format!(
+                "{line}: not in a subroutine definition: '{}'",
+                self.line_text()
+            )));
+        }
+        let call_type = self.control.frames[level].call_type;
+        if matches!(call_type, CallType::M98 | CallType::G65) && block.kind != OType::M99 {
+            return Err(self.line_fault("Fanuc 'O....' subroutine definition must end with 'M99'"));
+        }
+        if call_type == CallType::Oword && block.kind == OType::M99 {
+            return Err(self.line_fault(
+                "'O.... endsub' or 'O.... return' must follow 'O.... sub' subroutine \
+                 definition",
+            ));
+        }
+        self.execute_return(block, call_type)?;
+        Ok(())
+    }
+
+    /// A loop's start (`do`, `repeat`) and `while`, which starts a `while` loop or closes a
+    /// `do`.
+    fn convert_loop_start(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::Do => {
                 self.track_loop(&block.name, true);
                 self.control.skipping_o = None;
@@ -850,12 +926,21 @@ impl<R: BufRead> Interpreter<R> {
                         self.skip_to(block);
                     }
                 } else if self.control.test_value != 0.0 && !self.control.doing_break {
-                    self.back_to(&block.name)?;
+                    self.back_to(&block.name, true)?;
                 } else {
                     self.control.doing_break = false;
                     self.track_loop(&block.name, false);
                 }
             }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `if`, `elseif`, `else` and `endif`.
+    fn convert_if(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::If => {
                 match self.label_of(&block.name) {
                     Some(label) if label.line != line => {
@@ -913,6 +998,15 @@ impl<R: BufRead> Interpreter<R> {
                 self.control.skipping_o = None;
                 self.control.executed_if = true;
             }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `break`, `continue`, `endwhile` and `endrepeat`.
+    fn convert_loop_end(&mut self, block: &OBlock) -> Result<(), Fault> {
+        let line = self.lines.number;
+        match block.kind {
             OType::Break | OType::Continue => {
                 let Some(label) = self.label_of(&block.name) else { return Err(self.undefined()) };
                 if !matches!(label.kind, OType::While | OType::Do) {
@@ -947,14 +1041,15 @@ impl<R: BufRead> Interpreter<R> {
                     self.control.skipping_o = None;
                     if self.control.doing_continue {
                         self.control.doing_continue = false;
-                        self.back_to(&block.name)?;
+                        self.back_to(&block.name, true)?;
                     } else {
                         self.track_loop(&block.name, false);
                     }
                 } else {
-                    self.back_to(&block.name)?;
+                    self.back_to(&block.name, true)?;
                 }
             }
+            _ => {}
         }
         Ok(())
     }

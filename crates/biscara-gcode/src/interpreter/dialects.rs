@@ -48,6 +48,8 @@ pub(super) struct Rules {
     pub(super) fanuc_subprograms: bool,
     /// Whether the block reader takes Mach3's G31 probe and its M40/M41 gear ranges.
     pub(super) reads_mach3_codes: bool,
+    /// Whether a number takes an exponent written right after it (`6.2e-15`: C's `strtod`).
+    pub(super) reads_exponents: bool,
     /// Whether LinuxCNC's executed comments run: `(abort,…)`, `(py,…)` and `;py,` lines.
     pub(super) executes_comments: bool,
     /// Whether [`DialectHooks::adapt_block`] changes blocks (a block costs no call otherwise).
@@ -83,6 +85,7 @@ impl Rules {
         reads_macro_b: false,
         fanuc_subprograms: false,
         reads_mach3_codes: false,
+        reads_exponents: false,
         executes_comments: true,
         adapts_blocks: false,
         needs_program_end: true,

@@ -170,7 +170,7 @@ impl<R: BufRead> Interpreter<R> {
         }
         if rest.starts_with(b"goto") {
             let target = self.fanuc_integer(at + 4)?;
-            self.fanuc_goto(target)?;
+            self.fanuc_goto(target, true)?;
             return Ok(FanucLine::Done);
         }
         if let Some(rest) = rest.strip_prefix(b"do")
@@ -280,7 +280,7 @@ impl<R: BufRead> Interpreter<R> {
         if bytes[after..].starts_with(b"goto") {
             let target = self.fanuc_integer(after + 4)?;
             if value != 0.0 {
-                self.fanuc_goto(target)?;
+                self.fanuc_goto(target, true)?;
             }
             return Ok(FanucLine::Done);
         }
@@ -467,7 +467,7 @@ impl<R: BufRead> Interpreter<R> {
             target,
             repeats: repeats - 1,
         });
-        self.fanuc_goto(target)?;
+        self.fanuc_goto(target, false)?;
         Ok(FanucLine::Done)
     }
 
@@ -476,14 +476,18 @@ impl<R: BufRead> Interpreter<R> {
         let Some(call) = self.machine.hooks.fanuc.calls.pop() else { return Ok(()) };
         if call.repeats > 0 {
             self.machine.hooks.fanuc.calls.push(LocalCall { repeats: call.repeats - 1, ..call });
-            return self.fanuc_goto(call.target);
+            return self.fanuc_goto(call.target, false);
         }
         self.go_to(call.offset, call.line)
     }
 
     /// `GOTO n`: reads the program again from its start, passing over the lines before the
     /// block numbered `N n` (an error at the end of the input if there is none).
-    fn fanuc_goto(&mut self, target: u32) -> Result<(), Fault> {
+    /// `looping`: a `GOTO` (which may close a loop), not an M97 call.
+    fn fanuc_goto(&mut self, target: u32, looping: bool) -> Result<(), Fault> {
+        if looping {
+            self.repeats_forever(self.lines.number)?;
+        }
         self.count_jump(self.lines.number)?;
         self.machine.hooks.fanuc.seeking = Some((target, self.lines.number));
         self.go_to(0, 0)
@@ -502,6 +506,18 @@ impl super::Machine {
     ///   Fanuc and Mach3 do (Autodesk's posts write G80 and go on with `X… Y…`);
     /// - G53 with no axis word moves nowhere (a Mach3 post's `G53 G90 G40` preamble): dropped.
     pub(super) fn adapt_fanuc_style_block(&mut self) {
+        if let Some(code) =
+            self.syntax.block.extra.as_mut().and_then(|extra| extra.user_macro.take())
+        {
+            // Mach3 runs a user macro from the machine's macro folder: an event here, noted.
+            let name = format!("M{}", code.code);
+            self.hooks.summary.count_adapted(&format!(
+                "{name} (a user macro: the machine's own macro file, not run in the simulation)"
+            ));
+            if let Some(code) = biscara_motion::CodeName::new(&name) {
+                self.emit(biscara_motion::MotionKind::Code { code });
+            }
+        }
         let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
         if let Some(code) = self.syntax.block.g[1]
             && matches!(code.code, 0 | 10 | 20 | 30)
@@ -528,6 +544,29 @@ impl super::Machine {
                 _ => "axis words after G80, run in G3 (the motion before the cycle)",
             });
         }
+    }
+
+    /// While `auto` has found nothing that tells the dialects apart: what of the block just
+    /// read only Mach3 (and Fanuc) read, if anything — G53 with no axis word, axis words with
+    /// no motion code after G80 — keeping the last G0–G3 mode as Mach3 keeps it.
+    pub(super) fn mach3_only_block(&mut self) -> Option<&'static str> {
+        if let Some(code) = self.syntax.block.g[1]
+            && matches!(code.code, 0 | 10 | 20 | 30)
+        {
+            self.hooks.fanuc.plain_motion = Some(code.code);
+        }
+        let axis_words = super::AXES.iter().any(|&letter| self.syntax.block.word(letter).is_some());
+        let group0 = self.syntax.block.g[0].map(|code| code.code);
+        if group0 == Some(530) && !axis_words {
+            return Some("G53 with no axis word");
+        }
+        let uses_axes = group0.is_some_and(|code| matches!(code, 100 | 280 | 300 | 520 | 920));
+        (axis_words
+            && self.syntax.block.g[1].is_none()
+            && self.state.motion.is_none()
+            && !uses_axes
+            && self.hooks.fanuc.plain_motion.is_some())
+        .then_some("axis words with no motion G-code after G80")
     }
 
     /// The Fanuc dialect's changes to the block just read, after

@@ -42,6 +42,10 @@ pub(super) struct Output {
     pub(super) moved: bool,
     /// Jumps back since the last motion.
     pub(super) idle_jumps: u64,
+    /// Motions given so far.
+    pub(super) given: u64,
+    /// The most motions one run may give ([`Config::max_motions`](crate::Config::max_motions)).
+    pub(super) max_motions: u64,
     /// The end point of the last motion (a move to where the robot is is no motion).
     pub(super) last_end: Option<[f64; 4]>,
 }
@@ -222,7 +226,7 @@ impl State {
     /// Parameters 5420–5428: the current position.
     pub(super) fn publish_position(&mut self) {
         for axis in 0..4 {
-            self.params.set(5420 + axis_slot(axis), self.current[axis]);
+            self.params.set_mirror(5420 + axis_slot(axis), self.current[axis]);
         }
     }
 }

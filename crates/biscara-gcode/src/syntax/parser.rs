@@ -65,6 +65,8 @@ pub(crate) struct ExtraWords {
     pub theta: Option<Word>,
     /// `$`: the spindle.
     pub spindle: Option<Word>,
+    /// A Mach3 user macro M-code (`M900`), which runs the machine's own macro file.
+    pub user_macro: Option<Code>,
 }
 
 impl Block {
@@ -230,6 +232,9 @@ pub(crate) struct Reader<'a> {
     /// Mach3's codes LinuxCNC lacks are read too: G31 (its straight probe) and the probe log
     /// macros M40 and M41 (as user M codes).
     mach3: bool,
+    /// Numbers take an exponent written right after them (`6.2e-15`), as C's `strtod` reads
+    /// them in Marlin; LinuxCNC and Grbl read the `e` as a word letter.
+    exponents: bool,
 }
 
 impl<'a> Reader<'a> {
@@ -249,6 +254,7 @@ impl<'a> Reader<'a> {
             created: [(0, 0); 64],
             created_count: 0,
             mach3: false,
+            exponents: false,
         }
     }
 
@@ -430,6 +436,37 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
+    /// Reads an exponent written right after a literal number (`on`; Marlin's `strtod`).
+    pub(crate) fn exponents(mut self, on: bool) -> Reader<'a> {
+        self.exponents = on;
+        self
+    }
+
+    /// The end of an exponent (`e-15`, `E+3`, `e7`) at `at` in the compact line, written right
+    /// after the number's last character (no blank between them in the raw line), when there
+    /// is one.
+    fn exponent_end(&self, at: usize) -> Option<usize> {
+        if self.bytes.get(at) != Some(&b'e') || at == 0 {
+            return None;
+        }
+        let adjacent =
+            self.compact.column(at, self.raw_len) == self.compact.column(at - 1, self.raw_len) + 1;
+        let mut end = at + 1;
+        if matches!(self.bytes.get(end), Some(b'+' | b'-')) {
+            end += 1;
+        }
+        let digits = self.bytes[end.min(self.bytes.len())..]
+            .iter()
+            .take_while(|b| b.is_ascii_digit())
+            .count();
+        // Each character of the exponent written right after the one before it.
+        let joined = (at + 1..end + digits).all(|index| {
+            self.compact.column(index, self.raw_len)
+                == self.compact.column(index - 1, self.raw_len) + 1
+        });
+        (adjacent && joined && digits > 0).then_some(end + digits)
+    }
+
     /// Reads Mach3's G31, M40 and M41 too (`on`), which LinuxCNC does not know.
     pub(crate) fn mach3(mut self, on: bool) -> Reader<'a> {
         self.mach3 = on;
@@ -476,6 +513,17 @@ impl<'a> Reader<'a> {
         let end = self.pos;
         if value < 0 {
             return Err(self.syntax(start, end, "Negative m code used"));
+        }
+        let known = (0..=199).contains(&value)
+            && (m_group(value as u16).is_some() || (self.mach3 && matches!(value, 40 | 41)));
+        if self.mach3 && !known && value <= i64::from(u16::MAX) {
+            // A Mach3 user macro (`M900`: the machine's own macro file).
+            let extra = block.extra.get_or_insert_with(Box::default);
+            if extra.user_macro.is_some() {
+                return Err(self.syntax(start, end, "Two user macro M-codes on one line"));
+            }
+            extra.user_macro = Some(Code { code: value as u16, at: start, end });
+            return Ok(());
         }
         if value > 199 {
             return Err(self.syntax(start, end, format!("M-code greater than 199: M{value}")));
@@ -613,6 +661,13 @@ impl<'a> Reader<'a> {
     fn read_number(&mut self) -> Result<f64, Fault> {
         let start = self.pos;
         if let Some((value, end)) = scan_decimal(self.bytes, start) {
+            if !self.exponents {
+                self.pos = end;
+                return Ok(value);
+            }
+            if let Some(exponent_end) = self.exponent_end(end) {
+                return self.read_with_exponent(start, exponent_end);
+            }
             self.pos = end;
             return Ok(value);
         }
@@ -621,6 +676,11 @@ impl<'a> Reader<'a> {
         }
         while matches!(self.peek(), b'0'..=b'9' | b'.') {
             self.pos += 1;
+        }
+        if self.exponents
+            && let Some(end) = self.exponent_end(self.pos)
+        {
+            return self.read_with_exponent(start, end);
         }
         let text = &self.bytes[start..self.pos];
         let text = std::str::from_utf8(text).unwrap_or("");
@@ -649,6 +709,20 @@ impl<'a> Reader<'a> {
         })?;
         if !value.is_finite() {
             return Err(self.invalid(start, self.pos, format!("{text} is not a finite number")));
+        }
+        Ok(value)
+    }
+
+    /// The number `start..end` with its exponent, as `strtod` reads it (Marlin).
+    #[cold]
+    fn read_with_exponent(&mut self, start: usize, end: usize) -> Result<f64, Fault> {
+        let text = std::str::from_utf8(&self.bytes[start..end]).unwrap_or("");
+        let value: f64 = text
+            .parse()
+            .map_err(|_| self.syntax(start, end, format!("bad number format parsing '{text}'")))?;
+        self.pos = end;
+        if !value.is_finite() {
+            return Err(self.invalid(start, end, format!("{text} is not a finite number")));
         }
         Ok(value)
     }

@@ -1,6 +1,6 @@
-//! Dialects through the library (SPEC §4.3): each dialect's rules where it differs from
+//! Dialects through the library (docs/gcode.md): each dialect's rules where it differs from
 //! LinuxCNC, `auto` detection and its reasons, the summary of no-motion codes, and the tool
-//! events of SPEC §1.6.
+//! events of docs/motion.md.
 
 use biscara_gcode::{Config, Dialect, GcodeError, Tool, interpret};
 use biscara_motion::{Motion, MotionKind};

@@ -134,7 +134,7 @@ fn mach3_runs_axis_words_after_g80_and_g53_without_a_move() {
 }
 
 /// An endless loop with no motion stops with an error naming the loop's line after the bound;
-/// one that moves streams on as long as it is read.
+/// one that moves and changes its state streams until the bound on motions.
 #[test]
 fn endless_loops_without_motion_stop_at_the_bound() {
     let bounded = Config { max_idle_jumps: 50, ..config(Dialect::Linuxcnc) };
@@ -149,8 +149,8 @@ fn endless_loops_without_motion_stop_at_the_bound() {
     // A loop that computes for a while, then moves, is not endless.
     let counting = "G21\no1 while [#1 LT 40]\n#1 = [#1 + 1]\no1 endwhile\nG0 X#1\nM2\n";
     assert_eq!(ends(&run(counting, &bounded)), [[40.0, 400.0, 100.0, 0.0]]);
-    // A loop that moves streams: 1000 moves are read, and more would follow.
-    let moving = "G21\no1 while [1]\nG0 X0\nG0 X1\no1 endwhile\nM2\n";
+    // A loop that moves and counts streams: 1000 moves are read, and more would follow.
+    let moving = "G21\no1 while [1]\n#2 = [#2 + 1]\nG0 X0\nG0 X1\no1 endwhile\nM2\n";
     let moves = interpret_seekable(Cursor::new(moving), &bounded).take(1000);
     assert_eq!(moves.filter(Result::is_ok).count(), 1000);
     // A Fanuc GOTO loop.

@@ -2,8 +2,10 @@
 
 mod conformance;
 mod dialects;
+mod endless;
 mod fanuc;
 mod features;
+mod fourth_round;
 mod memory;
 mod no_panic;
 mod owords;

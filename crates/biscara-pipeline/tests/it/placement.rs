@@ -343,12 +343,18 @@ fn every_real_program_is_placed_in_the_rectangle_or_says_why_not() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// `--fit` reads the whole program: one that loops forever while moving stops at a bound of
-/// motions with an error that says so, instead of reading on forever.
+/// `--fit` reads the whole program: one that loops forever while moving (and counting) stops at
+/// a bound of motions with an error that says so, instead of reading on forever; one whose loop
+/// comes back to the same state is refused at its second pass.
 #[test]
 fn fit_stops_an_endless_program_at_its_bound() {
-    let program = "G21 G90\no1 while [1]\nG0 X0 Y0\nG0 X10 Y10\no1 endwhile\nM2\n";
     let model = RobotModel::default();
+    let repeating = "G21 G90\no1 while [1]\nG0 X0 Y0\nG0 X10 Y10\no1 endwhile\nM2\n";
+    let config = SamplingConfig { fit: true, ..SamplingConfig::default() };
+    let (motions, _) = run(&model, config, &TextSource::new("endless.ngc", repeating));
+    let message = motions.expect_err("endless").to_string();
+    assert!(message.contains("endless.ngc:5:1: the loop at line 2 repeats forever"), "{message}");
+    let program = "G21 G90\no1 while [1]\n#1 = [#1 + 1]\nG0 X0 Y0\nG0 X10 Y10\no1 endwhile\nM2\n";
     let config = SamplingConfig { fit: true, max_fit_motions: 1000, ..SamplingConfig::default() };
     let (motions, _) = run(&model, config, &TextSource::new("endless.ngc", program));
     let err = motions.expect_err("endless");
@@ -357,4 +363,33 @@ fn fit_stops_an_endless_program_at_its_bound() {
     // The remedy is the caller's to word (the command line names its flags).
     assert_eq!(err.hints(), [Hint::PlaceByOrigin]);
     assert!(!message.contains("--"), "{message}");
+}
+
+/// `interpolate` and `joints` stop a program that never ends at the time limit, naming its line,
+/// with the remedy for the caller to word.
+#[test]
+fn sampling_stops_at_the_time_limit() {
+    let model = RobotModel::default();
+    let program = "G21 G90\nG0 X0 Y400\no1 while [1]\n#1 = [#1 + 1]\nG1 X10 F6000\nG1 X0\n\
+                   o1 endwhile\nM2\n";
+    let source = TextSource::new("endless.ngc", program);
+    let config = SamplingConfig { time_limit: 2.0, ..SamplingConfig::default() };
+    let pipeline = Pipeline::new(&model, config);
+    let mut out = Vec::new();
+    let err = pipeline
+        .write_path_csv(&source, ProgramKind::Gcode, &mut out, 3, false, |_| {})
+        .expect_err("endless");
+    let message = err.to_string();
+    assert!(message.starts_with("endless.ngc:"), "{message}");
+    assert!(message.contains("has run 2 s of robot time, past the time limit"), "{message}");
+    assert_eq!(err.hints(), [Hint::MoreTime]);
+    let format = biscara_joints::JointCsvFormat {
+        angle_unit: biscara_joints::AngleUnit::Radians,
+        derivatives: false,
+        precision: 3,
+    };
+    let err = pipeline
+        .write_joint_csv(&source, ProgramKind::Gcode, &mut Vec::new(), format, true, |_| {})
+        .expect_err("endless");
+    assert!(err.to_string().contains("past the time limit"), "{err}");
 }

@@ -15,100 +15,51 @@ impl Control {
         at: usize,
         m_number: Option<i64>,
     ) -> Result<Option<OBlock>, Fault> {
-        let raw_len = machine.syntax.raw_len;
-        let level = self.level();
         let mut block = OBlock::new(OType::None, CallType::None);
-        let mut pos;
-        let bare: String;
-        if m_number == Some(98) {
-            block.kind = OType::M98;
-            // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
-            let mut reader = Reader::new(
-                &machine.syntax.compact,
-                raw_len,
-                &machine.state.params,
-                &machine.state,
-            );
-            let m_end = {
-                reader.set_position(at + 1);
-                reader.read_integer_value()?;
-                reader.position()
-            };
-            reader.set_position(m_end);
-            let words = &mut machine.syntax.block;
-            words.clear();
-            let bytes = machine.syntax.compact.bytes();
-            while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
-                reader.read_item(words)?;
-            }
-            let Some(p) = words.word(b'p') else {
-                return Err(machine.line_fault("Found 'm98' code with no P-word"));
-            };
-            let mut number = p.value.floor();
-            if p.value - number > 0.9999 {
-                number = p.value.ceil();
-            } else if p.value - number > 0.0001 {
-                let (first, last) = machine.span(p.at, p.end);
-                return Err(Fault::syntax(first, last, "Non integer value for integer"));
-            }
-            bare = format!("{}", number as i32);
-            block.l = words.word(b'l').map(|word| word.value);
-            pos = bytes.len();
-        } else if m_number == Some(99) {
-            if self.defining_sub {
-                return Err(machine.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
-            }
-            block.kind = OType::M99;
-            let mut reader = Reader::new(
-                &machine.syntax.compact,
-                raw_len,
-                &machine.state.params,
-                &machine.state,
-            );
-            reader.set_position(at + 1);
-            reader.read_integer_value()?;
-            pos = reader.position();
-            bare = self.frames[level].name.as_deref().unwrap_or("").to_owned();
-        } else {
-            let bytes = machine.syntax.compact.bytes();
-            pos = at + 1;
-            if bytes.get(pos) == Some(&b'<') {
-                let start = pos + 1;
-                let end = bytes[start..].iter().position(|&b| b == b'>').map(|i| start + i);
-                match end {
-                    Some(end) => {
-                        bare = String::from_utf8_lossy(&bytes[start..end]).into_owned();
-                        pos = end + 1;
-                    }
-                    None => {
-                        // LinuxCNC ignores `read_name`'s error here: the rest is the name.
-                        bare = String::from_utf8_lossy(&bytes[start..]).into_owned();
-                        pos = bytes.len();
-                    }
-                }
-            } else {
-                let mut reader = Reader::new(
-                    &machine.syntax.compact,
-                    raw_len,
-                    &machine.state.params,
-                    &machine.state,
-                );
-                reader.set_position(pos);
-                let number = reader.read_integer_value()?;
-                pos = reader.position();
-                bare = format!("{}", number as i32);
-            }
-            let rest = &bytes[pos..];
-            block.kind = match KEYWORDS.iter().find(|(word, _)| rest.starts_with(word)) {
-                Some(&(word, kind)) => {
-                    pos += word.len();
-                    kind
-                }
-                None if matches!(rest.first(), None | Some(b'(' | b';')) => OType::Fanuc,
-                None => OType::None,
-            };
+        let (bare, mut pos) = match m_number {
+            Some(98) => read_m98(machine, at, &mut block)?,
+            Some(99) => self.read_m99(machine, at, &mut block)?,
+            _ => read_label(machine, at, &mut block)?,
+        };
+        block.name = self.scoped_name(block.kind, bare);
+        if !self.read_o_words(machine, &mut block, &mut pos)? {
+            return Ok(None);
         }
-        block.name = match block.kind {
+        if self.skipping_o.is_some() {
+            return Ok(Some(block));
+        }
+        only_comments_after(machine, pos)?;
+        Ok(Some(block))
+    }
+
+    /// `M99`: the name of the subroutine it returns from, and where its line goes on.
+    fn read_m99(
+        &self,
+        machine: &Machine,
+        at: usize,
+        block: &mut OBlock,
+    ) -> Result<(String, usize), Fault> {
+        if self.defining_sub {
+            return Err(machine.line_fault("Found 'M99' instead of 'O endsub' after 'O sub'"));
+        }
+        block.kind = OType::M99;
+        let mut reader = Reader::new(
+            &machine.syntax.compact,
+            machine.syntax.raw_len,
+            &machine.state.params,
+            &machine.state,
+        );
+        reader.set_position(at + 1);
+        reader.read_integer_value()?;
+        let bare = self.frames[self.level()].name.as_deref().unwrap_or("").to_owned();
+        Ok((bare, reader.position()))
+    }
+
+    /// The label's name as LinuxCNC keeps it: a subroutine's (and a call's, a return's) as
+    /// written, any other (a loop's, a condition's) scoped by the subroutine it is in
+    /// (`sub#label`).
+    fn scoped_name(&self, kind: OType, bare: String) -> Rc<str> {
+        match kind {
             OType::Sub
             | OType::Fanuc
             | OType::EndSub
@@ -117,6 +68,7 @@ impl Control {
             | OType::Return
             | OType::M99 => Rc::from(bare),
             _ => {
+                let level = self.level();
                 let scope = if level > 0 {
                     self.frames[level].name.clone()
                 } else if self.defining_sub {
@@ -126,7 +78,17 @@ impl Control {
                 };
                 Rc::from(format!("{}#{bare}", scope.as_deref().unwrap_or("")))
             }
-        };
+        }
+    }
+
+    /// What follows the keyword, by kind: a return value, a call's arguments, a condition.
+    /// `Ok(false)` when LinuxCNC stops reading the line (a line skipped over).
+    fn read_o_words(
+        &mut self,
+        machine: &mut Machine,
+        block: &mut OBlock,
+        pos: &mut usize,
+    ) -> Result<bool, Fault> {
         let skipping_other =
             self.skipping_o.as_ref().is_some_and(|skipping| **skipping != *block.name);
         match block.kind {
@@ -137,53 +99,30 @@ impl Control {
             }
             OType::EndSub | OType::Return | OType::M99 => {
                 if skipping_other {
-                    return Ok(None);
+                    return Ok(false);
                 }
-                if block.kind != OType::M99
-                    && machine.syntax.compact.bytes().get(pos) == Some(&b'[')
-                {
-                    let value = machine.expression(&mut pos)?;
-                    machine.state.owords.value = value;
-                    machine.state.owords.returned = true;
-                } else {
-                    machine.state.owords.value = 0.0;
-                    machine.state.owords.returned = false;
-                }
+                read_return_value(machine, block.kind, pos)?;
             }
             _ if self.defining_sub => block.kind = OType::None,
             OType::Call => {
                 if self.skipping_o.is_some() {
-                    return Ok(None);
+                    return Ok(false);
                 }
                 block.call_type = CallType::Oword;
-                let mut count = 0;
-                while let Some(&byte) = machine.syntax.compact.bytes().get(pos) {
-                    match byte {
-                        b'(' => pos += 1,
-                        b'[' => {
-                            if count >= SUB_PARAMS {
-                                return Err(machine.line_fault("Too many subroutine parameters"));
-                            }
-                            block.params[count] = machine.expression(&mut pos)?;
-                            count += 1;
-                        }
-                        _ => break,
-                    }
-                }
-                block.count = count;
+                read_call_arguments(machine, block, pos)?;
             }
             OType::M98 => block.call_type = CallType::M98,
             OType::While | OType::Repeat | OType::If | OType::ElseIf => {
                 if skipping_other {
-                    return Ok(None);
+                    return Ok(false);
                 }
-                if machine.syntax.compact.bytes().get(pos) != Some(&b'[') {
+                if machine.syntax.compact.bytes().get(*pos) != Some(&b'[') {
                     return Err(machine.line_fault(format!(
                         "Left bracket missing after '{}'",
                         block.kind.name()
                     )));
                 }
-                self.test_value = machine.expression(&mut pos)?;
+                self.test_value = machine.expression(pos)?;
             }
             OType::Do
             | OType::Else
@@ -194,23 +133,145 @@ impl Control {
             | OType::EndRepeat => {}
             OType::None => return Err(machine.line_fault("Unknown control command in o word")),
         }
-        if self.skipping_o.is_some() {
-            return Ok(Some(block));
-        }
-        // After `if [...]` and the like, nothing but comments.
-        let bytes = machine.syntax.compact.bytes();
-        while let Some(&byte) = bytes.get(pos) {
-            match byte {
-                b'(' => pos += 1,
-                b';' => break,
-                _ => {
-                    let (first, last) = machine.span(pos, bytes.len());
-                    return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
-                }
+        Ok(true)
+    }
+}
+
+/// `M98 P… L…`: the subprogram's number (P) and repeat count (L), and the line's end.
+fn read_m98(
+    machine: &mut Machine,
+    at: usize,
+    block: &mut OBlock,
+) -> Result<(String, usize), Fault> {
+    block.kind = OType::M98;
+    // The rest of the line: P and L words (LinuxCNC reads them with `read_one_item`).
+    let mut reader = Reader::new(
+        &machine.syntax.compact,
+        machine.syntax.raw_len,
+        &machine.state.params,
+        &machine.state,
+    );
+    let m_end = {
+        reader.set_position(at + 1);
+        reader.read_integer_value()?;
+        reader.position()
+    };
+    reader.set_position(m_end);
+    let words = &mut machine.syntax.block;
+    words.clear();
+    let bytes = machine.syntax.compact.bytes();
+    while reader.position() < bytes.len() && bytes[reader.position()] != b';' {
+        reader.read_item(words)?;
+    }
+    let Some(p) = words.word(b'p') else {
+        return Err(machine.line_fault("Found 'm98' code with no P-word"));
+    };
+    let mut number = p.value.floor();
+    if p.value - number > 0.9999 {
+        number = p.value.ceil();
+    } else if p.value - number > 0.0001 {
+        let (first, last) = machine.span(p.at, p.end);
+        return Err(Fault::syntax(first, last, "Non integer value for integer"));
+    }
+    block.l = words.word(b'l').map(|word| word.value);
+    Ok((format!("{}", number as i32), bytes.len()))
+}
+
+/// An `O` line's label (`o100`, `o<name>`) and its keyword (`sub`, `while`, …; none: a
+/// Fanuc-style program number), and where the line goes on after them.
+fn read_label(machine: &Machine, at: usize, block: &mut OBlock) -> Result<(String, usize), Fault> {
+    let bytes = machine.syntax.compact.bytes();
+    let mut pos = at + 1;
+    let bare;
+    if bytes.get(pos) == Some(&b'<') {
+        let start = pos + 1;
+        let end = bytes[start..].iter().position(|&b| b == b'>').map(|i| start + i);
+        match end {
+            Some(end) => {
+                bare = String::from_utf8_lossy(&bytes[start..end]).into_owned();
+                pos = end + 1;
+            }
+            None => {
+                // LinuxCNC ignores `read_name`'s error here: the rest is the name.
+                bare = String::from_utf8_lossy(&bytes[start..]).into_owned();
+                pos = bytes.len();
             }
         }
-        Ok(Some(block))
+    } else {
+        let mut reader = Reader::new(
+            &machine.syntax.compact,
+            machine.syntax.raw_len,
+            &machine.state.params,
+            &machine.state,
+        );
+        reader.set_position(pos);
+        let number = reader.read_integer_value()?;
+        pos = reader.position();
+        bare = format!("{}", number as i32);
     }
+    let rest = &bytes[pos..];
+    block.kind = match KEYWORDS.iter().find(|(word, _)| rest.starts_with(word)) {
+        Some(&(word, kind)) => {
+            pos += word.len();
+            kind
+        }
+        None if matches!(rest.first(), None | Some(b'(' | b';')) => OType::Fanuc,
+        None => OType::None,
+    };
+    Ok((bare, pos))
+}
+
+/// `endsub [value]`, `return [value]`: the value returned (`#<_value>`), none for M99.
+fn read_return_value(machine: &mut Machine, kind: OType, pos: &mut usize) -> Result<(), Fault> {
+    if kind != OType::M99 && machine.syntax.compact.bytes().get(*pos) == Some(&b'[') {
+        let value = machine.expression(pos)?;
+        machine.state.owords.value = value;
+        machine.state.owords.returned = true;
+    } else {
+        machine.state.owords.value = 0.0;
+        machine.state.owords.returned = false;
+    }
+    Ok(())
+}
+
+/// A call's arguments `[…] […]`, up to [`SUB_PARAMS`] (comments between them passed over).
+fn read_call_arguments(
+    machine: &mut Machine,
+    block: &mut OBlock,
+    pos: &mut usize,
+) -> Result<(), Fault> {
+    let mut count = 0;
+    while let Some(&byte) = machine.syntax.compact.bytes().get(*pos) {
+        match byte {
+            b'(' => *pos += 1,
+            b'[' => {
+                if count >= SUB_PARAMS {
+                    return Err(machine.line_fault("Too many subroutine parameters"));
+                }
+                block.params[count] = machine.expression(pos)?;
+                count += 1;
+            }
+            _ => break,
+        }
+    }
+    block.count = count;
+    Ok(())
+}
+
+/// After `if [...]` and the like, nothing but comments.
+fn only_comments_after(machine: &Machine, mut pos: usize) -> Result<(), Fault> {
+    let bytes = machine.syntax.compact.bytes();
+    while let Some(&byte) = bytes.get(pos) {
+        match byte {
+            b'(' => pos += 1,
+            b';' => break,
+            _ => {
+                let (first, last) = machine.span(pos, bytes.len());
+                return Err(Fault::syntax(first, last, "Unexpected character after O-word"));
+            }
+        }
+    }
+    Ok(())
 }
 
 impl Machine {

@@ -28,6 +28,7 @@ const RULES: Rules = Rules {
     has_prelude: true,
     inner_paren: InnerParen::Opens,
     rapid_at_feed: true,
+    reads_exponents: true,
     ..Rules::FIRMWARE
 };
 
@@ -57,7 +58,7 @@ impl DialectHooks for Marlin {
 impl Machine {
     /// Marlin's reading of the block just read: one command a line (later G and M words are
     /// its parameters), the E word as the extruder's move, `G1 F…` alone as a feed rate, G4's
-    /// S seconds or P milliseconds; `Ok(true)` when the block is done with (G92 of E alone).
+    /// S seconds or P milliseconds, `G92` alone as every axis zero; `Ok(true)` when the block is done with (G92 of E alone).
     fn adapt_marlin_block(&mut self) -> Result<bool, Fault> {
         self.hooks.pending_extrude = None;
         // One command per line: later G and M words are the command's parameters.
@@ -98,6 +99,17 @@ impl Machine {
         {
             // `G1 F1500`: a feed rate, no move (LinuxCNC would make a move of no length).
             self.syntax.block.g[1] = None;
+        }
+        if group0 == Some(920) && e.is_none() && !axis_words {
+            // `G92` alone: Marlin (and RepRap firmware) make every axis, the extruder's too,
+            // zero where they are.
+            let (at, end) = self.syntax.block.g[0].map_or((0, 1), |code| (code.at, code.end));
+            for &letter in &AXES {
+                self.syntax.block.letters[usize::from(letter - b'a')] =
+                    Some(Word { value: 0.0, at, end });
+            }
+            self.hooks.e_position = 0.0;
+            return Ok(false);
         }
         if group0 == Some(40) {
             self.marlin_dwell();
