@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{AssemblyMode, Meshes, WorkingMode};
+use crate::{AssemblyMode, DynamicsSpec, Meshes, Motors, WorkingMode};
 
 /// A robot as described by `robot.json`, in the file's units: millimetres and degrees
 /// (velocities per second, accelerations per second squared).
@@ -42,6 +42,14 @@ pub struct Robot {
     /// STL files drawn by the viewer in place of the parts' boxes and cylinders (none by default).
     #[serde(skip_serializing_if = "Meshes::is_empty")]
     pub meshes: Meshes,
+    /// The bodies' masses and inertias (docs/dynamics.md); absent: solid aluminium bodies of the
+    /// `geometry`'s size.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<DynamicsSpec>,
+    /// The motors at the four joints (docs/dynamics.md); absent: torques are computed but bound
+    /// nothing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motors: Option<Motors>,
 }
 
 /// The end effector the robot carries (docs/motion.md).
@@ -170,6 +178,8 @@ impl Default for Robot {
             geometry: Geometry::default(),
             tool: ToolSpec::default(),
             meshes: Meshes::default(),
+            dynamics: None,
+            motors: None,
         }
     }
 }
@@ -392,6 +402,12 @@ impl Robot {
                 }
             }
         }
+        if let Some(dynamics) = &self.dynamics {
+            dynamics.validate(self.links.l1, self.links.l2)?;
+        }
+        if let Some(motors) = &self.motors {
+            motors.validate()?;
+        }
         Ok(())
     }
 }
@@ -410,11 +426,11 @@ impl JointLimits {
     }
 }
 
-fn invalid(key: &str, message: String) -> RobotError {
+pub(crate) fn invalid(key: &str, message: String) -> RobotError {
     RobotError::Invalid { line: None, column: None, key: key.to_owned(), message }
 }
 
-fn finite(key: &str, value: f64) -> Result<(), RobotError> {
+pub(crate) fn finite(key: &str, value: f64) -> Result<(), RobotError> {
     if value.is_finite() {
         Ok(())
     } else {
