@@ -117,24 +117,39 @@ impl Bodies {
         }
     }
 
-    /// The values as `robot.json`'s `dynamics` section, every key written (`com` in mm): what
-    /// `biscara robot` prints.
+    /// The values as `robot.json`'s `dynamics` section, every key written (`com` in mm), each
+    /// to 6 significant digits: what `biscara robot` prints (printed again once read back, the
+    /// same text).
     pub fn to_spec(&self) -> DynamicsSpec {
         let link = |link: &Link| BodySpec {
-            mass: Some(link.mass),
-            com: Some(link.com * 1000.0),
-            inertia: Some(link.inertia),
+            mass: Some(significant(link.mass)),
+            com: Some(significant(link.com * 1000.0)),
+            inertia: Some(significant(link.inertia)),
         };
+        let point = |mass: f64| biscara_kinematics::PointSpec { mass: Some(significant(mass)) };
         DynamicsSpec {
-            gravity: Some(self.gravity),
+            gravity: Some(significant(self.gravity)),
             proximal: link(&self.proximal),
             distal: link(&self.distal),
-            carriage: biscara_kinematics::PointSpec { mass: Some(self.carriage) },
-            slide: biscara_kinematics::PointSpec { mass: Some(self.slide) },
-            tool: biscara_kinematics::ToolBodySpec { inertia: Some(self.tool_inertia) },
-            payload: biscara_kinematics::PointSpec { mass: Some(self.payload) },
+            carriage: point(self.carriage),
+            slide: point(self.slide),
+            tool: biscara_kinematics::ToolBodySpec {
+                inertia: Some(significant(self.tool_inertia)),
+            },
+            payload: point(self.payload),
         }
     }
+}
+
+/// `value` to 6 significant digits.
+fn significant(value: f64) -> f64 {
+    format!("{value:.5e}").parse().unwrap_or(value)
+}
+
+/// `robot` with its `dynamics` section written out in full: the values in force, what
+/// `biscara robot` prints (reading it back gives the same model).
+pub fn robot_in_force(robot: &Robot) -> Robot {
+    Robot { dynamics: Some(Bodies::of(robot).to_spec()), ..robot.clone() }
 }
 
 #[cfg(test)]
@@ -171,8 +186,13 @@ mod tests {
         assert_eq!(bodies.distal, default.distal);
         assert_eq!((bodies.payload, default.payload), (0.2, 0.0));
         assert_eq!(default.gravity, STANDARD_GRAVITY);
-        // Printed and read back, the values are the same.
-        let again = Robot { dynamics: Some(bodies.to_spec()), ..robot };
-        assert_eq!(Bodies::of(&again), bodies);
+        // Printed and read back, the values are the same to 6 digits and print the same.
+        let again = Bodies::of(&Robot { dynamics: Some(bodies.to_spec()), ..robot });
+        approx::assert_relative_eq!(
+            again.proximal.inertia,
+            bodies.proximal.inertia,
+            max_relative = 1e-5
+        );
+        assert_eq!(again.to_spec(), bodies.to_spec());
     }
 }

@@ -23,7 +23,7 @@ mod bodies;
 mod inverse;
 
 pub use biscara_kinematics::Motor;
-pub use bodies::{ALUMINIUM_DENSITY, Bodies, Link, STANDARD_GRAVITY};
+pub use bodies::{ALUMINIUM_DENSITY, Bodies, Link, STANDARD_GRAVITY, robot_in_force};
 pub use inverse::Dynamics;
 
 /// Why the dynamics cannot be built or a pose's torques cannot be computed.

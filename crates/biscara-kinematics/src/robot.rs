@@ -621,6 +621,35 @@ mod tests {
     }
 
     #[test]
+    fn dynamics_and_motors_are_checked_key_by_key() {
+        let json = r#"{"dynamics": {"gravity": 9.81, "proximal": {"mass": 0.62, "com": 98.0},
+            "payload": {"mass": 0.2}},
+            "motors": {"theta1": {"peak": 9, "rated": 3}, "theta2": {"peak": 9, "rated": 3},
+            "theta3": {"peak": 1, "rated": 0.5}, "d4": {"peak": 120, "rated": 45, "coulomb": 3}}}"#;
+        let robot = Robot::from_json(json).unwrap();
+        let dynamics = robot.dynamics.unwrap();
+        assert_eq!((dynamics.proximal.mass, dynamics.proximal.inertia), (Some(0.62), None));
+        assert_eq!(robot.motors.unwrap().d4.coulomb, 3.0);
+        assert_eq!(robot.motors.unwrap().theta1.viscous, 0.0);
+        assert_eq!(Robot::from_json(&robot.to_json_pretty()).unwrap(), robot);
+        check_rejected(
+            r#"{"dynamics": {"distal": {"mass": -1}}}"#,
+            "dynamics.distal.mass",
+            "must not be negative",
+        );
+        check_rejected(
+            r#"{"dynamics": {"proximal": {"com": 211}}}"#,
+            "dynamics.proximal.com",
+            "l1 is 210 mm long",
+        );
+        check_rejected(r#"{"dynamics": {"tool": {"mass": 1}}}"#, "dynamics.tool.mass", "unknown");
+        let motors = r#"{"motors": {"theta1": {"peak": 9, "rated": 10}, "theta2": {"peak": 9,
+            "rated": 3}, "theta3": {"peak": 1, "rated": 0.5}, "d4": {"peak": 120, "rated": 45}}}"#;
+        check_rejected(motors, "motors.theta1.rated", "exceeds the peak 9");
+        check_rejected(r#"{"motors": {"theta1": {"peak": 9}}}"#, "motors.theta1", "`rated`");
+    }
+
+    #[test]
     fn validation_errors_point_at_the_key() {
         let json = "{\n  \"links\": {\n    \"l1\": 210,\n    \"l2\": -1\n  }\n}";
         let err = Robot::from_json(json).unwrap_err();
