@@ -82,8 +82,9 @@ fn escape(text: &str) -> String {
 /// The masses, centres and inertias are `dynamics`' bodies (docs/dynamics.md), written as each
 /// body's `inertial` (the geoms only draw): the proximal and distal links, the carriage at the
 /// platform, the slide's mass and the tool's inertia on the gripper; gravity is
-/// `dynamics.gravity`. The motors' rotor inertias are the joints' `armature` (0 without motors),
-/// and with motors each actuator's `forcerange` is ±`peak`.
+/// `dynamics.gravity`. The motors' rotor inertias are the joints' `armature` (0 without motors);
+/// with motors, their viscous friction is the joints' `damping`, their Coulomb friction the
+/// joints' `frictionloss`, and each actuator's `forcerange` is ±`peak`.
 pub fn write_mjcf(
     out: &mut dyn Write,
     model: &RobotModel,
@@ -96,6 +97,13 @@ pub fn write_mjcf(
     let bodies = dynamics.bodies();
     let motors = dynamics.motors();
     let armature = |joint: usize| motors.map_or(0.0, |motors| motors[joint].rotor_inertia);
+    // The motors' friction: viscous as the joint's damping, Coulomb as its friction loss.
+    let friction = |joint: usize| {
+        motors.map_or(String::new(), |motors| {
+            let motor = &motors[joint];
+            format!(" damping=\"{}\" frictionloss=\"{}\"", motor.viscous, motor.coulomb)
+        })
+    };
     let forcerange = |joint: usize| {
         motors.map_or(String::new(), |motors| {
             format!(" forcerange=\"{} {}\"", -motors[joint].peak, motors[joint].peak)
@@ -212,9 +220,10 @@ pub fn write_mjcf(
             )?;
             writeln!(
                 x,
-                "      <joint name=\"{joint}\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
+                "      <joint name=\"{joint}\" type=\"hinge\" range=\"{}\" armature=\"{}\"{}/>",
                 rad(range),
-                armature(chain.index())
+                armature(chain.index()),
+                friction(chain.index())
             )?;
             writeln!(
                 x,
@@ -277,14 +286,16 @@ pub fn write_mjcf(
                 )?;
                 writeln!(
                     x,
-                    "            <joint name=\"d4\" type=\"slide\" axis=\"0 0 -1\" range=\"{d4_range}\" armature=\"{}\"/>",
-                    armature(3)
+                    "            <joint name=\"d4\" type=\"slide\" axis=\"0 0 -1\" range=\"{d4_range}\" armature=\"{}\"{}/>",
+                    armature(3),
+                    friction(3)
                 )?;
                 writeln!(
                     x,
-                    "            <joint name=\"theta3\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
+                    "            <joint name=\"theta3\" type=\"hinge\" range=\"{}\" armature=\"{}\"{}/>",
                     rad(limits.theta3),
-                    armature(2)
+                    armature(2),
+                    friction(2)
                 )?;
                 writeln!(
                     x,
