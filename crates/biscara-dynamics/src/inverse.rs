@@ -450,6 +450,23 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
+        /// Statics anywhere: at rest, gravity (along −z) loads only d4, which holds
+        /// −(slide + payload)·g; the θ motors give nothing, and there is no friction.
+        #[test]
+        fn at_rest_anywhere_only_d4_holds_the_slide_and_payload(
+            theta in prop::array::uniform2(-0.7f64..0.7),
+            theta3 in -3.0f64..3.0,
+            d4 in 0.0f64..100.0,
+            payload in 0.0f64..2.0,
+        ) {
+            let dynamics = Dynamics::new(&example_robot()).unwrap();
+            let q = [theta[0], theta[1], theta3, d4];
+            let [t1, t2, t3, f] = dynamics.torques(q, [0.0; 4], [0.0; 4], payload).unwrap();
+            prop_assert_eq!((t1, t2, t3), (0.0, 0.0, 0.0));
+            let hold = -(0.55 + payload) * G;
+            prop_assert!((f - hold).abs() <= 1e-12 * hold.abs(), "{} N against {} N", f, hold);
+        }
+
         /// Power balance with friction off: Σ τ·q̇ = dE/dt along a smooth joint trajectory
         /// q(t) = q0 + a·sin(ω t + φ), compared at random instants.
         #[test]
