@@ -8,6 +8,7 @@ mod cli_kinematics;
 mod conformance;
 mod design;
 mod dialects;
+mod dynamics;
 mod golden;
 mod interpret;
 mod linuxcnc;
