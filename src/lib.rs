@@ -6,6 +6,7 @@
 //! a thin command line over them. Stages so far:
 //!
 //! - [`kinematics`]: the robot model (`robot.json`) and exact inverse and forward kinematics.
+//! - [`dynamics`]: the rigid-body model and inverse dynamics (the motors' torques).
 //! - [`motion`]: the motions of a program and their file form, the inter-file.
 //! - [`interpolate`]: Cartesian samples at a fixed time step, and the path CSV.
 //! - [`joints`]: joint trajectories from Cartesian samples, and the joint CSV.
@@ -34,6 +35,7 @@
 pub use biscara_cl as cl;
 pub use biscara_design as design;
 pub use biscara_diff as diff;
+pub use biscara_dynamics as dynamics;
 pub use biscara_gcode as gcode;
 pub use biscara_interpolate as interpolate;
 pub use biscara_joints as joints;

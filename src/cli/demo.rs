@@ -36,7 +36,7 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let file = |name: &str| dir.join(name).to_string_lossy().into_owned();
     write_output(Some(&dir.join("robot.json")), |out| {
-        Ok(writeln!(out, "{}", model.robot().to_json_pretty())?)
+        Ok(writeln!(out, "{}", biscara::dynamics::robot_in_force(model.robot()).to_json_pretty())?)
     })?;
     write_output(Some(&dir.join("job.txt")), |out| Ok(out.write_all(EXAMPLE_JOB.as_bytes())?))?;
     let (points, cl, gcode, jsonl) =

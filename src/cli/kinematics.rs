@@ -116,7 +116,7 @@ pub(crate) fn fk(robot: &RobotModel, args: &FkArgs) -> anyhow::Result<()> {
 
 pub(crate) fn robot(robot: &RobotModel, args: &RobotArgs) -> anyhow::Result<()> {
     write_output(args.output.as_deref(), |out| {
-        writeln!(out, "{}", robot.robot().to_json_pretty())?;
+        writeln!(out, "{}", biscara::dynamics::robot_in_force(robot.robot()).to_json_pretty())?;
         Ok(())
     })
 }

@@ -135,7 +135,14 @@ fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
     let text = biscara_files::read_text(path)?;
     let mut robot = Robot::from_json(&text).map_err(|err| diag::located(path, err))?;
     files::resolve_meshes(&mut robot, path, &text)?;
-    RobotModel::new(robot).map_err(|err| diag::located(path, err))
+    let model = RobotModel::new(robot).map_err(|err| diag::located(path, err))?;
+    // The dynamics' own check (d4's motor against the slide's weight), before anything runs.
+    if let Err(err) = biscara::dynamics::Dynamics::new(&model) {
+        let (line, column) =
+            err.key().and_then(|key| Robot::locate_key(&text, key)).unwrap_or((1, 1));
+        return Err(diag::located(path, format!("{line}:{column}: {err}")));
+    }
+    Ok(model)
 }
 
 fn is_broken_pipe(err: &anyhow::Error) -> bool {

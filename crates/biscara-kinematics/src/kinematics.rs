@@ -438,6 +438,13 @@ impl Kinematics {
         Ok(FkSolution { joints: *joints, pose, configuration, passive })
     }
 
+    /// The five-bar's configuration (elbows and platform point, mm) for θ1, θ2 in the robot's
+    /// assembly mode: the planar part of [`Kinematics::forward`] without the angles, for callers
+    /// that need only the points (the inverse dynamics, once per sample).
+    pub fn planar(&self, theta1: f64, theta2: f64) -> Result<PlanarConfiguration, KinematicsError> {
+        self.planar_forward(theta1, theta2, self.assembly_mode)
+    }
+
     /// The pose at `q = 0`.
     pub fn home(&self) -> Pose {
         // Kinematics::new has checked that the home pose assembles.

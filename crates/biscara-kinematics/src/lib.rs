@@ -25,6 +25,7 @@
 //! ```
 
 mod batch;
+mod dynamics;
 mod error;
 mod jacobian;
 mod kinematics;
@@ -41,6 +42,7 @@ pub use nalgebra as na;
 pub use batch::{
     BatchSolution, BatchStatus, Dispatch, LANES, PoseColumns, SolutionColumns, atan2 as batch_atan2,
 };
+pub use dynamics::{BodySpec, DynamicsSpec, Motor, Motors, PointSpec, ToolBodySpec};
 pub use error::{KinematicsError, Shortfall, SingularityKind};
 pub use jacobian::PlanarJacobian;
 pub use kinematics::{

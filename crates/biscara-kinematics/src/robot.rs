@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{AssemblyMode, Meshes, WorkingMode};
+use crate::{AssemblyMode, DynamicsSpec, Meshes, Motors, WorkingMode};
 
 /// A robot as described by `robot.json`, in the file's units: millimetres and degrees
 /// (velocities per second, accelerations per second squared).
@@ -42,6 +42,14 @@ pub struct Robot {
     /// STL files drawn by the viewer in place of the parts' boxes and cylinders (none by default).
     #[serde(skip_serializing_if = "Meshes::is_empty")]
     pub meshes: Meshes,
+    /// The bodies' masses and inertias (docs/dynamics.md); absent: solid aluminium bodies of the
+    /// `geometry`'s size.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<DynamicsSpec>,
+    /// The motors at the four joints (docs/dynamics.md); absent: torques are computed but bound
+    /// nothing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motors: Option<Motors>,
 }
 
 /// The end effector the robot carries (docs/motion.md).
@@ -170,6 +178,8 @@ impl Default for Robot {
             geometry: Geometry::default(),
             tool: ToolSpec::default(),
             meshes: Meshes::default(),
+            dynamics: None,
+            motors: None,
         }
     }
 }
@@ -392,6 +402,12 @@ impl Robot {
                 }
             }
         }
+        if let Some(dynamics) = &self.dynamics {
+            dynamics.validate(self.links.l1, self.links.l2)?;
+        }
+        if let Some(motors) = &self.motors {
+            motors.validate()?;
+        }
         Ok(())
     }
 }
@@ -410,11 +426,11 @@ impl JointLimits {
     }
 }
 
-fn invalid(key: &str, message: String) -> RobotError {
+pub(crate) fn invalid(key: &str, message: String) -> RobotError {
     RobotError::Invalid { line: None, column: None, key: key.to_owned(), message }
 }
 
-fn finite(key: &str, value: f64) -> Result<(), RobotError> {
+pub(crate) fn finite(key: &str, value: f64) -> Result<(), RobotError> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -602,6 +618,35 @@ mod tests {
             Robot::locate_key("{\n  \"meshes\": {\"tool\": \"t.stl\"}}", "meshes.tool"),
             Some((2, 14))
         );
+    }
+
+    #[test]
+    fn dynamics_and_motors_are_checked_key_by_key() {
+        let json = r#"{"dynamics": {"gravity": 9.81, "proximal": {"mass": 0.62, "com": 98.0},
+            "payload": {"mass": 0.2}},
+            "motors": {"theta1": {"peak": 9, "rated": 3}, "theta2": {"peak": 9, "rated": 3},
+            "theta3": {"peak": 1, "rated": 0.5}, "d4": {"peak": 120, "rated": 45, "coulomb": 3}}}"#;
+        let robot = Robot::from_json(json).unwrap();
+        let dynamics = robot.dynamics.unwrap();
+        assert_eq!((dynamics.proximal.mass, dynamics.proximal.inertia), (Some(0.62), None));
+        assert_eq!(robot.motors.unwrap().d4.coulomb, 3.0);
+        assert_eq!(robot.motors.unwrap().theta1.viscous, 0.0);
+        assert_eq!(Robot::from_json(&robot.to_json_pretty()).unwrap(), robot);
+        check_rejected(
+            r#"{"dynamics": {"distal": {"mass": -1}}}"#,
+            "dynamics.distal.mass",
+            "must not be negative",
+        );
+        check_rejected(
+            r#"{"dynamics": {"proximal": {"com": 211}}}"#,
+            "dynamics.proximal.com",
+            "l1 is 210 mm long",
+        );
+        check_rejected(r#"{"dynamics": {"tool": {"mass": 1}}}"#, "dynamics.tool.mass", "unknown");
+        let motors = r#"{"motors": {"theta1": {"peak": 9, "rated": 10}, "theta2": {"peak": 9,
+            "rated": 3}, "theta3": {"peak": 1, "rated": 0.5}, "d4": {"peak": 120, "rated": 45}}}"#;
+        check_rejected(motors, "motors.theta1.rated", "exceeds the peak 9");
+        check_rejected(r#"{"motors": {"theta1": {"peak": 9}}}"#, "motors.theta1", "`rated`");
     }
 
     #[test]
