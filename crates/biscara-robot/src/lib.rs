@@ -44,7 +44,9 @@ mod scene;
 mod workspace;
 
 pub use body::{Body, Cylinder, Link, LinkName, VirtualRobot};
-pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary};
+pub use check::{
+    Checker, MotorTorque, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary,
+};
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
 pub use error::VirtualRobotError;
 pub use fit::{Bounds, Fit, Transform, fit, place_motion, shift_motion};
