@@ -414,7 +414,7 @@ fn demo_writes_the_virtual_robot_outputs() {
 #[test]
 fn help_texts_are_pinned() {
     let dir = temp_dir("virtual-robot-help");
-    for command in ["check", "workspace", "plot"] {
+    for command in ["check", "workspace", "plot", "cycle"] {
         let run = biscara(&dir, &[command, "--help"]);
         run.success();
         assert!(run.stdout.contains("Example:"), "{run}");
