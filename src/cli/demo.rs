@@ -16,11 +16,13 @@ use super::run_command;
 /// points → CL file → G-code → inter-file → Cartesian path → joint trajectory, each
 /// stage reading the file the previous one wrote, exactly as the commands `gen`, `interpret`,
 /// `interpolate` and `joints` do. Prints what it wrote and a summary: duration, samples and the
-/// peak speed of every joint.
+/// peak speed of every joint. With a robot file that has `motors` (--robot), traj.csv also holds
+/// the torques they must give (`joints --torques`, docs/dynamics.md).
 #[derive(Debug, Args)]
 #[command(
     about = "Run the bundled example through the whole pipeline (default folder out/)",
-    after_long_help = "Example:\n  $ biscara demo\n  $ biscara demo /tmp/biscara-demo"
+    after_long_help = "Example:\n  $ biscara demo\n  $ biscara demo /tmp/biscara-demo\n  \
+                       $ biscara --robot data/robots/servo-example.json demo"
 )]
 pub(crate) struct DemoArgs {
     /// Folder to write into; created when missing.
@@ -45,7 +47,9 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     run_command(model, ["gen", &points, "-o", &gcode, "--clf", &cl])?;
     run_command(model, ["interpret", &gcode, "-o", &jsonl])?;
     run_command(model, ["interpolate", &jsonl, "--events", "-o", &path])?;
-    run_command(model, ["joints", &jsonl, "--derivatives", "-o", &traj])?;
+    // With motors, the trajectory carries the torques they must give (docs/dynamics.md).
+    let torques = if model.robot().motors.is_some() { "--torques" } else { "--derivatives" };
+    run_command(model, ["joints", &jsonl, torques, "-o", &traj])?;
     let summary = TrajectorySummary::of(open_input(Path::new(&traj))?)
         .map_err(|err| located(Path::new(&traj), err))?;
     run_command(model, ["check", &jsonl, "--json", "-o", &file("check.json")])?;
@@ -64,7 +68,14 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
         ("job.ngc", "G-code for LinuxCNC (biscara post)"),
         ("job.jsonl", "motions, the inter-file (biscara interpret)"),
         ("path.csv", "Cartesian samples at 1 ms (biscara interpolate)"),
-        ("traj.csv", "joint trajectory with velocities and accelerations (biscara joints)"),
+        (
+            "traj.csv",
+            if model.robot().motors.is_some() {
+                "joint trajectory with velocities, accelerations and torques (biscara joints)"
+            } else {
+                "joint trajectory with velocities and accelerations (biscara joints)"
+            },
+        ),
         ("check.json", "the virtual robot's report (biscara check --json)"),
         ("workspace.txt", "the workspace's area and largest rectangle (biscara workspace)"),
         ("workspace.svg", "the workspace and its largest rectangle (biscara workspace --svg)"),

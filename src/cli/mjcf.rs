@@ -18,7 +18,9 @@ use super::files::{display_path, load_scene, open_input, write_output};
 /// and position actuators `theta1`, `theta2`, `theta3`, `d4` (radians, metres; control ranges from
 /// the robot's joint limits), passive hinges `elbow1`, `elbow2`, the site `tool`; the base frame is
 /// the world frame and qpos0 the assembled home pose. Link sizes come from robot.json `geometry`;
-/// scene boxes become static geoms.
+/// the masses, centres and inertias from its `dynamics` (or from `geometry` as solid aluminium),
+/// the same values `joints --torques` uses; with `motors`, each joint's armature is its motor's
+/// rotor inertia and each actuator's force range ±its `peak`. Scene boxes become static geoms.
 ///
 /// With --traj, the joint trajectory is written beside the model as `NAME.traj.csv` (for
 /// `-o robot.xml`: `robot.traj.csv`): every row's six joints in MuJoCo's units, the elbows from
@@ -63,7 +65,10 @@ pub(crate) fn mjcf(robot: &RobotModel, args: &MjcfArgs) -> anyhow::Result<()> {
         options.trajectory_file =
             companion.file_name().map(|name| name.to_string_lossy().into_owned());
     }
-    write_output(args.output.as_deref(), |out| Ok(write_mjcf(out, robot, &scene, &options)?))
+    let dynamics = biscara::dynamics::Dynamics::new(robot)?;
+    write_output(args.output.as_deref(), |out| {
+        Ok(write_mjcf(out, robot, &dynamics, &scene, &options)?)
+    })
 }
 
 /// Reads the joint CSV `traj` and writes the companion file `companion`.

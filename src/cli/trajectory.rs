@@ -58,7 +58,10 @@ pub(crate) struct InterpolateArgs {
 /// Every sample is solved by IK in the robot's working and assembly mode; θ3 is continuous. The
 /// CSV is `t_s,theta1_rad,theta2_rad,theta3_rad,d4_mm` (`_deg` with --angle-unit deg), with
 /// velocity and acceleration columns (finite differences of the positions) after --derivatives.
-/// The command fails (exit 1, nothing written) at the first sample that is unreachable, outside
+/// With --torques, after them, the torques the motors must give (docs/dynamics.md):
+/// `tau_theta1_Nm,tau_theta2_Nm,tau_theta3_Nm,f_d4_N,payload_kg`, each row's inverse dynamics of
+/// its own joints, velocities and accelerations, with the robot's payload while the gripper holds
+/// it. The command fails (exit 1, nothing written) at the first sample that is unreachable, outside
 /// the joint limits or near a singularity, naming the program's line and the time.
 ///
 /// The program's kind comes from --from, else from its extension: `.jsonl` is an inter-file,
@@ -68,7 +71,8 @@ pub(crate) struct InterpolateArgs {
 #[command(
     about = "Joint trajectory CSV of a program (IK of every sample)",
     after_long_help = "Example:\n  $ biscara joints job.ngc -o traj.csv\n  \
-                       $ biscara joints --derivatives --angle-unit deg --from path path.csv"
+                       $ biscara joints --derivatives --angle-unit deg --from path path.csv\n  \
+                       $ biscara --robot robot.json joints job.ngc --torques -o traj.csv"
 )]
 pub(crate) struct JointsArgs {
     #[command(flatten)]
@@ -81,6 +85,13 @@ pub(crate) struct JointsArgs {
     /// Add velocity and acceleration columns for every joint.
     #[arg(long)]
     derivatives: bool,
+    /// Add the motors' torques (N·m) and d4's force (N) after the derivatives (implies
+    /// --derivatives), and the payload held (kg).
+    #[arg(
+        long,
+        help = "Add the motors' torques and d4's force, N·m and N (implies --derivatives)"
+    )]
+    torques: bool,
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
     angle_unit: AngleUnitArg,
@@ -117,6 +128,22 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
+    if args.torques {
+        let dynamics = biscara::dynamics::Dynamics::new(model)?;
+        write_output(args.output.as_deref(), |out| {
+            Ok(pipeline.write_joint_torque_csv(
+                &source,
+                kind,
+                out,
+                format,
+                args.events,
+                &dynamics,
+                notes.sink(),
+            )?)
+        })?;
+        notes.finish();
+        return Ok(());
+    }
     write_output(args.output.as_deref(), |out| {
         Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
     })?;

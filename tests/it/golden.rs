@@ -85,6 +85,19 @@ pub fn decimate(csv: &str, step: usize) -> String {
     kept
 }
 
+/// The demo with a robot that has motors writes the torques they must give in traj.csv
+/// (docs/dynamics.md).
+#[test]
+fn demo_with_motors_writes_the_torques() {
+    let dir = temp_dir("golden-demo-motors");
+    let robot = repo_root().join("data/robots/servo-example.json");
+    let run = biscara(&dir, &["--robot", robot.to_str().expect("path"), "demo", "out"]);
+    run.success();
+    assert!(run.stdout.contains("accelerations and torques"), "{run}");
+    let written = std::fs::read_to_string(dir.join("out/traj.csv")).expect("demo output");
+    check_golden("demo/servo-example/traj.csv.every-250th-row", &decimate(&written, 250));
+}
+
 /// The demo runs the whole pipeline and writes every stage's file.
 #[test]
 fn demo_writes_its_golden_files() {

@@ -8,6 +8,7 @@ mod conformance;
 mod cycle;
 mod design;
 mod dialects;
+mod dynamics;
 mod golden;
 mod interpret;
 mod linuxcnc;

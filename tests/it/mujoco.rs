@@ -7,6 +7,7 @@
 //! Needs `python3` with the `mujoco` package (`.ci/run` installs it from PyPI). When either is
 //! missing the test prints why and passes, except under `CI=true`, where it fails.
 
+use std::path::Path;
 use std::process::Command;
 
 use crate::util::{biscara, repo_root, temp_dir};
@@ -85,4 +86,127 @@ fn the_model_is_rejected_by_mujoco_when_the_loop_is_broken() {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(1), "{stdout}");
     assert!(stdout.contains("connect residual"), "{stdout}");
+}
+
+/// A pick-and-place-free program of `moves` random moves (G0 and G1 at random feeds) inside the
+/// default robot's workspace, from a fixed seed: a random trajectory the tests can replay.
+fn random_program(seed: u64, moves: usize) -> String {
+    let mut state = seed;
+    let mut next = move |lo: f64, hi: f64| {
+        state =
+            state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut program = String::from("G21 G90 G64 P0.5\n");
+    for _ in 0..moves {
+        let (x, y, z, c) =
+            (next(-150.0, 150.0), next(280.0, 430.0), next(10.0, 95.0), next(-150.0, 150.0));
+        if next(0.0, 1.0) < 0.4 {
+            program.push_str(&format!("G0 X{x:.3} Y{y:.3} Z{z:.3} C{c:.3}\n"));
+        } else {
+            let feed = next(1000.0, 30000.0);
+            program.push_str(&format!("G1 X{x:.3} Y{y:.3} Z{z:.3} C{c:.3} F{feed:.0}\n"));
+        }
+    }
+    program.push_str("M2\n");
+    program
+}
+
+/// Runs `tests/mujoco/inverse_dynamics.py` on a model, its companion file and a torque CSV;
+/// returns its exit code and output.
+fn inverse_dynamics(model: &Path, companion: &Path, torques: &Path) -> (Option<i32>, String) {
+    let output = Command::new("python3")
+        .arg(repo_root().join("tests/mujoco/inverse_dynamics.py"))
+        .args([model, companion, torques])
+        .output()
+        .expect("run python3");
+    let text = format!(
+        "{}\n--- stderr ---\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    (output.status.code(), text)
+}
+
+#[track_caller]
+fn assert_agrees(model: &Path, companion: &Path, torques: &Path, what: &str) {
+    let (code, text) = inverse_dynamics(model, companion, torques);
+    #[allow(clippy::print_stderr)]
+    {
+        eprintln!("MuJoCo's inverse dynamics against joints --torques, {what}:\n{text}");
+    }
+    assert_eq!(code, Some(0), "{what}: {text}");
+    assert!(text.contains("max_difference_relative"), "{text}");
+}
+
+#[test]
+fn mujoco_inverse_dynamics_agrees_with_joints_torques_on_the_demo() {
+    if !mujoco_available() {
+        skip_or_fail("python3 with the mujoco package");
+        return;
+    }
+    let dir = temp_dir("mujoco-inverse-demo");
+    let robot = repo_root().join("data/robots/servo-example.json");
+    biscara(&dir, &["--robot", robot.to_str().expect("path"), "demo", "out"]).success();
+    let out = dir.join("out");
+    let header = std::fs::read_to_string(out.join("traj.csv")).expect("traj.csv");
+    assert!(header.lines().next().is_some_and(|line| line.ends_with("f_d4_N,payload_kg")));
+    assert_agrees(
+        &out.join("robot.xml"),
+        &out.join("robot.traj.csv"),
+        &out.join("traj.csv"),
+        "the demo with data/robots/servo-example.json",
+    );
+}
+
+#[test]
+fn mujoco_inverse_dynamics_agrees_with_joints_torques_on_random_trajectories() {
+    if !mujoco_available() {
+        skip_or_fail("python3 with the mujoco package");
+        return;
+    }
+    let dir = temp_dir("mujoco-inverse-random");
+    let example = repo_root().join("data/robots/servo-example.json");
+    let robots = [("the built-in robot (no motors)", None), ("servo-example", Some(&example))];
+    for seed in 1..=3u64 {
+        std::fs::write(dir.join("random.ngc"), random_program(seed, 12)).expect("write");
+        for (name, robot) in &robots {
+            let mut args: Vec<&str> = Vec::new();
+            if let Some(robot) = robot {
+                args.extend(["--robot", robot.to_str().expect("path")]);
+            }
+            let joints =
+                [&args[..], &["joints", "random.ngc", "--torques", "-o", "t.csv"]].concat();
+            biscara(&dir, &joints).success();
+            let mjcf = [&args[..], &["mjcf", "-o", "m.xml", "--traj", "t.csv"]].concat();
+            biscara(&dir, &mjcf).success();
+            assert_agrees(
+                &dir.join("m.xml"),
+                &dir.join("m.traj.csv"),
+                &dir.join("t.csv"),
+                &format!("random program {seed}, {name}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn the_inverse_dynamics_check_fails_when_the_models_differ() {
+    // The checker must be able to fail: the distal links' centres moved by 5 mm in the model.
+    if !mujoco_available() {
+        skip_or_fail("python3 with the mujoco package");
+        return;
+    }
+    let dir = temp_dir("mujoco-inverse-differ");
+    std::fs::write(dir.join("random.ngc"), random_program(7, 6)).expect("write");
+    biscara(&dir, &["joints", "random.ngc", "--torques", "-o", "t.csv"]).success();
+    biscara(&dir, &["mjcf", "-o", "m.xml", "--traj", "t.csv"]).success();
+    let xml = std::fs::read_to_string(dir.join("m.xml")).expect("model");
+    let moved = xml.replace("<inertial pos=\"0.135 0 0\"", "<inertial pos=\"0.13 0 0\"");
+    assert_ne!(moved, xml, "the distal links' inertials are where the test expects them");
+    std::fs::write(dir.join("m.xml"), moved).expect("write");
+    let (code, text) =
+        inverse_dynamics(&dir.join("m.xml"), &dir.join("m.traj.csv"), &dir.join("t.csv"));
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("differs from MuJoCo"), "{text}");
 }

@@ -15,6 +15,10 @@ pub struct Dynamics {
     /// Link lengths, m.
     l1: f64,
     l2: f64,
+    /// 1/l1 and 1/l2 in 1/mm (to turn the links into unit vectors) and 1/l2 in 1/m.
+    inverse_l1_mm: f64,
+    inverse_l2_mm: f64,
+    inverse_l2: f64,
     /// The proximal link's inertia about its joint, kg·m².
     proximal_about_joint: f64,
     /// The distal link's centre of mass as a fraction of `l2`.
@@ -73,6 +77,9 @@ impl Dynamics {
             motors,
             l1,
             l2,
+            inverse_l1_mm: 1.0 / kinematics.l1(),
+            inverse_l2_mm: 1.0 / kinematics.l2(),
+            inverse_l2: 1.0 / l2,
             proximal_about_joint: proximal.inertia + proximal.mass * proximal.com * proximal.com,
             distal_fraction: bodies.distal.com / l2,
             rotor: motors.map_or([0.0; 4], |motors| motors.map(|motor| motor.rotor_inertia)),
@@ -113,8 +120,8 @@ impl Dynamics {
         // are them turned by +90° (the directions in which the elbow and the tool point move
         // when the link turns).
         let unit = |chain: Chain| {
-            let proximal = planar.proximal(chain) / self.kinematics.l1();
-            let distal = planar.distal(chain) / self.kinematics.l2();
+            let proximal = planar.proximal(chain) * self.inverse_l1_mm;
+            let distal = planar.distal(chain) * self.inverse_l2_mm;
             (V2(proximal.x, proximal.y), V2(distal.x, distal.y))
         };
         let (e1, u1) = unit(Chain::One);
@@ -126,23 +133,26 @@ impl Dynamics {
             let (theta1_deg, theta2_deg) = degrees(q[0], q[1]);
             return Err(DynamicsError::Singular { theta1_deg, theta2_deg });
         }
-        let solve =
-            |r1: f64, r2: f64| V2((u2.1 * r1 - u1.1 * r2) / det, (u1.0 * r2 - u2.0 * r1) / det);
+        let inverse_det = 1.0 / det;
+        let solve = |r1: f64, r2: f64| {
+            V2((u2.1 * r1 - u1.1 * r2) * inverse_det, (u1.0 * r2 - u2.0 * r1) * inverse_det)
+        };
         let b = [l1 * u1.dot(e1p), l1 * u2.dot(e2p)];
         // Velocities.
         let pd = solve(b[0] * qd[0], b[1] * qd[1]);
         let ed1 = e1p.scale(l1 * qd[0]);
         let ed2 = e2p.scale(l1 * qd[1]);
-        let psid1 = n1.dot(pd.sub(ed1)) / l2;
-        let psid2 = n2.dot(pd.sub(ed2)) / l2;
+        let inverse_l2 = self.inverse_l2;
+        let psid1 = n1.dot(pd.sub(ed1)) * inverse_l2;
+        let psid2 = n2.dot(pd.sub(ed2)) * inverse_l2;
         // Accelerations: u_i · P̈ = u_i · Ë_i − l2·ψ̇_i².
         let c1 = -l1 * qd[0] * qd[0] * u1.dot(e1) - l2 * psid1 * psid1;
         let c2 = -l1 * qd[1] * qd[1] * u2.dot(e2) - l2 * psid2 * psid2;
         let pdd = solve(b[0] * qdd[0] + c1, b[1] * qdd[1] + c2);
         let edd1 = e1p.scale(l1 * qdd[0]).sub(e1.scale(l1 * qd[0] * qd[0]));
         let edd2 = e2p.scale(l1 * qdd[1]).sub(e2.scale(l1 * qd[1] * qd[1]));
-        let psidd1 = n1.dot(pdd.sub(edd1)) / l2;
-        let psidd2 = n2.dot(pdd.sub(edd2)) / l2;
+        let psidd1 = n1.dot(pdd.sub(edd1)) * inverse_l2;
+        let psidd2 = n2.dot(pdd.sub(edd2)) * inverse_l2;
         // Inertial forces and moments of the bodies.
         let bodies = &self.bodies;
         let k = self.distal_fraction;
@@ -158,20 +168,20 @@ impl Dynamics {
         let w = pdd
             .scale(platform_mass)
             .add(acd1.add(acd2).scale(k * distal_mass))
-            .add(n1.scale(moment1 / l2))
-            .add(n2.scale(moment2 / l2));
-        let v = V2((u2.1 * w.0 - u2.0 * w.1) / det, (u1.0 * w.1 - u1.1 * w.0) / det);
+            .add(n1.scale(moment1 * inverse_l2))
+            .add(n2.scale(moment2 * inverse_l2));
+        let v =
+            V2((u2.1 * w.0 - u2.0 * w.1) * inverse_det, (u1.0 * w.1 - u1.1 * w.0) * inverse_det);
         let own = self.proximal_about_joint;
         let tau1 = b[0] * v.0 + (1.0 - k) * distal_mass * l1 * acd1.dot(e1p)
-            - moment1 * l1 * n1.dot(e1p) / l2
+            - moment1 * l1 * n1.dot(e1p) * inverse_l2
             + (own + self.rotor[0]) * qdd[0];
         let tau2 = b[1] * v.1 + (1.0 - k) * distal_mass * l1 * acd2.dot(e2p)
-            - moment2 * l1 * n2.dot(e2p) / l2
+            - moment2 * l1 * n2.dot(e2p) * inverse_l2
             + (own + self.rotor[1]) * qdd[1];
         let tau3 = tool_moment + self.rotor[2] * qdd[2];
         let vertical_mass = bodies.slide + payload_kg;
-        let f_d4 =
-            (vertical_mass + self.rotor[3]) * qdd[3] / 1000.0 - vertical_mass * bodies.gravity;
+        let f_d4 = (vertical_mass + self.rotor[3]) * qdd[3] * 1e-3 - vertical_mass * bodies.gravity;
         Ok([tau1, tau2, tau3, f_d4])
     }
 
@@ -181,7 +191,7 @@ impl Dynamics {
         let mut friction = [0.0; 4];
         for (joint, (motor, rate)) in motors.iter().zip(qd).enumerate() {
             // d4's viscous friction is per m/s; its velocity is in mm/s.
-            let rate_si = if joint == 3 { rate / 1000.0 } else { rate };
+            let rate_si = if joint == 3 { rate * 1e-3 } else { rate };
             let coulomb = if rate > 0.0 {
                 motor.coulomb
             } else if rate < 0.0 {

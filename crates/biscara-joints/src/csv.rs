@@ -124,6 +124,11 @@ impl<W: Write> JointCsvWriter<W> {
 pub const TOOL_COLUMNS: [&str; 5] =
     ["gripper", "laser_power", "spindle_rpm", "extruded_mm", "pen_down"];
 
+/// The columns `joints --torques` adds after the derivatives (docs/dynamics.md), which the
+/// reader reads past: the torques of θ1–θ3 (N·m), d4's force (N) and the payload held (kg).
+pub const TORQUE_COLUMNS: [&str; 5] =
+    ["tau_theta1_Nm", "tau_theta2_Nm", "tau_theta3_Nm", "f_d4_N", "payload_kg"];
+
 /// One row of a joint CSV read back: radians and millimetres whatever the file's angle unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JointCsvRow {
@@ -148,6 +153,7 @@ pub fn read_joint_csv<R: BufRead>(reader: R) -> JointCsvReader<R> {
         csv: NumericCsvReader::new(reader),
         format: None,
         tool_column: false,
+        torque_columns: false,
         failed: false,
     }
 }
@@ -160,6 +166,8 @@ pub struct JointCsvReader<R> {
     format: Option<JointCsvFormat>,
     /// The header ends with a tool's column (read past).
     tool_column: bool,
+    /// The header has the torque columns after the derivatives (read past).
+    torque_columns: bool,
     failed: bool,
 }
 
@@ -172,6 +180,13 @@ impl<R: BufRead> JointCsvReader<R> {
             _ => (header.as_str(), false),
         };
         self.tool_column = tool_column;
+        // The torque columns (`joints --torques`) after the derivatives are read past.
+        let torques = format!(",{}", TORQUE_COLUMNS.join(","));
+        let (header, torque_columns) = match header.strip_suffix(torques.as_str()) {
+            Some(joints) => (joints, true),
+            None => (header, false),
+        };
+        self.torque_columns = torque_columns;
         for angle_unit in [AngleUnit::Radians, AngleUnit::Degrees] {
             for derivatives in [false, true] {
                 let format = JointCsvFormat { angle_unit, derivatives, precision: 0 };
@@ -194,7 +209,9 @@ impl<R: BufRead> JointCsvReader<R> {
                 *self.format.insert(format)
             }
         };
-        let columns = if format.derivatives { 13 } else { 5 } + usize::from(self.tool_column);
+        let columns = if format.derivatives { 13 } else { 5 }
+            + usize::from(self.tool_column)
+            + if self.torque_columns { TORQUE_COLUMNS.len() } else { 0 };
         let Some((line, values)) = self.csv.row(columns)? else { return Ok(None) };
         let scale = match format.angle_unit {
             AngleUnit::Radians => 1.0,
@@ -286,6 +303,23 @@ mod tests {
             let message = read(input.as_bytes()).unwrap_err();
             assert!(message.starts_with(expected), "{message:?} should start with {expected:?}");
         }
+    }
+
+    #[test]
+    fn the_torque_columns_are_read_past() {
+        let format =
+            JointCsvFormat { angle_unit: AngleUnit::Radians, derivatives: true, precision: 6 };
+        let mut columns = TORQUE_COLUMNS.to_vec();
+        columns.push("gripper");
+        let mut writer = JointCsvWriter::with_columns(Vec::new(), format, &columns).unwrap();
+        let values = [1.5, -2.0, 0.25, -7.0, 0.2, 1.0];
+        writer.write_with(&sample(0.0, [10.0, -20.0, 30.0, 40.0]), &values).unwrap();
+        let text = writer.finish().unwrap();
+        let rows = read(&text).unwrap();
+        assert!((rows[0].joints.d4 - 40.0).abs() < 1e-9 && rows[0].velocity.is_some());
+        let short = String::from_utf8_lossy(&text).replace(",0.200000,1.000000", "");
+        let message = read(short.as_bytes()).unwrap_err();
+        assert!(message.starts_with("2:"), "{message}");
     }
 
     #[test]

@@ -33,7 +33,7 @@ pub use biscara_interpolate::CartesianSample;
 
 pub use csv::{
     AngleUnit, JointCsvError, JointCsvFormat, JointCsvReader, JointCsvRow, JointCsvWriter,
-    TOOL_COLUMNS, TrajectorySummary, read_joint_csv,
+    TOOL_COLUMNS, TORQUE_COLUMNS, TrajectorySummary, read_joint_csv,
 };
 pub use differences::{central_differences, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};

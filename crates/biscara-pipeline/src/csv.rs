@@ -5,9 +5,10 @@
 
 use std::io::Write;
 
+use biscara_dynamics::{Dynamics, DynamicsError};
 use biscara_gcode::Tool;
 use biscara_interpolate::PathCsvWriter;
-use biscara_joints::{JointCsvFormat, JointCsvWriter};
+use biscara_joints::{JointCsvFormat, JointCsvWriter, JointSample, TORQUE_COLUMNS};
 
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, ToolState};
 
@@ -95,4 +96,76 @@ impl Pipeline<'_> {
         writer.finish()?;
         Ok(())
     }
+
+    /// Writes the program's joint samples as [`Pipeline::write_joint_csv`] does, with the
+    /// derivative columns whatever `format` says and, after them, the torques the motors must
+    /// give ([`TORQUE_COLUMNS`]: `tau_theta1_Nm,tau_theta2_Nm,tau_theta3_Nm,f_d4_N,payload_kg`):
+    /// each row's inverse dynamics ([`Dynamics::torques`]) of its own joints, velocities and
+    /// accelerations, with the robot's payload while the gripper holds it (from each pick to its
+    /// place), else none. With `events`, the tool's column comes last.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write_joint_torque_csv(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        out: &mut dyn Write,
+        format: JointCsvFormat,
+        events: bool,
+        dynamics: &Dynamics,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<(), PipelineError> {
+        let format = JointCsvFormat { derivatives: true, ..format };
+        let payload = dynamics.bodies().payload;
+        let file = source.name();
+        if events {
+            let mut samples = self.tool_joints(source, kind, notes)?;
+            let tool = samples.tool();
+            let mut columns = TORQUE_COLUMNS.to_vec();
+            columns.extend(ToolState::columns(tool));
+            let mut writer = JointCsvWriter::with_columns(out, format, &columns)?;
+            while let Some(row) = samples.next_sample() {
+                let (row, state) = row?;
+                let held = if tool == Tool::Gripper && state.gripper { payload } else { 0.0 };
+                let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
+                writer.write_with(row, &[t1, t2, t3, f4, held, state.value(tool)])?;
+            }
+            writer.finish()?;
+            return Ok(());
+        }
+        let mut samples = self.joints(source, kind, notes)?;
+        let mut writer = JointCsvWriter::with_columns(out, format, &TORQUE_COLUMNS)?;
+        while let Some(row) = samples.next_sample() {
+            let row = row?;
+            let held = if row.gripper { payload } else { 0.0 };
+            let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
+            writer.write_with(row, &[t1, t2, t3, f4, held])?;
+        }
+        writer.finish()?;
+        Ok(())
+    }
+}
+
+/// The torques at one joint sample, an error located at its line and time.
+#[inline]
+fn sample_torques(
+    dynamics: &Dynamics,
+    sample: &JointSample,
+    payload: f64,
+    file: &str,
+) -> Result<[f64; 4], PipelineError> {
+    dynamics
+        .torques(sample.joints.to_array(), sample.velocity, sample.acceleration, payload)
+        .map_err(|source| {
+            PipelineError::program(file, TorqueError { line: sample.line, t: sample.t, source })
+        })
+}
+
+/// A sample whose torques cannot be computed (in practice never: the trajectory refuses the
+/// poses that would fail first).
+#[derive(Debug, thiserror::Error)]
+#[error("{line}: at t = {t} s: {source}")]
+struct TorqueError {
+    line: usize,
+    t: f64,
+    source: DynamicsError,
 }

@@ -31,7 +31,7 @@ pub enum CsvErrorKind {
 }
 
 /// The most columns a [`NumericCsvReader`] row may have.
-pub const MAX_CSV_COLUMNS: usize = 16;
+pub const MAX_CSV_COLUMNS: usize = 24;
 
 /// What the path and joint CSV readers share: bounded lines read one at a time, rows of finite
 /// numbers with `FILE`-relative line and column errors, and a first column (time) that increases.

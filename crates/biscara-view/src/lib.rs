@@ -15,11 +15,13 @@
 //! place of its part's box or cylinder.
 //!
 //! ```
+//! use biscara_dynamics::Dynamics;
 //! use biscara_kinematics::RobotModel;
 //! use biscara_view::{MjcfOptions, Scene, write_mjcf};
 //!
-//! let mut xml = Vec::new();
-//! write_mjcf(&mut xml, &RobotModel::default(), &Scene::default(), &MjcfOptions::default())?;
+//! let (model, mut xml) = (RobotModel::default(), Vec::new());
+//! let dynamics = Dynamics::new(&model)?;
+//! write_mjcf(&mut xml, &model, &dynamics, &Scene::default(), &MjcfOptions::default())?;
 //! assert!(String::from_utf8(xml)?.contains("<site name=\"tool\""));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -3,8 +3,9 @@
 use std::fmt::Write as _;
 use std::io::Write;
 
+use biscara_dynamics::{Bodies, Dynamics};
 use biscara_joints::JointCsvRow;
-use biscara_kinematics::{Chain, Joints, Kinematics, Robot, RobotModel};
+use biscara_kinematics::{Chain, Joints, Kinematics, RobotModel};
 
 use crate::{Scene, ViewError};
 
@@ -17,18 +18,14 @@ pub const QPOS_HEADER: &str =
 ///
 /// The defaults were tuned on the demo job (`tests/mujoco/check_model.py`): stiff enough that the
 /// tool follows the path within a fraction of a millimetre, stable with the implicit integrator.
+/// The bodies' masses and inertias and the motors' rotor inertias are the robot's
+/// ([`biscara_dynamics::Bodies`], docs/dynamics.md), not settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MjcfOptions {
     /// Simulation time step, s.
     pub timestep: f64,
     /// Natural frequency of the position servos, rad/s (kp = ω²·inertia, kv = 2·ω·inertia).
     pub servo_frequency: f64,
-    /// Reflected rotor inertia of each revolute actuator, kg·m².
-    pub armature_rotary: f64,
-    /// Reflected rotor mass of the Z slide, kg.
-    pub armature_slide: f64,
-    /// Density of the links, the column and the gripper, kg/m³ (aluminium).
-    pub density: f64,
     /// File name of the companion trajectory file (written by [`QposWriter`]), recorded in the
     /// model as the custom text `biscara_trajectory`.
     pub trajectory_file: Option<String>,
@@ -36,16 +33,13 @@ pub struct MjcfOptions {
 
 impl Default for MjcfOptions {
     fn default() -> Self {
-        MjcfOptions {
-            timestep: 0.0005,
-            servo_frequency: 300.0,
-            armature_rotary: 0.01,
-            armature_slide: 1.0,
-            density: 2700.0,
-            trajectory_file: None,
-        }
+        MjcfOptions { timestep: 0.0005, servo_frequency: 300.0, trajectory_file: None }
     }
 }
+
+/// The least mass (kg) and inertia (kg·m²) written for a moving body: MuJoCo refuses less
+/// (`mjMINVAL`, 1e-15), and a robot file may say 0.
+const MUJOCO_FLOOR: f64 = 1e-12;
 
 /// Millimetres to metres.
 fn m(mm: f64) -> f64 {
@@ -84,14 +78,45 @@ fn escape(text: &str) -> String {
 /// zero at home); the site `tool`. The base frame is the world frame and every joint is zero at
 /// the home pose, so qpos0 is the home pose, assembled. Chain 1's distal link carries the Z slide
 /// and the rotary joint; chain 2 is closed on it by an equality `connect` at the platform point.
+///
+/// The masses, centres and inertias are `dynamics`' bodies (docs/dynamics.md), written as each
+/// body's `inertial` (the geoms only draw): the proximal and distal links, the carriage at the
+/// platform, the slide's mass and the tool's inertia on the gripper; gravity is
+/// `dynamics.gravity`. The motors' rotor inertias are the joints' `armature` (0 without motors);
+/// with motors, their viscous friction is the joints' `damping`, their Coulomb friction the
+/// joints' `frictionloss`, and each actuator's `forcerange` is ±`peak`.
 pub fn write_mjcf(
     out: &mut dyn Write,
     model: &RobotModel,
+    dynamics: &Dynamics,
     scene: &Scene,
     options: &MjcfOptions,
 ) -> Result<(), ViewError> {
     let robot = model.robot();
     let model = model.kinematics();
+    let bodies = dynamics.bodies();
+    let motors = dynamics.motors();
+    let armature = |joint: usize| motors.map_or(0.0, |motors| motors[joint].rotor_inertia);
+    // The motors' friction: viscous as the joint's damping, Coulomb as its friction loss.
+    let friction = |joint: usize| {
+        motors.map_or(String::new(), |motors| {
+            let motor = &motors[joint];
+            format!(" damping=\"{}\" frictionloss=\"{}\"", motor.viscous, motor.coulomb)
+        })
+    };
+    let forcerange = |joint: usize| {
+        motors.map_or(String::new(), |motors| {
+            format!(" forcerange=\"{} {}\"", -motors[joint].peak, motors[joint].peak)
+        })
+    };
+    // An inertia about the vertical axis, the same about the others (they never turn). MuJoCo
+    // refuses a moving body without mass or inertia: values below 1e-12 are written as 1e-12.
+    let inertial = |pos: String, mass: f64, inertia: f64| {
+        let (mass, inertia) = (mass.max(MUJOCO_FLOOR), inertia.max(MUJOCO_FLOOR));
+        format!(
+            "<inertial pos=\"{pos}\" mass=\"{mass}\" diaginertia=\"{inertia} {inertia} {inertia}\"/>"
+        )
+    };
     let geometry = &robot.geometry;
     let (l1, l2) = (m(robot.links.l1), m(robot.links.l2));
     let height = m(geometry.link_height);
@@ -112,11 +137,14 @@ pub fn write_mjcf(
         writeln!(x, "     Robot: {}. Units: metres, radians, kilograms.", escape(&robot.name))?;
         writeln!(x, "     Open it: python -m mujoco.viewer --mjcf robot.xml -->")?;
         writeln!(x, "<mujoco model=\"biscara\">")?;
-        writeln!(x, "  <compiler angle=\"radian\" autolimits=\"true\"/>")?;
         writeln!(
             x,
-            "  <option timestep=\"{}\" integrator=\"implicitfast\" gravity=\"0 0 -9.81\"/>",
-            options.timestep
+            "  <compiler angle=\"radian\" autolimits=\"true\" inertiafromgeom=\"false\"/>"
+        )?;
+        writeln!(
+            x,
+            "  <option timestep=\"{}\" integrator=\"implicitfast\" gravity=\"0 0 {}\"/>",
+            options.timestep, -bodies.gravity
         )?;
         writeln!(x, "  <visual><global offwidth=\"1280\" offheight=\"960\"/></visual>")?;
         if let Some(file) = &options.trajectory_file {
@@ -125,7 +153,7 @@ pub fn write_mjcf(
             writeln!(x, "  </custom>")?;
         }
         writeln!(x, "  <default>")?;
-        writeln!(x, "    <geom contype=\"0\" conaffinity=\"0\" density=\"{}\"/>", options.density)?;
+        writeln!(x, "    <geom contype=\"0\" conaffinity=\"0\"/>")?;
         writeln!(x, "    <joint axis=\"0 0 1\"/>")?;
         writeln!(x, "  </default>")?;
         writeln!(x, "  <asset>")?;
@@ -184,11 +212,18 @@ pub fn write_mjcf(
                 Chain::Two => ("theta2", limits.theta2),
             };
             writeln!(x, "    <body name=\"proximal{index}\" pos=\"{} 0 {height}\">", m(base.x))?;
+            let proximal = bodies.proximal;
             writeln!(
                 x,
-                "      <joint name=\"{joint}\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
+                "      {}",
+                inertial(format!("0 {} 0", proximal.com), proximal.mass, proximal.inertia)
+            )?;
+            writeln!(
+                x,
+                "      <joint name=\"{joint}\" type=\"hinge\" range=\"{}\" armature=\"{}\"{}/>",
                 rad(range),
-                options.armature_rotary
+                armature(chain.index()),
+                friction(chain.index())
             )?;
             writeln!(
                 x,
@@ -206,6 +241,12 @@ pub fn write_mjcf(
                 "      <body name=\"distal{index}\" pos=\"0 {l1} 0\" quat=\"{}\">",
                 quat_z(psi[chain.index()])
             )?;
+            let distal = bodies.distal;
+            writeln!(
+                x,
+                "        {}",
+                inertial(format!("{} 0 0", distal.com), distal.mass, distal.inertia)
+            )?;
             writeln!(x, "        <joint name=\"elbow{index}\" type=\"hinge\"/>")?;
             writeln!(
                 x,
@@ -218,20 +259,43 @@ pub fn write_mjcf(
                     "        <body name=\"platform\" pos=\"{l2} 0 0\" quat=\"{}\">",
                     quat_z(-psi[0])
                 )?;
+                if bodies.carriage > 0.0 {
+                    writeln!(
+                        x,
+                        "          {}",
+                        inertial("0 0 0".to_owned(), bodies.carriage, 0.0)
+                    )?;
+                }
                 writeln!(
                     x,
                     "          <site name=\"platform\" size=\"{}\" rgba=\"0 0 0 1\"/>",
                     0.3 * radius
                 )?;
+                // The slide and the tool in one body, d4 then θ3: MuJoCo wants mass and inertia
+                // in every moving body, and the slide's is a point mass on the tool axis (turning
+                // with θ3 without effect), the tool's an inertia about that axis.
                 writeln!(
                     x,
-                    "          <body name=\"column\" pos=\"0 0 {}\">",
+                    "          <body name=\"gripper\" pos=\"0 0 {}\">",
                     m(robot.lp) - height
                 )?;
                 writeln!(
                     x,
-                    "            <joint name=\"d4\" type=\"slide\" axis=\"0 0 -1\" range=\"{d4_range}\" armature=\"{}\"/>",
-                    options.armature_slide
+                    "            {}",
+                    inertial("0 0 0".to_owned(), bodies.slide, bodies.tool_inertia)
+                )?;
+                writeln!(
+                    x,
+                    "            <joint name=\"d4\" type=\"slide\" axis=\"0 0 -1\" range=\"{d4_range}\" armature=\"{}\"{}/>",
+                    armature(3),
+                    friction(3)
+                )?;
+                writeln!(
+                    x,
+                    "            <joint name=\"theta3\" type=\"hinge\" range=\"{}\" armature=\"{}\"{}/>",
+                    rad(limits.theta3),
+                    armature(2),
+                    friction(2)
                 )?;
                 writeln!(
                     x,
@@ -240,22 +304,15 @@ pub fn write_mjcf(
                     m(geometry.gripper_length) + column_length,
                     0.5 * radius
                 )?;
-                writeln!(x, "            <body name=\"gripper\">")?;
-                writeln!(
-                    x,
-                    "              <joint name=\"theta3\" type=\"hinge\" range=\"{}\" armature=\"{}\"/>",
-                    rad(limits.theta3),
-                    options.armature_rotary
-                )?;
                 let gripper_radius = m(geometry.gripper_radius);
                 let gripper_length = m(geometry.gripper_length);
                 writeln!(
                     x,
-                    "              <geom name=\"gripper\" type=\"cylinder\" fromto=\"0 0 0 0 0 {gripper_length}\" size=\"{gripper_radius}\" material=\"gripper\"/>"
+                    "            <geom name=\"gripper\" type=\"cylinder\" fromto=\"0 0 0 0 0 {gripper_length}\" size=\"{gripper_radius}\" material=\"gripper\"/>"
                 )?;
                 writeln!(
                     x,
-                    "              <geom name=\"finger\" type=\"box\" pos=\"{} 0 {}\" size=\"{} {} {}\" material=\"gripper\"/>",
+                    "            <geom name=\"finger\" type=\"box\" pos=\"{} 0 {}\" size=\"{} {} {}\" material=\"gripper\"/>",
                     gripper_radius,
                     0.5 * gripper_length,
                     0.5 * gripper_radius,
@@ -264,10 +321,9 @@ pub fn write_mjcf(
                 )?;
                 writeln!(
                     x,
-                    "              <site name=\"tool\" size=\"{}\" rgba=\"1 1 0 1\"/>",
+                    "            <site name=\"tool\" size=\"{}\" rgba=\"1 1 0 1\"/>",
                     0.3 * radius
                 )?;
-                writeln!(x, "            </body>")?;
                 writeln!(x, "          </body>")?;
                 writeln!(x, "        </body>")?;
             }
@@ -285,19 +341,20 @@ pub fn write_mjcf(
         writeln!(x, "  <actuator>")?;
         // Each servo: kp = ω²·I, kv = 2·ω·I (critically damped) for the inertia it moves.
         let omega = options.servo_frequency;
-        let inertia = actuated_inertia(robot, options);
+        let inertia = actuated_inertia(bodies, model.l1() / 1000.0, model.l2() / 1000.0, armature);
         let joints = [
             ("theta1", rad(limits.theta1)),
             ("theta2", rad(limits.theta2)),
             ("theta3", rad(limits.theta3)),
             ("d4", d4_range.clone()),
         ];
-        for ((name, range), inertia) in joints.iter().zip(inertia) {
+        for (joint, ((name, range), inertia)) in joints.iter().zip(inertia).enumerate() {
             writeln!(
                 x,
-                "    <position name=\"{name}\" joint=\"{name}\" kp=\"{}\" kv=\"{}\" ctrlrange=\"{range}\"/>",
+                "    <position name=\"{name}\" joint=\"{name}\" kp=\"{}\" kv=\"{}\" ctrlrange=\"{range}\"{}/>",
                 omega * omega * inertia,
-                2.0 * omega * inertia
+                2.0 * omega * inertia,
+                forcerange(joint)
             )?;
         }
         writeln!(x, "  </actuator>")?;
@@ -308,25 +365,25 @@ pub fn write_mjcf(
 }
 
 /// A generous estimate of the inertia each actuator moves (kg·m² for the revolute joints, kg for
-/// the slide): the links as solid capsules of the model's density plus the armature, the column
-/// and gripper counted on both planar chains.
-fn actuated_inertia(robot: &Robot, options: &MjcfOptions) -> [f64; 4] {
-    let radius = m(robot.geometry.link_width) / 2.0;
-    let area = std::f64::consts::PI * radius * radius;
-    let (l1, l2) = (m(robot.links.l1), m(robot.links.l2));
-    let proximal_mass = options.density * area * l1;
-    let distal_mass = options.density * area * 0.64 * l2;
-    let gripper_radius = m(robot.geometry.gripper_radius);
-    let gripper_mass = options.density
-        * std::f64::consts::PI
-        * (gripper_radius * gripper_radius * m(robot.geometry.gripper_length)
-            + 0.25 * radius * radius * m(robot.geometry.link_height));
-    let planar = proximal_mass * l1 * l1 / 3.0
-        + (distal_mass + gripper_mass) * (l1 + l2) * (l1 + l2)
-        + options.armature_rotary;
-    let rotary = 0.5 * gripper_mass * gripper_radius * gripper_radius + options.armature_rotary;
-    let slide = gripper_mass + options.armature_slide;
-    [planar, planar, rotary, slide]
+/// the slide), for the servos' gains: the bodies at the tool point counted at full reach on both
+/// planar chains, plus each joint's armature.
+fn actuated_inertia(
+    bodies: &Bodies,
+    l1: f64,
+    l2: f64,
+    armature: impl Fn(usize) -> f64,
+) -> [f64; 4] {
+    let proximal = bodies.proximal.inertia + bodies.proximal.mass * bodies.proximal.com.powi(2);
+    let reach = (l1 + l2) * (l1 + l2);
+    let planar = proximal
+        + (bodies.distal.mass + bodies.carriage + bodies.slide) * reach
+        + bodies.tool_inertia;
+    [
+        planar + armature(0),
+        planar + armature(1),
+        bodies.tool_inertia + armature(2),
+        bodies.slide + armature(3),
+    ]
 }
 
 /// Writes the companion trajectory file of a model: one row per joint-CSV row, the model's six
@@ -387,7 +444,9 @@ mod tests {
 
     fn model_text(scene: &Scene) -> String {
         let mut out = Vec::new();
-        write_mjcf(&mut out, &RobotModel::default(), scene, &MjcfOptions::default()).unwrap();
+        let model = RobotModel::default();
+        let dynamics = Dynamics::new(&model).unwrap();
+        write_mjcf(&mut out, &model, &dynamics, scene, &MjcfOptions::default()).unwrap();
         String::from_utf8(out).unwrap()
     }
 
