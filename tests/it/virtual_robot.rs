@@ -421,3 +421,24 @@ fn help_texts_are_pinned() {
         check_golden(&format!("help/{command}.txt"), &run.stdout);
     }
 }
+
+/// `plot --torques`: the motors' torques against time with the ratings of a robot with motors
+/// (their values as `joints --torques` writes them), the curves alone without motors.
+#[test]
+fn plot_torques_draws_the_motors_against_their_ratings() {
+    let dir = temp_dir("plot-torques");
+    let root = crate::util::repo_root();
+    let robot = root.join("data/robots/servo-example.json");
+    let program = root.join("data/programs/pick_place_inch.ngc");
+    let (robot, program) = (robot.to_str().unwrap(), program.to_str().unwrap());
+    biscara(&dir, &["--robot", robot, "plot", "--torques", program, "-o", "t.svg"]).success();
+    let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
+    assert!(svg.contains("τ1 (N·m)") && svg.contains("f d4 (N)"), "axes");
+    assert!(svg.contains("±peak red, ±rated orange"), "the ratings' legend");
+    // θ1's axis reaches its ±48 N·m peak (labels every 10 N·m), far beyond its torques.
+    assert!(svg.contains("\n-40.0\n") && svg.contains("\n40.0\n"), "the axis reaches the peak");
+    biscara(&dir, &["plot", "--torques", program, "-o", "plain.png"]).success();
+    let png = std::fs::read(dir.join("plain.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    biscara(&dir, &["plot", "--torques", "--joints", program]).expect_code(2);
+}

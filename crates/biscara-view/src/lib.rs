@@ -41,5 +41,6 @@ pub use plot::{
     ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, ProcessStroke, ProcessStrokes,
     TopView, draw_atlas, draw_joints, draw_top_view, draw_workspace, zoom_region,
 };
+pub use plot::{TorqueCurves, draw_torques};
 pub use stl::{MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
 pub use trace::ProgramTrace;
