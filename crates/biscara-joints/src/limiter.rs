@@ -72,6 +72,11 @@ struct TorqueLimit {
     /// The payload's mass while the gripper holds it, kg.
     payload_kg: f64,
     holding: bool,
+    /// The torques at rest, without and with the payload: the same in every pose, since gravity
+    /// is along −z and the revolute joints turn about vertical axes (only d4 carries the
+    /// weight; `tests/it/torque.rs` checks it on random poses). One evaluation of the inverse
+    /// dynamics saved per grid point.
+    at_rest: [[f64; 4]; 2],
     /// The pose `[x, y, z, c]` of the last grid point whose derivatives are known.
     pose: [f64; 4],
 }
@@ -121,11 +126,16 @@ impl JointSpeedLimit {
             }
         });
         let payload_kg = dynamics.bodies().payload;
+        // At the home pose (q = 0), which every robot model assembles.
+        let [free, held] = [0.0, payload_kg]
+            .map(|payload| dynamics.rigid_torques([0.0; 4], [0.0; 4], [0.0; 4], payload));
+        let at_rest = [free?, held?];
         self.torques = Some(Box::new(TorqueLimit {
             dynamics,
             motors,
             payload_kg,
             holding: false,
+            at_rest,
             pose: [f64::NAN; 4],
         }));
         Ok(self)
@@ -250,7 +260,8 @@ impl SpeedLimit for JointSpeedLimit {
         let rigid = |qd, qdd| dynamics.rigid_torques(q, qd, qdd, payload).ok();
         let first = [first[0], first[1], first[2], first[3]];
         let second = [second[0], second[1], second[2], second[3]];
-        torque_rows(rigid, first, second, &torques.motors, out)
+        let at_rest = torques.at_rest[usize::from(torques.holding)];
+        torque_rows(rigid, Some(at_rest), first, second, &torques.motors, out)
     }
 
     fn set_holding(&mut self, holding: bool) {

@@ -35,16 +35,18 @@ pub(crate) struct MotorBound {
 }
 
 /// The torque rows at one point of a path into `out` (four rows: θ1, θ2, θ3, d4): `rigid`
-/// is the rigid-body inverse dynamics `(q, q̇, q̈) → τ` (no friction), `first` and `second` the
-/// joints' q′ and q″. `false` where `rigid` fails (the rows are then left as they were).
+/// is the rigid-body inverse dynamics `(q, q̇, q̈) → τ` (no friction) at the point, `at_rest`
+/// its value at rest when known beforehand (else evaluated), `first` and `second` the joints' q′
+/// and q″. `false` where `rigid` fails (the rows are then left as they were).
 pub(crate) fn torque_rows(
     mut rigid: impl FnMut([f64; 4], [f64; 4]) -> Option<[f64; 4]>,
+    at_rest: Option<[f64; 4]>,
     first: [f64; 4],
     second: [f64; 4],
     motors: &[MotorBound; 4],
     out: &mut [Constraint],
 ) -> bool {
-    let Some(at_rest) = rigid([0.0; 4], [0.0; 4]) else { return false };
+    let Some(at_rest) = at_rest.or_else(|| rigid([0.0; 4], [0.0; 4])) else { return false };
     let Some(along) = rigid([0.0; 4], first) else { return false };
     let Some(curving) = rigid(first, second) else { return false };
     for (j, (row, motor)) in out.iter_mut().zip(motors).enumerate() {
@@ -82,7 +84,14 @@ mod tests {
         let (first, second) = ([0.5, -1.0, 0.25, 2.0], [0.1, 0.3, -0.2, 0.0]);
         let motors = [MotorBound { peak: 10.0, coulomb: 0.5, viscous_at_limit: 1.0 }; 4];
         let mut rows = [Constraint::default(); 4];
-        assert!(torque_rows(|qd, qdd| Some(model(q, qd, qdd)), first, second, &motors, &mut rows));
+        assert!(torque_rows(
+            |qd, qdd| Some(model(q, qd, qdd)),
+            None,
+            first,
+            second,
+            &motors,
+            &mut rows
+        ));
         // At ṡ = 1.5 /s and s̈ = −2 /s²: q̇ = q′ ṡ, q̈ = q′ s̈ + q″ ṡ².
         let (rate, accel) = (1.5, -2.0);
         let qd = first.map(|v| v * rate);
@@ -102,6 +111,7 @@ mod tests {
         let q = [0.0; 4];
         assert!(torque_rows(
             |qd, qdd| Some(model(q, qd, qdd)),
+            Some(model(q, [0.0; 4], [0.0; 4])),
             [1.0, 0.0, 0.0, 1.0],
             [0.0; 4],
             &motors,
@@ -115,6 +125,6 @@ mod tests {
     fn a_failing_model_gives_no_rows() {
         let motors = [MotorBound { peak: 1.0, coulomb: 0.0, viscous_at_limit: 0.0 }; 4];
         let mut rows = [Constraint::default(); 4];
-        assert!(!torque_rows(|_, _| None, [1.0; 4], [0.0; 4], &motors, &mut rows));
+        assert!(!torque_rows(|_, _| None, None, [1.0; 4], [0.0; 4], &motors, &mut rows));
     }
 }

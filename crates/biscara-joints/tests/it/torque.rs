@@ -80,6 +80,28 @@ fn torque_ratios(rows: &[JointSample], model: &RobotModel) -> [f64; 4] {
 }
 
 proptest! {
+    /// The planner takes the torques at rest from the home pose: gravity is along −z and the
+    /// revolute joints turn about vertical axes, so they are the same in every pose.
+    #[test]
+    fn the_torques_at_rest_are_the_same_in_every_pose(
+        x in -200.0..200.0f64, y in 200.0..420.0f64, z in 0.0..100.0f64, c in -150.0..150.0f64,
+        payload in 0.0..2.5f64,
+    ) {
+        let model = with_motors(&robot(false), payload);
+        let kinematics = model.kinematics();
+        let solution = kinematics.inverse(&biscara_kinematics::Pose::from_degrees(x, y, z, c));
+        prop_assume!(solution.is_ok());
+        let q = solution.map(|s| s.joints.to_array()).unwrap_or_default();
+        let dynamics = Dynamics::new(&model).expect("dynamics");
+        let at = |q| dynamics.rigid_torques(q, [0.0; 4], [0.0; 4], payload).expect("torques");
+        let (here, home) = (at(q), at([0.0; 4]));
+        for j in 0..4 {
+            prop_assert!((here[j] - home[j]).abs() <= 1e-9 * (1.0 + home[j].abs()), "{here:?} vs {home:?}");
+        }
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig {
         cases: 32,
         max_global_rejects: 10_000,
