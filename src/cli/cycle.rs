@@ -8,6 +8,7 @@ use biscara::text::{fixed, round_to};
 use clap::Args;
 use serde_json::{Value, json};
 
+use super::args::parse_point;
 use super::files::write_output;
 
 /// The Adept cycle, the industry's pick-and-place benchmark: from a point, 25 mm up, 305 mm
@@ -49,23 +50,6 @@ pub(crate) struct CycleArgs {
     /// Write the report to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-}
-
-/// `X,Y` as two finite numbers.
-fn parse_point(text: &str) -> Result<[f64; 2], String> {
-    let values: Vec<&str> = text.split(',').map(str::trim).collect();
-    if values.len() != 2 {
-        return Err(format!("expected two numbers X,Y, found {}", values.len()));
-    }
-    let mut point = [0.0; 2];
-    for (slot, value) in point.iter_mut().zip(values) {
-        *slot = value
-            .parse::<f64>()
-            .ok()
-            .filter(|number| number.is_finite())
-            .ok_or_else(|| format!("`{value}` is not a finite number"))?;
-    }
-    Ok(point)
 }
 
 pub(crate) fn cycle(model: &RobotModel, args: &CycleArgs) -> anyhow::Result<()> {
