@@ -210,3 +210,39 @@ fn the_inverse_dynamics_check_fails_when_the_models_differ() {
     assert_eq!(code, Some(1), "{text}");
     assert!(text.contains("differs from MuJoCo"), "{text}");
 }
+
+#[test]
+fn the_default_bodies_are_mujocos_own_for_the_geometry_in_aluminium() {
+    // Without `dynamics`, the bodies are the drawn shapes in solid aluminium: MuJoCo computing
+    // them from the geoms must agree with the inertials biscara writes.
+    if !mujoco_available() {
+        skip_or_fail("python3 with the mujoco package");
+        return;
+    }
+    let dir = temp_dir("mujoco-geometry-bodies");
+    std::fs::write(
+        dir.join("robot.json"),
+        r#"{"geometry": {"link_width": 24, "gripper_radius": 15}}"#,
+    )
+    .expect("write");
+    for robot in [None, Some("robot.json")] {
+        let mut args = vec![];
+        if let Some(robot) = robot {
+            args.extend(["--robot", robot]);
+        }
+        args.extend(["mjcf", "-o", "m.xml"]);
+        biscara(&dir, &args).success();
+        let output = Command::new("python3")
+            .arg(repo_root().join("tests/mujoco/geometry_bodies.py"))
+            .arg(dir.join("m.xml"))
+            .output()
+            .expect("run python3");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(
+            output.status.success(),
+            "{robot:?}: {stdout}{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        assert!(stdout.contains("tool inertia about its axis"), "{stdout}");
+    }
+}

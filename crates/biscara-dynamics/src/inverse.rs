@@ -27,6 +27,18 @@ pub struct Dynamics {
     rotor: [f64; 4],
 }
 
+/// The rigid torques along a path, `τ = a·s̈ + b·ṡ² + c` ([`Dynamics::path_coefficients`]),
+/// joint by joint (N·m, N).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathCoefficients {
+    /// The coefficient of s̈: M·q′.
+    pub a: [f64; 4],
+    /// The coefficient of ṡ²: M·q″ + the velocity terms of q′.
+    pub b: [f64; 4],
+    /// The constant: gravity.
+    pub c: [f64; 4],
+}
+
 /// A 2-vector, for the planar arithmetic done by hand (this runs per sample).
 #[derive(Debug, Clone, Copy)]
 struct V2(f64, f64);
@@ -183,6 +195,28 @@ impl Dynamics {
         let vertical_mass = bodies.slide + payload_kg;
         let f_d4 = (vertical_mass + self.rotor[3]) * qdd[3] * 1e-3 - vertical_mass * bodies.gravity;
         Ok([tau1, tau2, tau3, f_d4])
+    }
+
+    /// The rigid torques along a path q(s) in the form time-optimal planning takes:
+    /// `τ = a·s̈ + b·ṡ² + c` (no friction), at the path's point `q` with `dq_ds` = q′ and
+    /// `d2q_ds2` = q″ (units per unit of s, as q): a = M·q′, b = M·q″ + the velocity terms of
+    /// q′, c = gravity. (With q̇ = q′·ṡ and q̈ = q′·s̈ + q″·ṡ²,
+    /// the inverse dynamics is linear in q̈ and quadratic in q̇.)
+    pub fn path_coefficients(
+        &self,
+        q: [f64; 4],
+        dq_ds: [f64; 4],
+        d2q_ds2: [f64; 4],
+        payload_kg: f64,
+    ) -> Result<PathCoefficients, DynamicsError> {
+        let c = self.rigid_torques(q, [0.0; 4], [0.0; 4], payload_kg)?;
+        let a = self.rigid_torques(q, [0.0; 4], dq_ds, payload_kg)?;
+        let b = self.rigid_torques(q, dq_ds, d2q_ds2, payload_kg)?;
+        Ok(PathCoefficients {
+            a: std::array::from_fn(|joint| a[joint] - c[joint]),
+            b: std::array::from_fn(|joint| b[joint] - c[joint]),
+            c,
+        })
     }
 
     /// Viscous + Coulomb friction at joint velocity qd (Coulomb is 0 at rest).
@@ -369,6 +403,28 @@ mod tests {
     }
 
     #[test]
+    fn the_path_coefficients_give_the_torques_at_any_speed_along_the_path() {
+        let dynamics = Dynamics::new(&example_robot()).unwrap();
+        let (q, dq, ddq) =
+            ([0.3, -0.2, 1.0, 40.0], [0.8, -1.1, 2.0, 30.0], [-2.0, 0.5, 1.0, -80.0]);
+        let PathCoefficients { a, b, c } = dynamics.path_coefficients(q, dq, ddq, 0.3).unwrap();
+        for (sd, sdd) in [(0.0, 0.0), (1.5, -4.0), (3.0, 10.0)] {
+            let qd: [f64; 4] = std::array::from_fn(|i| dq[i] * sd);
+            let qdd: [f64; 4] = std::array::from_fn(|i| dq[i] * sdd + ddq[i] * sd * sd);
+            let torques = dynamics.rigid_torques(q, qd, qdd, 0.3).unwrap();
+            for joint in 0..4 {
+                let form = a[joint] * sdd + b[joint] * sd * sd + c[joint];
+                approx::assert_relative_eq!(
+                    torques[joint],
+                    form,
+                    epsilon = 1e-9,
+                    max_relative = 1e-9
+                );
+            }
+        }
+    }
+
+    #[test]
     fn friction_opposes_the_motion_in_si_units() {
         let dynamics = Dynamics::new(&example_robot()).unwrap();
         let friction = dynamics.friction([1.0, -2.0, 0.0, 100.0]);
@@ -449,6 +505,23 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Statics anywhere: at rest, gravity (along −z) loads only d4, which holds
+        /// −(slide + payload)·g; the θ motors give nothing, and there is no friction.
+        #[test]
+        fn at_rest_anywhere_only_d4_holds_the_slide_and_payload(
+            theta in prop::array::uniform2(-0.7f64..0.7),
+            theta3 in -3.0f64..3.0,
+            d4 in 0.0f64..100.0,
+            payload in 0.0f64..2.0,
+        ) {
+            let dynamics = Dynamics::new(&example_robot()).unwrap();
+            let q = [theta[0], theta[1], theta3, d4];
+            let [t1, t2, t3, f] = dynamics.torques(q, [0.0; 4], [0.0; 4], payload).unwrap();
+            prop_assert_eq!((t1, t2, t3), (0.0, 0.0, 0.0));
+            let hold = -(0.55 + payload) * G;
+            prop_assert!((f - hold).abs() <= 1e-12 * hold.abs(), "{} N against {} N", f, hold);
+        }
 
         /// Power balance with friction off: Σ τ·q̇ = dE/dt along a smooth joint trajectory
         /// q(t) = q0 + a·sin(ω t + φ), compared at random instants.

@@ -127,7 +127,7 @@ impl Pipeline<'_> {
                 let (row, state) = row?;
                 let held = if tool == Tool::Gripper && state.gripper { payload } else { 0.0 };
                 let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
-                writer.write_with(row, &[t1, t2, t3, f4, held, state.value(tool)])?;
+                writer.write_with_array(row, [t1, t2, t3, f4, held, state.value(tool)])?;
             }
             writer.finish()?;
             return Ok(());
@@ -138,7 +138,7 @@ impl Pipeline<'_> {
             let row = row?;
             let held = if row.gripper { payload } else { 0.0 };
             let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
-            writer.write_with(row, &[t1, t2, t3, f4, held])?;
+            writer.write_with_array(row, [t1, t2, t3, f4, held])?;
         }
         writer.finish()?;
         Ok(())
