@@ -442,3 +442,41 @@ fn plot_torques_draws_the_motors_against_their_ratings() {
     assert_eq!(&png[1..4], b"PNG");
     biscara(&dir, &["plot", "--torques", "--joints", program]).expect_code(2);
 }
+
+/// `check` with motors, end to end: the bundled job on small motors is clean under the default
+/// (torque-limited) profile, and over the motors' peaks under the trapezoid profile, which knows
+/// nothing of torques: `torque_limit` problems in the JSON, the summary's torque figures, and
+/// the problems marked in `view`.
+#[test]
+fn check_reports_the_motors_torques_and_view_marks_them() {
+    let dir = temp_dir("check-torques");
+    let root = crate::util::repo_root();
+    let robot = root.join("data/robots/small-motors.json");
+    let robot = robot.to_str().unwrap();
+    let job = root.join("data/jobs/pick_place.txt");
+    biscara(&dir, &["gen", job.to_str().unwrap(), "-o", "job.ngc"]).success();
+    biscara(&dir, &["--robot", robot, "check", "job.ngc", "--json", "-o", "clean.json"]).success();
+    let clean: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("clean.json")).unwrap()).unwrap();
+    assert_eq!(clean["ok"], true);
+    for joint in ["theta1", "theta2", "theta3", "d4"] {
+        let peak = &clean["summary"]["peak_torque"][joint];
+        assert!(peak["value"].as_f64().unwrap() <= peak["limit"].as_f64().unwrap(), "{peak}");
+        let rms = &clean["summary"]["rms_torque"][joint];
+        assert!(rms["value"].as_f64().unwrap() <= rms["limit"].as_f64().unwrap(), "{rms}");
+    }
+    let args = ["--robot", robot, "check", "--profile", "trapezoid", "job.ngc", "--json"];
+    biscara(&dir, &[&args[..], &["-o", "over.json"]].concat()).expect_code(1);
+    let over: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("over.json")).unwrap()).unwrap();
+    let problems = over["problems"].as_array().unwrap();
+    assert!(!problems.is_empty() && problems.iter().all(|p| p["kind"] == "torque_limit"), "{over}");
+    assert!(
+        problems.iter().any(|p| p["message"].as_str().unwrap().contains("beyond its peak 2.5 N·m"))
+    );
+    biscara(&dir, &["--robot", robot, "joints", "job.ngc", "-o", "traj.csv"]).success();
+    biscara(&dir, &["--robot", robot, "view", "traj.csv", "--check", "over.json", "-o", "v.html"])
+        .success();
+    let html = std::fs::read_to_string(dir.join("v.html")).unwrap();
+    assert!(html.contains("\"torque_limit\""), "the viewer lists the torque problems");
+}
