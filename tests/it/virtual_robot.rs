@@ -480,3 +480,40 @@ fn check_reports_the_motors_torques_and_view_marks_them() {
     let html = std::fs::read_to_string(dir.join("v.html")).unwrap();
     assert!(html.contains("\"torque_limit\""), "the viewer lists the torque problems");
 }
+
+/// The torque-limited profile on a move longer than the planner's window (ten turns of a 30 mm
+/// circle: 1,885 mm, planned in windows of 512 mm) and on a blended chain (G64 P2): no motor
+/// beyond its peak; only the RMS over this fast program is beyond the rating.
+#[test]
+fn the_torque_limits_hold_over_planning_windows_and_blended_chains() {
+    let dir = temp_dir("torque-windows");
+    let robot = repo_root().join("data/robots/small-motors.json");
+    let program = "G21 G90 G61\nG0 X30 Y300 Z40\nG2 X30 Y300 I-30 J0 P10 F30000\n\
+                   G1 X-100 Y250 F30000\nG64 P2\nG1 X100 Y250\nG1 X100 Y350\nG1 X-100 Y350\n\
+                   G1 X-100 Y250\nM2\n";
+    std::fs::write(dir.join("long.ngc"), program).unwrap();
+    let run = biscara(&dir, &["--robot", robot.to_str().unwrap(), "check", "long.ngc", "--json"]);
+    run.expect_code(1);
+    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let kinds: Vec<&str> = report["problems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["rms_torque", "rms_torque"], "{report}");
+    for joint in ["theta1", "theta2", "theta3", "d4"] {
+        let peak = &report["summary"]["peak_torque"][joint];
+        assert!(peak["value"].as_f64().unwrap() <= peak["limit"].as_f64().unwrap(), "{peak}");
+    }
+    // The motors bind: slower than the robot without them.
+    let plain = biscara(&dir, &["check", "long.ngc", "--json"]);
+    let plain: Value = serde_json::from_str(&plain.success().stdout).unwrap();
+    let duration = |report: &Value| report["summary"]["duration_s"].as_f64().unwrap();
+    assert!(
+        duration(&report) > 1.1 * duration(&plain),
+        "{} vs {}",
+        duration(&report),
+        duration(&plain)
+    );
+}
