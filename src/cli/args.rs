@@ -357,17 +357,27 @@ fn number_in(
 
 /// `X,Y,Z,C`: four finite numbers.
 pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
+    parse_numbers(text, "four numbers X,Y,Z,C")
+}
+
+/// `X,Y`: two finite numbers.
+pub(crate) fn parse_point(text: &str) -> Result<[f64; 2], String> {
+    parse_numbers(text, "two numbers X,Y")
+}
+
+/// `N` comma-separated finite numbers; `expected` names them in the error.
+fn parse_numbers<const N: usize>(text: &str, expected: &str) -> Result<[f64; N], String> {
     let values: Vec<&str> = text.split(',').map(str::trim).collect();
-    if values.len() != 4 {
-        return Err(format!("expected four numbers X,Y,Z,C, found {}", values.len()));
+    if values.len() != N {
+        return Err(format!("expected {expected}, found {}", values.len()));
     }
-    let mut pose = [0.0; 4];
-    for (slot, value) in pose.iter_mut().zip(values) {
+    let mut numbers = [0.0; N];
+    for (slot, value) in numbers.iter_mut().zip(values) {
         *slot = value
             .parse::<f64>()
             .ok()
             .filter(|number| number.is_finite())
             .ok_or_else(|| format!("`{value}` is not a finite number"))?;
     }
-    Ok(pose)
+    Ok(numbers)
 }

@@ -19,9 +19,11 @@ use super::files::{load_scene, write_output};
 /// `joint_max_acceleration`, poses within `singularity_margin` of a singularity, self-collisions
 /// (non-adjacent links closer than `link_width`; the distal links folded onto each other) and
 /// collisions with the boxes of --scene (links as capsules at `link_height`, the gripper and the
-/// Z column as cylinders). Consecutive samples with the same problem are one entry with its time
-/// span, program line and pose. A summary follows: duration, path length, peak joint velocity and
-/// acceleration with their lines, and the smallest singularity angle.
+/// Z column as cylinders), and with `motors` in the robot file, motor torques beyond their `peak`
+/// (torque_limit) and RMS torques over the program beyond their `rated` torque (rms_torque).
+/// Consecutive samples with the same problem are one entry with its time span, program line and
+/// pose. A summary follows: duration, path length, peak joint velocity and acceleration with
+/// their lines, the smallest singularity angle, and each motor's peak and RMS torque.
 ///
 /// Exit code 0 when the program is clean, 1 when anything was found. The program's kind comes
 /// from --from, else from its extension: `.jsonl` is an inter-file, `.csv` a path CSV,

@@ -25,7 +25,10 @@ use super::files::{display_path, format_of, open_input, write_output};
 /// Each range is MIN:MAX:N, N values from MIN to MAX inclusive (mm). Writes one CSV row per
 /// design, as the designs are done (columns index, l1, l2, base, area_mm2, rect_w_mm, rect_h_mm,
 /// rect_x0_mm, rect_y0_mm, gci, lci_min, status: ok, empty (no rectangle) or invalid (the base
-/// wider than two distal links), task_ok with --task, time_s with --programs). --best writes the
+/// wider than two distal links), task_ok with --task, time_s with --programs, cycle_s with
+/// --objective cycle: the time of `biscara cycle` at the centre of the design's rectangle, its
+/// bodies scaled with the links unless the robot file's `dynamics` gives them, its motors
+/// fixed). --best writes the
 /// robot file of the best design (largest rectangle, or --objective), among those covering
 /// --task; --pareto the designs no other beats in both rectangle area and GCI; --atlas a picture
 /// of one index over l1 × l2 for each base.
@@ -81,7 +84,7 @@ struct SweepArgs {
     #[arg(long, value_name = "FILE")]
     best: Option<PathBuf>,
     /// What --best and the atlas's ring choose: the largest rectangle, GCI, reachable area or
-    /// worst LCI, or the shortest total time of --programs.
+    /// worst LCI, or the shortest total time of --programs, or the shortest Adept cycle.
     #[arg(long, value_enum, default_value = "rect")]
     objective: ObjectiveArg,
     /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
@@ -157,6 +160,8 @@ enum ObjectiveArg {
     LciMin,
     /// The total time of --programs, s (shortest best).
     Time,
+    /// The Adept cycle's time (`biscara cycle`), s (shortest best).
+    Cycle,
 }
 
 impl From<ObjectiveArg> for Objective {
@@ -167,6 +172,7 @@ impl From<ObjectiveArg> for Objective {
             ObjectiveArg::Area => Objective::Area,
             ObjectiveArg::LciMin => Objective::LciMin,
             ObjectiveArg::Time => Objective::Time,
+            ObjectiveArg::Cycle => Objective::Cycle,
         }
     }
 }
@@ -215,6 +221,9 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     } else if objective == Objective::Time {
         anyhow::bail!("--objective time needs --programs");
     }
+    if objective == Objective::Cycle {
+        evaluator = evaluator.with_cycle();
+    }
     let columns = evaluator.columns();
     let sweep = Sweep::new(evaluator, grid, args.shard);
     let options = SweepOptions { threads: args.threads, objective, cells: args.atlas.is_some() };
@@ -250,7 +259,11 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
             anyhow::bail!(
                 "no design has a rectangle{}{}: {} not written",
                 if args.task.is_some() { " and covers the task" } else { "" },
-                if objective == Objective::Time { " and runs the programs" } else { "" },
+                match objective {
+                    Objective::Time => " and runs the programs",
+                    Objective::Cycle => " and runs the Adept cycle",
+                    _ => "",
+                },
                 display_path(path)
             );
         };

@@ -3,6 +3,7 @@
 mod args;
 mod check;
 mod clf;
+mod cycle;
 mod demo;
 mod design;
 mod diag;
@@ -59,6 +60,7 @@ enum Command {
     View(view::ViewArgs),
     Check(check::CheckArgs),
     Workspace(workspace::WorkspaceArgs),
+    Cycle(cycle::CycleArgs),
     Design(design::DesignArgs),
     Plot(plot::PlotArgs),
     Linuxcnc(linuxcnc::LinuxcncArgs),
@@ -116,6 +118,7 @@ fn dispatch(robot: &RobotModel, command: Command) -> anyhow::Result<()> {
         Command::View(args) => view::view(robot, &args),
         Command::Check(args) => check::check(robot, &args),
         Command::Workspace(args) => workspace::workspace(robot, &args),
+        Command::Cycle(args) => cycle::cycle(robot, &args),
         Command::Design(args) => design::design(robot, &args),
         Command::Plot(args) => plot::plot(robot, &args),
         Command::Linuxcnc(args) => linuxcnc::linuxcnc(robot, None, &args),

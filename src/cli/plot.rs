@@ -3,11 +3,12 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use biscara::dynamics::Dynamics;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
 use biscara::view::{
-    JointCurves, MAX_WORK_POINTS, ProgramOverlay, ProgramTrace, TopView, draw_joints,
-    draw_top_view, zoom_region,
+    JointCurves, MAX_WORK_POINTS, ProgramOverlay, ProgramTrace, TopView, TorqueCurves, draw_joints,
+    draw_top_view, draw_torques, zoom_region,
 };
 use clap::Args;
 
@@ -20,7 +21,10 @@ use super::files::{format_of, load_scene, write_output};
 /// The top view shows the workspace (reachable region) with its largest rectangle, the
 /// programmed path, the scene's boxes (--scene) and the robot (links, elbows, base joints and
 /// gripper with a tick for c) at the times of --at. With --joints it draws θ1, θ2, θ3 (degrees)
-/// and d4 (mm) against time instead, with the joint limits as dashed lines.
+/// and d4 (mm) against time instead, with the joint limits as dashed lines. With --torques it
+/// draws the motors' torques (N·m) and d4's force (N) against time, as `joints --torques`
+/// computes them, with each motor's ±peak and ±rated torque as dashed lines when the robot file
+/// has `motors`.
 ///
 /// The format follows the output's extension: `.png` is PNG, anything else SVG (also on standard
 /// output). The program's kind comes from --from, else from its extension, else from its first
@@ -29,7 +33,8 @@ use super::files::{format_of, load_scene, write_output};
 #[command(
     about = "Draw a program: workspace, path and robot (top view), or joint curves",
     after_long_help = "Example:\n  $ biscara plot job.ngc --at 0,1.5,3 -o plot.svg\n  \
-                       $ biscara plot --joints job.ngc -o joints.png"
+                       $ biscara plot --joints job.ngc -o joints.png\n  \
+                       $ biscara --robot robot.json plot --torques job.ngc -o torques.svg"
 )]
 pub(crate) struct PlotArgs {
     #[command(flatten)]
@@ -43,6 +48,9 @@ pub(crate) struct PlotArgs {
     /// Draw the joint curves against time instead of the top view.
     #[arg(long)]
     joints: bool,
+    /// Draw the motors' torques against time, with their ratings, instead of the top view.
+    #[arg(long, conflicts_with_all = ["joints", "zoom", "at", "scene"])]
+    torques: bool,
     /// Boxes around the robot to draw (JSON, as for check).
     #[arg(long, value_name = "FILE")]
     scene: Option<PathBuf>,
@@ -67,6 +75,9 @@ fn parse_time(text: &str) -> Result<f64, String> {
 }
 
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
+    if args.torques {
+        return plot_torques(model, args);
+    }
     let scene = args.scene.as_deref().map(|path| load_scene(Some(path))).transpose()?;
     let (source, kind) = args.program.open()?;
     // Zoomed on the work, the robot is drawn only when asked for.
@@ -119,5 +130,37 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
         };
         draw_top_view(&view, format).map_err(|err| anyhow!("{err}"))?
     };
+    write_output(args.output.as_deref(), |out| Ok(out.write_all(&bytes)?))
+}
+
+/// `plot --torques`: the motors' torques of every sample, drawn against time.
+fn plot_torques(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
+    let (source, kind) = args.program.open()?;
+    let dynamics = Dynamics::new(model)?;
+    let notes = NoteReporter::default();
+    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    let (mut t, mut torques) = (Vec::new(), Vec::new());
+    let name = source.name().to_owned();
+    let mut over_time = None;
+    pipeline
+        .for_each_torque(&source, kind, &dynamics, notes.sink(), |row, torque| {
+            if let Err(err) = args.time_limit.check(&name, row.t, row.line) {
+                over_time = Some(err);
+                return Err(biscara::pipeline::PipelineError::Unsupported {
+                    file: name.clone(),
+                    message: "stopped at the time limit".to_owned(),
+                    hints: Vec::new(),
+                });
+            }
+            t.push(row.t);
+            torques.push(torque);
+            Ok(())
+        })
+        .map_err(|err| over_time.take().unwrap_or_else(|| err.into()))?;
+    notes.finish();
+    let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
+    let title = format!("Motor torques of {name}");
+    let curves = TorqueCurves { title: &title, t: &t, torques: &torques, ratings };
+    let bytes = draw_torques(&curves, format_of(args.output.as_deref()))?;
     write_output(args.output.as_deref(), |out| Ok(out.write_all(&bytes)?))
 }

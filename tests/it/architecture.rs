@@ -8,7 +8,6 @@ use std::path::Path;
 /// parent that dispatches to them).
 const SHARED: [&str; 3] = ["args", "files", "diag"];
 
-
 /// The modules named by one file's `use` declarations among `siblings`: `use super::NAME…`,
 /// `use super::{NAME…, …}`, `use crate::cli::NAME…` (for `src/cli/`), `use crate::NAME…`.
 fn imports(text: &str, prefixes: &[&str], siblings: &BTreeSet<String>) -> BTreeSet<String> {

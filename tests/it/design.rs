@@ -206,6 +206,65 @@ fn programs_are_timed_as_joints_runs_them_and_time_picks_the_fastest() {
     biscara(&dir, &[SWEEP, &["--programs", "missing.ngc"]].concat()).expect_code(1);
 }
 
+/// `--objective cycle`: the cycle_s column is `biscara cycle` on each design at its
+/// rectangle's centre (the bodies scaled with the links, the motors fixed), and --best the
+/// fastest.
+#[test]
+fn the_adept_cycle_is_timed_per_design_and_picks_the_fastest() {
+    let dir = temp_dir("design-cycle");
+    let mut robot: serde_json::Value =
+        serde_json::from_str(&biscara(&dir, &["robot"]).success().stdout).unwrap();
+    robot["motors"] = serde_json::json!({
+        "theta1": {"peak": 0.8, "rated": 0.3}, "theta2": {"peak": 0.8, "rated": 0.3},
+        "theta3": {"peak": 0.05, "rated": 0.02}, "d4": {"peak": 40.0, "rated": 20.0}
+    });
+    // The bodies from the geometry: they scale with each design's links.
+    robot.as_object_mut().unwrap().remove("dynamics");
+    std::fs::write(dir.join("motors.json"), robot.to_string()).unwrap();
+    let args = [
+        "--robot",
+        "motors.json",
+        "design",
+        "--l1",
+        "190:230:3",
+        "--l2",
+        "270:270:1",
+        "--base",
+        "200:200:1",
+        "--step",
+        "10",
+        "--objective",
+        "cycle",
+        "--best",
+        "fast.json",
+        "-o",
+        "d.csv",
+    ];
+    biscara(&dir, &args).success();
+    let text = std::fs::read_to_string(dir.join("d.csv")).unwrap();
+    assert!(text.lines().next().unwrap().ends_with(",status,cycle_s"), "{text}");
+    let rows = rows(&text);
+    for row in &rows {
+        std::fs::write(dir.join("design.json"), {
+            let mut design = robot.clone();
+            design["links"]["l1"] = serde_json::json!(number(&row[1]));
+            design.to_string()
+        })
+        .unwrap();
+        let centre =
+            [number(&row[7]) + number(&row[5]) / 2.0, number(&row[8]) + number(&row[6]) / 2.0];
+        let at = format!("{},{}", centre[0], centre[1]);
+        let run = biscara(&dir, &["--robot", "design.json", "cycle", "--json", "--at", &at]);
+        let report: serde_json::Value = serde_json::from_str(&run.success().stdout).unwrap();
+        let expected = report["cycle_s"].as_f64().unwrap();
+        assert!((number(&row[12]) - expected).abs() < 5e-4, "{row:?} vs {expected}");
+    }
+    let fastest = rows.iter().min_by(|a, b| number(&a[12]).total_cmp(&number(&b[12]))).unwrap();
+    let best: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("fast.json")).unwrap()).unwrap();
+    assert_eq!(best["links"]["l1"].as_f64(), Some(number(&fastest[1])));
+}
+
 fn rows_of(path: &std::path::Path) -> Vec<Vec<String>> {
     rows(&std::fs::read_to_string(path).unwrap())
 }

@@ -6,6 +6,7 @@ mod blending;
 mod browser;
 mod cli_kinematics;
 mod conformance;
+mod cycle;
 mod design;
 mod dialects;
 mod dynamics;

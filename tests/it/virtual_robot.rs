@@ -414,10 +414,106 @@ fn demo_writes_the_virtual_robot_outputs() {
 #[test]
 fn help_texts_are_pinned() {
     let dir = temp_dir("virtual-robot-help");
-    for command in ["check", "workspace", "plot"] {
+    for command in ["check", "workspace", "plot", "cycle"] {
         let run = biscara(&dir, &[command, "--help"]);
         run.success();
         assert!(run.stdout.contains("Example:"), "{run}");
         check_golden(&format!("help/{command}.txt"), &run.stdout);
     }
+}
+
+/// `plot --torques`: the motors' torques against time with the ratings of a robot with motors
+/// (their values as `joints --torques` writes them), the curves alone without motors.
+#[test]
+fn plot_torques_draws_the_motors_against_their_ratings() {
+    let dir = temp_dir("plot-torques");
+    let root = crate::util::repo_root();
+    let robot = root.join("data/robots/servo-example.json");
+    let program = root.join("data/programs/pick_place_inch.ngc");
+    let (robot, program) = (robot.to_str().unwrap(), program.to_str().unwrap());
+    biscara(&dir, &["--robot", robot, "plot", "--torques", program, "-o", "t.svg"]).success();
+    let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
+    assert!(svg.contains("τ1 (N·m)") && svg.contains("f d4 (N)"), "axes");
+    assert!(svg.contains("±peak red, ±rated orange"), "the ratings' legend");
+    // θ1's axis reaches its ±48 N·m peak (labels every 10 N·m), far beyond its torques.
+    assert!(svg.contains("\n-40.0\n") && svg.contains("\n40.0\n"), "the axis reaches the peak");
+    biscara(&dir, &["plot", "--torques", program, "-o", "plain.png"]).success();
+    let png = std::fs::read(dir.join("plain.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    biscara(&dir, &["plot", "--torques", "--joints", program]).expect_code(2);
+}
+
+/// `check` with motors, end to end: the bundled job on small motors is clean under the default
+/// (torque-limited) profile, and over the motors' peaks under the trapezoid profile, which knows
+/// nothing of torques: `torque_limit` problems in the JSON, the summary's torque figures, and
+/// the problems marked in `view`.
+#[test]
+fn check_reports_the_motors_torques_and_view_marks_them() {
+    let dir = temp_dir("check-torques");
+    let root = crate::util::repo_root();
+    let robot = root.join("data/robots/small-motors.json");
+    let robot = robot.to_str().unwrap();
+    let job = root.join("data/jobs/pick_place.txt");
+    biscara(&dir, &["gen", job.to_str().unwrap(), "-o", "job.ngc"]).success();
+    biscara(&dir, &["--robot", robot, "check", "job.ngc", "--json", "-o", "clean.json"]).success();
+    let clean: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("clean.json")).unwrap()).unwrap();
+    assert_eq!(clean["ok"], true);
+    for joint in ["theta1", "theta2", "theta3", "d4"] {
+        let peak = &clean["summary"]["peak_torque"][joint];
+        assert!(peak["value"].as_f64().unwrap() <= peak["limit"].as_f64().unwrap(), "{peak}");
+        let rms = &clean["summary"]["rms_torque"][joint];
+        assert!(rms["value"].as_f64().unwrap() <= rms["limit"].as_f64().unwrap(), "{rms}");
+    }
+    let args = ["--robot", robot, "check", "--profile", "trapezoid", "job.ngc", "--json"];
+    biscara(&dir, &[&args[..], &["-o", "over.json"]].concat()).expect_code(1);
+    let over: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("over.json")).unwrap()).unwrap();
+    let problems = over["problems"].as_array().unwrap();
+    assert!(!problems.is_empty() && problems.iter().all(|p| p["kind"] == "torque_limit"), "{over}");
+    assert!(
+        problems.iter().any(|p| p["message"].as_str().unwrap().contains("beyond its peak 2.5 N·m"))
+    );
+    biscara(&dir, &["--robot", robot, "joints", "job.ngc", "-o", "traj.csv"]).success();
+    biscara(&dir, &["--robot", robot, "view", "traj.csv", "--check", "over.json", "-o", "v.html"])
+        .success();
+    let html = std::fs::read_to_string(dir.join("v.html")).unwrap();
+    assert!(html.contains("\"torque_limit\""), "the viewer lists the torque problems");
+}
+
+/// The torque-limited profile on a move longer than the planner's window (ten turns of a 30 mm
+/// circle: 1,885 mm, planned in windows of 512 mm) and on a blended chain (G64 P2): no motor
+/// beyond its peak; only the RMS over this fast program is beyond the rating.
+#[test]
+fn the_torque_limits_hold_over_planning_windows_and_blended_chains() {
+    let dir = temp_dir("torque-windows");
+    let robot = repo_root().join("data/robots/small-motors.json");
+    let program = "G21 G90 G61\nG0 X30 Y300 Z40\nG2 X30 Y300 I-30 J0 P10 F30000\n\
+                   G1 X-100 Y250 F30000\nG64 P2\nG1 X100 Y250\nG1 X100 Y350\nG1 X-100 Y350\n\
+                   G1 X-100 Y250\nM2\n";
+    std::fs::write(dir.join("long.ngc"), program).unwrap();
+    let run = biscara(&dir, &["--robot", robot.to_str().unwrap(), "check", "long.ngc", "--json"]);
+    run.expect_code(1);
+    let report: Value = serde_json::from_str(&run.stdout).unwrap();
+    let kinds: Vec<&str> = report["problems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["rms_torque", "rms_torque"], "{report}");
+    for joint in ["theta1", "theta2", "theta3", "d4"] {
+        let peak = &report["summary"]["peak_torque"][joint];
+        assert!(peak["value"].as_f64().unwrap() <= peak["limit"].as_f64().unwrap(), "{peak}");
+    }
+    // The motors bind: slower than the robot without them.
+    let plain = biscara(&dir, &["check", "long.ngc", "--json"]);
+    let plain: Value = serde_json::from_str(&plain.success().stdout).unwrap();
+    let duration = |report: &Value| report["summary"]["duration_s"].as_f64().unwrap();
+    assert!(
+        duration(&report) > 1.1 * duration(&plain),
+        "{} vs {}",
+        duration(&report),
+        duration(&plain)
+    );
 }

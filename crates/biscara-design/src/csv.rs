@@ -8,7 +8,7 @@ use biscara_robot::Rectangle;
 use crate::{CsvFault, Design, DesignError, DesignStatus, Evaluation, MergeFault};
 
 /// The columns every design CSV has, in order (`task_ok` follows when a task is given, then
-/// `time_s` when programs are timed).
+/// `time_s` when programs are timed, then `cycle_s` when the Adept cycle is timed).
 pub const COLUMNS: [&str; 12] = [
     "index",
     "l1",
@@ -31,11 +31,13 @@ pub struct Columns {
     pub task: bool,
     /// `time_s`: programs were timed.
     pub time: bool,
+    /// `cycle_s`: the Adept cycle was timed (`--objective cycle`).
+    pub cycle: bool,
 }
 
 impl Columns {
     fn count(self) -> usize {
-        COLUMNS.len() + usize::from(self.task) + usize::from(self.time)
+        COLUMNS.len() + usize::from(self.task) + usize::from(self.time) + usize::from(self.cycle)
     }
 }
 
@@ -47,6 +49,9 @@ pub fn header(columns: Columns) -> String {
     }
     if columns.time {
         header.push_str(",time_s");
+    }
+    if columns.cycle {
+        header.push_str(",cycle_s");
     }
     header
 }
@@ -73,10 +78,11 @@ pub fn write_row(
     if columns.task {
         write!(out, ",{}", u8::from(evaluation.task_ok == Some(true)))?;
     }
-    if columns.time {
-        match evaluation.time_s {
-            Some(time) => write!(out, ",{time:.3}")?,
-            None => write!(out, ",")?,
+    for (shown, value) in [(columns.time, evaluation.time_s), (columns.cycle, evaluation.cycle_s)] {
+        match value {
+            Some(seconds) if shown => write!(out, ",{seconds:.3}")?,
+            _ if shown => write!(out, ",")?,
+            _ => {}
         }
     }
     writeln!(out)
@@ -114,11 +120,12 @@ pub fn parse_row(text: &str, line: usize, columns: Columns) -> Result<Evaluation
     } else {
         None
     };
-    let time_s = if columns.time && !fields[expected - 1].trim().is_empty() {
-        Some(number(expected - 1)?)
-    } else {
-        None
+    // The optional seconds: time_s, then cycle_s, each empty where not known.
+    let seconds = |shown: bool, k: usize| -> Result<Option<f64>, DesignError> {
+        if shown && !fields[k].trim().is_empty() { number(k).map(Some) } else { Ok(None) }
     };
+    let cycle_s = seconds(columns.cycle, expected - 1)?;
+    let time_s = seconds(columns.time, expected - 1 - usize::from(columns.cycle))?;
     Ok(Evaluation {
         design: Design { index, l1: number(1)?, l2: number(2)?, base: number(3)? },
         status,
@@ -129,6 +136,7 @@ pub fn parse_row(text: &str, line: usize, columns: Columns) -> Result<Evaluation
         lci_min: number(10)?,
         task_ok,
         time_s,
+        cycle_s,
     })
 }
 
@@ -138,9 +146,8 @@ fn column(k: usize) -> &'static str {
 
 /// The columns of a design CSV whose header is `line`, if it is one.
 pub fn read_header(line: &str) -> Option<Columns> {
-    [false, true]
-        .into_iter()
-        .flat_map(|task| [false, true].map(|time| Columns { task, time }))
+    (0..8)
+        .map(|bits| Columns { task: bits & 1 != 0, time: bits & 2 != 0, cycle: bits & 4 != 0 })
         .find(|&columns| header(columns) == line)
 }
 
@@ -308,6 +315,35 @@ mod tests {
         let mut out = Vec::new();
         merge(inputs, &mut out)?;
         Ok(String::from_utf8(out).unwrap())
+    }
+
+    #[test]
+    fn the_optional_seconds_read_back() {
+        for bits in 0..8 {
+            let columns =
+                Columns { task: bits & 1 != 0, time: bits & 2 != 0, cycle: bits & 4 != 0 };
+            let line = header(columns);
+            assert_eq!(read_header(&line), Some(columns), "{line}");
+            let evaluation = Evaluation {
+                design: Design { index: 4, l1: 200.0, l2: 260.0, base: 150.0 },
+                status: DesignStatus::Ok,
+                area_mm2: 1000.0,
+                rectangle: Some(Rectangle { min: [-10.0, 200.0], max: [10.0, 230.0] }),
+                gci: 0.5,
+                lci_min: 0.25,
+                task_ok: columns.task.then_some(true),
+                time_s: columns.time.then_some(12.5),
+                cycle_s: None,
+            };
+            for cycle_s in [None, Some(0.875)] {
+                let evaluation =
+                    Evaluation { cycle_s: cycle_s.filter(|_| columns.cycle), ..evaluation };
+                let mut row = Vec::new();
+                write_row(&mut row, columns, &evaluation).unwrap();
+                let text = String::from_utf8(row).unwrap();
+                assert_eq!(parse_row(text.trim_end(), 2, columns).unwrap(), evaluation, "{text}");
+            }
+        }
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! One design evaluated: its workspace as `biscara workspace` computes it, the largest
 //! rectangle, and the conditioning of the Jacobian over that rectangle.
 
-use biscara_kinematics::{Chain, Kinematics, PlanarConfiguration, Robot};
-use biscara_robot::{Rectangle, Workspace};
+use biscara_kinematics::{Chain, Kinematics, PlanarConfiguration, Robot, RobotModel};
+use biscara_robot::{CycleConfig, Rectangle, Workspace, adept_cycle};
 
 use crate::{Columns, Design, DesignError, ProgramTimer, Task};
 
@@ -60,6 +60,10 @@ pub struct Evaluation {
     /// The total time of the programs on this design, s (`None` without programs, for a design
     /// that is not ok, or when a program cannot run on it).
     pub time_s: Option<f64>,
+    /// The Adept cycle's time on this design, s (`biscara cycle` at the centre of its
+    /// rectangle; `None` unless asked for, for a design that is not ok, or where the cycle
+    /// cannot run).
+    pub cycle_s: Option<f64>,
 }
 
 impl Evaluation {
@@ -76,6 +80,7 @@ pub struct Evaluator {
     step: f64,
     task: Option<Task>,
     timer: Option<ProgramTimer>,
+    cycle: bool,
 }
 
 impl Evaluator {
@@ -83,7 +88,7 @@ impl Evaluator {
     /// grid of `step` mm, and a task rectangle to cover when given.
     pub fn new(robot: Robot, step: f64, task: Option<Task>) -> Result<Evaluator, DesignError> {
         Workspace::check_step(step)?;
-        Ok(Evaluator { robot, step, task, timer: None })
+        Ok(Evaluator { robot, step, task, timer: None, cycle: false })
     }
 
     /// Also times `timer`'s programs on every design that is ok.
@@ -92,9 +97,17 @@ impl Evaluator {
         self
     }
 
+    /// Also times the Adept cycle (`biscara cycle`, with its defaults, at the centre of the
+    /// design's rectangle) on every design that is ok: the robot file's motors and payload, its
+    /// bodies scaled with the links where its `dynamics` does not give them.
+    pub fn with_cycle(mut self) -> Evaluator {
+        self.cycle = true;
+        self
+    }
+
     /// Which columns this evaluator's rows have.
     pub fn columns(&self) -> Columns {
-        Columns { task: self.task.is_some(), time: self.timer.is_some() }
+        Columns { task: self.task.is_some(), time: self.timer.is_some(), cycle: self.cycle }
     }
 
     /// The grid step, mm.
@@ -128,6 +141,7 @@ impl Evaluator {
             lci_min: 0.0,
             task_ok: self.task.map(|_| false),
             time_s: None,
+            cycle_s: None,
         };
         let Ok(model) = Kinematics::new(&self.robot_of(&design)) else {
             return evaluation;
@@ -143,14 +157,25 @@ impl Evaluator {
         };
         let (gci, lci_min) = conditioning(&model, &workspace, &rectangle);
         let time_s = self.timer.as_ref().and_then(|timer| timer.time(&self.robot_of(&design)));
+        let cycle_s = self.cycle.then(|| self.cycle_time(&design, rectangle.center())).flatten();
         Evaluation {
             time_s,
+            cycle_s,
             status: DesignStatus::Ok,
             rectangle: Some(rectangle),
             gci,
             lci_min,
             ..evaluation
         }
+    }
+}
+
+impl Evaluator {
+    /// The Adept cycle's time on `design` centred at `at`; `None` where it cannot run.
+    fn cycle_time(&self, design: &Design, at: [f64; 2]) -> Option<f64> {
+        let model = RobotModel::new(self.robot_of(design)).ok()?;
+        let config = CycleConfig { at: Some(at), ..CycleConfig::default() };
+        adept_cycle(&model, &config).ok().map(|report| report.cycle_s)
     }
 }
 

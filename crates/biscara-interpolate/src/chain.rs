@@ -24,7 +24,7 @@ use biscara_blend::{Blended, Geometry, Piece, Speed};
 use biscara_motion::Motion;
 use biscara_timing::{Constraint, Grid, PathConstraints};
 
-use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO};
+use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO, UNBOUNDED};
 use crate::{
     CartesianLimits, InterpolateError, MAX_JOINTS, RateLimit, Segment, SlowDown, SpeedLimit,
 };
@@ -355,7 +355,7 @@ where
         }
         // The acceleration towards a fillet's centre within the path acceleration too.
         let mut x_max = (speed * speed).min(limits.acceleration * piece.radius);
-        let joints = out.len() - 1;
+        let joints = self.limit.joint_bounds().len().min(MAX_JOINTS);
         let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
         let known =
             self.limit.joint_derivatives(
@@ -372,12 +372,20 @@ where
             }
             let a = bound.max_acceleration;
             let (q1, q2) = (first[j] * per_mm, second[j] * per_mm2);
+            (first[j], second[j]) = (q1, q2);
             out[1 + j] = Constraint { a: q1, b: q2, c: 0.0, lo: -a, hi: a };
             let joint = bound.max_velocity / q1.abs();
             if joint < speed {
                 speed = joint;
                 slowest = Some(RateLimit { rate: joint, cause: bound.name });
             }
+        }
+        let torques = &mut out[1 + joints..];
+        let filled = torques.is_empty()
+            || (known
+                && self.limit.torque_constraints(&first[..joints], &second[..joints], torques));
+        if !filled {
+            torques.fill(UNBOUNDED);
         }
         if let Some(slowest) = slowest {
             let held = &mut self.chain.pieces[index - self.chain.front];
@@ -396,7 +404,7 @@ where
     L: SpeedLimit,
 {
     fn count(&self) -> usize {
-        2 * (1 + self.limit.joint_bounds().len().min(MAX_JOINTS))
+        2 * (1 + self.limit.joint_bounds().len().min(MAX_JOINTS) + self.limit.torque_rows())
     }
 
     fn sided(&self) -> bool {

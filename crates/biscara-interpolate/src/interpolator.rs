@@ -79,6 +79,34 @@ pub trait SpeedLimit {
         let _ = (segment, s, first, second);
         false
     }
+
+    /// Rows of further bounds at every grid point beyond the joints' velocity and acceleration
+    /// (a robot's motor torques: [`torque_constraints`](Self::torque_constraints)). None by
+    /// default.
+    fn torque_rows(&self) -> usize {
+        0
+    }
+
+    /// Fills `out` (`torque_rows()` long) with bounds `lo ≤ a · s̈ + b · ṡ² + c ≤ hi` at the
+    /// point of the last [`joint_derivatives`](Self::joint_derivatives) call that returned
+    /// `true`, from the joints' `first` and `second` derivatives along the path parameter the
+    /// planner uses (those of `joint_derivatives`, rescaled to it); `false` where they cannot be
+    /// computed (no bound applies there). `false` by default.
+    fn torque_constraints(
+        &mut self,
+        first: &[f64],
+        second: &[f64],
+        out: &mut [Constraint],
+    ) -> bool {
+        let _ = (first, second, out);
+        false
+    }
+
+    /// Whether the gripper holds its payload in the moves planned from now on (told at every
+    /// pick, place and gripper release). Ignored by default.
+    fn set_holding(&mut self, holding: bool) {
+        let _ = holding;
+    }
 }
 
 /// Most joints a [`SpeedLimit`] may bound for the optimal profile.
@@ -214,13 +242,13 @@ struct MoveBounds<'a, L> {
 
 impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
     fn count(&self) -> usize {
-        1 + self.limit.joint_bounds().len().min(MAX_JOINTS)
+        1 + self.limit.joint_bounds().len().min(MAX_JOINTS) + self.limit.torque_rows()
     }
 
     fn evaluate(&mut self, s: f64, out: &mut [Constraint]) -> f64 {
         let acceleration = self.acceleration;
         out[0] = Constraint { a: 1.0, b: 0.0, c: 0.0, lo: -acceleration, hi: acceleration };
-        let joints = out.len() - 1;
+        let joints = self.limit.joint_bounds().len().min(MAX_JOINTS);
         let (mut first, mut second) = ([0.0; MAX_JOINTS], [0.0; MAX_JOINTS]);
         let known = self.limit.joint_derivatives(
             self.segment,
@@ -249,9 +277,20 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
                 *self.slowest = Some(RateLimit { rate: joint_rate, cause: bound.name });
             }
         }
+        let torques = &mut out[1 + joints..];
+        let filled = torques.is_empty()
+            || (known
+                && self.limit.torque_constraints(&first[..joints], &second[..joints], torques));
+        if !filled {
+            torques.fill(UNBOUNDED);
+        }
         rate * rate
     }
 }
+
+/// A row that bounds nothing.
+pub(crate) const UNBOUNDED: Constraint =
+    Constraint { a: 0.0, b: 0.0, c: 0.0, lo: f64::NEG_INFINITY, hi: f64::INFINITY };
 
 /// Turns motions into Cartesian samples at a fixed time step (docs/motion.md).
 ///
@@ -363,10 +402,14 @@ where
             }
             MotionKind::Pick | MotionKind::Place => {
                 self.gripper = matches!(motion.kind, MotionKind::Pick);
+                self.limit.set_holding(self.gripper);
                 let remaining = hold_steps(self.config.grip_time)?;
                 self.active = Some(Active::Hold { remaining, line });
             }
-            MotionKind::GripperOff => self.gripper = false,
+            MotionKind::GripperOff => {
+                self.gripper = false;
+                self.limit.set_holding(false);
+            }
             MotionKind::Pause => {}
             MotionKind::End => self.finished = true,
             // Tool events and recorded codes take no time and do not move the robot.

@@ -50,6 +50,7 @@ mod profile;
 pub use biscara_motion::Motion;
 
 pub use biscara_motion::Segment;
+pub use biscara_timing::Constraint;
 pub use csv::{PATH_HEADER, PathCsvError, PathCsvReader, PathCsvWriter, read_path_csv};
 pub use interpolator::{
     CartesianLimits, CartesianSample, InterpolateError, InterpolationConfig, Interpolator,

@@ -26,6 +26,7 @@ mod csv;
 mod differences;
 mod limiter;
 mod solver;
+mod torque;
 mod trajectory;
 
 pub use biscara_interpolate::CartesianSample;

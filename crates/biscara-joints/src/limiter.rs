@@ -1,7 +1,12 @@
 //! Slowing moves down so that no joint exceeds its velocity limit (docs/motion.md).
 
-use biscara_interpolate::{CartesianLimits, JointBound, RateLimit, Segment, SpeedLimit};
-use biscara_kinematics::{Joint, Kinematics, PlanarConfiguration, Robot};
+use biscara_dynamics::{Dynamics, DynamicsError};
+use biscara_interpolate::{
+    CartesianLimits, Constraint, JointBound, RateLimit, Segment, SpeedLimit,
+};
+use biscara_kinematics::{Joint, Kinematics, PlanarConfiguration, Pose, Robot, RobotModel};
+
+use crate::torque::{MotorBound, torque_rows};
 
 /// Probes per millimetre of XYZ path and per degree of C when bounding a move's joint rates.
 const PROBES_PER_MM: f64 = 1.0;
@@ -25,6 +30,11 @@ const REVOLUTE_PROBE_SAFETY: f64 = 0.998;
 /// margin is 1 %. d4 = lp − z is linear in the path: its limits are exact.
 const OPTIMAL_VELOCITY_MARGIN: f64 = REVOLUTE_PROBE_SAFETY;
 const OPTIMAL_ACCELERATION_MARGIN: f64 = 0.99;
+/// The optimal profile's margin on the motors' peak torques, for the same reason as the
+/// acceleration margin: the torque rows hold exactly at the grid points, and between them the
+/// pose, q′ and q″ change a little (the torque-limited tests of `biscara-joints` measure the
+/// excess of the sampled trajectory).
+const OPTIMAL_TORQUE_MARGIN: f64 = 0.99;
 
 /// A [`SpeedLimit`] from the robot's `joint_max_velocity`: the largest path rate at which no joint
 /// exceeds its limit, found by evaluating the joint rates `dq/ds = J⁻¹ · dx/ds` along the move
@@ -38,7 +48,10 @@ const OPTIMAL_ACCELERATION_MARGIN: f64 = 0.99;
 /// probe of the move before: its configuration is kept. On the engraving program of
 /// `scripts/gen-program.sh` (moves of 0.05–0.4 mm), with two probes instead of three on moves
 /// under 1 mm, they took `joints` from 0.411 to 0.373 s (median of 10).
-#[derive(Debug, Clone, Copy)]
+///
+/// With the robot's motors ([`with_motors`](Self::with_motors)), the optimal profile also keeps
+/// every motor's torque within its peak (docs/dynamics.md).
+#[derive(Debug, Clone)]
 pub struct JointSpeedLimit {
     model: Kinematics,
     /// θ limits in rad/s, d4 in mm/s.
@@ -47,6 +60,25 @@ pub struct JointSpeedLimit {
     last_probe: Option<([f64; 2], Option<PlanarConfiguration>)>,
     /// The optimal profile's bounds, margins included.
     bounds: [JointBound; 4],
+    /// The motors' torques, when the robot has motors.
+    torques: Option<Box<TorqueLimit>>,
+}
+
+/// The motors' torque bounds of the optimal profile.
+#[derive(Debug, Clone)]
+struct TorqueLimit {
+    dynamics: Dynamics,
+    motors: [MotorBound; 4],
+    /// The payload's mass while the gripper holds it, kg.
+    payload_kg: f64,
+    holding: bool,
+    /// The torques at rest, without and with the payload: the same in every pose, since gravity
+    /// is along −z and the revolute joints turn about vertical axes (only d4 carries the
+    /// weight; `tests/it/torque.rs` checks it on random poses). One evaluation of the inverse
+    /// dynamics saved per grid point.
+    at_rest: [[f64; 4]; 2],
+    /// The pose `[x, y, z, c]` of the last grid point whose derivatives are known.
+    pose: [f64; 4],
 }
 
 impl JointSpeedLimit {
@@ -69,7 +101,44 @@ impl JointSpeedLimit {
                 max_acceleration: acceleration * max_acceleration[j],
             }
         });
-        JointSpeedLimit { model, max_velocity, last_probe: None, bounds }
+        JointSpeedLimit { model, max_velocity, last_probe: None, bounds, torques: None }
+    }
+
+    /// The limiter that also bounds the motors' torques by their peaks (less a 1 % margin, and
+    /// less the viscous friction at each joint's velocity limit), with the inverse dynamics of
+    /// `robot`; unchanged when the robot has no `motors`. Fails when the model cannot be built
+    /// (d4's motor too weak to hold the slide and payload).
+    pub fn with_motors(mut self, robot: &RobotModel) -> Result<JointSpeedLimit, DynamicsError> {
+        if robot.robot().motors.is_none() {
+            return Ok(self);
+        }
+        let dynamics = Dynamics::new(robot)?;
+        let Some(motors) = dynamics.motors().copied() else { return Ok(self) };
+        // Viscous + Coulomb at the velocity limits, less Coulomb: the viscous part.
+        let at_limit = dynamics.friction(self.max_velocity);
+        let motors = std::array::from_fn(|j| {
+            let motor = motors[j];
+            let margin = if j == 3 { 1.0 } else { OPTIMAL_TORQUE_MARGIN };
+            MotorBound {
+                peak: margin * motor.peak,
+                coulomb: motor.coulomb,
+                viscous_at_limit: (at_limit[j] - motor.coulomb).max(0.0),
+            }
+        });
+        let payload_kg = dynamics.bodies().payload;
+        // At the home pose (q = 0), which every robot model assembles.
+        let [free, held] = [0.0, payload_kg]
+            .map(|payload| dynamics.rigid_torques([0.0; 4], [0.0; 4], [0.0; 4], payload));
+        let at_rest = [free?, held?];
+        self.torques = Some(Box::new(TorqueLimit {
+            dynamics,
+            motors,
+            payload_kg,
+            holding: false,
+            at_rest,
+            pose: [f64::NAN; 4],
+        }));
+        Ok(self)
     }
 }
 
@@ -130,6 +199,9 @@ impl SpeedLimit for JointSpeedLimit {
         second: &mut [f64],
     ) -> bool {
         let [point, along, curve] = segment.derivatives(s);
+        if let Some(torques) = &mut self.torques {
+            torques.pose = point;
+        }
         // A move's first grid point is the last one's of the move before (the same bits):
         // its configuration is the probe kept from there.
         let configuration = match self.last_probe {
@@ -160,6 +232,42 @@ impl SpeedLimit for JointSpeedLimit {
         first[..joints].copy_from_slice(&rates[..joints]);
         second[..joints].copy_from_slice(&curvature[..joints]);
         true
+    }
+
+    fn torque_rows(&self) -> usize {
+        if self.torques.is_some() { 4 } else { 0 }
+    }
+
+    /// The motors' torques along the path (`biscara_joints`' `torque` module): the pose's
+    /// joints by IK, the rows from three evaluations of the rigid-body inverse dynamics.
+    fn torque_constraints(
+        &mut self,
+        first: &[f64],
+        second: &[f64],
+        out: &mut [Constraint],
+    ) -> bool {
+        let Some(torques) = &self.torques else { return false };
+        if first.len() < 4 || second.len() < 4 {
+            return false;
+        }
+        let [x, y, z, c] = torques.pose;
+        let Ok(solution) = self.model.inverse(&Pose::from_degrees(x, y, z, c)) else {
+            return false;
+        };
+        let q = solution.joints.to_array();
+        let payload = if torques.holding { torques.payload_kg } else { 0.0 };
+        let dynamics = &torques.dynamics;
+        let rigid = |qd, qdd| dynamics.rigid_torques(q, qd, qdd, payload).ok();
+        let first = [first[0], first[1], first[2], first[3]];
+        let second = [second[0], second[1], second[2], second[3]];
+        let at_rest = torques.at_rest[usize::from(torques.holding)];
+        torque_rows(rigid, Some(at_rest), first, second, &torques.motors, out)
+    }
+
+    fn set_holding(&mut self, holding: bool) {
+        if let Some(torques) = &mut self.torques {
+            torques.holding = holding;
+        }
     }
 }
 

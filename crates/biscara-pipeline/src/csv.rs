@@ -168,7 +168,7 @@ impl Pipeline<'_> {
 
 /// The torques at one joint sample, an error located at its line and time.
 #[inline]
-fn sample_torques(
+pub(crate) fn sample_torques(
     dynamics: &Dynamics,
     sample: &JointSample,
     payload: f64,

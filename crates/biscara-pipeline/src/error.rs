@@ -82,6 +82,10 @@ pub enum PipelineError {
     /// Occurs when the output cannot be written (a full disk, a closed pipe).
     #[error("cannot write the output")]
     Write(#[from] io::Error),
+    /// Occurs when the robot's dynamic model cannot be built for its motors (d4's motor too
+    /// weak to hold the slide and the payload).
+    #[error(transparent)]
+    Dynamics(#[from] biscara_dynamics::DynamicsError),
 }
 
 /// Shows a snippet on the lines below a message, indented.

@@ -44,6 +44,7 @@ mod pipeline;
 mod placement;
 mod source;
 mod tool;
+mod torques;
 
 pub use biscara_kinematics::RobotModel;
 

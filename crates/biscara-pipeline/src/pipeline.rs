@@ -230,7 +230,7 @@ impl<'m> Pipeline<'m> {
             limits: cartesian_limits(robot),
             grip_time: self.config.grip_time,
         };
-        let limit = JointSpeedLimit::new(self.model.kinematics(), robot);
+        let limit = JointSpeedLimit::new(self.model.kinematics(), robot).with_motors(self.model)?;
         let name = file.clone();
         let on_slow: SlowDownNotes =
             Box::new(move |slow| notes.say(Note::SlowedDown { file: name.clone(), slow: *slow }));

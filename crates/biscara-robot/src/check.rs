@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use biscara_dynamics::Dynamics;
 use biscara_interpolate::CartesianSample;
 use biscara_joints::{JointSolver, central_differences};
 use biscara_kinematics::{Joint, Joints, KinematicsError, RobotModel, Shortfall};
@@ -29,11 +30,16 @@ pub enum ProblemKind {
     /// What only the tool can get wrong (docs/motion.md): a laser burning during a rapid (G0)
     /// move.
     Tool,
+    /// A motor's torque (force for d4) beyond its `peak` (docs/dynamics.md).
+    TorqueLimit,
+    /// A motor's RMS torque over the whole program beyond its `rated` torque: the program
+    /// cannot be repeated without a pause (docs/dynamics.md).
+    RmsTorque,
 }
 
 impl ProblemKind {
     /// Every kind, in the order reports list them at equal times.
-    pub const ALL: [ProblemKind; 8] = [
+    pub const ALL: [ProblemKind; 10] = [
         ProblemKind::Unreachable,
         ProblemKind::JointLimit,
         ProblemKind::VelocityLimit,
@@ -42,6 +48,8 @@ impl ProblemKind {
         ProblemKind::SelfCollision,
         ProblemKind::SceneCollision,
         ProblemKind::Tool,
+        ProblemKind::TorqueLimit,
+        ProblemKind::RmsTorque,
     ];
 
     /// The kind whose [`ProblemKind::name`] is `name`.
@@ -60,11 +68,16 @@ impl ProblemKind {
             ProblemKind::SelfCollision => "self_collision",
             ProblemKind::SceneCollision => "scene_collision",
             ProblemKind::Tool => "tool",
+            ProblemKind::TorqueLimit => "torque_limit",
+            ProblemKind::RmsTorque => "rms_torque",
         }
     }
 
     fn is_derivative(self) -> bool {
-        matches!(self, ProblemKind::VelocityLimit | ProblemKind::AccelerationLimit)
+        matches!(
+            self,
+            ProblemKind::VelocityLimit | ProblemKind::AccelerationLimit | ProblemKind::TorqueLimit
+        )
     }
 }
 
@@ -145,6 +158,17 @@ pub struct SingularityDistance {
     pub t: f64,
 }
 
+/// One motor's torques over the program (docs/dynamics.md): N·m for θ1–θ3, N for d4.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MotorTorque {
+    /// The largest |torque|, with the motor's `peak` as its limit, its line and time.
+    pub peak: Peak,
+    /// The root mean square of the torque over the program's duration.
+    pub rms: f64,
+    /// The motor's `rated` (continuous) torque.
+    pub rated: f64,
+}
+
 /// Figures of the whole program.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Summary {
@@ -160,6 +184,10 @@ pub struct Summary {
     pub peak_acceleration: [Peak; 4],
     /// The smallest singularity angle over the reachable samples; `None` when none was.
     pub min_singularity: Option<SingularityDistance>,
+    /// Each motor's peak and RMS torque, `[theta1, theta2, theta3, d4]` (inverse dynamics of the
+    /// central differences, with the payload while the gripper holds it), when the robot has
+    /// `motors`.
+    pub torques: Option<[MotorTorque; 4]>,
 }
 
 /// What `check` found: the problems in time order and the summary.
@@ -192,6 +220,18 @@ struct SampleInfo {
     t: f64,
     line: usize,
     pose: [f64; 4],
+    gripper: bool,
+}
+
+/// The motors' model and what is summed over the program for the RMS torques.
+struct MotorCheck {
+    dynamics: Dynamics,
+    /// Each motor's ∫ τ² dt over the samples with central differences, and that time.
+    squares: [f64; 4],
+    time: f64,
+    /// The first sample, where the RMS problems are reported.
+    first: Option<SampleInfo>,
+    last: Option<SampleInfo>,
 }
 
 struct Open {
@@ -234,6 +274,7 @@ pub struct Checker {
     summary: Summary,
     previous_pose: Option<[f64; 4]>,
     count: u64,
+    motors: Option<Box<MotorCheck>>,
 }
 
 fn user_unit(joint: Joint, value: f64) -> f64 {
@@ -262,6 +303,18 @@ impl Checker {
             summary.peak_velocity[j].limit = velocity[j];
             summary.peak_acceleration[j].limit = acceleration[j];
         }
+        // A robot whose model cannot be built has been refused where it was loaded.
+        let dynamics = Dynamics::new(model).ok().filter(|dynamics| dynamics.motors().is_some());
+        if let Some(motors) = dynamics.as_ref().and_then(Dynamics::motors) {
+            summary.torques = Some(std::array::from_fn(|j| MotorTorque {
+                peak: Peak { limit: motors[j].peak, ..Peak::default() },
+                rms: 0.0,
+                rated: motors[j].rated,
+            }));
+        }
+        let motors = dynamics.map(|dynamics| {
+            Box::new(MotorCheck { dynamics, squares: [0.0; 4], time: 0.0, first: None, last: None })
+        });
         Checker {
             robot: VirtualRobot::new(model),
             scene,
@@ -276,13 +329,27 @@ impl Checker {
             summary,
             previous_pose: None,
             count: 0,
+            motors,
         }
     }
 
     /// Checks the next sample.
     pub fn push(&mut self, sample: &CartesianSample) {
-        let info =
-            SampleInfo { index: self.count, t: sample.t, line: sample.line, pose: sample.pose };
+        let info = SampleInfo {
+            index: self.count,
+            t: sample.t,
+            line: sample.line,
+            pose: sample.pose,
+            gripper: sample.gripper,
+        };
+        if let Some(motors) = &mut self.motors {
+            // The RMS problems are reported at the program's first motion (the start sample
+            // has line 0).
+            if motors.first.is_none_or(|first| first.line == 0) {
+                motors.first = Some(info);
+            }
+            motors.last = Some(info);
+        }
         self.count += 1;
         self.summary.samples = self.count;
         self.summary.duration_s = sample.t;
@@ -339,6 +406,7 @@ impl Checker {
             t: sample.t,
             line: sample.line,
             pose: sample.pose,
+            gripper: sample.gripper,
         };
         let finding =
             Finding { kind: ProblemKind::Tool, subject: subject.to_owned(), severity, detail };
@@ -348,6 +416,7 @@ impl Checker {
     /// Ends the run: the problems in time order and the summary.
     pub fn finish(mut self) -> Report {
         self.close_where(|_| true);
+        self.rms_torques();
         let mut problems = self.closed;
         problems.sort_by(|a, b| {
             a.t_start
@@ -468,6 +537,7 @@ impl Checker {
             (middle.info.t, &middle.q),
             (after.info.t, &after.q),
         );
+        self.torques(middle, span / 2.0, velocities, accelerations, findings, after.info.line);
         for (j, joint) in Joint::ALL.into_iter().enumerate() {
             let (velocity, acceleration) = (velocities[j], accelerations[j]);
             let checks = [
@@ -518,6 +588,89 @@ impl Checker {
                     });
                 }
             }
+        }
+    }
+
+    /// The motors' torques at `middle` from its velocity and acceleration: the peaks, the sums
+    /// of the RMS and the problems beyond a peak (reported on `line`).
+    fn torques(
+        &mut self,
+        middle: &Solved,
+        weight: f64,
+        velocity: [f64; 4],
+        acceleration: [f64; 4],
+        findings: &mut Vec<Finding>,
+        line: usize,
+    ) {
+        let Some(motors) = &mut self.motors else { return };
+        let Some(figures) = &mut self.summary.torques else { return };
+        let dynamics = &motors.dynamics;
+        let payload = if middle.info.gripper { dynamics.bodies().payload } else { 0.0 };
+        // At a parallel singularity the torques are unbounded: the singularity is reported.
+        let Ok(torques) = dynamics.torques(middle.q, velocity, acceleration, payload) else {
+            return;
+        };
+        motors.time += weight;
+        for (j, joint) in Joint::ALL.into_iter().enumerate() {
+            let (torque, figure) = (torques[j], &mut figures[j]);
+            motors.squares[j] += torque * torque * weight;
+            let magnitude = torque.abs();
+            if magnitude > figure.peak.value {
+                figure.peak = Peak { value: magnitude, line, t: middle.info.t, ..figure.peak };
+            }
+            let peak = figure.peak.limit;
+            if magnitude > peak * (1.0 + LIMIT_TOLERANCE) {
+                let unit = torque_unit(joint);
+                findings.push(Finding {
+                    kind: ProblemKind::TorqueLimit,
+                    subject: joint.name().to_owned(),
+                    severity: magnitude / peak,
+                    detail: format!(
+                        "{joint}'s motor needs {} {unit}, beyond its peak {} {unit}",
+                        fixed_torque(torque),
+                        round(peak)
+                    ),
+                });
+            }
+        }
+    }
+
+    /// The RMS torques of the program, and a problem for each motor beyond its `rated` torque.
+    fn rms_torques(&mut self) {
+        let (Some(motors), Some(figures)) = (&self.motors, &mut self.summary.torques) else {
+            return;
+        };
+        let (Some(first), Some(last)) = (motors.first, motors.last) else { return };
+        if motors.time <= 0.0 {
+            return;
+        }
+        for (j, joint) in Joint::ALL.into_iter().enumerate() {
+            let figure = &mut figures[j];
+            figure.rms = (motors.squares[j] / motors.time).sqrt();
+            if figure.rms <= figure.rated * (1.0 + LIMIT_TOLERANCE) {
+                continue;
+            }
+            let unit = torque_unit(joint);
+            let peak = figure.peak;
+            self.closed.push(Problem {
+                kind: ProblemKind::RmsTorque,
+                subject: joint.name().to_owned(),
+                line: first.line,
+                line_end: last.line,
+                t_start: first.t,
+                t_end: last.t,
+                samples: self.count,
+                pose: first.pose,
+                t_worst: peak.t,
+                line_worst: peak.line,
+                pose_worst: first.pose,
+                detail: format!(
+                    "{joint}'s motor's RMS torque over the program {} {unit} exceeds its rated \
+                     {} {unit}: the program cannot be repeated without a pause",
+                    fixed_torque(figure.rms),
+                    round(figure.rated)
+                ),
+            });
         }
     }
 
@@ -595,6 +748,16 @@ fn unreachable(err: &KinematicsError) -> Finding {
 
 /// Relative slack on the velocity and acceleration limits, against rounding.
 const LIMIT_TOLERANCE: f64 = 1e-6;
+
+/// The unit of a motor's torque: N·m, or N for d4's force.
+pub(crate) fn torque_unit(joint: Joint) -> &'static str {
+    if joint.is_revolute() { "N·m" } else { "N" }
+}
+
+/// A torque for a message, to the mN·m.
+fn fixed_torque(value: f64) -> String {
+    biscara_text::fixed(value, 3)
+}
 
 /// A limit as written in the robot file: without trailing zeros.
 fn round(value: f64) -> f64 {

@@ -36,6 +36,7 @@
 mod body;
 mod check;
 mod collision;
+mod cycle;
 mod error;
 mod fit;
 mod geometry;
@@ -44,8 +45,14 @@ mod scene;
 mod workspace;
 
 pub use body::{Body, Cylinder, Link, LinkName, VirtualRobot};
-pub use check::{Checker, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary};
+pub use check::{
+    Checker, MotorTorque, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary,
+};
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
+pub use cycle::{
+    CYCLE_ACROSS_MM, CYCLE_LIFT_MM, CYCLE_Z_MM, CycleConfig, CycleError, CycleMotor, CycleReport,
+    adept_cycle,
+};
 pub use error::VirtualRobotError;
 pub use fit::{Bounds, Fit, Transform, fit, place_motion, shift_motion};
 pub use report::ReportedProblem;

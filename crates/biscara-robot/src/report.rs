@@ -6,6 +6,7 @@ use serde_json::{Value, json};
 
 use std::io::Write;
 
+use crate::check::torque_unit;
 use crate::scene::read_json;
 use crate::{Peak, Problem, ProblemKind, Rectangle, Report, VirtualRobotError, Workspace};
 
@@ -105,7 +106,7 @@ impl Report {
             }
             Value::Object(map)
         };
-        json!({
+        let mut value = json!({
             "ok": report.ok(),
             "problems": report.problems.iter().map(problem_json).collect::<Vec<_>>(),
             "summary": {
@@ -121,7 +122,34 @@ impl Report {
                     "t_s": round6(nearest.t),
                 })),
             },
-        })
+        });
+        if let Some(torques) = &summary.torques {
+            let (mut peak, mut rms) = (serde_json::Map::new(), serde_json::Map::new());
+            for (joint, figure) in Joint::ALL.into_iter().zip(torques) {
+                let unit = torque_unit(joint);
+                peak.insert(
+                    joint.name().to_owned(),
+                    json!({
+                        "value": round6(figure.peak.value),
+                        "limit": round6(figure.peak.limit),
+                        "unit": unit,
+                        "line": figure.peak.line,
+                        "t_s": round6(figure.peak.t),
+                    }),
+                );
+                rms.insert(
+                    joint.name().to_owned(),
+                    json!({
+                        "value": round6(figure.rms),
+                        "limit": round6(figure.rated),
+                        "unit": unit,
+                    }),
+                );
+            }
+            value["summary"]["peak_torque"] = Value::Object(peak);
+            value["summary"]["rms_torque"] = Value::Object(rms);
+        }
+        value
     }
 
     /// The report as text (`check`): the problems of `name`, one a line, then the summary.
@@ -170,6 +198,24 @@ impl Report {
                     peak.limit,
                     peak.line,
                     fixed(peak.t, 3)
+                )?;
+            }
+        }
+        if let Some(torques) = &summary.torques {
+            writeln!(out, "  motor torques (peak against peak, RMS against rated):")?;
+            for (joint, figure) in Joint::ALL.into_iter().zip(torques) {
+                let unit = torque_unit(joint);
+                writeln!(
+                    out,
+                    "    {:<7} peak {:>10} {unit} (peak {}; line {}, t = {} s), RMS {:>10} {unit} \
+                     (rated {})",
+                    joint.name(),
+                    fixed(figure.peak.value, 3),
+                    figure.peak.limit,
+                    figure.peak.line,
+                    fixed(figure.peak.t, 3),
+                    fixed(figure.rms, 3),
+                    figure.rated
                 )?;
             }
         }

@@ -43,6 +43,7 @@ pub use plot::{
     ATLAS_MAX_PANELS, Atlas, AtlasCell, ImageFormat, JointCurves, TopView, draw_atlas, draw_joints,
     draw_top_view, draw_workspace, zoom_region,
 };
+pub use plot::{TorqueCurves, draw_torques};
 pub use stl::{BinaryFault, MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
 pub use trace::ProgramTrace;
 pub use work::{MAX_WORK_POINTS, ProgramOverlay, ToolWork, WorkPoint};

@@ -143,6 +143,8 @@ pub(crate) use render_with;
 
 mod atlas;
 pub use atlas::{ATLAS_MAX_PANELS, Atlas, AtlasCell, draw_atlas};
+mod torques;
+pub use torques::{TorqueCurves, draw_torques};
 
 fn encode_png(pixels: &[u8], width: u32, height: u32) -> Result<Vec<u8>, ViewError> {
     let mut bytes = Vec::new();

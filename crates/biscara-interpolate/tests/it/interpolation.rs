@@ -5,8 +5,8 @@ use std::convert::Infallible;
 
 use approx::assert_relative_eq;
 use biscara_interpolate::{
-    CartesianLimits, CartesianSample, InterpolationConfig, Interpolator, JointBound, NoSpeedLimit,
-    PLANNER_FALLBACK, Profile, RateLimit, Segment, SlowDown, SpeedLimit,
+    CartesianLimits, CartesianSample, Constraint, InterpolationConfig, Interpolator, JointBound,
+    NoSpeedLimit, PLANNER_FALLBACK, Profile, RateLimit, Segment, SlowDown, SpeedLimit,
 };
 use biscara_motion::{Feed, Motion, MotionKind, Plane};
 use proptest::prelude::*;
@@ -269,6 +269,114 @@ fn a_move_the_optimal_planner_cannot_time_falls_back_to_a_slower_trapezoid() {
     assert_eq!(last.pose, end);
     // At a quarter of the move per second: at least 4 s.
     assert!(last.t >= 4.0, "{}", last.t);
+}
+
+/// A motor that pushes a mass along the path: its force `mass · s̈` (mm/s², kg·mm/s² = mN)
+/// within ±`peak`, the mass 4× while the gripper holds.
+struct Pusher {
+    bound: [JointBound; 1],
+    holding: bool,
+}
+
+impl Pusher {
+    const PEAK: f64 = 1000.0;
+
+    fn new() -> Pusher {
+        let bound =
+            JointBound { name: "x", max_velocity: f64::INFINITY, max_acceleration: f64::INFINITY };
+        Pusher { bound: [bound], holding: false }
+    }
+}
+
+impl SpeedLimit for Pusher {
+    fn max_rate(&mut self, _segment: &Segment) -> Option<RateLimit> {
+        None
+    }
+    fn joint_bounds(&self) -> &[JointBound] {
+        &self.bound
+    }
+    /// The one "joint" is the distance along the path.
+    fn joint_derivatives(
+        &mut self,
+        segment: &Segment,
+        _s: f64,
+        first: &mut [f64],
+        second: &mut [f64],
+    ) -> bool {
+        (first[0], second[0]) = (segment.length(), 0.0);
+        true
+    }
+    fn torque_rows(&self) -> usize {
+        1
+    }
+    fn torque_constraints(
+        &mut self,
+        first: &[f64],
+        second: &[f64],
+        out: &mut [Constraint],
+    ) -> bool {
+        let mass = if self.holding { 4.0 } else { 1.0 };
+        let peak = Pusher::PEAK;
+        out[0] =
+            Constraint { a: mass * first[0], b: mass * second[0], c: 0.0, lo: -peak, hi: peak };
+        true
+    }
+    fn set_holding(&mut self, holding: bool) {
+        self.holding = holding;
+    }
+}
+
+/// The largest acceleration along the path between samples (mm/s²), from second differences
+/// of the distance travelled.
+fn peak_path_acceleration(samples: &[CartesianSample], dt: f64) -> f64 {
+    let distance = |a: &CartesianSample, b: &CartesianSample| {
+        (0..3).map(|k| (b.pose[k] - a.pose[k]).powi(2)).sum::<f64>().sqrt()
+    };
+    samples
+        .windows(3)
+        .map(|w| (distance(&w[1], &w[2]) - distance(&w[0], &w[1])).abs() / (dt * dt))
+        .fold(0.0, f64::max)
+}
+
+/// Rows beyond the joints' (a motor's torque) bound the optimal profile, in single moves and in
+/// blended chains, with the payload the gripper holds.
+#[test]
+fn torque_rows_bound_the_optimal_profile_with_the_payload() {
+    let dt = 0.001;
+    let run_with = |motions: &[Motion]| -> Vec<CartesianSample> {
+        Interpolator::new(
+            motions.iter().map(|m| Ok::<_, Infallible>(*m)),
+            config(Profile::Optimal, dt),
+            Pusher::new(),
+            |_: &SlowDown| {},
+        )
+        .collect::<Result<_, _>>()
+        .expect("interpolation")
+    };
+    // 100 mm at up to 1000 mm/s² (well below the path's 5000): a triangle of 2·√(0.1 s²).
+    let free = run_with(&[linear(1, [100.0, 400.0, 50.0, 0.0], 60_000.0)]);
+    let duration = free.last().expect("samples").t;
+    assert_relative_eq!(duration, 2.0 * 0.1f64.sqrt(), max_relative = 0.01);
+    assert!(peak_path_acceleration(&free, dt) <= Pusher::PEAK * 1.001);
+    // Holding four times the mass: a quarter of the acceleration, twice the time.
+    let held = run_with(&[
+        Motion::new(1, MotionKind::Pick),
+        linear(2, [100.0, 400.0, 50.0, 0.0], 60_000.0),
+    ]);
+    assert_relative_eq!(held.last().expect("samples").t, 2.0 * duration, max_relative = 0.01);
+    assert!(peak_path_acceleration(&held, dt) <= Pusher::PEAK / 4.0 * 1.001);
+    // A blended chain: the same bound along its pieces.
+    let chain: Vec<_> = [[50.0, 400.0], [50.0, 450.0], [100.0, 450.0]]
+        .iter()
+        .enumerate()
+        .map(|(k, [x, y])| Motion {
+            blend: Some(1.0),
+            ..linear(k + 1, [*x, *y, 50.0, 0.0], 60_000.0)
+        })
+        .collect();
+    let blended = run_with(&chain);
+    assert!(blended.last().expect("samples").t > 2.0 * (0.15f64).sqrt() * 0.99);
+    assert!(peak_path_acceleration(&blended, dt) <= Pusher::PEAK * 1.01);
 }
 
 #[test]

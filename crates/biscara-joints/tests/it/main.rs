@@ -2,4 +2,5 @@
 
 mod blend;
 mod optimal;
+mod torque;
 mod trajectory;

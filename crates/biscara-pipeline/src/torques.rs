@@ -1,0 +1,33 @@
+//! The motors' torques along a program, sample by sample (`plot --torques`).
+
+use biscara_dynamics::Dynamics;
+use biscara_joints::JointSample;
+
+use crate::csv::sample_torques;
+use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource};
+
+impl Pipeline<'_> {
+    /// Calls `each` with every joint sample of the program ([`Pipeline::joints`]) and its
+    /// motors' torques `[τ1, τ2, τ3 (N·m), f_d4 (N)]`: `dynamics`' inverse dynamics of the
+    /// sample's own position, velocity and acceleration, with the payload while the gripper
+    /// holds it, as `joints --torques` writes them. Streaming; stops at the first error,
+    /// `each`'s included.
+    pub fn for_each_torque(
+        &self,
+        source: &dyn ProgramSource,
+        kind: ProgramKind,
+        dynamics: &Dynamics,
+        notes: impl FnMut(Note) + 'static,
+        mut each: impl FnMut(&JointSample, [f64; 4]) -> Result<(), PipelineError>,
+    ) -> Result<(), PipelineError> {
+        let payload = dynamics.bodies().payload;
+        let file = source.name().to_owned();
+        let mut samples = self.joints(source, kind, notes)?;
+        while let Some(row) = samples.next_sample() {
+            let row = row?;
+            let held = if row.gripper { payload } else { 0.0 };
+            each(row, sample_torques(dynamics, row, held, &file)?)?;
+        }
+        Ok(())
+    }
+}
