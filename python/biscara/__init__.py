@@ -137,6 +137,8 @@ def _options(
     tool_table: Optional[PathLike] = None,
     ini: Optional[PathLike] = None,
     max_idle_jumps: int = 100_000,
+    max_motions: int = 10_000_000,
+    time_limit: float = 14_400.0,
 ) -> Dict[str, Any]:
     if kind not in (None, "gcode", "jsonl", "path"):
         raise ValueError(f'kind must be "gcode", "jsonl", "path" or None, got {kind!r}')
@@ -146,6 +148,10 @@ def _options(
         raise TypeError("max_idle_jumps must be an int")
     if max_idle_jumps < 0:
         raise ValueError(f"max_idle_jumps must be at least 0, got {max_idle_jumps}")
+    if isinstance(max_motions, bool) or not isinstance(max_motions, (int, np.integer)):
+        raise TypeError("max_motions must be an int")
+    if max_motions < 0:
+        raise ValueError(f"max_motions must be at least 0, got {max_motions}")
     return {
         "kind": kind,
         "dialect": str(dialect),
@@ -160,6 +166,8 @@ def _options(
         "tool_table": None if tool_table is None else os.fspath(tool_table),
         "ini": None if ini is None else os.fspath(ini),
         "max_idle_jumps": int(max_idle_jumps),
+        "max_motions": int(max_motions),
+        "time_limit": _number(time_limit, "time_limit", 0.0, 1e9, "s"),
     }
 
 
@@ -290,20 +298,31 @@ def joints(
     derivatives: bool = False,
     angle_unit: str = "rad",
     events: bool = False,
+    torques: bool = False,
     **options: Any,
 ) -> Dict[str, np.ndarray]:
     """A program's joint trajectory, as ``biscara joints``: a dict of 1-D arrays named as the
     joint CSV's columns (``t_s``, ``theta1_rad``, …, ``d4_mm``; velocities and accelerations
-    with ``derivatives``; the tool's column with ``events``).
+    with ``derivatives``; with ``torques`` (which implies ``derivatives``) the motors' torques
+    ``tau_theta1_Nm``, ``tau_theta2_Nm``, ``tau_theta3_Nm``, ``f_d4_N`` and the payload held,
+    ``payload_kg``, each row's inverse dynamics as ``joints --torques`` writes them; the tool's
+    column with ``events``).
 
     ``options``: ``kind``, ``dialect``, ``tool``, ``origin``, ``fit``, ``grip_time``, ``blend``,
-    ``subroutine_path``, ``tool_table``, ``ini``, ``max_idle_jumps``, as the command line's
-    flags."""
+    ``subroutine_path``, ``tool_table``, ``ini``, ``max_idle_jumps``, ``max_motions``,
+    ``time_limit`` (s of robot time, 4 h by default), as the command line's flags."""
     path, source = _program(path, source)
     radians = _radians(angle_unit)
     options = _options(profile=profile, dt=dt, **options)
     columns, notes = _biscara.joints(
-        _robot(robot), path, source, options, bool(derivatives), radians, bool(events)
+        _robot(robot),
+        path,
+        source,
+        options,
+        bool(derivatives),
+        radians,
+        bool(events),
+        bool(torques),
     )
     _log_notes(notes)
     return dict(columns)
@@ -337,17 +356,17 @@ def check(
     scene: Union[None, PathLike, Mapping[str, Any]] = None,
     profile: str = "optimal",
     dt: float = 0.001,
-    time_limit: float = 172_800.0,
+    time_limit: float = 14_400.0,
     **options: Any,
 ) -> Dict[str, Any]:
     """Runs a program on the virtual robot, as ``biscara check --json``: the report as a dict
     (``ok``, ``problems``, ``summary``). ``scene`` is a scene file or the scene as a dict
     (``{"boxes": [{"name": …, "min": [x, y, z], "max": [x, y, z]}]}``). A program with
     problems is not an error here: look at ``report["ok"]``. A program still moving after
-    ``time_limit`` seconds of robot time (48 h) is an error (an endless loop)."""
+    ``time_limit`` seconds of robot time (4 h by default) is an error (an endless loop)."""
     time_limit = _number(time_limit, "time_limit", 0.0, 1e9, "s")
     path, source = _program(path, source)
-    options = _options(profile=profile, dt=dt, **options)
+    options = _options(profile=profile, dt=dt, time_limit=time_limit, **options)
     scene_path = scene_text = None
     if isinstance(scene, Mapping):
         scene_text = json.dumps(scene)
@@ -385,11 +404,12 @@ def design(
     (``index``, ``l1``, ``l2``, ``base``, ``area_mm2``, ``rect_w_mm``, ``rect_h_mm``,
     ``rect_x0_mm``, ``rect_y0_mm``, ``gci``, ``lci_min``, ``status``; ``task_ok`` with a
     ``task`` (x0, y0, x1, y1)), and ``best``: the row of the best design by ``objective``
-    (``"rect"``, ``"gci"``, ``"area"``, ``"lci_min"`` or ``"time"``), None when none has a
-    rectangle. With ``programs`` (files), each design's total time of them as ``joints`` runs
-    them (``time_s``, NaN where one cannot run; centred in each design's rectangle first with
-    ``fit``)."""
-    objectives = ("rect", "gci", "area", "lci_min", "time")
+    (``"rect"``, ``"gci"``, ``"area"``, ``"lci_min"``, ``"time"`` or ``"cycle"``), None when
+    none has a rectangle. With ``programs`` (files), each design's total time of them as
+    ``joints`` runs them (``time_s``, NaN where one cannot run; centred in each design's
+    rectangle first with ``fit``). With ``objective="cycle"``, each design's Adept cycle time
+    (``cycle_s``, as ``biscara cycle`` times it; NaN where it cannot run), the fastest best."""
+    objectives = ("rect", "gci", "area", "lci_min", "time", "cycle")
     if objective not in objectives:
         raise ValueError(f"objective must be one of {objectives}, got {objective!r}")
     if isinstance(programs, (str, bytes, os.PathLike)):

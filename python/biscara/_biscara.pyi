@@ -42,6 +42,7 @@ def joints(
     derivatives: bool,
     radians: bool,
     events: bool,
+    torques: bool,
 ) -> _Table: ...
 def interpolate(
     robot: Robot, path: Optional[str], source: Optional[str], options: Dict[str, Any], events: bool

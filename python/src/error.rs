@@ -112,6 +112,12 @@ impl From<biscara_design::DesignError> for Failure {
     }
 }
 
+impl From<biscara_dynamics::DynamicsError> for Failure {
+    fn from(err: biscara_dynamics::DynamicsError) -> Failure {
+        Failure::of(&err, None)
+    }
+}
+
 impl From<biscara_pipeline::PipelineError> for Failure {
     fn from(err: biscara_pipeline::PipelineError) -> Failure {
         let file = match &err {

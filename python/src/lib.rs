@@ -50,10 +50,11 @@ fn design<'py>(
                 "area" => Objective::Area,
                 "lci_min" => Objective::LciMin,
                 "time" => Objective::Time,
+                "cycle" => Objective::Cycle,
                 other => {
                     return Err(Failure::Value(format!(
-                        "objective must be \"rect\", \"gci\", \"area\", \"lci_min\" or \"time\", \
-                         got {other:?}"
+                        "objective must be \"rect\", \"gci\", \"area\", \"lci_min\", \"time\" or \
+                         \"cycle\", got {other:?}"
                     )));
                 }
             };
@@ -74,6 +75,10 @@ fn design<'py>(
             } else if objective == Objective::Time {
                 return Err(Failure::Value("objective \"time\" needs programs".to_owned()));
             }
+            if objective == Objective::Cycle {
+                evaluator = evaluator.with_cycle();
+            }
+            let with_cycle = objective == Objective::Cycle;
             let sweep = Sweep::new(evaluator, grid, Shard::ALL);
             let mut rows = Vec::new();
             let options = SweepOptions { threads, objective, cells: false };
@@ -85,10 +90,10 @@ fn design<'py>(
                 Ok(())
             })?;
             let chosen = outcome.best.map(|chosen| chosen.design.index);
-            Ok((rows, chosen, task.is_some(), !programs.is_empty()))
+            Ok((rows, chosen, task.is_some(), !programs.is_empty(), with_cycle))
         })
         .map_err(|failure| failure.into_py(py))?;
-    let (rows, chosen, with_task, with_time) = swept;
+    let (rows, chosen, with_task, with_time, with_cycle) = swept;
     let column = |value: fn(&biscara_design::Evaluation) -> f64| {
         PyArray1::from_vec(py, rows.iter().map(value).collect())
     };
@@ -113,6 +118,9 @@ fn design<'py>(
     }
     if with_time {
         dict.set_item("time_s", column(|e| e.time_s.unwrap_or(f64::NAN)))?;
+    }
+    if with_cycle {
+        dict.set_item("cycle_s", column(|e| e.cycle_s.unwrap_or(f64::NAN)))?;
     }
     let best = chosen.and_then(|index| rows.iter().position(|e| e.design.index == index));
     Ok((dict, best))

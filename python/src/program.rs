@@ -7,12 +7,13 @@ use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::Arc;
 
+use biscara_dynamics::Dynamics;
 use biscara_files::FileSystem;
 use biscara_gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara_interpolate::{PATH_HEADER, Profile};
-use biscara_joints::{AngleUnit, JointCsvFormat};
+use biscara_joints::{AngleUnit, JointCsvFormat, JointSample, TORQUE_COLUMNS};
 use biscara_motion::write_jsonl;
-use biscara_pipeline::{Note, Pipeline, SamplingConfig, ToolState};
+use biscara_pipeline::{Note, Pipeline, SamplingConfig, ToolState, sample_torques};
 use biscara_robot::{Checker, Scene};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -46,6 +47,8 @@ pub(crate) struct Options {
     tool_table: Option<PathBuf>,
     ini: Option<PathBuf>,
     max_idle_jumps: u64,
+    max_motions: u64,
+    time_limit: f64,
 }
 
 impl Options {
@@ -96,6 +99,8 @@ impl Options {
             tool_table,
             ini,
             max_idle_jumps: self.max_idle_jumps,
+            max_motions: self.max_motions,
+            time_limit: self.time_limit,
             ..SamplingConfig::default()
         })
     }
@@ -211,7 +216,7 @@ pub(crate) fn interpret(
 
 /// `joints`: the joint trajectory's columns, named as the joint CSV's, and the notes.
 #[pyfunction]
-#[pyo3(signature = (robot, path, source, options, derivatives, radians, events))]
+#[pyo3(signature = (robot, path, source, options, derivatives, radians, events, torques))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn joints<'py>(
     py: Python<'py>,
@@ -222,6 +227,7 @@ pub(crate) fn joints<'py>(
     derivatives: bool,
     radians: bool,
     events: bool,
+    torques: bool,
 ) -> PyResult<Table<'py>> {
     let model = &robot.get().model;
     let (columns, notes) = py
@@ -231,16 +237,34 @@ pub(crate) fn joints<'py>(
             let pipeline = Pipeline::new(model, options.config()?);
             let notes = Notes::default();
             let angle_unit = if radians { AngleUnit::Radians } else { AngleUnit::Degrees };
+            // The torques are those of each row's own derivatives, so they come with them.
+            let derivatives = derivatives || torques;
             let format = JointCsvFormat { angle_unit, derivatives, precision: 6 };
+            let dynamics = if torques { Some(Dynamics::new(model)?) } else { None };
+            let payload = dynamics.as_ref().map_or(0.0, |d| d.bodies().payload);
+            let file = program.source().name().to_owned();
+            let mut names = format.columns();
+            if torques {
+                names.extend(TORQUE_COLUMNS.iter().map(|name| (*name).to_owned()));
+            }
+            // [τ1, τ2, τ3, f_d4, payload] of a row, when asked for.
+            let torques_of = |row: &JointSample, gripping: bool| -> Result<Vec<f64>, Failure> {
+                let Some(dynamics) = &dynamics else { return Ok(Vec::new()) };
+                let held = if gripping { payload } else { 0.0 };
+                let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, &file)?;
+                Ok(vec![t1, t2, t3, f4, held])
+            };
             if events {
                 let mut samples = pipeline.tool_joints(program.source(), kind, notes.sink())?;
                 let tool = samples.tool();
-                let mut names = format.columns();
                 names.extend(ToolState::columns(tool).iter().map(|name| (*name).to_owned()));
                 let mut columns = Columns::new(names);
                 while let Some(row) = samples.next_sample() {
                     let (row, state) = row?;
-                    columns.push(format.values(row).chain([state.value(tool)]))?;
+                    pipeline.within_time_limit(&file, row.t, row.line)?;
+                    let gripping = tool == Tool::Gripper && state.gripper;
+                    let extra = torques_of(row, gripping)?;
+                    columns.push(format.values(row).chain(extra).chain([state.value(tool)]))?;
                 }
                 return Ok((columns, notes.finish()));
             }
@@ -248,9 +272,12 @@ pub(crate) fn joints<'py>(
             if !derivatives {
                 samples = samples.without_derivatives();
             }
-            let mut columns = Columns::new(format.columns());
+            let mut columns = Columns::new(names);
             while let Some(row) = samples.next_sample() {
-                columns.push(format.values(row?))?;
+                let row = row?;
+                pipeline.within_time_limit(&file, row.t, row.line)?;
+                let extra = torques_of(row, row.gripper)?;
+                columns.push(format.values(row).chain(extra))?;
             }
             Ok((columns, notes.finish()))
         })
@@ -290,8 +317,10 @@ pub(crate) fn interpolate<'py>(
                 names.extend(ToolState::columns(tool).iter().map(|name| (*name).to_owned()));
             }
             let mut columns = Columns::new(names);
+            let file = program.source().name().to_owned();
             for sample in samples {
                 let (sample, state) = sample?;
+                pipeline.within_time_limit(&file, sample.t, sample.line)?;
                 let [x, y, z, c] = sample.pose;
                 let tool_value = events.then(|| state.value(tool));
                 columns.push([sample.t, x, y, z, c].into_iter().chain(tool_value))?;

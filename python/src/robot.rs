@@ -103,7 +103,7 @@ impl PyRobot {
 
     /// The robot as JSON, as `biscara robot` prints it.
     fn to_json(&self) -> String {
-        self.model.robot().to_json_pretty()
+        biscara_dynamics::robot_in_force(self.model.robot()).to_json_pretty()
     }
 
     /// The robot's name.

@@ -243,6 +243,42 @@ def test_joints_match_the_command_line(cli, data, name, flags):
             np.testing.assert_allclose(got[column], values, rtol=0, atol=5.1e-7, err_msg=column)
 
 
+@pytest.mark.parametrize("robot_name", ["small-motors.json", "servo-example.json"])
+def test_joints_torques_match_the_command_line(cli, data, robot_name):
+    path = data / "programs" / "pick_place_inch.ngc"
+    robot_path = data / "robots" / robot_name
+    expected = read_csv(cli("--robot", robot_path, "joints", "--torques", path).stdout)
+    assert "tau_theta1_Nm" in expected and "payload_kg" in expected
+    robot = biscara.Robot.from_file(robot_path)
+    got = biscara.joints(path, robot=robot, torques=True)
+    assert list(got) == list(expected)
+    for column, values in expected.items():
+        np.testing.assert_allclose(got[column], values, rtol=0, atol=5.1e-7, err_msg=column)
+    # The payload is held from each pick to its place, and only then.
+    assert got["payload_kg"].max() > 0 and got["payload_kg"].min() == 0
+
+
+def test_design_by_adept_cycle(cli, data, tmp_path):
+    out = tmp_path / "designs.csv"
+    robot_path = data / "robots" / "small-motors.json"
+    cli("--robot", robot_path, "design", "--l1", "200:220:2", "--l2", "260:280:2", "--base",
+        "200:200:1", "--objective", "cycle", "-o", out)
+    expected = read_csv(out.read_text())
+    got = biscara.design(l1=(200, 220, 2), l2=(260, 280, 2), base=(200, 200, 1),
+                         objective="cycle", robot=biscara.Robot.from_file(robot_path))
+    np.testing.assert_allclose(got["cycle_s"], expected["cycle_s"], rtol=0, atol=5.1e-4)
+    best = got["best"]
+    assert best is not None
+    ok = got["status"] == "ok"
+    assert got["cycle_s"][best] == np.nanmin(got["cycle_s"][ok])
+
+
+def test_joints_stop_at_the_time_limit():
+    endless = "G21 G90\nO1 while [1]\nG1 X10 Y400 F6000\nG1 X-10 Y380\n#1 = [#1 + 1]\nO1 endwhile\nM2\n"
+    with pytest.raises(biscara.Error, match="time.limit"):
+        biscara.joints(source=endless, time_limit=2.0)
+
+
 def test_joints_options_reach_the_pipeline(cli, data):
     path = data / "programs" / "arcs_and_offsets.ngc"
     flags = ["--profile", "trapezoid", "--dt", "0.004", "--origin", "10,20,0,0"]

@@ -17,7 +17,7 @@ impl Pipeline<'_> {
     /// [`time_limit`](crate::SamplingConfig::time_limit): a program that never ends stops
     /// there, its partial output left to the caller to throw away.
     #[inline(always)]
-    fn within_time_limit(&self, file: &str, t: f64, line: usize) -> Result<(), PipelineError> {
+    pub fn within_time_limit(&self, file: &str, t: f64, line: usize) -> Result<(), PipelineError> {
         if t > self.config().time_limit {
             return Err(PipelineError::TimeLimit {
                 file: file.to_owned(),
@@ -146,6 +146,7 @@ impl Pipeline<'_> {
             let mut writer = JointCsvWriter::with_columns(out, format, &columns)?;
             while let Some(row) = samples.next_sample() {
                 let (row, state) = row?;
+                self.within_time_limit(file, row.t, row.line)?;
                 let held = if tool == Tool::Gripper && state.gripper { payload } else { 0.0 };
                 let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
                 writer.write_with_array(row, [t1, t2, t3, f4, held, state.value(tool)])?;
@@ -157,6 +158,7 @@ impl Pipeline<'_> {
         let mut writer = JointCsvWriter::with_columns(out, format, &TORQUE_COLUMNS)?;
         while let Some(row) = samples.next_sample() {
             let row = row?;
+            self.within_time_limit(file, row.t, row.line)?;
             let held = if row.gripper { payload } else { 0.0 };
             let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
             writer.write_with_array(row, [t1, t2, t3, f4, held])?;
@@ -166,9 +168,10 @@ impl Pipeline<'_> {
     }
 }
 
-/// The torques at one joint sample, an error located at its line and time.
+/// The torques at one joint sample ([`Dynamics::torques`] of its joints, velocities and
+/// accelerations with `payload` kg held), an error located at its line and time in `file`.
 #[inline]
-pub(crate) fn sample_torques(
+pub fn sample_torques(
     dynamics: &Dynamics,
     sample: &JointSample,
     payload: f64,

@@ -48,6 +48,7 @@ mod torques;
 
 pub use biscara_kinematics::RobotModel;
 
+pub use csv::sample_torques;
 pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
