@@ -349,7 +349,7 @@ mod tests {
         assert_eq!(
             outcome.to_string(),
             "3 designs evaluated; best by gci: l1 = 1 mm, l2 = 1 mm, base = 1 mm (rectangle \
-             10 × 10 mm, GCI 0.500, worst LCI 0.250, programs 0.000 s); Pareto front of \
+             10 × 10 mm, GCI 0.500, worst LCI 0.250, programs 0.000 s, Adept cycle 4.900 s); Pareto front of \
              rectangle area and GCI: 2 designs"
         );
         let without = Collector::new(Objective::Gci, false);
