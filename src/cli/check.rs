@@ -59,12 +59,14 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
     let mut checker = Checker::new(model, scene);
-    let mut samples =
-        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
+    let mut samples = Pipeline::new(model, args.sampling.config(&args.time_limit)?).tool_samples(
+        &source,
+        kind,
+        notes.sink(),
+    )?;
     let tool = samples.tool();
     for sample in samples {
         let (sample, state) = sample?;
-        args.time_limit.check(source.name(), sample.t, sample.line)?;
         checker.push(&sample);
         if let Some((subject, detail, severity)) = state.problem(tool) {
             checker.push_tool_problem(&sample, subject, detail, severity);

@@ -88,14 +88,16 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     };
     let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
-    let mut samples =
-        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
+    let mut samples = Pipeline::new(model, args.sampling.config(&args.time_limit)?).tool_samples(
+        &source,
+        kind,
+        notes.sink(),
+    )?;
     let tool = samples.tool();
     let max_power = model.robot().tool.max_power;
     let mut overlay = ProgramOverlay::new(tool, MAX_WORK_POINTS, 0, None);
     for sample in samples {
         let (sample, state) = sample?;
-        args.time_limit.check(source.name(), sample.t, sample.line)?;
         trace.push(&sample);
         overlay.push(&sample, state.strength(tool, max_power));
     }
@@ -138,25 +140,14 @@ fn plot_torques(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let dynamics = Dynamics::new(model)?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let (mut t, mut torques) = (Vec::new(), Vec::new());
-    let name = source.name().to_owned();
-    let mut over_time = None;
-    pipeline
-        .for_each_torque(&source, kind, &dynamics, notes.sink(), |row, torque| {
-            if let Err(err) = args.time_limit.check(&name, row.t, row.line) {
-                over_time = Some(err);
-                return Err(biscara::pipeline::PipelineError::Unsupported {
-                    file: name.clone(),
-                    message: "stopped at the time limit".to_owned(),
-                    hints: Vec::new(),
-                });
-            }
-            t.push(row.t);
-            torques.push(torque);
-            Ok(())
-        })
-        .map_err(|err| over_time.take().unwrap_or_else(|| err.into()))?;
+    let name = source.name();
+    pipeline.for_each_torque(&source, kind, &dynamics, notes.sink(), |row, torque| {
+        t.push(row.t);
+        torques.push(torque);
+        Ok(())
+    })?;
     notes.finish();
     let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
     let title = format!("Motor torques of {name}");

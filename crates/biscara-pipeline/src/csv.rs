@@ -17,7 +17,12 @@ impl Pipeline<'_> {
     /// [`time_limit`](crate::SamplingConfig::time_limit): a program that never ends stops
     /// there, its partial output left to the caller to throw away.
     #[inline(always)]
-    fn within_time_limit(&self, file: &str, t: f64, line: usize) -> Result<(), PipelineError> {
+    pub(crate) fn within_time_limit(
+        &self,
+        file: &str,
+        t: f64,
+        line: usize,
+    ) -> Result<(), PipelineError> {
         if t > self.config().time_limit {
             return Err(PipelineError::TimeLimit {
                 file: file.to_owned(),
