@@ -7,8 +7,8 @@ use biscara::dynamics::Dynamics;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
 use biscara::view::{
-    JointCurves, MAX_WORK_POINTS, ProgramOverlay, ProgramTrace, TopView, TorqueCurves, draw_joints,
-    draw_top_view, draw_torques, zoom_region,
+    JointCurves, TopView, TorqueCurves, TracedProgram, draw_joints, draw_top_view, draw_torques,
+    trace_program, zoom_region,
 };
 use clap::Args;
 
@@ -86,22 +86,10 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
         true => vec![0.0],
         false => args.at.clone(),
     };
-    let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
-    let mut samples = Pipeline::new(model, args.sampling.config(&args.time_limit)?).tool_samples(
-        &source,
-        kind,
-        notes.sink(),
-    )?;
-    let tool = samples.tool();
-    let max_power = model.robot().tool.max_power;
-    let mut overlay = ProgramOverlay::new(tool, MAX_WORK_POINTS, 0, None);
-    for sample in samples {
-        let (sample, state) = sample?;
-        trace.push(&sample);
-        overlay.push(&sample, state.strength(tool, max_power));
-    }
-    let work = overlay.into_work();
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
+    let traced = trace_program(model, &pipeline, &source, kind, &at, notes.sink())?;
+    let TracedProgram { trace, work, tool } = traced;
     for t in trace.missed_times() {
         let end = trace.duration();
         report(
