@@ -120,24 +120,20 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
-    if args.torques {
-        let dynamics = biscara::dynamics::Dynamics::new(model)?;
-        write_output(args.output.as_deref(), |out| {
-            Ok(pipeline.write_joint_torque_csv(
-                &source,
-                kind,
-                out,
-                format,
-                args.events,
-                &dynamics,
-                notes.sink(),
-            )?)
-        })?;
-        notes.finish();
-        return Ok(());
-    }
-    write_output(args.output.as_deref(), |out| {
-        Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
+    let dynamics = args.torques.then(|| biscara::dynamics::Dynamics::new(model)).transpose()?;
+    write_output(args.output.as_deref(), |out| match &dynamics {
+        Some(dynamics) => Ok(pipeline.write_joint_torque_csv(
+            &source,
+            kind,
+            out,
+            format,
+            args.events,
+            dynamics,
+            notes.sink(),
+        )?),
+        None => {
+            Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
+        }
     })?;
     notes.finish();
     Ok(())
