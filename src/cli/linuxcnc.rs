@@ -78,11 +78,9 @@ impl ConfigChoice {
         origin: Option<[f64; 4]>,
         fit: bool,
     ) -> anyhow::Result<ConfigOptions> {
-        let source = self.for_program.as_deref().map(FileSource::new);
-        let region = match (&source, self.region) {
-            (Some(source), _) => RegionChoice::Program {
-                source,
-                kind: source.kind(None)?,
+        let region = match (&self.for_program, self.region) {
+            (Some(program), _) => RegionChoice::Program {
+                program,
                 sampling: SamplingConfig { origin, fit, ..SamplingConfig::default() },
                 margin: self.margin,
             },

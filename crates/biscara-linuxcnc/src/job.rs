@@ -6,7 +6,7 @@ use std::fs;
 use std::io::{BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use biscara_files::{FileError, display_path, write_output};
+use biscara_files::{FileError, FileSource, display_path, write_output};
 use biscara_joints::{JointCsvFormat, JointCsvWriter};
 use biscara_kinematics::{Joints, RobotModel, ToolKind};
 use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
@@ -171,10 +171,8 @@ pub enum RegionChoice<'a> {
     Workspace,
     /// A program's extent plus a margin ([`program_region`]).
     Program {
-        /// The program.
-        source: &'a dyn ProgramSource,
-        /// Its kind.
-        kind: ProgramKind,
+        /// The program file (its kind from its name and first bytes).
+        program: &'a Path,
         /// How it is placed (its origin, or fitted).
         sampling: SamplingConfig,
         /// The margin around its extent, mm (0 or more).
@@ -211,8 +209,10 @@ impl ConfigRequest<'_> {
                 }
                 .into());
             }
-            RegionChoice::Program { source, kind, sampling, margin } => {
-                Some(program_region::<E>(model, source, kind, sampling, margin, notes)?)
+            RegionChoice::Program { program, sampling, margin } => {
+                let source = FileSource::new(program);
+                let kind = source.kind(None).map_err(LinuxcncError::from)?;
+                Some(program_region::<E>(model, &source, kind, sampling, margin, notes)?)
             }
             RegionChoice::Rectangle([x0, x1, y0, y1]) => {
                 let [_, _, z, _] = model.home_position();
