@@ -223,22 +223,6 @@ pub(crate) struct TimeLimitArgs {
     pub(crate) time_limit: f64,
 }
 
-impl TimeLimitArgs {
-    /// An error once `t` (s) is past the limit, naming the program `name` and the sample's
-    /// `line`.
-    pub(crate) fn check(&self, name: &str, t: f64, line: usize) -> anyhow::Result<()> {
-        if t > self.time_limit {
-            anyhow::bail!(
-                "{name}:{line}: the program has run {} s of robot time, past --time-limit: an \
-                 endless loop that moves? (--time-limit SECONDS allows more, for a program that \
-                 long)",
-                self.time_limit
-            );
-        }
-        Ok(())
-    }
-}
-
 fn parse_time_limit(text: &str) -> Result<f64, String> {
     number_in(text, 0.0..=1e9, "the time limit", "[0, 1e9] s")
 }
@@ -269,9 +253,10 @@ pub(crate) struct SamplingArgs {
 }
 
 impl SamplingArgs {
-    /// The pipeline's sampling configuration.
-    pub(crate) fn config(&self) -> anyhow::Result<SamplingConfig> {
+    /// The pipeline's sampling configuration, bounded by `limit`.
+    pub(crate) fn config(&self, limit: &TimeLimitArgs) -> anyhow::Result<SamplingConfig> {
         Ok(SamplingConfig {
+            time_limit: limit.time_limit,
             dt: self.dt,
             profile: self.profile.into(),
             grip_time: self.grip_time,

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
-use biscara::robot::Checker;
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
@@ -58,20 +57,9 @@ pub(crate) fn check(model: &RobotModel, args: &CheckArgs) -> anyhow::Result<()> 
     let scene = load_scene(args.scene.as_deref())?;
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let mut checker = Checker::new(model, scene);
-    let mut samples =
-        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
-    let tool = samples.tool();
-    for sample in samples {
-        let (sample, state) = sample?;
-        args.time_limit.check(source.name(), sample.t, sample.line)?;
-        checker.push(&sample);
-        if let Some((subject, detail, severity)) = state.problem(tool) {
-            checker.push_tool_problem(&sample, subject, detail, severity);
-        }
-    }
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
+    let report = pipeline.check(&source, kind, scene, notes.sink())?;
     notes.finish();
-    let report = checker.finish();
     let name = source.name();
     write_output(args.output.as_deref(), |out| {
         if args.json {

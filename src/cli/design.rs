@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use biscara::design::{
-    Collector, DesignGrid, Evaluator, Objective, ParamRange, ProgramTimer, RowReader, Shard, Sweep,
-    SweepOptions, SweepOutcome, Task, header, merge, write_row,
+    Objective, ParamRange, Shard, SweepOptions, SweepOutcome, SweepRequest, Task, header, merge,
+    write_row,
 };
 use biscara::kinematics::RobotModel;
-use biscara::view::{Atlas, AtlasCell, draw_atlas};
 use clap::{Args, Subcommand, ValueEnum};
 
 use super::diag::{Level, located, report};
@@ -209,23 +208,15 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     let (Some(l1), Some(l2), Some(base)) = (args.l1, args.l2, args.base) else {
         anyhow::bail!("--l1, --l2 and --base are required");
     };
-    let grid = DesignGrid::new(l1, l2, base)?;
+    let mut programs = Vec::with_capacity(args.programs.len());
+    for path in &args.programs {
+        programs.push((display_path(path), biscara_files::read_text(path)?));
+    }
     let objective = Objective::from(args.objective);
-    let mut evaluator = Evaluator::new(model.robot().clone(), args.step, args.task)?;
-    if !args.programs.is_empty() {
-        let mut programs = Vec::with_capacity(args.programs.len());
-        for path in &args.programs {
-            programs.push((display_path(path), biscara_files::read_text(path)?));
-        }
-        evaluator = evaluator.with_programs(ProgramTimer::new(programs, args.fit));
-    } else if objective == Objective::Time {
-        anyhow::bail!("--objective time needs --programs");
-    }
-    if objective == Objective::Cycle {
-        evaluator = evaluator.with_cycle();
-    }
-    let columns = evaluator.columns();
-    let sweep = Sweep::new(evaluator, grid, args.shard);
+    let (step, task, fit, shard) = (args.step, args.task, args.fit, args.shard);
+    let request = SweepRequest { l1, l2, base, step, task, objective, programs, fit, shard };
+    let sweep = request.sweep(model.robot().clone())?;
+    let columns = sweep.evaluator().columns();
     let options = SweepOptions { threads: args.threads, objective, cells: args.atlas.is_some() };
     let progress = biscara_files::progress(sweep.count(), "designs");
     let mut outcome = None;
@@ -243,31 +234,15 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     progress.finish_and_clear();
     report(Level::Note, &outcome);
     if let Some(path) = &args.pareto {
-        write_output(Some(path), |out| {
-            writeln!(out, "{}", header(columns))?;
-            for evaluation in &outcome.pareto {
-                write_row(out, columns, evaluation)?;
-            }
-            Ok(())
-        })?;
+        write_output(Some(path), |out| Ok(outcome.write_pareto(out, columns)?))?;
     }
     if let Some(path) = &args.atlas {
         write_atlas(path, &outcome)?;
     }
     if let Some(path) = &args.best {
-        let Some(chosen) = outcome.best else {
-            anyhow::bail!(
-                "no design has a rectangle{}{}: {} not written",
-                if args.task.is_some() { " and covers the task" } else { "" },
-                match objective {
-                    Objective::Time => " and runs the programs",
-                    Objective::Cycle => " and runs the Adept cycle",
-                    _ => "",
-                },
-                display_path(path)
-            );
-        };
-        let robot = sweep.evaluator().robot_of(&chosen.design);
+        let robot = outcome
+            .best_robot(&sweep, args.task.is_some())
+            .map_err(|err| anyhow::anyhow!("{err}: {} not written", display_path(path)))?;
         write_output(Some(path), |out| Ok(writeln!(out, "{}", robot.to_json_pretty())?))?;
     }
     Ok(())
@@ -275,21 +250,8 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
 
 /// Draws the atlas of `outcome`'s cells, the best design ringed, to `path` (SVG or PNG).
 fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
-    let cells: Vec<AtlasCell> = outcome
-        .cells
-        .iter()
-        .map(|c| AtlasCell {
-            l1: c.design.l1,
-            l2: c.design.l2,
-            base: c.design.base,
-            value: c.value,
-        })
-        .collect();
-    let index = outcome.objective.description();
-    let title = format!("Design atlas: {index} over l1 × l2, per base distance");
-    let chosen = outcome.best.map(|e| [e.design.l1, e.design.l2, e.design.base]);
-    let atlas = Atlas { title: &title, index, cells: &cells, chosen };
-    let bytes = draw_atlas(&atlas, format_of(Some(path)))
+    let bytes = outcome
+        .draw_atlas(format_of(Some(path)))
         .with_context(|| format!("drawing {}", display_path(path)))?;
     write_output(Some(path), |out| Ok(out.write_all(&bytes)?))
 }
@@ -307,14 +269,8 @@ fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
 }
 
 fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
-    let objective = Objective::from(args.index);
-    let reader =
-        RowReader::new(open_input(&args.input)?).map_err(|err| located(&args.input, err))?;
-    let mut collector = Collector::new(objective, true);
-    for row in reader {
-        collector.consider(&row.map_err(|err| located(&args.input, err))?);
-    }
-    let outcome = collector.finish();
+    let outcome = SweepOutcome::read(open_input(&args.input)?, Objective::from(args.index))
+        .map_err(|err| located(&args.input, err))?;
     if outcome.cells.is_empty() {
         anyhow::bail!("{}: no designs to draw", display_path(&args.input));
     }

@@ -4,16 +4,16 @@ use std::path::{Path, PathBuf};
 
 use biscara::gcode::Tool;
 use biscara::joints::JointCsvFormat;
-use biscara::kinematics::{RobotModel, ToolKind};
+use biscara::kinematics::RobotModel;
+use biscara::linuxcnc::job::{ConfigRequest, RegionChoice};
 use biscara::linuxcnc::runner::Event;
-use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, Region, configuration, job};
+use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
 use biscara::pipeline::SamplingConfig;
-use biscara::robot::Rectangle;
 use clap::{Args, Subcommand, ValueEnum};
 
 use super::args::{AngleUnitArg, ProfileArg, parse_pose, parse_tool};
 use super::diag::{Level, NoteReporter, report};
-use super::files::{FileSource, display_path, write_output};
+use super::files::{FileSource, write_output};
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.
@@ -66,82 +66,37 @@ struct ConfigChoice {
     #[arg(long, value_name = "MM", default_value = "10", requires = "for_program")]
     margin: f64,
     /// Derive the axis limits over this rectangle and set LinuxCNC's soft limits to it, mm.
-    #[arg(long, value_name = "X0:X1,Y0:Y1", allow_hyphen_values = true, value_parser = parse_region)]
+    #[arg(long, value_name = "X0:X1,Y0:Y1", allow_hyphen_values = true, value_parser = job::parse_region)]
     region: Option<[f64; 4]>,
 }
 
 impl ConfigChoice {
-    /// The configuration's options; `placement` places the --for program.
+    /// The configuration's options; `origin` or `fit` places the --for program.
     fn options(
         &self,
         model: &RobotModel,
         origin: Option<[f64; 4]>,
         fit: bool,
     ) -> anyhow::Result<ConfigOptions> {
-        let tool = self.tool.or(model.robot().tool.kind).unwrap_or(ToolKind::Gripper);
+        let region = match (&self.for_program, self.region) {
+            (Some(program), _) => RegionChoice::Program {
+                program,
+                sampling: SamplingConfig { origin, fit, ..SamplingConfig::default() },
+                margin: self.margin,
+            },
+            (None, Some(rectangle)) => RegionChoice::Rectangle(rectangle),
+            (None, None) => RegionChoice::Workspace,
+        };
         let limits = match self.limits {
             LimitsArg::Derived => AxisLimitSource::Derived,
             LimitsArg::Cartesian => AxisLimitSource::Cartesian,
         };
-        let region = match (&self.for_program, self.region) {
-            (Some(program), _) => {
-                if !(self.margin >= 0.0 && self.margin.is_finite()) {
-                    anyhow::bail!(
-                        "--margin must be a number of mm, 0 or more (got {})",
-                        self.margin
-                    );
-                }
-                let source = FileSource::new(program);
-                let kind = source.kind(None)?;
-                let sampling = SamplingConfig { origin, fit, ..SamplingConfig::default() };
-                let notes = NoteReporter::default();
-                let region = job::program_region::<anyhow::Error>(
-                    model,
-                    &source,
-                    kind,
-                    sampling,
-                    self.margin,
-                    notes.sink(),
-                )?;
-                notes.finish();
-                Some(region)
-            }
-            (None, Some([x0, x1, y0, y1])) => {
-                let [_, _, z, _] = model.home_position();
-                Some(Region {
-                    rectangle: Rectangle { min: [x0, y0], max: [x1, y1] },
-                    origin: format!("--region {x0}:{x1},{y0}:{y1}"),
-                    park: Some([0.5 * (x0 + x1), 0.5 * (y0 + y1), z, 0.0]),
-                })
-            }
-            (None, None) => None,
-        };
-        Ok(ConfigOptions { tool, limits, region, ..ConfigOptions::default() })
+        let notes = NoteReporter::default();
+        let request = ConfigRequest { tool: self.tool, limits, region };
+        let options = request.options::<anyhow::Error>(model, notes.sink())?;
+        notes.finish();
+        Ok(options)
     }
-}
-
-/// Reads `X0:X1,Y0:Y1` (mm), each range from its smaller end.
-fn parse_region(text: &str) -> Result<[f64; 4], String> {
-    let bad = || format!("expected X0:X1,Y0:Y1 (mm), found `{text}`");
-    let (x, y) = text.split_once(',').ok_or_else(bad)?;
-    let range = |range: &str| -> Result<[f64; 2], String> {
-        let (a, b) = range.split_once(':').ok_or_else(bad)?;
-        let number = |value: &str| {
-            value
-                .trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|value| value.is_finite())
-                .ok_or_else(|| format!("`{}` is not a finite number", value.trim()))
-        };
-        let (a, b) = (number(a)?, number(b)?);
-        if a >= b {
-            return Err(format!("the range {a}:{b} is empty: give its smaller end first"));
-        }
-        Ok([a, b])
-    };
-    let ([x0, x1], [y0, y1]) = (range(x)?, range(y)?);
-    Ok([x0, x1, y0, y1])
 }
 
 /// Writes a complete LinuxCNC (2.9) configuration for the robot in force into DIR.
@@ -290,21 +245,7 @@ fn config(model: &RobotModel, args: &ConfigArgs) -> anyhow::Result<()> {
     let options = args.choice.options(model, args.origin, args.fit)?;
     let configuration = configuration(model, &options)?;
     job::write_configuration(&configuration, &args.output)?;
-    let limits = &configuration.limits;
-    report(
-        Level::Note,
-        format_args!(
-            "wrote {} files into {}; axis limits: X and Y {:.1} mm/s, {:.1} mm/s², Z {:.1} mm/s, \
-             C {:.1} °/s; install the kinematics once with `halcompile --install {}`",
-            configuration.files.len(),
-            display_path(&args.output),
-            limits.xy_velocity,
-            limits.xy_acceleration,
-            limits.z_velocity,
-            limits.c_velocity,
-            display_path(&args.output.join("biscarakins.comp")),
-        ),
-    );
+    report(Level::Note, job::written_note(&configuration, &args.output));
     Ok(())
 }
 
@@ -331,7 +272,6 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
     } else {
         None
     };
-    let streamed = stream.is_some();
     let job = job::Job {
         config: args.config.as_deref(),
         robot_file,
@@ -347,13 +287,6 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
             (None, None) => None,
         },
     };
-    if let Some((_, at)) = job.event
-        && !(at >= 0.0 && at.is_finite())
-    {
-        anyhow::bail!(
-            "--estop-at and --machine-off-at take a time in seconds, 0 or more (got {at})"
-        );
-    }
     let notes = NoteReporter::default();
     let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
         report(Level::Note, note);
@@ -378,34 +311,13 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         })?;
     }
     if let Some(summary) = &summary {
-        let what = if streamed { "streamed" } else { "ran" };
-        report(
-            Level::Note,
-            format_args!(
-                "LinuxCNC {what} {}: {:.3} s, {} samples of 1 ms",
-                display_path(program),
-                summary.duration,
-                summary.samples
-            ),
-        );
+        report(Level::Note, finished.note(summary));
         for peak in summary.peaks {
             report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
         }
     }
-    if let Some(stop) = finished.stop() {
-        let held = match summary {
-            Some(summary) if streamed => format!(
-                "the stream's last sample played at {:.3} s, the joints held from there",
-                summary.streamed.saturating_sub(1) as f64 * 0.001
-            ),
-            _ => "the joints held where LinuxCNC stopped them".to_owned(),
-        };
-        anyhow::bail!(
-            "{}: {} at {:.3} s: {held} (what they did is written)",
-            display_path(program),
-            stop.what,
-            stop.time,
-        );
+    match finished.stopped(summary.as_ref()) {
+        Some(stop) => Err(stop.into()),
+        None => Ok(()),
     }
-    Ok(())
 }

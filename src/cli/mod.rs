@@ -21,10 +21,10 @@ mod view;
 mod workspace;
 
 use std::io::{self, Write as _};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-use biscara::kinematics::{Robot, RobotModel};
+use biscara::kinematics::RobotModel;
 use clap::{Parser, Subcommand};
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
@@ -92,7 +92,7 @@ pub(crate) fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
-    let model = load_robot(cli.robot.as_deref())?;
+    let model = biscara_files::load_robot(cli.robot.as_deref())?;
     if let Command::Linuxcnc(args) = &cli.command {
         // A LinuxCNC configuration carries its robot: --robot must agree with it.
         return linuxcnc::linuxcnc(&model, cli.robot.as_deref(), args);
@@ -136,24 +136,6 @@ where
         .chain(args.into_iter().map(Into::into));
     let cli = Cli::try_parse_from(args)?;
     dispatch(robot, cli.command)
-}
-
-/// The robot in force, validated and modelled once: the built-in one, or `path` read.
-fn load_robot(path: Option<&Path>) -> anyhow::Result<RobotModel> {
-    let Some(path) = path else {
-        return Ok(RobotModel::default());
-    };
-    let text = biscara_files::read_text(path)?;
-    let mut robot = Robot::from_json(&text).map_err(|err| diag::located(path, err))?;
-    files::resolve_meshes(&mut robot, path, &text)?;
-    let model = RobotModel::new(robot).map_err(|err| diag::located(path, err))?;
-    // The dynamics' own check (d4's motor against the slide's weight), before anything runs.
-    if let Err(err) = biscara::dynamics::Dynamics::new(&model) {
-        let (line, column) =
-            err.key().and_then(|key| Robot::locate_key(&text, key)).unwrap_or((1, 1));
-        return Err(diag::located(path, format!("{line}:{column}: {err}")));
-    }
-    Ok(model)
 }
 
 /// Whether a LinuxCNC run was interrupted (it ends with 130, as an interrupt while writing a

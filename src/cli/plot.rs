@@ -7,8 +7,8 @@ use biscara::dynamics::Dynamics;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
 use biscara::view::{
-    JointCurves, MAX_WORK_POINTS, ProgramOverlay, ProgramTrace, TopView, TorqueCurves, draw_joints,
-    draw_top_view, draw_torques, zoom_region,
+    JointCurves, TopView, TorqueCurves, TracedProgram, draw_joints, draw_top_view, draw_torques,
+    trace_program, zoom_region,
 };
 use clap::Args;
 
@@ -86,20 +86,10 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
         true => vec![0.0],
         false => args.at.clone(),
     };
-    let mut trace = ProgramTrace::new(model, &at);
     let notes = NoteReporter::default();
-    let mut samples =
-        Pipeline::new(model, args.sampling.config()?).tool_samples(&source, kind, notes.sink())?;
-    let tool = samples.tool();
-    let max_power = model.robot().tool.max_power;
-    let mut overlay = ProgramOverlay::new(tool, MAX_WORK_POINTS, 0, None);
-    for sample in samples {
-        let (sample, state) = sample?;
-        args.time_limit.check(source.name(), sample.t, sample.line)?;
-        trace.push(&sample);
-        overlay.push(&sample, state.strength(tool, max_power));
-    }
-    let work = overlay.into_work();
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
+    let traced = trace_program(model, &pipeline, &source, kind, &at, notes.sink())?;
+    let TracedProgram { trace, work, tool } = traced;
     for t in trace.missed_times() {
         let end = trace.duration();
         report(
@@ -138,25 +128,14 @@ fn plot_torques(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let dynamics = Dynamics::new(model)?;
     let notes = NoteReporter::default();
-    let pipeline = Pipeline::new(model, args.sampling.config()?);
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let (mut t, mut torques) = (Vec::new(), Vec::new());
-    let name = source.name().to_owned();
-    let mut over_time = None;
-    pipeline
-        .for_each_torque(&source, kind, &dynamics, notes.sink(), |row, torque| {
-            if let Err(err) = args.time_limit.check(&name, row.t, row.line) {
-                over_time = Some(err);
-                return Err(biscara::pipeline::PipelineError::Unsupported {
-                    file: name.clone(),
-                    message: "stopped at the time limit".to_owned(),
-                    hints: Vec::new(),
-                });
-            }
-            t.push(row.t);
-            torques.push(torque);
-            Ok(())
-        })
-        .map_err(|err| over_time.take().unwrap_or_else(|| err.into()))?;
+    let name = source.name();
+    pipeline.for_each_torque(&source, kind, &dynamics, notes.sink(), |row, torque| {
+        t.push(row.t);
+        torques.push(torque);
+        Ok(())
+    })?;
     notes.finish();
     let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
     let title = format!("Motor torques of {name}");

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use biscara::joints::{AngleUnit, JointCsvFormat};
+use biscara::joints::JointCsvFormat;
 use biscara::pipeline::{Pipeline, RobotModel};
 use clap::Args;
 
@@ -102,10 +102,7 @@ pub(crate) struct JointsArgs {
 pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let config = args.sampling.config()?;
-    let config =
-        biscara::pipeline::SamplingConfig { time_limit: args.time_limit.time_limit, ..config };
-    let pipeline = Pipeline::new(model, config);
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let decimals = usize::from(args.sampling.precision);
     write_output(args.output.as_deref(), |out| {
         Ok(pipeline.write_path_csv(&source, kind, out, decimals, args.events, notes.sink())?)
@@ -117,36 +114,26 @@ pub(crate) fn interpolate(model: &RobotModel, args: &InterpolateArgs) -> anyhow:
 pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()> {
     let (source, kind) = args.program.open()?;
     let notes = NoteReporter::default();
-    let config = args.sampling.config()?;
-    let config =
-        biscara::pipeline::SamplingConfig { time_limit: args.time_limit.time_limit, ..config };
-    let pipeline = Pipeline::new(model, config);
+    let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let format = JointCsvFormat {
-        angle_unit: match args.angle_unit {
-            AngleUnitArg::Rad => AngleUnit::Radians,
-            AngleUnitArg::Deg => AngleUnit::Degrees,
-        },
+        angle_unit: args.angle_unit.into(),
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
-    if args.torques {
-        let dynamics = biscara::dynamics::Dynamics::new(model)?;
-        write_output(args.output.as_deref(), |out| {
-            Ok(pipeline.write_joint_torque_csv(
-                &source,
-                kind,
-                out,
-                format,
-                args.events,
-                &dynamics,
-                notes.sink(),
-            )?)
-        })?;
-        notes.finish();
-        return Ok(());
-    }
-    write_output(args.output.as_deref(), |out| {
-        Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
+    let dynamics = args.torques.then(|| biscara::dynamics::Dynamics::new(model)).transpose()?;
+    write_output(args.output.as_deref(), |out| match &dynamics {
+        Some(dynamics) => Ok(pipeline.write_joint_torque_csv(
+            &source,
+            kind,
+            out,
+            format,
+            args.events,
+            dynamics,
+            notes.sink(),
+        )?),
+        None => {
+            Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
+        }
     })?;
     notes.finish();
     Ok(())

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::joints::read_joint_csv;
-use biscara::pipeline::{Pipeline, ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig};
 use biscara::robot::Report;
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
@@ -124,25 +124,13 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let source = FileSource::new(program);
     let kind = source.kind(args.from.map(ProgramKind::from))?;
     let config = SamplingConfig {
-        dt: viewer.time_step().filter(|dt| *dt > 0.0).unwrap_or(0.001),
         profile: args.profile.into(),
         grip_time: args.grip_time,
         blend: args.blend.blend,
         ..placed_reading(&args.placement, &args.dialect, &args.files)?
     };
-    let mut samples = Pipeline::new(model, config).tool_samples(&source, kind, |_| {})?;
-    let tool = samples.tool();
-    let mut overlay = viewer.overlay(tool);
-    let max_power = model.robot().tool.max_power;
-    for sample in samples {
-        let (sample, state) = sample?;
-        if !overlay.push(&sample, state.strength(tool, max_power)) {
-            break;
-        }
-        viewer.push_path_sample(sample.t, sample.pose, sample.line, sample.gripper);
-    }
-    if overlay.ends_apart_from(duration, viewer.time_step().unwrap_or(0.0)) {
-        let (name, end) = (source.name(), overlay.end());
+    if let Some(end) = viewer.add_program(model, config, &source, kind)? {
+        let name = source.name();
         report(
             Level::Warning,
             format_args!(
@@ -151,10 +139,6 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
                  --grip-time, --origin or --fit?)"
             ),
         );
-    }
-    viewer.set_overlay(overlay);
-    if kind != ProgramKind::Path {
-        viewer.read_line_texts(source.open()?)?;
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
 }

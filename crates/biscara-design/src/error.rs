@@ -62,6 +62,26 @@ pub enum DesignError {
         /// The first index missing.
         index: u64,
     },
+    /// The time objective without programs to time.
+    #[error("--objective time needs --programs")]
+    NoPrograms,
+    /// No design meets what the best must: a rectangle, the task covered (`task`), the
+    /// programs or the cycle run (by `objective`).
+    #[error(
+        "no design has a rectangle{}{}",
+        if *task { " and covers the task" } else { "" },
+        match objective {
+            crate::Objective::Time => " and runs the programs",
+            crate::Objective::Cycle => " and runs the Adept cycle",
+            _ => "",
+        }
+    )]
+    NoneChosen {
+        /// Whether the designs had to cover a task rectangle.
+        task: bool,
+        /// What the best design maximises.
+        objective: crate::Objective,
+    },
     /// Reading or writing failed.
     #[error(transparent)]
     Io(#[from] std::io::Error),

@@ -33,6 +33,7 @@ mod csv;
 mod error;
 mod evaluate;
 mod grid;
+mod request;
 mod select;
 mod sweep;
 mod time;
@@ -41,6 +42,7 @@ pub use csv::{COLUMNS, Columns, RowReader, header, merge, parse_row, read_header
 pub use error::{CsvFault, DesignError, MergeFault};
 pub use evaluate::{DesignStatus, Evaluation, Evaluator, conditioning, covers, lci};
 pub use grid::{Design, DesignGrid, MAX_DESIGNS, ParamRange, Shard, Task};
+pub use request::SweepRequest;
 pub use select::{AtlasValue, Best, Collector, Objective, ParetoFront, SweepOutcome, eligible};
 pub use sweep::{Sweep, SweepOptions};
 pub use time::ProgramTimer;

@@ -30,6 +30,8 @@
 mod environment;
 mod input;
 mod output;
+mod robot;
+mod source;
 
 use std::path::{Path, PathBuf};
 
@@ -37,6 +39,8 @@ pub use environment::FileSystem;
 pub use indicatif::ProgressBar;
 pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
 pub use output::{catch_interrupts, on_interrupt, write_output};
+pub use robot::{load_meshes, load_robot, load_scene, resolve_meshes};
+pub use source::FileSource;
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]
@@ -64,6 +68,14 @@ pub enum FileError {
         path: String,
         /// What the system said.
         source: std::io::Error,
+    },
+    /// A file's content is wrong: `message` starts with the line (and column) when it has one.
+    #[error("{path}:{message}")]
+    Located {
+        /// The path as shown to users.
+        path: String,
+        /// What is wrong, from the reader of the content.
+        message: String,
     },
     /// Writing the content failed (a full disk, a closed pipe).
     #[error(transparent)]

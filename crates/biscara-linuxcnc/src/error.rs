@@ -56,6 +56,19 @@ pub enum LinuxcncError {
         /// What is wrong.
         message: String,
     },
+    /// Occurs when a run was stopped early (an E-stop, the machine switched off, a following
+    /// error): what the joints did is still written.
+    #[error("{program}: {what} at {time:.3} s: {held} (what they did is written)")]
+    Stopped {
+        /// The program (or stream) run.
+        program: String,
+        /// What stopped it.
+        what: String,
+        /// When, s after the start.
+        time: f64,
+        /// Where the joints held.
+        held: String,
+    },
     /// Occurs when a joint CSV to stream breaks a rule: `FILE:LINE: what`.
     #[error("{file}:{line}: {message}")]
     StreamCsv {

@@ -6,18 +6,18 @@ use std::fs;
 use std::io::{BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use biscara_files::{FileError, display_path, write_output};
+use biscara_files::{FileError, FileSource, display_path, write_output};
 use biscara_joints::{JointCsvFormat, JointCsvWriter};
-use biscara_kinematics::{Joints, RobotModel};
+use biscara_kinematics::{Joints, RobotModel, ToolKind};
 use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
 use biscara_robot::{Bounds, Rectangle};
 
 use crate::config::check_region;
 use crate::runner::{self, ComponentStatus, RunRequest, TempFolder};
 use crate::{
-    ConfigOptions, Configuration, INI_FILE, LinuxcncError, ROBOT_FILE, RecordingStart,
-    RecordingSummary, Region, SERVO_PERIOD, configuration, configuration_robot, grow, ini_value,
-    read_recording, write_stream_sample,
+    AxisLimitSource, ConfigOptions, Configuration, INI_FILE, LinuxcncError, ROBOT_FILE,
+    RecordingStart, RecordingSummary, Region, SERVO_PERIOD, configuration, configuration_robot,
+    grow, ini_value, read_recording, write_stream_sample,
 };
 
 /// What a run plays through the stream path before any G-code.
@@ -68,6 +68,8 @@ pub struct Finished {
     run: runner::Run,
     model: RobotModel,
     start: RecordingStart,
+    /// What the run played: `PROGRAM` or the stream path's (`--stream`, `--stream-csv`).
+    program: PathBuf,
 }
 
 impl Finished {
@@ -80,6 +82,41 @@ impl Finished {
     /// The robot the job ran (the configuration's).
     pub fn model(&self) -> &RobotModel {
         &self.model
+    }
+
+    /// The note on what was recorded: `LinuxCNC ran|streamed PROGRAM: D s, N samples of 1 ms`.
+    pub fn note(&self, summary: &RecordingSummary) -> String {
+        let what = if self.streamed() { "streamed" } else { "ran" };
+        format!(
+            "LinuxCNC {what} {}: {:.3} s, {} samples of 1 ms",
+            display_path(&self.program),
+            summary.duration,
+            summary.samples
+        )
+    }
+
+    /// Whether the job played a stream (its recording starts at the stream's first sample).
+    fn streamed(&self) -> bool {
+        self.start == RecordingStart::Stream
+    }
+
+    /// The error of a run [stopped](Self::stop) early, when it was: what stopped it, when, and
+    /// where the joints held (`summary`: what [`write_joints`](Self::write_joints) returned).
+    pub fn stopped(&self, summary: Option<&RecordingSummary>) -> Option<LinuxcncError> {
+        let stop = self.stop()?;
+        let held = match summary {
+            Some(summary) if self.streamed() => format!(
+                "the stream's last sample played at {:.3} s, the joints held from there",
+                summary.streamed.saturating_sub(1) as f64 * SERVO_PERIOD
+            ),
+            _ => "the joints held where LinuxCNC stopped them".to_owned(),
+        };
+        Some(LinuxcncError::Stopped {
+            program: display_path(&self.program),
+            what: stop.what.clone(),
+            time: stop.time,
+            held,
+        })
     }
 
     /// LinuxCNC's messages that were not errors.
@@ -126,6 +163,109 @@ impl Finished {
         })?;
         Ok(())
     }
+}
+
+/// Where a configuration's region comes from, as the command line chooses it.
+pub enum RegionChoice<'a> {
+    /// None: the workspace rectangle, soft limits at the robot's reach.
+    Workspace,
+    /// A program's extent plus a margin ([`program_region`]).
+    Program {
+        /// The program file (its kind from its name and first bytes).
+        program: &'a Path,
+        /// How it is placed (its origin, or fitted).
+        sampling: SamplingConfig,
+        /// The margin around its extent, mm (0 or more).
+        margin: f64,
+    },
+    /// A rectangle `[x0, x1, y0, y1]` (mm), the robot parked at its centre.
+    Rectangle([f64; 4]),
+}
+
+/// How a configuration is made, as `linuxcnc config` and `linuxcnc run` choose it.
+pub struct ConfigRequest<'a> {
+    /// The tool whose codes the HAL wires (`None`: the robot file's, else the gripper).
+    pub tool: Option<ToolKind>,
+    /// Where the axis limits come from.
+    pub limits: AxisLimitSource,
+    /// The region the job stays in.
+    pub region: RegionChoice<'a>,
+}
+
+impl ConfigRequest<'_> {
+    /// The configuration's options for `model`; a program's region is measured with the
+    /// pipeline (its notes to `notes`).
+    pub fn options<E: From<LinuxcncError> + From<PipelineError>>(
+        self,
+        model: &RobotModel,
+        notes: impl FnMut(Note) + 'static,
+    ) -> Result<ConfigOptions, E> {
+        let tool = self.tool.or(model.robot().tool.kind).unwrap_or(ToolKind::Gripper);
+        let region = match self.region {
+            RegionChoice::Workspace => None,
+            RegionChoice::Program { margin, .. } if !(margin >= 0.0 && margin.is_finite()) => {
+                return Err(LinuxcncError::Usage {
+                    message: format!("--margin must be a number of mm, 0 or more (got {margin})"),
+                }
+                .into());
+            }
+            RegionChoice::Program { program, sampling, margin } => {
+                let source = FileSource::new(program);
+                let kind = source.kind(None).map_err(LinuxcncError::from)?;
+                Some(program_region::<E>(model, &source, kind, sampling, margin, notes)?)
+            }
+            RegionChoice::Rectangle([x0, x1, y0, y1]) => {
+                let [_, _, z, _] = model.home_position();
+                Some(Region {
+                    rectangle: Rectangle { min: [x0, y0], max: [x1, y1] },
+                    origin: format!("--region {x0}:{x1},{y0}:{y1}"),
+                    park: Some([0.5 * (x0 + x1), 0.5 * (y0 + y1), z, 0.0]),
+                })
+            }
+        };
+        Ok(ConfigOptions { tool, limits: self.limits, region, ..ConfigOptions::default() })
+    }
+}
+
+/// Reads a region `X0:X1,Y0:Y1` (mm) as `[x0, x1, y0, y1]`, each range from its smaller end.
+pub fn parse_region(text: &str) -> Result<[f64; 4], String> {
+    let bad = || format!("expected X0:X1,Y0:Y1 (mm), found `{text}`");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    let range = |range: &str| -> Result<[f64; 2], String> {
+        let (a, b) = range.split_once(':').ok_or_else(bad)?;
+        let number = |value: &str| {
+            value
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|value| value.is_finite())
+                .ok_or_else(|| format!("`{}` is not a finite number", value.trim()))
+        };
+        let (a, b) = (number(a)?, number(b)?);
+        if a >= b {
+            return Err(format!("the range {a}:{b} is empty: give its smaller end first"));
+        }
+        Ok([a, b])
+    };
+    let ([x0, x1], [y0, y1]) = (range(x)?, range(y)?);
+    Ok([x0, x1, y0, y1])
+}
+
+/// The note on a configuration written into `folder`: its files, its axis limits and how to
+/// install its kinematics component.
+pub fn written_note(configuration: &Configuration, folder: &Path) -> String {
+    let limits = &configuration.limits;
+    format!(
+        "wrote {} files into {}; axis limits: X and Y {:.1} mm/s, {:.1} mm/s², Z {:.1} mm/s, \
+         C {:.1} °/s; install the kinematics once with `halcompile --install {}`",
+        configuration.files.len(),
+        display_path(folder),
+        limits.xy_velocity,
+        limits.xy_acceleration,
+        limits.z_velocity,
+        limits.c_velocity,
+        display_path(&folder.join("biscarakins.comp")),
+    )
 }
 
 /// Writes `configuration` into `folder` (created if missing; its files replaced, each whole or
@@ -310,6 +450,16 @@ pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
     notes: impl FnMut(Note) + 'static,
     say: &mut dyn FnMut(String),
 ) -> Result<Finished, E> {
+    if let Some((_, at)) = job.event
+        && !(at >= 0.0 && at.is_finite())
+    {
+        return Err(LinuxcncError::Usage {
+            message: format!(
+                "--estop-at and --machine-off-at take a time in seconds, 0 or more (got {at})"
+            ),
+        }
+        .into());
+    }
     if !(job.timeout > 0.0 && job.timeout.is_finite()) {
         return Err(LinuxcncError::Usage {
             message: format!(
@@ -384,7 +534,8 @@ pub fn run_job<E: From<LinuxcncError> + From<PipelineError>>(
         let name = display_path(program.as_deref().unwrap_or(job.program));
         return Err(LinuxcncError::Refused { program: name, line, message }.into());
     }
-    Ok(Finished { run, model, start })
+    let program = job.program.to_owned();
+    Ok(Finished { run, model, start, program })
 }
 
 /// The program line a LinuxCNC message names (`… on line 12 …`).
@@ -399,6 +550,56 @@ pub fn line_of(messages: &[&str]) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_region_reads_two_ranges_each_from_its_smaller_end() {
+        assert_eq!(parse_region("-100:100, 250:400"), Ok([-100.0, 100.0, 250.0, 400.0]));
+        assert_eq!(parse_region("0:1"), Err("expected X0:X1,Y0:Y1 (mm), found `0:1`".to_owned()));
+        assert_eq!(parse_region("0:x,1:2"), Err("`x` is not a finite number".to_owned()));
+        let empty = parse_region("5:5,1:2").expect_err("empty");
+        assert_eq!(empty, "the range 5:5 is empty: give its smaller end first");
+    }
+
+    /// Either error of [`ConfigRequest::options`].
+    #[derive(Debug)]
+    #[allow(dead_code, reason = "read by Debug when a test fails")]
+    enum Failed {
+        Linuxcnc(LinuxcncError),
+        Pipeline(PipelineError),
+    }
+
+    impl From<LinuxcncError> for Failed {
+        fn from(err: LinuxcncError) -> Failed {
+            Failed::Linuxcnc(err)
+        }
+    }
+
+    impl From<PipelineError> for Failed {
+        fn from(err: PipelineError) -> Failed {
+            Failed::Pipeline(err)
+        }
+    }
+
+    #[test]
+    fn a_config_request_sets_the_tool_and_the_region() {
+        let model = RobotModel::default();
+        let request = |region| ConfigRequest {
+            tool: Some(ToolKind::Laser),
+            limits: AxisLimitSource::Cartesian,
+            region,
+        };
+        let options: ConfigOptions = request(RegionChoice::Rectangle([-10.0, 10.0, 300.0, 320.0]))
+            .options::<Failed>(&model, |_| {})
+            .expect("options");
+        assert_eq!((options.tool, options.limits), (ToolKind::Laser, AxisLimitSource::Cartesian));
+        let region = options.region.expect("a region");
+        assert_eq!(region.rectangle, Rectangle { min: [-10.0, 300.0], max: [10.0, 320.0] });
+        assert_eq!(region.origin, "--region -10:10,300:320");
+        assert_eq!(region.park.map(|p| [p[0], p[1], p[3]]), Some([0.0, 310.0, 0.0]));
+        let options: ConfigOptions =
+            request(RegionChoice::Workspace).options::<Failed>(&model, |_| {}).expect("ok");
+        assert_eq!(options.region, None);
+    }
 
     #[test]
     fn the_line_is_the_first_line_number_a_message_names() {

@@ -35,6 +35,7 @@
 //! # Ok::<(), biscara_pipeline::PipelineError>(())
 //! ```
 
+mod check;
 mod csv;
 mod error;
 mod generate;

@@ -184,7 +184,8 @@ impl<'m> Pipeline<'m> {
     /// The program's Cartesian samples ([`Pipeline::samples`]) with the tool's state at each
     /// (`--events`, docs/motion.md): a wrapper over the motions records the tool's events as the
     /// interpolator reads them, and one over the samples gives each its state. Streaming. A path
-    /// CSV has no tool events: its samples carry the gripper column it has.
+    /// CSV has no tool events: its samples carry the gripper column it has. A sample past the
+    /// configured [`time_limit`](SamplingConfig::time_limit) is a [`PipelineError::TimeLimit`].
     pub fn tool_samples(
         &self,
         source: &dyn ProgramSource,
@@ -196,7 +197,8 @@ impl<'m> Pipeline<'m> {
         let recorder = (Rc::clone(&tool), Rc::clone(&track));
         let samples = self.recorded_samples(source, kind, NoteSink::new(notes), Some(recorder))?;
         let track = track.borrow_mut().take().unwrap_or_default();
-        Ok(ToolSamples::new(samples, track, tool))
+        let limit = (source.name().to_owned(), self.config.time_limit);
+        Ok(ToolSamples::new(samples, track, tool, limit))
     }
 
     fn recorded_samples(

@@ -184,11 +184,19 @@ pub struct ToolSamples {
     tool: Rc<Cell<Option<Tool>>>,
     current: Option<Entry>,
     peeked: VecDeque<Result<CartesianSample, PipelineError>>,
+    /// The program's name and the configured time limit, s: the first sample past it is an
+    /// error.
+    limit: (String, f64),
 }
 
 impl ToolSamples {
-    pub(crate) fn new(samples: Samples, track: Track, tool: Rc<Cell<Option<Tool>>>) -> Self {
-        ToolSamples { samples, track, tool, current: None, peeked: VecDeque::new() }
+    pub(crate) fn new(
+        samples: Samples,
+        track: Track,
+        tool: Rc<Cell<Option<Tool>>>,
+        limit: (String, f64),
+    ) -> Self {
+        ToolSamples { samples, track, tool, current: None, peeked: VecDeque::new(), limit }
     }
 
     /// The tool: the flag's or the robot file's, else the one the program's events show (read
@@ -247,9 +255,14 @@ impl Iterator for ToolSamples {
             Some(sample) => sample,
             None => self.samples.next()?,
         };
-        Some(sample.map(|sample| {
+        Some(sample.and_then(|sample| {
+            let (file, limit) = &self.limit;
+            if sample.t > *limit {
+                let (file, line, limit) = (file.clone(), sample.line, *limit);
+                return Err(PipelineError::TimeLimit { file, line, limit });
+            }
             let state = self.state(&sample);
-            (sample, state)
+            Ok((sample, state))
         }))
     }
 }

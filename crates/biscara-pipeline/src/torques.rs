@@ -11,7 +11,7 @@ impl Pipeline<'_> {
     /// motors' torques `[τ1, τ2, τ3 (N·m), f_d4 (N)]`: `dynamics`' inverse dynamics of the
     /// sample's own position, velocity and acceleration, with the payload while the gripper
     /// holds it, as `joints --torques` writes them. Streaming; stops at the first error,
-    /// `each`'s included.
+    /// `each`'s included, and at the first sample past the configured time limit.
     pub fn for_each_torque(
         &self,
         source: &dyn ProgramSource,
@@ -25,6 +25,7 @@ impl Pipeline<'_> {
         let mut samples = self.joints(source, kind, notes)?;
         while let Some(row) = samples.next_sample() {
             let row = row?;
+            self.within_time_limit(&file, row.t, row.line)?;
             let held = if row.gripper { payload } else { 0.0 };
             each(row, sample_torques(dynamics, row, held, &file)?)?;
         }

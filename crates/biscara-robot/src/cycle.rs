@@ -2,12 +2,15 @@
 //! virtual robot, with its motors' torques against their ratings.
 
 use std::convert::Infallible;
+use std::fmt;
 
 use biscara_dynamics::{Dynamics, DynamicsError};
 use biscara_interpolate::{InterpolationConfig, Interpolator, Profile, SlowDown};
 use biscara_joints::{JointSpeedLimit, JointTrajectory, JointsError, cartesian_limits};
-use biscara_kinematics::{Pose, Robot, RobotError, RobotModel};
+use biscara_kinematics::{Joint, Pose, Robot, RobotError, RobotModel};
 use biscara_motion::{Motion, MotionKind};
+use biscara_text::{fixed, round_to};
+use serde_json::{Value, json};
 
 use crate::{VirtualRobotError, Workspace};
 
@@ -81,6 +84,99 @@ impl CycleReport {
     /// [`dwell_s`](Self::dwell_s) is.
     pub fn sustained_cycles_per_min(&self) -> Option<f64> {
         self.dwell_s.map(|dwell| 60.0 / (self.cycle_s + dwell))
+    }
+
+    /// The report as JSON: `{"cycle_s","at":[x,y],"z","payload_kg","peak":{…},"rms":{…},
+    /// "dwell_s","sustained_cycles_per_min"}`, each joint's torque as `{"value","limit","unit"}`,
+    /// numbers rounded to 6 decimals (`null` where a figure is unknown).
+    pub fn to_json(&self) -> Value {
+        let (mut peak, mut rms) = (serde_json::Map::new(), serde_json::Map::new());
+        for (joint, motor) in Joint::ALL.into_iter().zip(&self.motors) {
+            let [peak_limit, rated] = match motor.ratings {
+                Some([peak, rated]) => [round6(peak), round6(rated)],
+                None => [Value::Null, Value::Null],
+            };
+            let name = joint.name().to_owned();
+            let unit = torque_unit(joint);
+            peak.insert(
+                name.clone(),
+                json!({"value": round6(motor.peak), "limit": peak_limit, "unit": unit}),
+            );
+            rms.insert(name, json!({"value": round6(motor.rms), "limit": rated, "unit": unit}));
+        }
+        json!({
+            "cycle_s": round6(self.cycle_s),
+            "at": [round6(self.at[0]), round6(self.at[1])],
+            "z": round6(self.z),
+            "payload_kg": round6(self.payload_kg),
+            "peak": peak,
+            "rms": rms,
+            "dwell_s": self.dwell_s.map(round6),
+            "sustained_cycles_per_min": self.sustained_cycles_per_min().map(round6),
+        })
+    }
+}
+
+/// A number rounded to 6 decimals, for JSON.
+fn round6(value: f64) -> Value {
+    json!(round_to(value, 6))
+}
+
+/// The unit of a joint's torque: N·m for a revolute joint, N for the prismatic d4.
+fn torque_unit(joint: Joint) -> &'static str {
+    if joint.is_revolute() { "N·m" } else { "N" }
+}
+
+/// The report as `biscara cycle` prints it: the cycle, its time, each motor's peak and RMS
+/// torque against its ratings, and the sustained rate (or why there is none).
+impl fmt::Display for CycleReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "Adept cycle at ({}, {}) mm, z {} mm, payload {} kg: 25 mm up, 305 mm across, 25 mm \
+             down and back",
+            fixed(self.at[0], 3),
+            fixed(self.at[1], 3),
+            fixed(self.z, 3),
+            self.payload_kg
+        )?;
+        writeln!(f, "cycle time: {} s", fixed(self.cycle_s, 3))?;
+        writeln!(f, "motor torques (peak against peak, RMS against rated):")?;
+        for (joint, motor) in Joint::ALL.into_iter().zip(&self.motors) {
+            let unit = torque_unit(joint);
+            let (peak_limit, rated) = match motor.ratings {
+                Some([peak, rated]) => (format!(" (peak {peak})"), format!(" (rated {rated})")),
+                None => (String::new(), String::new()),
+            };
+            writeln!(
+                f,
+                "  {:<7} peak {:>10} {unit}{peak_limit}, RMS {:>10} {unit}{rated}",
+                joint.name(),
+                fixed(motor.peak, 3),
+                fixed(motor.rms, 3),
+            )?;
+        }
+        match (self.dwell_s, self.sustained_cycles_per_min()) {
+            (Some(dwell), Some(rate)) if dwell > 0.0 => writeln!(
+                f,
+                "sustained: {} cycles/min, with a dwell of {} s after each cycle (RMS within \
+                 rated)",
+                fixed(rate, 1),
+                fixed(dwell, 3)
+            ),
+            (Some(_), Some(rate)) => writeln!(
+                f,
+                "sustained: {} cycles/min, back to back (RMS within rated)",
+                fixed(rate, 1)
+            ),
+            _ if self.motors[0].ratings.is_none() => {
+                writeln!(f, "sustained: unknown: the robot file has no motors")
+            }
+            _ => writeln!(
+                f,
+                "sustained: none: a motor's torque holding the robot at rest is beyond its rating"
+            ),
+        }
     }
 }
 
@@ -294,6 +390,49 @@ mod tests {
         assert_eq!(dwell_of(1.0), None);
         // Within the rating: no dwell needed.
         assert_eq!(super::dwell(1.0, &[0.5; 4], &[0.9; 4], &[1.0; 4]), Some(0.0));
+    }
+
+    fn report(ratings: Option<[f64; 2]>, dwell_s: Option<f64>) -> CycleReport {
+        let motor = CycleMotor { peak: 2.5, rms: 1.25, holding: 0.0, ratings };
+        CycleReport {
+            cycle_s: 0.5,
+            at: [10.0, 250.0],
+            z: 40.0,
+            payload_kg: 2.0,
+            motors: [motor; 4],
+            dwell_s,
+        }
+    }
+
+    #[test]
+    fn the_report_prints_its_figures_and_the_sustained_rate() {
+        let text = report(Some([3.0, 1.0]), Some(0.5)).to_string();
+        assert!(text.starts_with("Adept cycle at (10.000, 250.000) mm, z 40.000 mm, payload 2 kg"));
+        assert!(text.contains("cycle time: 0.500 s\n"));
+        assert!(
+            text.contains("  theta1  peak      2.500 N·m (peak 3), RMS      1.250 N·m (rated 1)\n")
+        );
+        assert!(text.contains("  d4      peak      2.500 N (peak 3)"));
+        // 60 / (0.5 + 0.5) cycles a minute.
+        assert!(text.ends_with("sustained: 60.0 cycles/min, with a dwell of 0.500 s after each cycle (RMS within rated)\n"));
+        let text = report(Some([3.0, 1.0]), Some(0.0)).to_string();
+        assert!(text.ends_with("sustained: 120.0 cycles/min, back to back (RMS within rated)\n"));
+        assert!(
+            report(None, None).to_string().ends_with("unknown: the robot file has no motors\n")
+        );
+        assert!(report(Some([3.0, 1.0]), None).to_string().ends_with("beyond its rating\n"));
+    }
+
+    #[test]
+    fn the_json_report_has_each_joint_with_its_unit_and_limits() {
+        let json = report(Some([3.0, 1.0]), Some(0.5)).to_json();
+        assert_eq!(json["cycle_s"], 0.5);
+        assert_eq!(json["peak"]["theta2"]["limit"], 3.0);
+        assert_eq!(json["rms"]["d4"], json!({"value": 1.25, "limit": 1.0, "unit": "N"}));
+        assert_eq!(json["sustained_cycles_per_min"], 60.0);
+        let json = report(None, None).to_json();
+        assert_eq!(json["peak"]["theta1"]["limit"], Value::Null);
+        assert_eq!(json["dwell_s"], Value::Null);
     }
 
     fn dwell_of(holding: f64) -> Option<f64> {

@@ -31,6 +31,7 @@ mod error;
 mod html;
 mod mjcf;
 mod plot;
+mod program;
 mod stl;
 mod trace;
 mod work;
@@ -44,6 +45,7 @@ pub use plot::{
     draw_top_view, draw_workspace, zoom_region,
 };
 pub use plot::{TorqueCurves, draw_torques};
+pub use program::{TracedProgram, trace_program};
 pub use stl::{BinaryFault, MAX_MESH_TRIANGLES, StlError, StlMesh, read_stl};
 pub use trace::ProgramTrace;
 pub use work::{MAX_WORK_POINTS, ProgramOverlay, ToolWork, WorkPoint};

@@ -392,4 +392,30 @@ fn sampling_stops_at_the_time_limit() {
         .write_joint_csv(&source, ProgramKind::Gcode, &mut Vec::new(), format, true, |_| {})
         .expect_err("endless");
     assert!(err.to_string().contains("past the time limit"), "{err}");
+    // `check` and `plot` read the tool's samples, and `plot --torques` the torques: the same
+    // limit, at the first sample past it.
+    let samples = pipeline.tool_samples(&source, ProgramKind::Gcode, |_| {}).expect("samples");
+    let mut last = 0.0;
+    let err = samples
+        .map(|sample| sample.map(|(sample, _)| last = sample.t))
+        .collect::<Result<Vec<()>, _>>()
+        .expect_err("endless");
+    assert!(matches!(err, PipelineError::TimeLimit { limit: 2.0, .. }), "{err}");
+    assert!((last - 2.0).abs() < 1e-9, "the last sample within the limit is at {last} s");
+    let dynamics = biscara_dynamics::Dynamics::new(&model).expect("dynamics");
+    let mut rows = 0;
+    let err = pipeline
+        .for_each_torque(
+            &source,
+            ProgramKind::Gcode,
+            &dynamics,
+            |_| {},
+            |_, _| {
+                rows += 1;
+                Ok(())
+            },
+        )
+        .expect_err("endless");
+    assert!(err.to_string().contains("past the time limit"), "{err}");
+    assert_eq!(rows, 2001, "the rows from 0 to 2 s");
 }
