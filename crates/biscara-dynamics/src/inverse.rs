@@ -39,6 +39,20 @@ pub struct PathCoefficients {
     pub c: [f64; 4],
 }
 
+/// The five-bar solved at one pose θ1, θ2 ([`Dynamics::linkage`]): the links' directions and the
+/// loop closure's matrix, for evaluating the inverse dynamics at that pose for several rates
+/// ([`Dynamics::linkage_torques`]) with one forward solve.
+#[derive(Debug, Clone, Copy)]
+pub struct Linkage {
+    /// Unit vectors along the proximal (`e`) and distal (`u`) links of chains 1 and 2.
+    e1: V2,
+    u1: V2,
+    e2: V2,
+    u2: V2,
+    /// 1 / det A, A the loop closure's matrix with rows u1, u2.
+    inverse_det: f64,
+}
+
 /// A 2-vector, for the planar arithmetic done by hand (this runs per sample).
 #[derive(Debug, Clone, Copy)]
 struct V2(f64, f64);
@@ -111,6 +125,9 @@ impl Dynamics {
     /// Rigid-body inverse dynamics with gravity and the motors' rotor inertia, no friction.
     /// q = [θ1, θ2, θ3 (rad), d4 (mm)], qd in rad/s and mm/s, qdd in rad/s² and mm/s².
     /// Returns [τ1, τ2, τ3 (N·m), f_d4 (N)]. Error when the pose cannot be assembled.
+    ///
+    /// The same as [`Dynamics::linkage`] of θ1, θ2 followed by [`Dynamics::linkage_torques`],
+    /// bit for bit: callers that evaluate one pose at several rates solve it once that way.
     pub fn rigid_torques(
         &self,
         q: [f64; 4],
@@ -122,15 +139,32 @@ impl Dynamics {
         if !sum.is_finite() {
             return Err(not_finite(q, qd, qdd, payload_kg));
         }
-        let degrees = |theta1: f64, theta2: f64| (theta1.to_degrees(), theta2.to_degrees());
-        let planar = self.kinematics.planar(q[0], q[1]).map_err(|source| {
-            let (theta1_deg, theta2_deg) = degrees(q[0], q[1]);
+        let linkage = self.solve(q[0], q[1])?;
+        Ok(self.evaluate(&linkage, qd, qdd, payload_kg))
+    }
+
+    /// The five-bar solved at θ1, θ2 (rad): the forward solve and the loop closure's matrix, what
+    /// [`Dynamics::linkage_torques`] needs of the pose. Error when the pose cannot be assembled
+    /// or is a parallel singularity.
+    #[inline]
+    pub fn linkage(&self, theta1: f64, theta2: f64) -> Result<Linkage, DynamicsError> {
+        for (what, value) in [("theta1", theta1), ("theta2", theta2)] {
+            if !value.is_finite() {
+                return Err(DynamicsError::NotFinite { what });
+            }
+        }
+        self.solve(theta1, theta2)
+    }
+
+    /// [`Dynamics::linkage`] without checking θ1 and θ2 (its callers have).
+    #[inline(always)]
+    fn solve(&self, theta1: f64, theta2: f64) -> Result<Linkage, DynamicsError> {
+        let degrees = || (theta1.to_degrees(), theta2.to_degrees());
+        let planar = self.kinematics.planar(theta1, theta2).map_err(|source| {
+            let (theta1_deg, theta2_deg) = degrees();
             DynamicsError::Assembly { theta1_deg, theta2_deg, source }
         })?;
-        let (l1, l2) = (self.l1, self.l2);
-        // Unit vectors: e_i along the proximal link, u_i along the distal link; e'_i and n_i
-        // are them turned by +90° (the directions in which the elbow and the tool point move
-        // when the link turns).
+        // Unit vectors: e_i along the proximal link, u_i along the distal link.
         let unit = |chain: Chain| {
             let proximal = planar.proximal(chain) * self.inverse_l1_mm;
             let distal = planar.distal(chain) * self.inverse_l2_mm;
@@ -138,14 +172,47 @@ impl Dynamics {
         };
         let (e1, u1) = unit(Chain::One);
         let (e2, u2) = unit(Chain::Two);
-        let (e1p, e2p, n1, n2) = (e1.perp(), e2.perp(), u1.perp(), u2.perp());
         // Loop closure: u_i · Ṗ = u_i · Ė_i, i.e. A·Ṗ = diag(b)·θ̇ with A's rows u1, u2.
         let det = u1.0 * u2.1 - u1.1 * u2.0;
         if det.abs() < 1e-9 {
-            let (theta1_deg, theta2_deg) = degrees(q[0], q[1]);
+            let (theta1_deg, theta2_deg) = degrees();
             return Err(DynamicsError::Singular { theta1_deg, theta2_deg });
         }
-        let inverse_det = 1.0 / det;
+        Ok(Linkage { e1, u1, e2, u2, inverse_det: 1.0 / det })
+    }
+
+    /// [`Dynamics::rigid_torques`] at the pose `linkage` was solved at ([`Dynamics::linkage`]
+    /// of its θ1, θ2; θ3 and d4 play no part in the torques): no forward solve. Error when a
+    /// rate or the payload is not finite.
+    #[inline]
+    pub fn linkage_torques(
+        &self,
+        linkage: &Linkage,
+        qd: [f64; 4],
+        qdd: [f64; 4],
+        payload_kg: f64,
+    ) -> Result<[f64; 4], DynamicsError> {
+        let sum: f64 = qd.iter().chain(&qdd).sum::<f64>() + payload_kg;
+        if !sum.is_finite() {
+            return Err(not_finite([0.0; 4], qd, qdd, payload_kg));
+        }
+        Ok(self.evaluate(linkage, qd, qdd, payload_kg))
+    }
+
+    /// [`Dynamics::linkage_torques`] without checking the rates (its callers have).
+    #[inline(always)]
+    fn evaluate(
+        &self,
+        linkage: &Linkage,
+        qd: [f64; 4],
+        qdd: [f64; 4],
+        payload_kg: f64,
+    ) -> [f64; 4] {
+        let (l1, l2) = (self.l1, self.l2);
+        let Linkage { e1, u1, e2, u2, inverse_det } = *linkage;
+        // e'_i and n_i are e_i and u_i turned by +90° (the directions in which the elbow and
+        // the tool point move when the link turns).
+        let (e1p, e2p, n1, n2) = (e1.perp(), e2.perp(), u1.perp(), u2.perp());
         let solve = |r1: f64, r2: f64| {
             V2((u2.1 * r1 - u1.1 * r2) * inverse_det, (u1.0 * r2 - u2.0 * r1) * inverse_det)
         };
@@ -194,7 +261,7 @@ impl Dynamics {
         let tau3 = tool_moment + self.rotor[2] * qdd[2];
         let vertical_mass = bodies.slide + payload_kg;
         let f_d4 = (vertical_mass + self.rotor[3]) * qdd[3] * 1e-3 - vertical_mass * bodies.gravity;
-        Ok([tau1, tau2, tau3, f_d4])
+        [tau1, tau2, tau3, f_d4]
     }
 
     /// The rigid torques along a path q(s) in the form time-optimal planning takes:
@@ -209,9 +276,15 @@ impl Dynamics {
         d2q_ds2: [f64; 4],
         payload_kg: f64,
     ) -> Result<PathCoefficients, DynamicsError> {
-        let c = self.rigid_torques(q, [0.0; 4], [0.0; 4], payload_kg)?;
-        let a = self.rigid_torques(q, [0.0; 4], dq_ds, payload_kg)?;
-        let b = self.rigid_torques(q, dq_ds, d2q_ds2, payload_kg)?;
+        let sum: f64 = q.iter().chain(&dq_ds).chain(&d2q_ds2).sum::<f64>() + payload_kg;
+        if !sum.is_finite() {
+            return Err(not_finite(q, dq_ds, d2q_ds2, payload_kg));
+        }
+        // One forward solve for the three evaluations.
+        let linkage = self.solve(q[0], q[1])?;
+        let c = self.evaluate(&linkage, [0.0; 4], [0.0; 4], payload_kg);
+        let a = self.evaluate(&linkage, [0.0; 4], dq_ds, payload_kg);
+        let b = self.evaluate(&linkage, dq_ds, d2q_ds2, payload_kg);
         Ok(PathCoefficients {
             a: std::array::from_fn(|joint| a[joint] - c[joint]),
             b: std::array::from_fn(|joint| b[joint] - c[joint]),
@@ -505,6 +578,29 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// The five-bar solved once and evaluated at several rates gives `rigid_torques`'s
+        /// torques bit for bit (the planner relies on it to keep its plans).
+        #[test]
+        fn linkage_torques_are_rigid_torques_bit_for_bit(
+            theta in prop::array::uniform2(-0.9f64..0.9),
+            q34 in prop::array::uniform2(-100.0f64..100.0),
+            qd in prop::array::uniform4(-20.0f64..20.0),
+            qdd in prop::array::uniform4(-500.0f64..500.0),
+            payload in 0.0f64..2.0,
+        ) {
+            let dynamics = Dynamics::new(&example_robot()).unwrap();
+            let q = [theta[0], theta[1], q34[0], q34[1]];
+            match dynamics.linkage(q[0], q[1]) {
+                Ok(linkage) => {
+                    let bits = |tau: [f64; 4]| tau.map(f64::to_bits);
+                    let once = dynamics.linkage_torques(&linkage, qd, qdd, payload).unwrap();
+                    let full = dynamics.rigid_torques(q, qd, qdd, payload).unwrap();
+                    prop_assert_eq!(bits(once), bits(full));
+                }
+                Err(err) => prop_assert_eq!(dynamics.rigid_torques(q, qd, qdd, payload), Err(err)),
+            }
+        }
 
         /// Statics anywhere: at rest, gravity (along −z) loads only d4, which holds
         /// −(slide + payload)·g; the θ motors give nothing, and there is no friction.

@@ -24,7 +24,7 @@ mod inverse;
 
 pub use biscara_kinematics::Motor;
 pub use bodies::{ALUMINIUM_DENSITY, Bodies, Link, STANDARD_GRAVITY, robot_in_force};
-pub use inverse::{Dynamics, PathCoefficients};
+pub use inverse::{Dynamics, Linkage, PathCoefficients};
 
 /// Why the dynamics cannot be built or a pose's torques cannot be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

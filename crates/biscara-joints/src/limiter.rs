@@ -4,7 +4,7 @@ use biscara_dynamics::{Dynamics, DynamicsError};
 use biscara_interpolate::{
     CartesianLimits, Constraint, JointBound, RateLimit, Segment, SpeedLimit,
 };
-use biscara_kinematics::{Joint, Kinematics, PlanarConfiguration, Pose, Robot, RobotModel};
+use biscara_kinematics::{Joint, Kinematics, PlanarConfiguration, Robot, RobotModel};
 
 use crate::torque::{MotorBound, torque_rows};
 
@@ -238,8 +238,9 @@ impl SpeedLimit for JointSpeedLimit {
         if self.torques.is_some() { 4 } else { 0 }
     }
 
-    /// The motors' torques along the path (`biscara_joints`' `torque` module): the pose's
-    /// joints by IK, the rows from three evaluations of the rigid-body inverse dynamics.
+    /// The motors' torques along the path (`biscara_joints`' `torque` module): the pose's θ1
+    /// and θ2 by IK, the five-bar solved there once ([`Dynamics::linkage`]), the rows from two
+    /// evaluations of the rigid-body inverse dynamics (the third, at rest, is known).
     fn torque_constraints(
         &mut self,
         first: &[f64],
@@ -250,14 +251,18 @@ impl SpeedLimit for JointSpeedLimit {
         if first.len() < 4 || second.len() < 4 {
             return false;
         }
+        // θ1 and θ2 alone (the torques do not depend on θ3 or d4), and the five-bar solved at
+        // them once for the two evaluations: bit for bit what `rigid_torques` of the pose's IK
+        // gives, without computing θ3 or solving the five-bar twice.
         let [x, y, z, c] = torques.pose;
-        let Ok(solution) = self.model.inverse(&Pose::from_degrees(x, y, z, c)) else {
+        if !(z.is_finite() && c.is_finite()) {
             return false;
-        };
-        let q = solution.joints.to_array();
-        let payload = if torques.holding { torques.payload_kg } else { 0.0 };
+        }
+        let Ok([theta1, theta2]) = self.model.actuated_angles(x, y) else { return false };
         let dynamics = &torques.dynamics;
-        let rigid = |qd, qdd| dynamics.rigid_torques(q, qd, qdd, payload).ok();
+        let Ok(linkage) = dynamics.linkage(theta1, theta2) else { return false };
+        let payload = if torques.holding { torques.payload_kg } else { 0.0 };
+        let rigid = |qd, qdd| dynamics.linkage_torques(&linkage, qd, qdd, payload).ok();
         let first = [first[0], first[1], first[2], first[3]];
         let second = [second[0], second[1], second[2], second[3]];
         let at_rest = torques.at_rest[usize::from(torques.holding)];

@@ -304,6 +304,24 @@ impl Kinematics {
         })
     }
 
+    /// θ1 and θ2 (rad) of the tool point (x, y) (mm), as [`Kinematics::inverse`] gives them,
+    /// bit for bit, without the rest of the solution (θ3 and the configuration): for callers
+    /// that hold the configuration already and need the actuated angles alone.
+    #[inline]
+    pub fn actuated_angles(&self, x: f64, y: f64) -> Result<[f64; 2], KinematicsError> {
+        for (what, value) in [("x", x), ("y", y)] {
+            if !value.is_finite() {
+                return Err(KinematicsError::NotFinite { what });
+            }
+        }
+        let (direction1, _) = self.chain_inverse(Chain::One, x, y)?;
+        let (direction2, _) = self.chain_inverse(Chain::Two, x, y)?;
+        Ok([
+            fit_into(libm::atan2(direction1.y, direction1.x), self.limits[0]),
+            fit_into(libm::atan2(direction2.y, direction2.x), self.limits[1]),
+        ])
+    }
+
     /// Inverse kinematics with every check a running robot needs: reachable in the working mode,
     /// in the robot's assembly mode, inside the joint limits and outside the singularity margin.
     pub fn inverse_checked(&self, pose: &Pose) -> Result<IkSolution, KinematicsError> {
@@ -601,6 +619,26 @@ mod tests {
 
     fn default_model() -> Kinematics {
         Kinematics::default()
+    }
+
+    proptest::proptest! {
+        /// The actuated angles alone are the full IK's, bit for bit (the torque-limited planner
+        /// relies on it to keep its plans), and fail where it fails.
+        #[test]
+        fn actuated_angles_are_the_inverses_bit_for_bit(
+            x in -700.0f64..700.0,
+            y in -300.0f64..800.0,
+        ) {
+            let model = default_model();
+            match model.inverse(&Pose::from_degrees(x, y, 0.0, 0.0)) {
+                Ok(solution) => {
+                    let [theta1, theta2] = model.actuated_angles(x, y).unwrap();
+                    proptest::prop_assert_eq!(theta1.to_bits(), solution.joints.theta1.to_bits());
+                    proptest::prop_assert_eq!(theta2.to_bits(), solution.joints.theta2.to_bits());
+                }
+                Err(err) => proptest::prop_assert_eq!(model.actuated_angles(x, y), Err(err)),
+            }
+        }
     }
 
     #[test]
