@@ -372,9 +372,7 @@ def check(
         scene_text = json.dumps(scene)
     elif scene is not None:
         scene_path = os.fspath(scene)
-    text, notes = _biscara.check(
-        _robot(robot), path, source, options, scene_path, scene_text, time_limit
-    )
+    text, notes = _biscara.check(_robot(robot), path, source, options, scene_path, scene_text)
     _log_notes(notes)
     return json.loads(text)
 

@@ -54,7 +54,6 @@ def check(
     options: Dict[str, Any],
     scene_path: Optional[str],
     scene_text: Optional[str],
-    time_limit: float,
 ) -> Tuple[str, List[str]]: ...
 def design(
     robot: Robot,

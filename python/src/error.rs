@@ -129,7 +129,8 @@ impl From<biscara_pipeline::PipelineError> for Failure {
         };
         let mut message = chain(&err);
         for hint in err.hints() {
-            message.push_str(&format!("\n    ({hint})"));
+            // A hint is its own parenthesised sentence.
+            message.push_str(&format!("\n    {hint}"));
         }
         Failure::message_in(message, file.as_deref())
     }

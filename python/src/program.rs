@@ -332,9 +332,9 @@ pub(crate) fn interpolate<'py>(
 }
 
 /// `check`: the report as `check --json` prints it (JSON text), and the notes; an error once the
-/// program has run `time_limit` s of robot time (`--time-limit`).
+/// program has run the options' `time_limit` s of robot time (`--time-limit`).
 #[pyfunction]
-#[pyo3(signature = (robot, path, source, options, scene_path, scene_text, time_limit))]
+#[pyo3(signature = (robot, path, source, options, scene_path, scene_text))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn check(
     py: Python<'_>,
@@ -344,7 +344,6 @@ pub(crate) fn check(
     options: Options,
     scene_path: Option<PathBuf>,
     scene_text: Option<String>,
-    time_limit: f64,
 ) -> PyResult<(String, Vec<String>)> {
     let model = &robot.get().model;
     py.detach(|| -> Result<_, Failure> {
@@ -372,15 +371,6 @@ pub(crate) fn check(
         let tool = samples.tool();
         for (count, sample) in samples.by_ref().enumerate() {
             let (sample, state) = sample?;
-            if sample.t > time_limit {
-                let name = program.file().unwrap_or(crate::error::SOURCE_NAME);
-                let message = format!(
-                    "{name}:{}: the program has run {time_limit} s of robot time, past \
-                     time_limit: an endless loop that moves? check needs the whole program",
-                    sample.line
-                );
-                return Err(Failure::message_in(message, Some(name)));
-            }
             checker.push(&sample);
             if let Some((subject, detail, severity)) = state.problem(tool) {
                 checker.push_tool_problem(&sample, subject, detail, severity);

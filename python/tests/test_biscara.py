@@ -328,7 +328,8 @@ def test_check_stops_an_endless_program_at_the_time_limit(cli, tmp_path):
     # The command line's message, naming the keyword instead of the flag --time-limit.
     expected = cli_error(cli("check", "--time-limit", "2", program, check=False))
     assert str(caught.value).split(", past")[0] == expected.split(", past")[0]
-    assert "past time_limit" in str(caught.value)
+    assert "past the time limit" in str(caught.value)
+    assert "(a larger time_limit allows more" in str(caught.value)
     assert caught.value.path == str(program) and caught.value.line in (4, 5)
     with pytest.raises(ValueError, match="time_limit"):
         biscara.check(program, time_limit=-1)
