@@ -124,6 +124,7 @@ impl From<biscara_pipeline::PipelineError> for Failure {
             biscara_pipeline::PipelineError::Program { file, .. }
             | biscara_pipeline::PipelineError::Io { file, .. }
             | biscara_pipeline::PipelineError::Fit { file, .. }
+            | biscara_pipeline::PipelineError::TimeLimit { file, .. }
             | biscara_pipeline::PipelineError::Unsupported { file, .. } => Some(file.clone()),
             _ => None,
         };
