@@ -54,7 +54,9 @@ struct ChainPiece {
     radius: f64,
     /// A corner's fillet (short, and run at the speed its ends allow): no extra grid points.
     fillet: bool,
-    /// The path acceleration (with C's), mm/s², and the largest ṡ² the Cartesian limits allow.
+    /// The path acceleration (with C's), mm/s², and the largest ṡ² the Cartesian limits allow
+    /// (for a programmed arc, which the joints bound instead, the centripetal estimate used to
+    /// place the grid's ramp points).
     acceleration: f64,
     cap: f64,
     ends_chain: bool,
@@ -186,7 +188,11 @@ impl Chain {
         // (or what a corner's fillets leave of it) is bounded as when it runs alone, by the
         // joints: blending its corners never slows it down.
         let radius = if fillet { piece.radius().unwrap_or(f64::INFINITY) } else { f64::INFINITY };
-        let cap = (along * along).min(limits.acceleration * radius);
+        // Where the ramps end is placed from the speed a piece will run at: a tight
+        // programmed arc's estimated by its centripetal acceleration too (its joints bound it
+        // near there), or the line after it would get no grid point where it stops speeding up.
+        let bend = piece.radius().unwrap_or(f64::INFINITY);
+        let cap = (along * along).min(limits.acceleration * bend);
         self.pieces.push_back(ChainPiece {
             segment,
             start,
