@@ -569,7 +569,7 @@ impl Checker {
         let Some(motors) = &mut self.motors else { return };
         let Some(figures) = &mut self.summary.torques else { return };
         let dynamics = &motors.dynamics;
-        let payload = if middle.info.gripper { dynamics.bodies().payload } else { 0.0 };
+        let payload = dynamics.held_payload(middle.info.gripper);
         // At a parallel singularity the torques are unbounded: the singularity is reported.
         let Ok(torques) = dynamics.torques(middle.q, velocity, acceleration, payload) else {
             return;
