@@ -120,20 +120,12 @@ impl From<biscara_dynamics::DynamicsError> for Failure {
 
 impl From<biscara_pipeline::PipelineError> for Failure {
     fn from(err: biscara_pipeline::PipelineError) -> Failure {
-        let file = match &err {
-            biscara_pipeline::PipelineError::Program { file, .. }
-            | biscara_pipeline::PipelineError::Io { file, .. }
-            | biscara_pipeline::PipelineError::Fit { file, .. }
-            | biscara_pipeline::PipelineError::TimeLimit { file, .. }
-            | biscara_pipeline::PipelineError::Unsupported { file, .. } => Some(file.clone()),
-            _ => None,
-        };
         let mut message = chain(&err);
         for hint in err.hints() {
             // A hint is its own parenthesised sentence.
             message.push_str(&format!("\n    {hint}"));
         }
-        Failure::message_in(message, file.as_deref())
+        Failure::message_in(message, err.file())
     }
 }
 

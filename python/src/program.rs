@@ -13,7 +13,7 @@ use biscara_gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara_interpolate::{PATH_HEADER, Profile};
 use biscara_joints::{AngleUnit, JointCsvFormat, JointSample, TORQUE_COLUMNS};
 use biscara_motion::write_jsonl;
-use biscara_pipeline::{Note, Pipeline, SamplingConfig, ToolState, sample_torques};
+use biscara_pipeline::{Note, Pipeline, SamplingConfig, ToolState, torque_columns};
 use biscara_robot::{Checker, Scene};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -241,18 +241,15 @@ pub(crate) fn joints<'py>(
             let derivatives = derivatives || torques;
             let format = JointCsvFormat { angle_unit, derivatives, precision: 6 };
             let dynamics = if torques { Some(Dynamics::new(model)?) } else { None };
-            let payload = dynamics.as_ref().map_or(0.0, |d| d.bodies().payload);
             let file = program.source().name().to_owned();
             let mut names = format.columns();
             if torques {
                 names.extend(TORQUE_COLUMNS.iter().map(|name| (*name).to_owned()));
             }
             // [τ1, τ2, τ3, f_d4, payload] of a row, when asked for.
-            let torques_of = |row: &JointSample, gripping: bool| -> Result<Vec<f64>, Failure> {
+            let torques_of = |row: &JointSample, tool: Option<Tool>| -> Result<Vec<f64>, Failure> {
                 let Some(dynamics) = &dynamics else { return Ok(Vec::new()) };
-                let held = if gripping { payload } else { 0.0 };
-                let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, &file)?;
-                Ok(vec![t1, t2, t3, f4, held])
+                Ok(torque_columns(dynamics, row, tool, &file)?.to_vec())
             };
             if events {
                 let mut samples = pipeline.tool_joints(program.source(), kind, notes.sink())?;
@@ -262,8 +259,7 @@ pub(crate) fn joints<'py>(
                 while let Some(row) = samples.next_sample() {
                     let (row, state) = row?;
                     pipeline.within_time_limit(&file, row.t, row.line)?;
-                    let gripping = tool == Tool::Gripper && state.gripper;
-                    let extra = torques_of(row, gripping)?;
+                    let extra = torques_of(row, Some(tool))?;
                     columns.push(format.values(row).chain(extra).chain([state.value(tool)]))?;
                 }
                 return Ok((columns, notes.finish()));
@@ -276,7 +272,7 @@ pub(crate) fn joints<'py>(
             while let Some(row) = samples.next_sample() {
                 let row = row?;
                 pipeline.within_time_limit(&file, row.t, row.line)?;
-                let extra = torques_of(row, row.gripper)?;
+                let extra = torques_of(row, None)?;
                 columns.push(format.values(row).chain(extra))?;
             }
             Ok((columns, notes.finish()))

@@ -13,7 +13,7 @@
 //! missing the test prints why and passes, except under `CI=true`, where it fails.
 
 use std::io::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use biscara::interpolate::Segment;
@@ -35,8 +35,29 @@ fn toppra_available() -> bool {
         .is_ok_and(|output| output.status.success())
 }
 
-fn skip_or_fail(what: &str) {
-    crate::util::skip_or_fail("toppra comparison", what, " (pip install toppra)");
+/// Whether toppra is here to compare with; without it the test is skipped (and fails under
+/// `CI=true`).
+fn toppra_here() -> bool {
+    let here = toppra_available();
+    if !here {
+        crate::util::skip_or_fail(
+            "toppra comparison",
+            "python3 with the toppra package",
+            " (pip install toppra)",
+        );
+    }
+    here
+}
+
+/// The set-up of a comparison on the demo job: a fresh folder `name` with the demo's files in
+/// `demo/`; `None` without toppra ([`toppra_here`]).
+fn toppra_with_demo(name: &str) -> Option<PathBuf> {
+    if !toppra_here() {
+        return None;
+    }
+    let dir = temp_dir(name);
+    biscara(&dir, &["demo", "demo"]).success();
+    Some(dir)
 }
 
 /// The duration of a joint CSV: its last row's time.
@@ -213,7 +234,7 @@ fn durations(
 
 /// Compares the durations of `programs` (a label, the file, the placement) on both robots,
 /// printing the table the README quotes.
-fn compare_programs(dir: &Path, programs: &[(String, std::path::PathBuf, Vec<&str>)]) {
+fn compare_programs(dir: &Path, programs: &[(String, PathBuf, Vec<&str>)]) {
     let mut report = String::new();
     for robot_name in ["default", "weak-motors"] {
         for (label, source, placement) in programs {
@@ -238,13 +259,8 @@ fn compare_programs(dir: &Path, programs: &[(String, std::path::PathBuf, Vec<&st
 
 #[test]
 fn optimal_is_within_3_percent_of_toppra() {
-    if !toppra_available() {
-        skip_or_fail("python3 with the toppra package");
-        return;
-    }
-    let dir = temp_dir("toppra");
+    let Some(dir) = toppra_with_demo("toppra") else { return };
     let root = repo_root();
-    biscara(&dir, &["demo", "demo"]).success();
     let mut programs = Vec::new();
     for (program, placement) in [
         ("data/programs/arcs_and_offsets.ngc", vec![]),
@@ -264,14 +280,13 @@ fn optimal_is_within_3_percent_of_toppra() {
 /// `mill/cambam-2008-smile-inch.nc`: 32 of its 198 moves.)
 #[test]
 fn optimal_is_within_3_percent_of_toppra_on_real_programs() {
-    if !toppra_available() {
-        skip_or_fail("python3 with the toppra package");
+    if !toppra_here() {
         return;
     }
     let Some(folder) = crate::dialects::realworld() else { return };
     let dir = temp_dir("toppra-real");
     let lifted = vec!["--fit", "--origin", "0,0,50,0"];
-    let programs: Vec<(String, std::path::PathBuf, Vec<&str>)> = [
+    let programs: Vec<(String, PathBuf, Vec<&str>)> = [
         ("mill/fusion-grbl-clamp-base.nc", lifted.clone()),
         ("mill/gcodetools-puzzle03.gcode", lifted.clone()),
         ("mill/viaconstructor-all.ngc", lifted),
@@ -396,13 +411,8 @@ fn torque_durations(
 /// duration, plus a step per move.
 #[test]
 fn torque_limited_is_within_3_percent_of_toppra() {
-    if !toppra_available() {
-        skip_or_fail("python3 with the toppra package");
-        return;
-    }
-    let dir = temp_dir("toppra-torque");
+    let Some(dir) = toppra_with_demo("toppra-torque") else { return };
     let root = repo_root();
-    biscara(&dir, &["demo", "demo"]).success();
     let mut robot: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(root.join("data/robots/default.json")).expect("robot"),
     )

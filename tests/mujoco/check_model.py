@@ -17,31 +17,19 @@ kinematics) and the tool pose our FK gives.
 Prints the figures; exits 1 when a check fails, 2 on usage errors.
 """
 
-import json
 import math
 import sys
 
 import mujoco
 import numpy as np
 
+from common import JOINTS, arguments, load, report
+
 KINEMATIC_TOLERANCE_M = 1e-6  # 0.001 mm
 ROTATION_TOLERANCE_RAD = 1e-9
 RESIDUAL_TOLERANCE_M = 1e-6
 DYNAMIC_P95_TOLERANCE_M = 1e-3  # 1 mm
-JOINTS = ["theta1", "theta2", "theta3", "d4", "elbow1", "elbow2"]
 ACTUATED = ["theta1", "theta2", "theta3", "d4"]
-
-
-def read_companion(path):
-    with open(path, encoding="utf-8") as f:
-        header = f.readline().strip().split(",")
-    expected = ["t_s"] + JOINTS + ["tool_x_m", "tool_y_m", "tool_z_m", "tool_phi_rad"]
-    if header != expected:
-        raise SystemExit(f"{path}: unexpected header {header}, expected {expected}")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    if len(data) < 2:
-        raise SystemExit(f"{path}: fewer than two rows")
-    return data
 
 
 def wrap(angle):
@@ -113,13 +101,11 @@ def dynamic(model, rows):
 
 
 def main(argv):
-    as_json = "--json" in argv
-    args = [a for a in argv if a != "--json"]
-    if len(args) != 2:
-        print(__doc__, file=sys.stderr)
+    parsed = arguments(argv, 2, __doc__)
+    if parsed is None:
         return 2
-    model = mujoco.MjModel.from_xml_path(args[0])
-    rows = read_companion(args[1])
+    (model_path, companion_path), as_json = parsed
+    model, rows = load(model_path, companion_path)
 
     tool, rotation, residual = kinematic(model, rows)
     warnings, errors, failure = dynamic(model, rows)
@@ -151,13 +137,7 @@ def main(argv):
             problems.append(f"dynamic: MuJoCo warnings {warnings}")
         if not p95 <= DYNAMIC_P95_TOLERANCE_M:
             problems.append(f"dynamic: tool 95th-percentile error {p95 * 1000:.4f} mm (limit 1 mm)")
-    figures["problems"] = problems
-    if as_json:
-        print(json.dumps(figures))
-    else:
-        for key, value in figures.items():
-            print(f"{key}: {value}")
-    return 1 if problems else 0
+    return report(figures, problems, as_json)
 
 
 if __name__ == "__main__":

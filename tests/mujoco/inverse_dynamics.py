@@ -23,24 +23,17 @@ motor's peak (the actuator's force range), or of the largest torque MuJoCo gives
 when the model has no force ranges. Prints the figures; exits 1 when a check fails.
 """
 
-import json
 import sys
 
 import mujoco
 import numpy as np
 
+from common import JOINTS, arguments, load, read_csv, report
+
 TOLERANCE = 0.005
 ACTUATED = ["theta1", "theta2", "theta3", "d4"]
 ELBOWS = ["elbow1", "elbow2"]
-COMPANION = ["theta1", "theta2", "theta3", "d4", "elbow1", "elbow2"]
 TORQUE_COLUMNS = ["tau_theta1_Nm", "tau_theta2_Nm", "tau_theta3_Nm", "f_d4_N", "payload_kg"]
-
-
-def read_csv(path):
-    with open(path, encoding="utf-8") as f:
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return header, data
 
 
 def loop_jacobian(model, data, platform):
@@ -54,21 +47,17 @@ def loop_jacobian(model, data, platform):
 
 
 def main(argv):
-    as_json = "--json" in argv
-    args = [a for a in argv if a != "--json"]
-    if len(args) != 3:
-        print(__doc__, file=sys.stderr)
+    parsed = arguments(argv, 3, __doc__)
+    if parsed is None:
         return 2
-    model = mujoco.MjModel.from_xml_path(args[0])
-    companion_header, companion = read_csv(args[1])
-    header, rows = read_csv(args[2])
-    if companion_header[1:7] != COMPANION:
-        raise SystemExit(f"{args[1]}: unexpected header {companion_header}")
+    (model_path, companion_path, torques_path), as_json = parsed
+    model, companion = load(model_path, companion_path)
+    header, rows = read_csv(torques_path)
     if len(rows) != len(companion):
         raise SystemExit(f"{len(rows)} rows of torques but {len(companion)} in the companion")
     missing = [c for c in TORQUE_COLUMNS if c not in header]
     if missing or "theta1_rad" not in header:
-        raise SystemExit(f"{args[2]}: needs radians and the columns {missing}")
+        raise SystemExit(f"{torques_path}: needs radians and the columns {missing}")
     column = {name: header.index(name) for name in header}
     si = np.array([1.0, 1.0, 1.0, 1e-3])  # d4 in mm → m
     q_cols = [column[c] for c in ["theta1_rad", "theta2_rad", "theta3_rad", "d4_mm"]]
@@ -81,8 +70,8 @@ def main(argv):
 
     model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
     data = mujoco.MjData(model)
-    qpos_adr = {name: model.joint(name).qposadr[0] for name in COMPANION}
-    dof = {name: model.joint(name).dofadr[0] for name in COMPANION}
+    qpos_adr = {name: model.joint(name).qposadr[0] for name in JOINTS}
+    dof = {name: model.joint(name).dofadr[0] for name in JOINTS}
     act = [dof[name] for name in ACTUATED]
     passive = [dof[name] for name in ELBOWS]
     eq = model.equality("platform")
@@ -96,7 +85,7 @@ def main(argv):
         peaks = np.array([model.actuator(name).forcerange[1] for name in ACTUATED])
 
     def set_qpos(values):
-        for name, value in zip(COMPANION, values):
+        for name, value in zip(JOINTS, values):
             data.qpos[qpos_adr[name]] = value
 
     theirs = np.empty_like(ours)
@@ -116,7 +105,7 @@ def main(argv):
         jdot = []
         for sign in (1.0, -1.0):
             moved = qpos.copy()
-            for i, name in enumerate(COMPANION):
+            for i, name in enumerate(JOINTS):
                 moved[i] += sign * h * qvel[dof[name]]
             set_qpos(moved)
             mujoco.mj_kinematics(model, data)
@@ -155,13 +144,7 @@ def main(argv):
         for name, d, r, s in zip(ACTUATED, difference, relative, scale)
         if not r <= TOLERANCE
     ]
-    figures["problems"] = problems
-    if as_json:
-        print(json.dumps(figures))
-    else:
-        for key, value in figures.items():
-            print(f"{key}: {value}")
-    return 1 if problems else 0
+    return report(figures, problems, as_json)
 
 
 if __name__ == "__main__":

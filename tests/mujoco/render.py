@@ -15,7 +15,7 @@ import zlib
 import mujoco
 import numpy as np
 
-JOINTS = ["theta1", "theta2", "theta3", "d4", "elbow1", "elbow2"]
+from common import load, set_joints
 
 
 def write_png(pixels, path):
@@ -36,12 +36,9 @@ def main(argv):
     if len(argv) != 4:
         print(__doc__, file=sys.stderr)
         return 2
-    model = mujoco.MjModel.from_xml_path(argv[0])
+    model, rows = load(argv[0], argv[1])
     data = mujoco.MjData(model)
-    rows = np.loadtxt(argv[1], delimiter=",", skiprows=1, ndmin=2)
-    row = rows[int(np.argmin(np.abs(rows[:, 0] - float(argv[2]))))]
-    for k, name in enumerate(JOINTS):
-        data.qpos[model.joint(name).qposadr[0]] = row[1 + k]
+    set_joints(model, data, rows[int(np.argmin(np.abs(rows[:, 0] - float(argv[2]))))])
     mujoco.mj_forward(model, data)
     renderer = mujoco.Renderer(model, 600, 900)
     camera = mujoco.MjvCamera()

@@ -117,6 +117,12 @@ impl Dynamics {
         &self.bodies
     }
 
+    /// The payload the robot carries, kg: the robot file's `dynamics.payload` while the gripper
+    /// holds it (`gripping`: closed, from a pick to its place), else none.
+    pub fn held_payload(&self, gripping: bool) -> f64 {
+        if gripping { self.bodies.payload } else { 0.0 }
+    }
+
     /// The motors in joint order θ1, θ2, θ3, d4, when robot.json has `motors`.
     pub fn motors(&self) -> Option<&[Motor; 4]> {
         self.motors.as_ref()

@@ -5,7 +5,7 @@ use std::io::{self, BufRead, Write};
 use biscara_kinematics::Joints;
 use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
 
-use crate::JointSample;
+use crate::{JointSample, Peaks};
 
 /// The unit of the angle columns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -441,16 +441,14 @@ impl TrajectorySummary {
     /// Reads a joint CSV to its end and sums it up; the first bad row is the error.
     pub fn of<R: BufRead>(reader: R) -> Result<TrajectorySummary, JointCsvError> {
         let mut summary = TrajectorySummary::default();
+        let mut peaks = Peaks::default();
         for row in read_joint_csv(reader) {
             let row = row?;
             summary.duration = row.t;
             summary.samples += 1;
-            let velocity = row.velocity.unwrap_or([0.0; 4]);
-            for (joint, peak) in summary.peak_velocity.iter_mut().enumerate() {
-                let value = if joint < 3 { velocity[joint].to_degrees() } else { velocity[joint] };
-                *peak = peak.max(value.abs());
-            }
+            peaks.push(0, row.t, &row.velocity.unwrap_or([0.0; 4]), &[0.0; 4]);
         }
+        summary.peak_velocity = peaks.velocity.map(|peak| peak.value);
         Ok(summary)
     }
 }

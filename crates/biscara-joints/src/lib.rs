@@ -25,6 +25,7 @@
 mod csv;
 mod differences;
 mod limiter;
+mod peaks;
 mod solver;
 mod torque;
 mod trajectory;
@@ -37,5 +38,6 @@ pub use csv::{
 };
 pub use differences::{central_differences, end_derivatives, slope};
 pub use limiter::{JointSpeedLimit, cartesian_limits};
+pub use peaks::{JointPeaks, LIMIT_TOLERANCE, Peak, Peaks, user_unit};
 pub use solver::{JointSolver, LimitViolation, PreparedSamples, SampleError};
 pub use trajectory::{BATCH_SAMPLES, JointSample, JointTrajectory, JointsError};

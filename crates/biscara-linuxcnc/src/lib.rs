@@ -44,6 +44,6 @@ pub use consistency::{configuration_robot, hal_parameters, ini_value};
 pub use error::LinuxcncError;
 pub use limits::{AxisLimits, Derivation, LimitsError, derive_axis_limits};
 pub use samples::{
-    JointPeaks, RecordedSample, RecordingStart, RecordingSummary, SERVO_PERIOD,
-    parse_recorded_line, read_recording, write_stream_sample,
+    RecordedSample, RecordingStart, RecordingSummary, SERVO_PERIOD, parse_recorded_line,
+    read_recording, write_stream_sample,
 };

@@ -1,7 +1,7 @@
 //! What LinuxCNC's joints did: the recorder's lines read back, and their summary.
 
-use biscara_joints::{JointSample, central_differences, end_derivatives};
-use biscara_kinematics::{Joint, Joints, Robot};
+use biscara_joints::{JointPeaks, JointSample, Peaks, central_differences, end_derivatives};
+use biscara_kinematics::{Joints, Robot};
 
 use crate::LinuxcncError;
 
@@ -99,7 +99,7 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
     let mut window: Vec<(RecordedSample, [f64; 4])> = Vec::with_capacity(3);
     let mut peaks = Peaks::new(robot);
     let mut summary =
-        RecordingSummary { samples: 0, duration: 0.0, streamed: 0, peaks: peaks.get() };
+        RecordingSummary { samples: 0, duration: 0.0, streamed: 0, peaks: peaks.joints() };
     let mut last_number: Option<u64> = None;
     let mut started = false;
     // Emits one sample with its derivatives.
@@ -118,7 +118,7 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
             acceleration,
             gripper: false,
         };
-        peaks.push(&sample);
+        peaks.push(sample.line, t, &sample.velocity, &sample.acceleration);
         summary.samples += 1;
         summary.duration = t;
         summary.streamed += usize::from(entry.0.streaming);
@@ -201,100 +201,8 @@ pub fn read_recording<R: std::io::BufRead, E: From<LinuxcncError>>(
         }
         _ => {}
     }
-    summary.peaks = peaks.get();
+    summary.peaks = peaks.joints();
     Ok(summary)
-}
-
-/// Running peaks of every joint.
-struct Peaks {
-    velocity: [f64; 4],
-    acceleration: [f64; 4],
-    velocity_limits: [f64; 4],
-    acceleration_limits: [f64; 4],
-}
-
-impl Peaks {
-    fn new(robot: &Robot) -> Peaks {
-        Peaks {
-            velocity: [0.0; 4],
-            acceleration: [0.0; 4],
-            velocity_limits: robot.joint_max_velocity.to_array(),
-            acceleration_limits: robot.joint_max_acceleration.to_array(),
-        }
-    }
-
-    fn push(&mut self, sample: &JointSample) {
-        for index in 0..4 {
-            self.velocity[index] = self.velocity[index].max(sample.velocity[index].abs());
-            self.acceleration[index] =
-                self.acceleration[index].max(sample.acceleration[index].abs());
-        }
-    }
-
-    fn get(&self) -> [JointPeaks; 4] {
-        Joint::ALL.map(|joint| {
-            let index = joint as usize;
-            let unit = if joint.is_revolute() { 180.0 / std::f64::consts::PI } else { 1.0 };
-            JointPeaks {
-                joint,
-                velocity: self.velocity[index] * unit,
-                velocity_limit: self.velocity_limits[index],
-                acceleration: self.acceleration[index] * unit,
-                acceleration_limit: self.acceleration_limits[index],
-            }
-        })
-    }
-}
-
-/// Peak speed and acceleration of each joint against its limits.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JointPeaks {
-    /// The joint.
-    pub joint: Joint,
-    /// Largest |velocity|: degrees/s or mm/s.
-    pub velocity: f64,
-    /// The joint's velocity limit, same unit.
-    pub velocity_limit: f64,
-    /// Largest |acceleration|: degrees/s² or mm/s².
-    pub acceleration: f64,
-    /// The joint's acceleration limit, same unit.
-    pub acceleration_limit: f64,
-}
-
-impl JointPeaks {
-    /// The peak velocity as a fraction of the limit (1 = at the limit).
-    pub fn velocity_ratio(&self) -> f64 {
-        self.velocity / self.velocity_limit
-    }
-
-    /// The peak acceleration as a fraction of the limit.
-    pub fn acceleration_ratio(&self) -> f64 {
-        self.acceleration / self.acceleration_limit
-    }
-
-    /// Whether the velocity or the acceleration exceeds its limit by more than the recording's
-    /// resolution (1e-9 degree or mm a cycle: a millionth of a limit).
-    pub fn exceeds(&self) -> bool {
-        self.velocity_ratio().max(self.acceleration_ratio()) > 1.0 + 1e-6
-    }
-}
-
-impl std::fmt::Display for JointPeaks {
-    /// `theta1: peak 120.0 °/s of 360 (33 %), 2400 °/s² of 7200 (33 %)`.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let unit = if self.joint.is_revolute() { "°" } else { "mm" };
-        write!(
-            f,
-            "{}: peak {:.1} {unit}/s of {} ({:.0} %), {:.0} {unit}/s² of {} ({:.0} %)",
-            self.joint.name(),
-            self.velocity,
-            self.velocity_limit,
-            100.0 * self.velocity_ratio(),
-            self.acceleration,
-            self.acceleration_limit,
-            100.0 * self.acceleration_ratio()
-        )
-    }
 }
 
 /// Writes one line of a stream file for the configuration's stream path: θ1 θ2 d4 θ3 in
@@ -398,8 +306,8 @@ mod tests {
         // q = t² degrees per cycle²: 2 degrees per cycle² = 2e6 degrees/s².
         let acceleration = samples[2].acceleration[0].to_degrees();
         assert!((acceleration - 2e6).abs() < 1e-3, "{acceleration}");
-        assert!((summary.peaks[0].acceleration - 2e6).abs() < 1e-3);
-        assert_eq!(summary.peaks[0].acceleration_limit, 7200.0);
+        assert!((summary.peaks[0].acceleration.value - 2e6).abs() < 1e-3);
+        assert_eq!(summary.peaks[0].acceleration.limit, 7200.0);
     }
 
     #[test]

@@ -136,7 +136,6 @@ impl Pipeline<'_> {
         notes: impl FnMut(Note) + 'static,
     ) -> Result<(), PipelineError> {
         let format = JointCsvFormat { derivatives: true, ..format };
-        let payload = dynamics.bodies().payload;
         let file = source.name();
         if events {
             let mut samples = self.tool_joints(source, kind, notes)?;
@@ -147,8 +146,7 @@ impl Pipeline<'_> {
             while let Some(row) = samples.next_sample() {
                 let (row, state) = row?;
                 self.within_time_limit(file, row.t, row.line)?;
-                let held = if tool == Tool::Gripper && state.gripper { payload } else { 0.0 };
-                let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
+                let [t1, t2, t3, f4, held] = torque_columns(dynamics, row, Some(tool), file)?;
                 writer.write_with_array(row, [t1, t2, t3, f4, held, state.value(tool)])?;
             }
             writer.finish()?;
@@ -159,13 +157,32 @@ impl Pipeline<'_> {
         while let Some(row) = samples.next_sample() {
             let row = row?;
             self.within_time_limit(file, row.t, row.line)?;
-            let held = if row.gripper { payload } else { 0.0 };
-            let [t1, t2, t3, f4] = sample_torques(dynamics, row, held, file)?;
-            writer.write_with_array(row, [t1, t2, t3, f4, held])?;
+            writer.write_with_array(row, torque_columns(dynamics, row, None, file)?)?;
         }
         writer.finish()?;
         Ok(())
     }
+}
+
+/// The payload (kg) held at one joint sample ([`Dynamics::held_payload`]): while the gripper is
+/// closed (from a pick to its place) and the program's `tool`, when known, is a gripper.
+#[inline]
+pub fn held_payload(dynamics: &Dynamics, sample: &JointSample, tool: Option<Tool>) -> f64 {
+    dynamics.held_payload(sample.gripper && tool.is_none_or(|tool| tool == Tool::Gripper))
+}
+
+/// The [`TORQUE_COLUMNS`] of one joint sample: its motors' torques ([`sample_torques`]) with the
+/// payload it holds ([`held_payload`] of `tool`), then that payload, kg.
+#[inline]
+pub fn torque_columns(
+    dynamics: &Dynamics,
+    sample: &JointSample,
+    tool: Option<Tool>,
+    file: &str,
+) -> Result<[f64; 5], PipelineError> {
+    let held = held_payload(dynamics, sample, tool);
+    let [t1, t2, t3, f4] = sample_torques(dynamics, sample, held, file)?;
+    Ok([t1, t2, t3, f4, held])
 }
 
 /// The torques at one joint sample ([`Dynamics::torques`] of its joints, velocities and
@@ -192,4 +209,53 @@ struct TorqueError {
     line: usize,
     t: f64,
     source: DynamicsError,
+}
+
+#[cfg(test)]
+mod tests {
+    use biscara_kinematics::{DynamicsSpec, Joints, PointSpec, Robot, RobotModel};
+
+    use super::*;
+
+    fn dynamics(payload: f64) -> Dynamics {
+        let spec =
+            DynamicsSpec { payload: PointSpec { mass: Some(payload) }, ..Default::default() };
+        Dynamics::new(&RobotModel::new(Robot { dynamics: Some(spec), ..Robot::default() }).unwrap())
+            .unwrap()
+    }
+
+    fn sample(gripper: bool) -> JointSample {
+        JointSample {
+            t: 0.25,
+            line: 7,
+            pose: [0.0, 460.798724079689, 100.0, 0.0],
+            joints: Joints { theta1: 0.0, theta2: 0.0, theta3: 0.0, d4: 0.0 },
+            velocity: [0.0; 4],
+            acceleration: [0.0; 4],
+            gripper,
+        }
+    }
+
+    #[test]
+    fn the_payload_is_held_while_a_gripper_is_closed() {
+        let dynamics = dynamics(0.7);
+        assert_eq!(held_payload(&dynamics, &sample(true), None), 0.7);
+        assert_eq!(held_payload(&dynamics, &sample(true), Some(Tool::Gripper)), 0.7);
+        assert_eq!(held_payload(&dynamics, &sample(false), None), 0.0);
+        assert_eq!(held_payload(&dynamics, &sample(false), Some(Tool::Gripper)), 0.0);
+        assert_eq!(held_payload(&dynamics, &sample(true), Some(Tool::Laser)), 0.0);
+    }
+
+    #[test]
+    fn the_torque_columns_carry_the_payload_in_d4s_force_and_last() {
+        let dynamics = dynamics(0.7);
+        let [.., free_d4, free] =
+            torque_columns(&dynamics, &sample(false), None, "job.ngc").unwrap();
+        let [.., held_d4, held] =
+            torque_columns(&dynamics, &sample(true), None, "job.ngc").unwrap();
+        assert_eq!((free, held), (0.0, 0.7));
+        // At rest, d4 holds the payload's weight more.
+        let gravity = dynamics.bodies().gravity;
+        assert!(((held_d4 - free_d4).abs() - 0.7 * gravity).abs() < 1e-9, "{free_d4} {held_d4}");
+    }
 }

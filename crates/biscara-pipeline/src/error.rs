@@ -113,6 +113,21 @@ impl PipelineError {
         PipelineError::Unsupported { file, message, hints: Vec::new() }
     }
 
+    /// The program the error is about, as its message names it first (`FILE:…`); `None` for
+    /// the errors about no program (the workspace, the dynamic model, the output).
+    pub fn file(&self) -> Option<&str> {
+        match self {
+            PipelineError::Program { file, .. }
+            | PipelineError::TimeLimit { file, .. }
+            | PipelineError::Io { file, .. }
+            | PipelineError::Fit { file, .. }
+            | PipelineError::Unsupported { file, .. } => Some(file),
+            PipelineError::Workspace(_) | PipelineError::Write(_) | PipelineError::Dynamics(_) => {
+                None
+            }
+        }
+    }
+
     /// What the user can change about this error, in the order to show them. The message
     /// ([`Display`](fmt::Display)) is whole without them; a caller words them for its own
     /// settings (the command line names its flags, [`Hint`]'s `Display` names the settings).
@@ -456,5 +471,28 @@ impl fmt::Display for Counted<'_> {
             write!(f, "{separator}{code} ×{count}")?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_error_about_a_program_names_its_file() {
+        let io = || io::Error::other("disk on fire");
+        let errors = [
+            PipelineError::program("job.ngc", io()),
+            PipelineError::TimeLimit { file: "job.ngc".to_owned(), line: 3, limit: 2.0 },
+            PipelineError::Io { file: "job.ngc".to_owned(), source: io() },
+            PipelineError::Fit { file: "job.ngc".to_owned(), error: VirtualRobotError::NoMoves },
+            PipelineError::unsupported("job.ngc", "no"),
+        ];
+        for err in errors {
+            assert_eq!(err.file(), Some("job.ngc"), "{err}");
+            assert!(err.to_string().contains("job.ngc"), "{err}");
+        }
+        assert_eq!(PipelineError::Write(io()).file(), None);
+        assert_eq!(PipelineError::Workspace(VirtualRobotError::NoMoves).file(), None);
     }
 }

@@ -49,7 +49,7 @@ mod torques;
 
 pub use biscara_kinematics::RobotModel;
 
-pub use csv::sample_torques;
+pub use csv::{held_payload, sample_torques, torque_columns};
 pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;

@@ -3,7 +3,7 @@
 use biscara_dynamics::Dynamics;
 use biscara_joints::JointSample;
 
-use crate::csv::sample_torques;
+use crate::csv::torque_columns;
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource};
 
 impl Pipeline<'_> {
@@ -20,14 +20,13 @@ impl Pipeline<'_> {
         notes: impl FnMut(Note) + 'static,
         mut each: impl FnMut(&JointSample, [f64; 4]) -> Result<(), PipelineError>,
     ) -> Result<(), PipelineError> {
-        let payload = dynamics.bodies().payload;
         let file = source.name().to_owned();
         let mut samples = self.joints(source, kind, notes)?;
         while let Some(row) = samples.next_sample() {
             let row = row?;
             self.within_time_limit(&file, row.t, row.line)?;
-            let held = if row.gripper { payload } else { 0.0 };
-            each(row, sample_torques(dynamics, row, held, &file)?)?;
+            let [t1, t2, t3, f4, _] = torque_columns(dynamics, row, None, &file)?;
+            each(row, [t1, t2, t3, f4])?;
         }
         Ok(())
     }

@@ -4,7 +4,7 @@ use std::fmt;
 
 use biscara_dynamics::Dynamics;
 use biscara_interpolate::CartesianSample;
-use biscara_joints::{JointSolver, central_differences};
+use biscara_joints::{JointSolver, LIMIT_TOLERANCE, Peak, Peaks, central_differences, user_unit};
 use biscara_kinematics::{Joint, Joints, KinematicsError, RobotModel, Shortfall};
 
 use crate::collision::{scene_collisions, self_collisions};
@@ -132,19 +132,6 @@ impl Problem {
     }
 }
 
-/// The largest magnitude of a joint's velocity or acceleration over the program.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Peak {
-    /// The magnitude: degrees/s (or /s²) for θ, mm/s (or /s²) for d4.
-    pub value: f64,
-    /// The robot's limit, same unit.
-    pub limit: f64,
-    /// Program line where it occurs.
-    pub line: usize,
-    /// Time where it occurs, s.
-    pub t: f64,
-}
-
 /// The smallest singularity angle met along the program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SingularityDistance {
@@ -178,10 +165,9 @@ pub struct Summary {
     pub duration_s: f64,
     /// Length of the XYZ path (sum of the distances between samples), mm.
     pub path_length_mm: f64,
-    /// Peak joint velocities, `[theta1, theta2, theta3, d4]` (central differences).
-    pub peak_velocity: [Peak; 4],
-    /// Peak joint accelerations, `[theta1, theta2, theta3, d4]` (central differences).
-    pub peak_acceleration: [Peak; 4],
+    /// Peak joint velocities and accelerations (central differences), each on the line of the
+    /// later of its three samples.
+    pub peaks: Peaks,
     /// The smallest singularity angle over the reachable samples; `None` when none was.
     pub min_singularity: Option<SingularityDistance>,
     /// Each motor's peak and RMS torque, `[theta1, theta2, theta3, d4]` (inverse dynamics of the
@@ -277,10 +263,6 @@ pub struct Checker {
     motors: Option<Box<MotorCheck>>,
 }
 
-fn user_unit(joint: Joint, value: f64) -> f64 {
-    if joint.is_revolute() { value.to_degrees() } else { value }
-}
-
 fn unit(joint: Joint) -> &'static str {
     if joint.is_revolute() { "°" } else { " mm" }
 }
@@ -298,16 +280,12 @@ impl Checker {
         };
         let velocity = robot.joint_max_velocity.to_array();
         let acceleration = robot.joint_max_acceleration.to_array();
-        let mut summary = Summary::default();
-        for j in 0..4 {
-            summary.peak_velocity[j].limit = velocity[j];
-            summary.peak_acceleration[j].limit = acceleration[j];
-        }
+        let mut summary = Summary { peaks: Peaks::new(robot), ..Summary::default() };
         // A robot whose model cannot be built has been refused where it was loaded.
         let dynamics = Dynamics::new(model).ok().filter(|dynamics| dynamics.motors().is_some());
         if let Some(motors) = dynamics.as_ref().and_then(Dynamics::motors) {
             summary.torques = Some(std::array::from_fn(|j| MotorTorque {
-                peak: Peak { limit: motors[j].peak, ..Peak::default() },
+                peak: Peak::against(motors[j].peak),
                 rms: 0.0,
                 rated: motors[j].rated,
             }));
@@ -538,6 +516,7 @@ impl Checker {
             (after.info.t, &after.q),
         );
         self.torques(middle, span / 2.0, velocities, accelerations, findings, after.info.line);
+        self.summary.peaks.push(after.info.line, middle.info.t, &velocities, &accelerations);
         for (j, joint) in Joint::ALL.into_iter().enumerate() {
             let (velocity, acceleration) = (velocities[j], accelerations[j]);
             let checks = [
@@ -559,23 +538,8 @@ impl Checker {
                 ),
             ];
             for (value, limit, limit_user, kind, what, per) in checks {
-                let magnitude = user_unit(joint, value.abs());
-                let peak = if kind == ProblemKind::VelocityLimit {
-                    &mut self.summary.peak_velocity[j]
-                } else {
-                    &mut self.summary.peak_acceleration[j]
-                };
-                if magnitude > peak.value {
-                    *peak = Peak {
-                        value: magnitude,
-                        limit: limit_user,
-                        line: after.info.line,
-                        t: middle.info.t,
-                    };
-                }
-                // One part in a million of slack: a move planned exactly at the limit (d4 at
-                // the rapid speed) must not fail by rounding.
                 if value.abs() > limit * (1.0 + LIMIT_TOLERANCE) {
+                    let magnitude = user_unit(joint, value.abs());
                     findings.push(Finding {
                         kind,
                         subject: joint.name().to_owned(),
@@ -605,7 +569,7 @@ impl Checker {
         let Some(motors) = &mut self.motors else { return };
         let Some(figures) = &mut self.summary.torques else { return };
         let dynamics = &motors.dynamics;
-        let payload = if middle.info.gripper { dynamics.bodies().payload } else { 0.0 };
+        let payload = dynamics.held_payload(middle.info.gripper);
         // At a parallel singularity the torques are unbounded: the singularity is reported.
         let Ok(torques) = dynamics.torques(middle.q, velocity, acceleration, payload) else {
             return;
@@ -615,9 +579,7 @@ impl Checker {
             let (torque, figure) = (torques[j], &mut figures[j]);
             motors.squares[j] += torque * torque * weight;
             let magnitude = torque.abs();
-            if magnitude > figure.peak.value {
-                figure.peak = Peak { value: magnitude, line, t: middle.info.t, ..figure.peak };
-            }
+            figure.peak.offer(magnitude, line, middle.info.t);
             let peak = figure.peak.limit;
             if magnitude > peak * (1.0 + LIMIT_TOLERANCE) {
                 let unit = torque_unit(joint);
@@ -745,9 +707,6 @@ fn unreachable(err: &KinematicsError) -> Finding {
     };
     Finding { kind: ProblemKind::Unreachable, subject, severity, detail: err.to_string() }
 }
-
-/// Relative slack on the velocity and acceleration limits, against rounding.
-const LIMIT_TOLERANCE: f64 = 1e-6;
 
 /// The unit of a motor's torque: N·m, or N for d4's force.
 pub(crate) fn torque_unit(joint: Joint) -> &'static str {

@@ -44,10 +44,9 @@ mod report;
 mod scene;
 mod workspace;
 
+pub use biscara_joints::{Peak, Peaks};
 pub use body::{Body, Cylinder, Link, LinkName, VirtualRobot};
-pub use check::{
-    Checker, MotorTorque, Peak, Problem, ProblemKind, Report, SingularityDistance, Summary,
-};
+pub use check::{Checker, MotorTorque, Problem, ProblemKind, Report, SingularityDistance, Summary};
 pub use collision::{BodyPart, SceneCollision, SelfCollision, scene_collisions, self_collisions};
 pub use cycle::{
     CYCLE_ACROSS_MM, CYCLE_LIFT_MM, CYCLE_Z_MM, CycleConfig, CycleError, CycleMotor, CycleReport,

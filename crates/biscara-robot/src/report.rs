@@ -113,8 +113,8 @@ impl Report {
                 "samples": summary.samples,
                 "duration_s": round6(summary.duration_s),
                 "path_length_mm": round6(summary.path_length_mm),
-                "peak_velocity": peaks(&summary.peak_velocity, "/s"),
-                "peak_acceleration": peaks(&summary.peak_acceleration, "/s2"),
+                "peak_velocity": peaks(&summary.peaks.velocity, "/s"),
+                "peak_acceleration": peaks(&summary.peaks.acceleration, "/s2"),
                 "min_singularity": summary.min_singularity.as_ref().map(|nearest| json!({
                     "angle_deg": round6(nearest.angle_deg),
                     "kind": nearest.kind,
@@ -184,8 +184,8 @@ impl Report {
             fixed(summary.path_length_mm, 3)
         )?;
         for (what, peaks, per) in [
-            ("velocity", &summary.peak_velocity, "/s"),
-            ("acceleration", &summary.peak_acceleration, "/s²"),
+            ("velocity", &summary.peaks.velocity, "/s"),
+            ("acceleration", &summary.peaks.acceleration, "/s²"),
         ] {
             writeln!(out, "  peak joint {what}:")?;
             for (joint, peak) in Joint::ALL.into_iter().zip(peaks) {

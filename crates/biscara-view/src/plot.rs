@@ -451,45 +451,78 @@ fn joints_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     curves: &JointCurves<'_>,
 ) -> Result<(), String> {
+    let names = ["θ1 (°)", "θ2 (°)", "θ3 (°)", "d4 (mm)"];
+    let panels = std::array::from_fn(|j| {
+        let [low, high] = curves.limits[j];
+        TimePanel {
+            name: names[j],
+            shows: (low, high),
+            min_span: 1.0,
+            levels: vec![(low, RED), (high, RED)],
+        }
+    });
+    time_panels(root, (curves.title, 22), curves.t, curves.q, panels)
+}
+
+/// One of the four panels of [`time_panels`].
+struct TimePanel<'a> {
+    /// The value axis' name, with its unit.
+    name: &'a str,
+    /// The range `(min, max)` the value axis shows whatever the curve (the limits).
+    shows: (f64, f64),
+    /// The smallest span of the value axis, padded by 8 % of its span above and below.
+    min_span: f64,
+    /// Dashed lines across the panel, `(value, colour)`, drawn in order under the curve.
+    levels: Vec<(f64, RGBColor)>,
+}
+
+/// Four panels of a quantity per joint against time, one above the other under `title` (its
+/// text and size): each its value axis, dashed levels and the curve of `values[k][j]` at `t[k]`;
+/// the time axis, from 0 to the last time, named on the last.
+fn time_panels<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    (title, title_size): (&str, u32),
+    t: &[f64],
+    values: &[[f64; 4]],
+    panels: [TimePanel<'_>; 4],
+) -> Result<(), String> {
     let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let root = root.titled(curves.title, (FAMILY, 22)).map_err(e)?;
-    let panels = root.split_evenly((4, 1));
-    let names = ["θ1 (°)", "θ2 (°)", "θ3 (°)", "d4 (mm)"];
-    let t_end = curves.t.last().copied().unwrap_or(1.0).max(1e-3);
-    for (j, panel) in panels.iter().enumerate() {
-        let [low, high] = curves.limits[j];
-        let (mut min, mut max) = (low, high);
-        for q in curves.q {
-            min = min.min(q[j]);
-            max = max.max(q[j]);
+    let root = root.titled(title, (FAMILY, title_size)).map_err(e)?;
+    let areas = root.split_evenly((4, 1));
+    let t_end = t.last().copied().unwrap_or(1.0).max(1e-3);
+    for (j, (area, panel)) in areas.iter().zip(panels).enumerate() {
+        let (mut min, mut max) = panel.shows;
+        for value in values {
+            min = min.min(value[j]);
+            max = max.max(value[j]);
         }
-        let pad = 0.08 * (max - min).max(1.0);
-        let mut chart = ChartBuilder::on(panel)
+        let pad = 0.08 * (max - min).max(panel.min_span);
+        let mut chart = ChartBuilder::on(area)
             .margin(8)
             .x_label_area_size(if j == 3 { 35 } else { 20 })
             .y_label_area_size(60)
             .build_cartesian_2d(0.0..t_end, (min - pad)..(max + pad))
             .map_err(e)?;
         let mut mesh = chart.configure_mesh();
-        mesh.y_desc(names[j]).label_style((FAMILY, 13)).light_line_style(WHITE.mix(0.0));
+        mesh.y_desc(panel.name).label_style((FAMILY, 13)).light_line_style(WHITE.mix(0.0));
         if j == 3 {
             mesh.x_desc("t (s)");
         }
         mesh.draw().map_err(e)?;
-        for limit in [low, high] {
+        for (level, colour) in panel.levels {
             chart
                 .draw_series(DashedLineSeries::new(
-                    [(0.0, limit), (t_end, limit)],
+                    [(0.0, level), (t_end, level)],
                     8,
                     5,
-                    RED.stroke_width(2),
+                    colour.stroke_width(2),
                 ))
                 .map_err(e)?;
         }
         chart
             .draw_series(LineSeries::new(
-                curves.t.iter().zip(curves.q).map(|(&t, q)| (t, q[j])),
+                t.iter().zip(values).map(|(&t, value)| (t, value[j])),
                 ROBOT_COLOURS[0].stroke_width(2),
             ))
             .map_err(e)?;

@@ -5,11 +5,7 @@
 use biscara_gcode::{Config, Dialect, GcodeError, Tool, interpret};
 use biscara_motion::{Motion, MotionKind};
 
-const HOME: [f64; 4] = [0.0, 400.0, 100.0, 0.0];
-
-fn config(dialect: Dialect) -> Config {
-    Config { home: HOME, dialect, ..Config::default() }
-}
+use crate::common::{HOME, codes, config, ends};
 
 /// The motions of `program` read as `dialect`.
 #[track_caller]
@@ -25,20 +21,6 @@ fn refused(program: &str, dialect: Dialect) -> GcodeError {
     interpret(program.as_bytes(), &config(dialect))
         .find_map(Result::err)
         .unwrap_or_else(|| panic!("no error for {program:?} as {dialect}"))
-}
-
-fn ends(motions: &[Motion]) -> Vec<[f64; 4]> {
-    motions.iter().filter_map(|motion| motion.kind.end()).collect()
-}
-
-fn codes(motions: &[Motion]) -> Vec<String> {
-    motions
-        .iter()
-        .filter_map(|motion| match motion.kind {
-            MotionKind::Code { code } => Some(code.to_string()),
-            _ => None,
-        })
-        .collect()
 }
 
 #[test]

@@ -8,6 +8,8 @@ use std::io::Cursor;
 
 use biscara_gcode::{Config, Dialect, Setting, interpret, interpret_seekable};
 
+use crate::common::{Run, run_file};
+
 /// What a program must do.
 #[derive(Debug, Clone, Copy)]
 enum Outcome {
@@ -103,14 +105,8 @@ fn programs_that_never_end_stop() {
     for &(name, dialect, program, outcome) in CASES {
         let config =
             Config { dialect, max_motions: BOUND, max_idle_jumps: 100, ..Config::default() };
-        let mut given = 0;
-        let mut error = None;
-        for result in interpret_seekable(Cursor::new(program.to_owned()), &config) {
-            match result {
-                Ok(_) => given += 1,
-                Err(err) => error = Some(err),
-            }
-        }
+        let Run { motions, error, .. } = run_file(program, &config, None);
+        let given = motions.len();
         match (outcome, error) {
             (Outcome::Repeats { loop_line, at, motions }, Some(err)) => {
                 let message = err.to_string();

@@ -7,29 +7,21 @@ use std::sync::Arc;
 use biscara_gcode::{Config, Dialect, GcodeError, ToolTable, interpret, interpret_seekable};
 use biscara_motion::{Motion, MotionKind};
 
-const HOME: [f64; 4] = [0.0, 400.0, 100.0, 0.0];
-
-fn config(dialect: Dialect) -> Config {
-    Config { home: HOME, dialect, ..Config::default() }
-}
+use crate::common::{config, ends, run_file};
 
 /// The motions of `program` read as `config` says, from an input it can jump in (a file).
 #[track_caller]
 fn run(program: &str, config: &Config) -> Vec<Motion> {
-    interpret_seekable(Cursor::new(program.to_owned()), config)
-        .collect::<Result<_, _>>()
-        .unwrap_or_else(|err| panic!("{err}"))
+    let run = run_file(program, config, None);
+    if let Some(err) = run.error {
+        panic!("{err}");
+    }
+    run.motions
 }
 
 #[track_caller]
 fn refused(program: &str, config: &Config) -> GcodeError {
-    interpret_seekable(Cursor::new(program.to_owned()), config)
-        .find_map(Result::err)
-        .unwrap_or_else(|| panic!("no error for {program:?}"))
-}
-
-fn ends(motions: &[Motion]) -> Vec<[f64; 4]> {
-    motions.iter().filter_map(|motion| motion.kind.end()).collect()
+    run_file(program, config, None).error.unwrap_or_else(|| panic!("no error for {program:?}"))
 }
 
 fn xy(motions: &[Motion]) -> Vec<[f64; 2]> {

@@ -5,12 +5,11 @@
 //! the dialect asked (`auto` or one), the file name it is read under, and what it must give.
 
 use std::io::Cursor;
-use std::path::PathBuf;
 
-use biscara_gcode::{Config, Dialect, interpret_seekable};
-use biscara_motion::{Motion, MotionKind};
+use biscara_gcode::{Dialect, interpret_seekable};
+use biscara_motion::Motion;
 
-const HOME: [f64; 4] = [0.0, 400.0, 100.0, 0.0];
+use crate::common::{codes, config, ends, run_file};
 
 /// What a program must give.
 #[derive(Debug, Clone, Copy)]
@@ -178,41 +177,27 @@ const CASES: &[(&str, Dialect, &str, &str, Expect)] = &[
     ),
 ];
 
-fn codes(motions: &[Motion]) -> Vec<String> {
-    motions
-        .iter()
-        .filter_map(|motion| match motion.kind {
-            MotionKind::Code { code } => Some(code.to_string()),
-            _ => None,
-        })
-        .collect()
-}
-
 #[test]
 fn real_world_fourth_round() {
     for &(name, dialect, file, program, expect) in CASES {
-        let config = Config { home: HOME, dialect, ..Config::default() };
-        let mut interpreter = interpret_seekable(Cursor::new(program.to_owned()), &config)
-            .with_subroutines(Some(PathBuf::from(file)), Vec::new());
-        let result: Result<Vec<Motion>, _> = interpreter.by_ref().collect();
-        match (expect, result) {
-            (Expect::Read { dialect: wanted, ends, codes: wanted_codes }, Ok(motions)) => {
-                assert_eq!(interpreter.dialect(), wanted, "{name}");
-                let got: Vec<[f64; 4]> =
-                    motions.iter().filter_map(|motion| motion.kind.end()).collect();
-                assert_eq!(got.len(), ends.len(), "{name}: {got:?}");
-                for (got, want) in got.iter().zip(ends) {
+        let run = run_file(program, &config(dialect), Some(file));
+        match (expect, run.error) {
+            (Expect::Read { dialect: wanted, ends: wanted_ends, codes: wanted_codes }, None) => {
+                assert_eq!(run.dialect, wanted, "{name}");
+                let got = ends(&run.motions);
+                assert_eq!(got.len(), wanted_ends.len(), "{name}: {got:?}");
+                for (got, want) in got.iter().zip(wanted_ends) {
                     for axis in 0..4 {
                         assert!((got[axis] - want[axis]).abs() < 1e-9, "{name}: {got:?} {want:?}");
                     }
                 }
-                assert_eq!(codes(&motions), wanted_codes, "{name}");
+                assert_eq!(codes(&run.motions), wanted_codes, "{name}");
             }
-            (Expect::Refused(at, text), Err(err)) => {
+            (Expect::Refused(at, text), Some(err)) => {
                 let message = err.to_string();
                 assert!(message.starts_with(at) && message.contains(text), "{name}: {message}");
             }
-            (expect, result) => panic!("{name}: expected {expect:?}, got {result:?}"),
+            (expect, error) => panic!("{name}: expected {expect:?}, got {error:?}"),
         }
     }
 }
@@ -227,8 +212,7 @@ fn mach3_evidence_past_the_look_ahead_decides_there() {
     }
     let lines = program.lines().count();
     program.push_str("G81 X2 Y400 Z90 R95\nG80\nX3 Y401\nM30\n");
-    let config = Config { home: HOME, dialect: Dialect::Auto, ..Config::default() };
-    let mut interpreter = interpret_seekable(Cursor::new(program.clone()), &config);
+    let mut interpreter = interpret_seekable(Cursor::new(program.clone()), &config(Dialect::Auto));
     let motions: Vec<Motion> = interpreter.by_ref().collect::<Result<_, _>>().expect("read");
     assert_eq!(interpreter.dialect(), Dialect::Mach3);
     let detection = interpreter.detection().expect("a detection");
@@ -240,8 +224,7 @@ fn mach3_evidence_past_the_look_ahead_decides_there() {
     let last = motions.iter().filter_map(|motion| motion.kind.end()).next_back();
     assert_eq!(last, Some([3.0, 401.0, 95.0, 0.0]));
     // Read as LinuxCNC, the same program is refused there.
-    let config = Config { home: HOME, dialect: Dialect::Linuxcnc, ..Config::default() };
-    let err = interpret_seekable(Cursor::new(program), &config).find_map(Result::err);
+    let err = run_file(&program, &config(Dialect::Linuxcnc), None).error;
     let err = err.expect("refused as LinuxCNC");
     assert!(err.to_string().starts_with(&format!("{}:", lines + 3)), "{err}");
 }

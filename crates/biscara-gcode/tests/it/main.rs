@@ -1,5 +1,6 @@
 //! Integration tests of the G-code interpreter: one test binary, one module per feature.
 
+mod common;
 mod conformance;
 mod dialects;
 mod endless;

@@ -4,7 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FAMILY, ImageFormat, ROBOT_COLOURS, encode_png, plot_error, register_font};
+use super::{ImageFormat, TimePanel, encode_png, plot_error, register_font, time_panels};
 use crate::ViewError;
 
 /// The torque curves: each motor's torque (N·m, N for d4) against time.
@@ -33,65 +33,30 @@ fn torques_on<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     curves: &TorqueCurves<'_>,
 ) -> Result<(), String> {
-    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
-    root.fill(&WHITE).map_err(e)?;
     let title = match curves.ratings {
         Some(_) => format!("{} (dashed: ±peak red, ±rated orange)", curves.title),
         None => curves.title.to_owned(),
     };
-    let root = root.titled(&title, (FAMILY, 20)).map_err(e)?;
-    let panels = root.split_evenly((4, 1));
     let names = ["τ1 (N·m)", "τ2 (N·m)", "τ3 (N·m)", "f d4 (N)"];
-    let t_end = curves.t.last().copied().unwrap_or(1.0).max(1e-3);
-    for (j, panel) in panels.iter().enumerate() {
-        let (mut min, mut max) = (0.0f64, 0.0f64);
-        for torque in curves.torques {
-            min = min.min(torque[j]);
-            max = max.max(torque[j]);
-        }
-        if let Some(ratings) = curves.ratings {
-            min = min.min(-ratings[j][0]);
-            max = max.max(ratings[j][0]);
-        }
-        let pad = 0.08 * (max - min).max(1e-3);
-        let mut chart = ChartBuilder::on(panel)
-            .margin(8)
-            .x_label_area_size(if j == 3 { 35 } else { 20 })
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0..t_end, (min - pad)..(max + pad))
-            .map_err(e)?;
-        let mut mesh = chart.configure_mesh();
-        mesh.y_desc(names[j]).label_style((FAMILY, 13)).light_line_style(WHITE.mix(0.0));
-        if j == 3 {
-            mesh.x_desc("t (s)");
-        }
-        mesh.draw().map_err(e)?;
-        if let Some(ratings) = curves.ratings {
+    // The axis shows 0 and ±peak whatever the curve.
+    let panels = std::array::from_fn(|j| match curves.ratings {
+        Some(ratings) => {
             let [peak, rated] = ratings[j];
-            for (level, colour) in [
-                (peak, PEAK_COLOUR),
-                (-peak, PEAK_COLOUR),
-                (rated, RATED_COLOUR),
-                (-rated, RATED_COLOUR),
-            ] {
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        [(0.0, level), (t_end, level)],
-                        8,
-                        5,
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(e)?;
+            TimePanel {
+                name: names[j],
+                shows: ((-peak).min(0.0), peak.max(0.0)),
+                min_span: 1e-3,
+                levels: vec![
+                    (peak, PEAK_COLOUR),
+                    (-peak, PEAK_COLOUR),
+                    (rated, RATED_COLOUR),
+                    (-rated, RATED_COLOUR),
+                ],
             }
         }
-        chart
-            .draw_series(LineSeries::new(
-                curves.t.iter().zip(curves.torques).map(|(&t, torque)| (t, torque[j])),
-                ROBOT_COLOURS[0].stroke_width(2),
-            ))
-            .map_err(e)?;
-    }
-    Ok(())
+        None => TimePanel { name: names[j], shows: (0.0, 0.0), min_span: 1e-3, levels: Vec::new() },
+    });
+    time_panels(root, (&title, 20), curves.t, curves.torques, panels)
 }
 
 #[cfg(test)]
