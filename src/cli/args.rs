@@ -5,73 +5,11 @@ use std::sync::Arc;
 
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
-use biscara::joints::AngleUnit;
 use biscara::pipeline::{ProgramKind, SamplingConfig};
 use biscara_files::FileSystem;
-use clap::{Args, ValueEnum};
+use clap::Args;
 
 use super::files::FileSource;
-
-/// What kind of file a program is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum InputKind {
-    /// RS274/NGC G-code (LinuxCNC's dialect).
-    Gcode,
-    /// An inter-file (JSON Lines) written by `biscara interpret`.
-    Jsonl,
-    /// A path CSV written by `biscara interpolate` (joints only).
-    Path,
-}
-
-impl From<InputKind> for ProgramKind {
-    fn from(kind: InputKind) -> ProgramKind {
-        match kind {
-            InputKind::Gcode => ProgramKind::Gcode,
-            InputKind::Jsonl => ProgramKind::Jsonl,
-            InputKind::Path => ProgramKind::Path,
-        }
-    }
-}
-
-/// The velocity profile, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum ProfileArg {
-    /// Constant speed from a motion's first sample to its last (the paper).
-    Constant,
-    /// Accelerate, cruise, decelerate: an exact stop at every corner.
-    Trapezoid,
-    /// Time-optimal under every joint's velocity and acceleration limits (TOPP-RA), with an
-    /// exact stop at every corner.
-    Optimal,
-}
-
-impl From<ProfileArg> for Profile {
-    fn from(profile: ProfileArg) -> Profile {
-        match profile {
-            ProfileArg::Constant => Profile::Constant,
-            ProfileArg::Trapezoid => Profile::Trapezoid,
-            ProfileArg::Optimal => Profile::Optimal,
-        }
-    }
-}
-
-/// The angle unit of a joint CSV, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum AngleUnitArg {
-    /// Radians.
-    Rad,
-    /// Degrees.
-    Deg,
-}
-
-impl From<AngleUnitArg> for AngleUnit {
-    fn from(unit: AngleUnitArg) -> AngleUnit {
-        match unit {
-            AngleUnitArg::Rad => AngleUnit::Radians,
-            AngleUnitArg::Deg => AngleUnit::Degrees,
-        }
-    }
-}
 
 /// The program a command runs, and its kind.
 #[derive(Debug, Args)]
@@ -81,14 +19,14 @@ pub(crate) struct ProgramArgs {
     program: PathBuf,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
+    from: Option<ProgramKind>,
 }
 
 impl ProgramArgs {
     /// The program as the pipeline's source, and its kind.
     pub(crate) fn open(&self) -> anyhow::Result<(FileSource, ProgramKind)> {
         let source = FileSource::new(&self.program);
-        let kind = source.kind(self.from.map(ProgramKind::from))?;
+        let kind = source.kind(self.from)?;
         Ok((source, kind))
     }
 }
@@ -235,7 +173,7 @@ pub(crate) struct SamplingArgs {
     dt: f64,
     /// Velocity profile of every motion.
     #[arg(long, value_enum, default_value = "optimal")]
-    profile: ProfileArg,
+    profile: Profile,
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
     #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
     grip_time: f64,
@@ -258,7 +196,7 @@ impl SamplingArgs {
         Ok(SamplingConfig {
             time_limit: limit.time_limit,
             dt: self.dt,
-            profile: self.profile.into(),
+            profile: self.profile,
             grip_time: self.grip_time,
             blend: self.blend.blend,
             ..placed_reading(&self.placement, &self.dialect, &self.files)?

@@ -9,7 +9,7 @@ use biscara::design::{
     write_row,
 };
 use biscara::kinematics::RobotModel;
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 
 use super::diag::{Level, located, report};
 use super::files::{display_path, format_of, open_input, write_output};
@@ -85,7 +85,7 @@ struct SweepArgs {
     /// What --best and the atlas's ring choose: the largest rectangle, GCI, reachable area or
     /// worst LCI, or the shortest total time of --programs, or the shortest Adept cycle.
     #[arg(long, value_enum, default_value = "rect")]
-    objective: ObjectiveArg,
+    objective: Objective,
     /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
     /// reachable. Adds the task_ok column.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = task, allow_hyphen_values = true)]
@@ -140,40 +140,10 @@ struct AtlasArgs {
     input: PathBuf,
     /// The index drawn, and the design ringed (its best).
     #[arg(long, value_enum, default_value = "gci")]
-    index: ObjectiveArg,
+    index: Objective,
     /// The picture: SVG, or PNG by its extension.
     #[arg(short, long, value_name = "FILE", required = true)]
     output: PathBuf,
-}
-
-/// An objective as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum ObjectiveArg {
-    /// The largest rectangle's area, mm².
-    Rect,
-    /// The GCI over the largest rectangle.
-    Gci,
-    /// The reachable area, mm².
-    Area,
-    /// The worst LCI over the largest rectangle.
-    LciMin,
-    /// The total time of --programs, s (shortest best).
-    Time,
-    /// The Adept cycle's time (`biscara cycle`), s (shortest best).
-    Cycle,
-}
-
-impl From<ObjectiveArg> for Objective {
-    fn from(arg: ObjectiveArg) -> Objective {
-        match arg {
-            ObjectiveArg::Rect => Objective::Rectangle,
-            ObjectiveArg::Gci => Objective::Gci,
-            ObjectiveArg::Area => Objective::Area,
-            ObjectiveArg::LciMin => Objective::LciMin,
-            ObjectiveArg::Time => Objective::Time,
-            ObjectiveArg::Cycle => Objective::Cycle,
-        }
-    }
 }
 
 fn range_l1(text: &str) -> Result<ParamRange, String> {
@@ -212,7 +182,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     for path in &args.programs {
         programs.push((display_path(path), biscara_files::read_text(path)?));
     }
-    let objective = Objective::from(args.objective);
+    let objective = args.objective;
     let (step, task, fit, shard) = (args.step, args.task, args.fit, args.shard);
     let request = SweepRequest { l1, l2, base, step, task, objective, programs, fit, shard };
     let sweep = request.sweep(model.robot().clone())?;
@@ -269,7 +239,7 @@ fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
 }
 
 fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
-    let outcome = SweepOutcome::read(open_input(&args.input)?, Objective::from(args.index))
+    let outcome = SweepOutcome::read(open_input(&args.input)?, args.index)
         .map_err(|err| located(&args.input, err))?;
     if outcome.cells.is_empty() {
         anyhow::bail!("{}: no designs to draw", display_path(&args.input));

@@ -3,15 +3,16 @@
 use std::path::{Path, PathBuf};
 
 use biscara::gcode::Tool;
-use biscara::joints::JointCsvFormat;
+use biscara::interpolate::Profile;
+use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::kinematics::RobotModel;
 use biscara::linuxcnc::job::{ConfigRequest, RegionChoice};
 use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
 use biscara::pipeline::SamplingConfig;
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 
-use super::args::{AngleUnitArg, ProfileArg, parse_pose, parse_tool};
+use super::args::{parse_pose, parse_tool};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{FileSource, write_output};
 
@@ -35,17 +36,6 @@ enum LinuxcncCommand {
     Run(RunArgs),
 }
 
-/// Where the axis limits come from, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum LimitsArg {
-    /// Derived from the joint limits: LinuxCNC's planner cannot exceed a joint's limit in the
-    /// workspace rectangle.
-    Derived,
-    /// The robot file's Cartesian motion limits as they are (LinuxCNC's planner then exceeds the
-    /// joints' limits; for comparison).
-    Cartesian,
-}
-
 /// How a configuration is made: shared by `config` and by `run` without --config.
 #[derive(Debug, Args)]
 struct ConfigChoice {
@@ -55,7 +45,7 @@ struct ConfigChoice {
     tool: Option<Tool>,
     /// Where the axis limits come from.
     #[arg(long, value_enum, default_value = "derived")]
-    limits: LimitsArg,
+    limits: AxisLimitSource,
     /// Derive the axis limits over this program's own XY extent (placed by --origin, or by
     /// --fit with `config`; from the robot's home pose) plus --margin, and set LinuxCNC's soft
     /// limits to that region: faster than over the whole workspace, and LinuxCNC refuses a
@@ -87,12 +77,8 @@ impl ConfigChoice {
             (None, Some(rectangle)) => RegionChoice::Rectangle(rectangle),
             (None, None) => RegionChoice::Workspace,
         };
-        let limits = match self.limits {
-            LimitsArg::Derived => AxisLimitSource::Derived,
-            LimitsArg::Cartesian => AxisLimitSource::Cartesian,
-        };
         let notes = NoteReporter::default();
-        let request = ConfigRequest { tool: self.tool, limits, region };
+        let request = ConfigRequest { tool: self.tool, limits: self.limits, region };
         let options = request.options::<anyhow::Error>(model, notes.sink())?;
         notes.finish();
         Ok(options)
@@ -189,7 +175,7 @@ struct RunArgs {
     stream_csv: Option<PathBuf>,
     /// The velocity profile of the streamed trajectory.
     #[arg(long, value_enum, default_value = "optimal", requires = "stream")]
-    profile: ProfileArg,
+    profile: Profile,
     /// A G-code program to run on LinuxCNC's planner after the stream, from where it ended.
     #[arg(long, value_name = "PROGRAM", requires = "streaming")]
     then: Option<PathBuf>,
@@ -208,7 +194,7 @@ struct RunArgs {
     derivatives: bool,
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
-    angle_unit: AngleUnitArg,
+    angle_unit: AngleUnit,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
@@ -264,7 +250,7 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
             source: &source,
             kind: source.kind(None)?,
             sampling: SamplingConfig {
-                profile: args.profile.into(),
+                profile: args.profile,
                 origin: args.origin,
                 ..SamplingConfig::default()
             },
@@ -296,7 +282,7 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         report(Level::Note, format_args!("LinuxCNC: {note}"));
     }
     let format = JointCsvFormat {
-        angle_unit: args.angle_unit.into(),
+        angle_unit: args.angle_unit,
         derivatives: args.derivatives,
         precision: usize::from(args.precision),
     };

@@ -2,11 +2,11 @@
 
 use std::path::PathBuf;
 
-use biscara::joints::JointCsvFormat;
+use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::pipeline::{Pipeline, RobotModel};
 use clap::Args;
 
-use super::args::{AngleUnitArg, ProgramArgs, SamplingArgs, TimeLimitArgs};
+use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::diag::NoteReporter;
 use super::files::write_output;
 
@@ -89,7 +89,7 @@ pub(crate) struct JointsArgs {
     torques: bool,
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
-    angle_unit: AngleUnitArg,
+    angle_unit: AngleUnit,
     /// Add the tool's column after the joints, as `interpolate --events` does:
     /// `gripper`, `laser_power`, `spindle_rpm`, `extruded_mm` or `pen_down`.
     #[arg(
@@ -116,7 +116,7 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let format = JointCsvFormat {
-        angle_unit: args.angle_unit.into(),
+        angle_unit: args.angle_unit,
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };

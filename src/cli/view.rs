@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
+use biscara::interpolate::Profile;
 use biscara::joints::read_joint_csv;
 use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig};
 use biscara::robot::Report;
@@ -10,8 +11,7 @@ use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
 use super::args::{
-    BlendArgs, DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
-    placed_reading,
+    BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, parse_duration, placed_reading,
 };
 use super::diag::located;
 use super::diag::{Level, report};
@@ -71,7 +71,7 @@ pub(crate) struct ViewArgs {
     files: GcodeFilesArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
-    profile: ProfileArg,
+    profile: Profile,
     #[command(flatten)]
     blend: BlendArgs,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
@@ -91,7 +91,7 @@ pub(crate) struct ViewArgs {
     check: Option<PathBuf>,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
+    from: Option<ProgramKind>,
 }
 
 pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
@@ -122,9 +122,9 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     };
     // The program sampled as `joints` sampled it, at the trajectory's time step.
     let source = FileSource::new(program);
-    let kind = source.kind(args.from.map(ProgramKind::from))?;
+    let kind = source.kind(args.from)?;
     let config = SamplingConfig {
-        profile: args.profile.into(),
+        profile: args.profile,
         grip_time: args.grip_time,
         blend: args.blend.blend,
         ..placed_reading(&args.placement, &args.dialect, &args.files)?

@@ -7,13 +7,18 @@ use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
 
 use crate::JointSample;
 
-/// The unit of the angle columns.
+/// The unit of the angle columns (`--angle-unit rad` or `deg` with the `clap` feature).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AngleUnit {
-    /// Radians (the default, as Simulink wants them).
+    /// Radians.
+    ///
+    /// The default, as Simulink wants them.
     #[default]
+    #[cfg_attr(feature = "clap", value(name = "rad"))]
     Radians,
     /// Degrees.
+    #[cfg_attr(feature = "clap", value(name = "deg"))]
     Degrees,
 }
 
