@@ -5,7 +5,10 @@ use std::sync::Arc;
 
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
-use biscara::pipeline::{ProgramKind, SamplingConfig};
+use biscara::pipeline::{
+    ProgramKind, SamplingConfig, parse_blend, parse_grip_time, parse_time_limit, parse_time_step,
+};
+use biscara::text::parse_xyzc;
 use biscara_files::FileSystem;
 use clap::Args;
 
@@ -40,7 +43,7 @@ pub(crate) struct PlacementArgs {
         long,
         value_name = "X,Y,Z,C",
         allow_hyphen_values = true,
-        value_parser = parse_pose,
+        value_parser = parse_xyzc,
         help = "G54 offset before the first line of a G-code program"
     )]
     pub(crate) origin: Option<[f64; 4]>,
@@ -67,7 +70,6 @@ pub(crate) struct DialectArgs {
         long,
         value_name = "DIALECT",
         default_value = "auto",
-        value_parser = parse_dialect,
         help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
@@ -77,15 +79,9 @@ pub(crate) struct DialectArgs {
     #[arg(
         long,
         value_name = "KIND",
-        value_parser = parse_tool,
         help = "gripper, laser, spindle, extruder or pen (default: the robot file's, else inferred)"
     )]
     pub(crate) tool: Option<Tool>,
-}
-
-pub(crate) fn parse_tool(text: &str) -> Result<Tool, String> {
-    Tool::from_name(text)
-        .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
 /// The files a G-code program may read besides itself.
@@ -140,10 +136,6 @@ pub(crate) struct GcodeFilesArgs {
     pub(crate) max_motions: u64,
 }
 
-fn parse_dialect(text: &str) -> Result<Dialect, String> {
-    text.parse::<Dialect>().map_err(|err| err.to_string())
-}
-
 /// The bound on robot time of the commands that sample a program (interpolate, joints, check,
 /// plot).
 #[derive(Debug, Args)]
@@ -161,21 +153,17 @@ pub(crate) struct TimeLimitArgs {
     pub(crate) time_limit: f64,
 }
 
-fn parse_time_limit(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=1e9, "the time limit", "[0, 1e9] s")
-}
-
 /// Options shared by the commands that sample a program in time.
 #[derive(Debug, Args)]
 pub(crate) struct SamplingArgs {
     /// Time step, seconds.
-    #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_step)]
+    #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_time_step)]
     dt: f64,
     /// Velocity profile of every motion.
     #[arg(long, value_enum, default_value = "optimal")]
     profile: Profile,
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
-    #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
+    #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_grip_time)]
     grip_time: f64,
     #[command(flatten)]
     pub(crate) blend: BlendArgs,
@@ -247,60 +235,4 @@ pub(crate) struct BlendArgs {
         help = "Default G64 P (mm) for programs that never say G61/G64 (default: exact stop)"
     )]
     pub(crate) blend: Option<f64>,
-}
-
-/// A tolerance in mm in [0, 100] (0: G64 with no P, see `biscara-blend`).
-fn parse_blend(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=100.0, "the blend tolerance", "[0, 100] mm")
-}
-
-fn parse_step(text: &str) -> Result<f64, String> {
-    number_in(text, 1e-6..=10.0, "the time step", "[0.000001, 10] s")
-}
-
-/// Seconds in [0, 3600].
-pub(crate) fn parse_duration(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=3600.0, "the time", "[0, 3600] s")
-}
-
-/// `text` as a number in `range`, else an error that says `what` must lie in `shown`.
-fn number_in(
-    text: &str,
-    range: std::ops::RangeInclusive<f64>,
-    what: &str,
-    shown: &str,
-) -> Result<f64, String> {
-    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
-    if range.contains(&value) {
-        Ok(value)
-    } else {
-        Err(format!("{what} must lie in {shown}, got {text}"))
-    }
-}
-
-/// `X,Y,Z,C`: four finite numbers.
-pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
-    parse_numbers(text, "four numbers X,Y,Z,C")
-}
-
-/// `X,Y`: two finite numbers.
-pub(crate) fn parse_point(text: &str) -> Result<[f64; 2], String> {
-    parse_numbers(text, "two numbers X,Y")
-}
-
-/// `N` comma-separated finite numbers; `expected` names them in the error.
-fn parse_numbers<const N: usize>(text: &str, expected: &str) -> Result<[f64; N], String> {
-    let values: Vec<&str> = text.split(',').map(str::trim).collect();
-    if values.len() != N {
-        return Err(format!("expected {expected}, found {}", values.len()));
-    }
-    let mut numbers = [0.0; N];
-    for (slot, value) in numbers.iter_mut().zip(values) {
-        *slot = value
-            .parse::<f64>()
-            .ok()
-            .filter(|number| number.is_finite())
-            .ok_or_else(|| format!("`{value}` is not a finite number"))?;
-    }
-    Ok(numbers)
 }

@@ -65,13 +65,13 @@ enum DesignCommand {
 #[derive(Debug, Args)]
 struct SweepArgs {
     /// Proximal link lengths, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l1)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("l1"))]
     l1: Option<ParamRange>,
     /// Distal link lengths, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l2)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("l2"))]
     l2: Option<ParamRange>,
     /// Distances between the two base joints, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_base)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("base"))]
     base: Option<ParamRange>,
     /// Workspace grid step, mm (as `biscara workspace --step`).
     #[arg(long, value_name = "MM", default_value = "2")]
@@ -88,7 +88,7 @@ struct SweepArgs {
     objective: Objective,
     /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
     /// reachable. Adds the task_ok column.
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = task, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
     task: Option<Task>,
     /// Time these programs (G-code, inter-file or path CSV) on every design, as `joints` runs
     /// them (1 ms, the optimal profile, every joint limit), summed: the time_s column (empty
@@ -108,7 +108,7 @@ struct SweepArgs {
     #[arg(long, value_name = "N", default_value = "0")]
     threads: usize,
     /// Evaluate part K of N of the sweep: the designs whose index is K − 1 modulo N.
-    #[arg(long, value_name = "K/N", default_value = "1/1", value_parser = shard)]
+    #[arg(long, value_name = "K/N", default_value = "1/1")]
     shard: Shard,
 }
 
@@ -144,26 +144,6 @@ struct AtlasArgs {
     /// The picture: SVG, or PNG by its extension.
     #[arg(short, long, value_name = "FILE", required = true)]
     output: PathBuf,
-}
-
-fn range_l1(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("l1", text).map_err(|err| err.to_string())
-}
-
-fn range_l2(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("l2", text).map_err(|err| err.to_string())
-}
-
-fn range_base(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("base", text).map_err(|err| err.to_string())
-}
-
-fn task(text: &str) -> Result<Task, String> {
-    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
-}
-
-fn shard(text: &str) -> Result<Shard, String> {
-    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
 }
 
 pub(crate) fn design(model: &RobotModel, args: &DesignArgs) -> anyhow::Result<()> {

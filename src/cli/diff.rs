@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::diff::{DiffError, DiffOptions, Side, diff as compare};
+use biscara::text::non_negative;
 use clap::Args;
 
 use super::files::{display_path, open_input};
@@ -27,15 +28,8 @@ pub(crate) struct DiffArgs {
     #[arg(value_name = "B")]
     b: PathBuf,
     /// Largest absolute difference of two numbers that still counts as equal.
-    #[arg(long, value_name = "X", default_value = "1e-6", value_parser = parse_tolerance)]
+    #[arg(long, value_name = "X", default_value = "1e-6", value_parser = non_negative("the tolerance"))]
     tol: f64,
-}
-
-fn parse_tolerance(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
-        _ => Err(format!("the tolerance must be a number ≥ 0, got {text}")),
-    }
 }
 
 pub(crate) fn diff(args: &DiffArgs) -> anyhow::Result<()> {

@@ -10,9 +10,9 @@ use biscara::linuxcnc::job::{ConfigRequest, RegionChoice};
 use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
 use biscara::pipeline::SamplingConfig;
+use biscara::text::parse_xyzc;
 use clap::{Args, Subcommand};
 
-use super::args::{parse_pose, parse_tool};
 use super::diag::{Level, NoteReporter, report};
 use super::files::{FileSource, write_output};
 
@@ -41,7 +41,7 @@ enum LinuxcncCommand {
 struct ConfigChoice {
     /// The tool whose codes the HAL wires: gripper, laser, spindle or pen (default: the robot
     /// file's tool.kind, else gripper); LinuxCNC has no extruder axis here.
-    #[arg(long, value_name = "KIND", value_parser = parse_tool)]
+    #[arg(long, value_name = "KIND")]
     tool: Option<Tool>,
     /// Where the axis limits come from.
     #[arg(long, value_enum, default_value = "derived")]
@@ -114,7 +114,7 @@ struct ConfigArgs {
         long,
         value_name = "X,Y,Z,C",
         allow_hyphen_values = true,
-        value_parser = parse_pose,
+        value_parser = parse_xyzc,
         requires = "for_program"
     )]
     origin: Option<[f64; 4]>,
@@ -180,7 +180,7 @@ struct RunArgs {
     #[arg(long, value_name = "PROGRAM", requires = "streaming")]
     then: Option<PathBuf>,
     /// A G54 offset X,Y,Z,C (mm, degrees) in force before the program's first line.
-    #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_pose)]
+    #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_xyzc)]
     origin: Option<[f64; 4]>,
     /// Write the joint CSV to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]

@@ -6,6 +6,7 @@ use anyhow::anyhow;
 use biscara::dynamics::Dynamics;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
+use biscara::text::parse_seconds;
 use biscara::view::{
     JointCurves, TopView, TorqueCurves, TracedProgram, draw_joints, draw_top_view, draw_torques,
     trace_program, zoom_region,
@@ -43,7 +44,7 @@ pub(crate) struct PlotArgs {
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
     /// Times (s) at which to draw the robot, comma-separated (default: the start).
-    #[arg(long, value_name = "T,…", value_delimiter = ',', value_parser = parse_time)]
+    #[arg(long, value_name = "T,…", value_delimiter = ',', value_parser = parse_seconds)]
     at: Vec<f64>,
     /// Draw the joint curves against time instead of the top view.
     #[arg(long)]
@@ -65,13 +66,6 @@ pub(crate) struct PlotArgs {
     sampling: SamplingArgs,
     #[command(flatten)]
     time_limit: TimeLimitArgs,
-}
-
-fn parse_time(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
-        _ => Err(format!("`{text}` is not a time in seconds (a number ≥ 0)")),
-    }
 }
 
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {

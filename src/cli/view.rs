@@ -5,14 +5,13 @@ use std::path::PathBuf;
 use anyhow::anyhow;
 use biscara::interpolate::Profile;
 use biscara::joints::read_joint_csv;
-use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig, parse_grip_time};
 use biscara::robot::Report;
+use biscara::text::parse_sizes;
 use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
-use super::args::{
-    BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, parse_duration, placed_reading,
-};
+use super::args::{BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
 use super::diag::located;
 use super::diag::{Level, report};
 use super::files::{
@@ -79,12 +78,12 @@ pub(crate) struct ViewArgs {
         long,
         value_name = "SECONDS",
         default_value = "0",
-        value_parser = parse_duration,
+        value_parser = parse_grip_time,
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
     /// The size of the objects picked, `WxLxH` in mm (default: from the gripper's size).
-    #[arg(long, value_name = "WxLxH", value_parser = parse_object_size, help = "Size of the objects picked (mm)")]
+    #[arg(long, value_name = "WxLxH", value_parser = parse_sizes, help = "Size of the objects picked (mm)")]
     object: Option<[f64; 3]>,
     /// A `biscara check --json` report: its problems are marked in the scene and on the timeline.
     #[arg(long, value_name = "FILE", help = "check --json report whose problems to mark")]
@@ -141,17 +140,4 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         );
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
-}
-
-/// `WxLxH`: three positive sizes in mm, e.g. `30x20x15`.
-fn parse_object_size(text: &str) -> Result<[f64; 3], String> {
-    let sizes: Vec<f64> = text
-        .split(['x', 'X'])
-        .map(|part| part.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("`{text}` is not WxLxH (three sizes in mm, e.g. 30x20x15)"))?;
-    match sizes[..] {
-        [w, l, h] if [w, l, h].iter().all(|v| v.is_finite() && *v > 0.0) => Ok([w, l, h]),
-        _ => Err(format!("`{text}` is not WxLxH (three positive sizes in mm, e.g. 30x20x15)")),
-    }
 }

@@ -8,7 +8,8 @@
 //! - [`Pipeline`]: one robot ([`RobotModel`]) and one [`SamplingConfig`] (time step, profile,
 //!   grip time, origin, fitting to the workspace); [`Pipeline::motions`], [`Pipeline::samples`] and
 //!   [`Pipeline::joints`] are the stages, wired once, here; [`Pipeline::write_path_csv`] and
-//!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files.
+//!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files;
+//!   [`parse_time_step`] and its siblings read its settings as a user types them.
 //! - [`Note`]: what the pipeline has to say besides its output (the chosen placement, slowed
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
 //!   `FILE:LINE[:COL]: message`, with [`Hint`]s the caller words for its own settings.
@@ -43,6 +44,7 @@ mod kind;
 mod motions;
 mod pipeline;
 mod placement;
+mod settings;
 mod source;
 mod tool;
 mod torques;
@@ -58,5 +60,6 @@ pub use pipeline::{
     SlowDownNotes,
 };
 pub use placement::{Placement, place};
+pub use settings::{parse_blend, parse_grip_time, parse_time_limit, parse_time_step};
 pub use source::{ProgramSource, TextSource};
 pub use tool::{ToolJointSamples, ToolSamples, ToolState};
