@@ -9,10 +9,8 @@ use biscara::pipeline::{
     ProgramKind, SamplingConfig, parse_blend, parse_grip_time, parse_time_limit, parse_time_step,
 };
 use biscara::text::parse_xyzc;
-use biscara_files::FileSystem;
+use biscara_files::{FileSource, FileSystem};
 use clap::Args;
-
-use super::files::FileSource;
 
 /// The program a command runs, and its kind.
 #[derive(Debug, Args)]

@@ -7,8 +7,8 @@ use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::NoteReporter;
-use super::files::{load_scene, write_output};
+use super::files::write_output;
+use biscara_files::{NoteReporter, load_scene};
 
 /// Runs a program on the virtual robot and reports every problem.
 ///

@@ -7,9 +7,9 @@ use biscara::joints::TrajectorySummary;
 use biscara::pipeline::RobotModel;
 use clap::Args;
 
-use super::diag::located;
-use super::files::{open_input, write_output};
+use super::files::write_output;
 use super::run_command;
+use biscara_files::{located, open_input};
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
 ///

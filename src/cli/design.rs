@@ -11,8 +11,9 @@ use biscara::design::{
 use biscara::kinematics::RobotModel;
 use clap::{Args, Subcommand};
 
-use super::diag::{Level, located, report};
-use super::files::{display_path, format_of, open_input, write_output};
+use biscara_files::{Level, display_path, image_format, located, open_input, report};
+
+use super::files::write_output;
 
 /// Sweeps the robot's design: every combination of proximal link l1, distal link l2 and base
 /// distance (the two base joints at ±base/2; everything else from the robot file) is measured as
@@ -201,7 +202,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
 /// Draws the atlas of `outcome`'s cells, the best design ringed, to `path` (SVG or PNG).
 fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
     let bytes = outcome
-        .draw_atlas(format_of(Some(path)))
+        .draw_atlas(image_format(Some(path)))
         .with_context(|| format!("drawing {}", display_path(path)))?;
     write_output(Some(path), |out| Ok(out.write_all(&bytes)?))
 }

@@ -7,7 +7,7 @@ use biscara::diff::{DiffError, DiffOptions, Side, diff as compare};
 use biscara::text::non_negative;
 use clap::Args;
 
-use super::files::{display_path, open_input};
+use biscara_files::{display_path, open_input};
 
 /// Compares two outputs of the same kind (joint or path CSV, inter-file) number by number.
 ///

@@ -8,8 +8,8 @@ use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
 use clap::Args;
 
 use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
-use super::diag::NoteReporter;
-use super::files::{FileSource, write_output};
+use super::files::write_output;
+use biscara_files::{FileSource, NoteReporter};
 
 /// Interprets a G-code program as LinuxCNC does and writes its motions as the inter-file
 ///: one JSON object per motion or event, absolute positions in the robot's base

@@ -6,7 +6,8 @@ use anyhow::Context;
 use biscara::kinematics::{Joints, Pose, RobotModel};
 use clap::Args;
 
-use super::diag::{Level, report};
+use biscara_files::{Level, report};
+
 use super::files::write_output;
 
 /// Inverse kinematics of one pose: prints θ1 θ2 θ3 d4 (degrees, degrees, degrees, mm).

@@ -13,8 +13,9 @@ use biscara::pipeline::SamplingConfig;
 use biscara::text::parse_xyzc;
 use clap::{Args, Subcommand};
 
-use super::diag::{Level, NoteReporter, report};
-use super::files::{FileSource, write_output};
+use biscara_files::{FileSource, Level, NoteReporter, report};
+
+use super::files::write_output;
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.

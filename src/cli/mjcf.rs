@@ -8,8 +8,9 @@ use biscara::kinematics::RobotModel;
 use biscara::view::{MjcfOptions, QposWriter, write_mjcf};
 use clap::Args;
 
-use super::diag::located;
-use super::files::{display_path, load_scene, open_input, write_output};
+use biscara_files::{display_path, load_scene, located, open_input};
+
+use super::files::write_output;
 
 /// Writes a MuJoCo model (MJCF) of the robot.
 ///

@@ -6,7 +6,6 @@ mod clf;
 mod cycle;
 mod demo;
 mod design;
-mod diag;
 mod diff;
 mod files;
 mod generate;
@@ -25,6 +24,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use biscara::kinematics::RobotModel;
+use biscara_files::{error_message, is_broken_pipe};
 use clap::{Parser, Subcommand};
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
@@ -78,14 +78,14 @@ pub(crate) fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        Err(err) if is_broken_pipe(&*err) => ExitCode::SUCCESS,
         Err(err) if is_interrupted(&err) => {
-            let _ = writeln!(io::stderr(), "biscara: {}", diag::error_message(&err));
+            let _ = writeln!(io::stderr(), "biscara: {}", error_message(&*err));
             ExitCode::from(130)
         }
         Err(err) => {
             // (Written even to a closed stderr without a panic: the exit code says it.)
-            let _ = writeln!(io::stderr(), "biscara: error: {}", diag::error_message(&err));
+            let _ = writeln!(io::stderr(), "biscara: error: {}", error_message(&*err));
             ExitCode::from(1)
         }
     }
@@ -146,12 +146,6 @@ fn is_interrupted(err: &anyhow::Error) -> bool {
             cause.downcast_ref::<biscara::linuxcnc::LinuxcncError>(),
             Some(biscara::linuxcnc::LinuxcncError::Interrupted)
         )
-    })
-}
-
-fn is_broken_pipe(err: &anyhow::Error) -> bool {
-    err.chain().any(|cause| {
-        cause.downcast_ref::<io::Error>().is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
     })
 }
 

@@ -14,8 +14,8 @@ use biscara::view::{
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::{Level, NoteReporter, report};
-use super::files::{format_of, load_scene, write_output};
+use super::files::write_output;
+use biscara_files::{Level, NoteReporter, image_format, load_scene, report};
 
 /// Draws a program on the virtual robot, in top view or as joint curves.
 ///
@@ -91,7 +91,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             format_args!("t = {t} s is after the program's end ({end:.3} s): not drawn"),
         );
     }
-    let format = format_of(args.output.as_deref());
+    let format = image_format(args.output.as_deref());
     let name = source.name();
     let bytes = if args.joints {
         let limits = model.robot().joint_limits.to_array();
@@ -134,6 +134,6 @@ fn plot_torques(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
     let title = format!("Motor torques of {name}");
     let curves = TorqueCurves { title: &title, t: &t, torques: &torques, ratings };
-    let bytes = draw_torques(&curves, format_of(args.output.as_deref()))?;
+    let bytes = draw_torques(&curves, image_format(args.output.as_deref()))?;
     write_output(args.output.as_deref(), |out| Ok(out.write_all(&bytes)?))
 }

@@ -7,8 +7,8 @@ use biscara::pipeline::{Pipeline, RobotModel};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::NoteReporter;
 use super::files::write_output;
+use biscara_files::NoteReporter;
 
 /// Samples a program at a fixed time step: the Cartesian path.
 ///

@@ -12,10 +12,10 @@ use biscara::view::{Viewer, ViewerOptions};
 use clap::Args;
 
 use super::args::{BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
-use super::diag::located;
-use super::diag::{Level, report};
-use super::files::{
-    FileSource, display_path, file_name, load_meshes, load_scene, open_input, write_output,
+use super::files::write_output;
+use biscara_files::{
+    FileSource, Level, display_path, file_name, load_meshes, load_scene, located, open_input,
+    report,
 };
 
 /// Writes one self-contained HTML file that animates a joint trajectory in 3D.
