@@ -15,8 +15,6 @@ use clap::{Args, Subcommand};
 
 use biscara_files::{FileSource, Level, NoteReporter, report};
 
-use super::files::write_output;
-
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.
 #[derive(Debug, Args)]
@@ -69,15 +67,8 @@ impl ConfigChoice {
         origin: Option<[f64; 4]>,
         fit: bool,
     ) -> anyhow::Result<ConfigOptions> {
-        let region = match (&self.for_program, self.region) {
-            (Some(program), _) => RegionChoice::Program {
-                program,
-                sampling: SamplingConfig { origin, fit, ..SamplingConfig::default() },
-                margin: self.margin,
-            },
-            (None, Some(rectangle)) => RegionChoice::Rectangle(rectangle),
-            (None, None) => RegionChoice::Workspace,
-        };
+        let program = self.for_program.as_deref();
+        let region = RegionChoice::of(program, self.margin, self.region, origin, fit);
         let notes = NoteReporter::default();
         let request = ConfigRequest { tool: self.tool, limits: self.limits, region };
         let options = request.options::<anyhow::Error>(model, notes.sink())?;
@@ -268,43 +259,19 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         then: args.then.as_deref(),
         origin: args.origin,
         timeout: args.timeout,
-        event: match (args.estop_at, args.machine_off_at) {
-            (Some(at), _) => Some((Event::Estop, at)),
-            (None, Some(at)) => Some((Event::MachineOff, at)),
-            (None, None) => None,
-        },
+        event: Event::at(args.estop_at, args.machine_off_at),
     };
     let notes = NoteReporter::default();
     let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
         report(Level::Note, note);
     })?;
     notes.finish();
-    for note in finished.notes() {
-        report(Level::Note, format_args!("LinuxCNC: {note}"));
-    }
     let format = JointCsvFormat {
         angle_unit: args.angle_unit,
         derivatives: args.derivatives,
         precision: usize::from(args.precision),
     };
-    let mut summary = None;
-    write_output(args.output.as_deref(), |out| {
-        summary = Some(finished.write_joints::<anyhow::Error>(out, format)?);
-        Ok(())
-    })?;
-    if let Some(path) = &args.path {
-        write_output(Some(path), |out| {
-            finished.write_path::<anyhow::Error>(out, usize::from(args.precision))
-        })?;
-    }
-    if let Some(summary) = &summary {
-        report(Level::Note, finished.note(summary));
-        for peak in summary.peaks {
-            report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
-        }
-    }
-    match finished.stopped(summary.as_ref()) {
-        Some(stop) => Err(stop.into()),
-        None => Ok(()),
-    }
+    let outputs =
+        job::Outputs { joints: args.output.as_deref(), path: args.path.as_deref(), format };
+    finished.write_outputs::<anyhow::Error>(&outputs, &mut |level, message| report(level, message))
 }

@@ -24,6 +24,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use biscara::kinematics::RobotModel;
+use biscara::linuxcnc::LinuxcncError;
 use biscara_files::{error_message, is_broken_pipe};
 use clap::{Parser, Subcommand};
 
@@ -79,7 +80,7 @@ pub(crate) fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) if is_broken_pipe(&*err) => ExitCode::SUCCESS,
-        Err(err) if is_interrupted(&err) => {
+        Err(err) if LinuxcncError::is_interrupted(&*err) => {
             let _ = writeln!(io::stderr(), "biscara: {}", error_message(&*err));
             ExitCode::from(130)
         }
@@ -136,17 +137,6 @@ where
         .chain(args.into_iter().map(Into::into));
     let cli = Cli::try_parse_from(args)?;
     dispatch(robot, cli.command)
-}
-
-/// Whether a LinuxCNC run was interrupted (it ends with 130, as an interrupt while writing a
-/// file does).
-fn is_interrupted(err: &anyhow::Error) -> bool {
-    err.chain().any(|cause| {
-        matches!(
-            cause.downcast_ref::<biscara::linuxcnc::LinuxcncError>(),
-            Some(biscara::linuxcnc::LinuxcncError::Interrupted)
-        )
-    })
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@
 //!   `FILE:LINE[:COL]: message`, with [`Hint`]s the caller words for its own settings.
 //!
 //! - [`generate()`]: the other pipeline, points → CL → G-code (`biscara gen`).
+//! - [`DemoReport`]: what `biscara demo` wrote of the bundled job ([`EXAMPLE_JOB`]).
 //!
 //! It deliberately holds no whole program: motions and samples are iterators, and fitting
 //! reads the program twice (once for its extent) rather than keeping it.
@@ -38,6 +39,7 @@
 
 mod check;
 mod csv;
+mod demo;
 mod error;
 mod generate;
 mod kind;
@@ -52,6 +54,7 @@ mod torques;
 pub use biscara_kinematics::RobotModel;
 
 pub use csv::sample_torques;
+pub use demo::{DemoReport, EXAMPLE_JOB};
 pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
