@@ -7,7 +7,9 @@ use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
 
 use crate::JointSample;
 
-/// The unit of the angle columns (`--angle-unit rad` or `deg` with the `clap` feature).
+/// The unit of the angle columns.
+///
+/// With the `clap` feature, `--angle-unit rad` or `deg`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AngleUnit {

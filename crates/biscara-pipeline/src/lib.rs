@@ -54,7 +54,6 @@ mod torques;
 pub use biscara_kinematics::RobotModel;
 
 pub use csv::sample_torques;
-pub use demo::{DemoReport, EXAMPLE_JOB};
 pub use error::{Hint, Note, PipelineError};
 pub use generate::{GenerateError, generate};
 pub use kind::ProgramKind;
@@ -66,3 +65,6 @@ pub use placement::{Placement, place};
 pub use settings::{parse_blend, parse_grip_time, parse_time_limit, parse_time_step};
 pub use source::{ProgramSource, TextSource};
 pub use tool::{ToolJointSamples, ToolSamples, ToolState};
+
+// `biscara demo`'s bundled job and its report.
+pub use demo::{DemoReport, EXAMPLE_JOB};
