@@ -4,9 +4,8 @@ use std::path::PathBuf;
 
 use biscara::kinematics::RobotModel;
 use biscara::pnp::write_cl;
-use clap::Args;
-
 use biscara_files::{located_at, open_input};
+use clap::Args;
 
 use super::files::write_output;
 

@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use biscara::joints::TrajectorySummary;
 use biscara::pipeline::{DemoReport, EXAMPLE_JOB, RobotModel};
+use biscara_files::{located, open_input};
 use clap::Args;
 
 use super::files::write_output;
 use super::run_command;
-use biscara_files::{located, open_input};
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
 ///

@@ -9,9 +9,8 @@ use biscara::design::{
     write_row,
 };
 use biscara::kinematics::RobotModel;
-use clap::{Args, Subcommand};
-
 use biscara_files::{Level, display_path, image_format, located, open_input, report};
+use clap::{Args, Subcommand};
 
 use super::files::write_output;
 

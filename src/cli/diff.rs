@@ -5,9 +5,8 @@ use std::path::PathBuf;
 use anyhow::anyhow;
 use biscara::diff::{DiffOptions, diff as compare};
 use biscara::text::non_negative;
-use clap::Args;
-
 use biscara_files::{display_path, open_input};
+use clap::Args;
 
 use super::files::write_output;
 

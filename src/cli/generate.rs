@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use biscara::kinematics::RobotModel;
 use biscara::pipeline::{GenerateError, generate as generate_gcode};
 use biscara::post::PostOptions;
+use biscara_files::{located, located_at, open_input};
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 
 use super::Cli;
 use super::files::write_output;
-use biscara_files::{located, located_at, open_input};
 
 /// Turns a pick-and-place points file straight into G-code: `biscara clf` and `biscara post` in
 /// one pass, with the same checks and the same output.

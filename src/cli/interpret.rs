@@ -5,11 +5,11 @@ use std::path::PathBuf;
 
 use biscara::motion::write_jsonl;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
+use biscara_files::{FileSource, NoteReporter};
 use clap::Args;
 
 use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
 use super::files::write_output;
-use biscara_files::{FileSource, NoteReporter};
 
 /// Interprets a G-code program as LinuxCNC does and writes its motions as the inter-file
 ///: one JSON object per motion or event, absolute positions in the robot's base

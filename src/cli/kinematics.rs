@@ -4,9 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use biscara::kinematics::{Joints, Pose, RobotModel};
-use clap::Args;
-
 use biscara_files::{Level, report};
+use clap::Args;
 
 use super::files::write_output;
 

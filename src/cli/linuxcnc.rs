@@ -11,9 +11,8 @@ use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
 use biscara::pipeline::SamplingConfig;
 use biscara::text::parse_xyzc;
-use clap::{Args, Subcommand};
-
 use biscara_files::{FileSource, Level, NoteReporter, report};
+use clap::{Args, Subcommand};
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.

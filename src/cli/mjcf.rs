@@ -2,13 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::anyhow;
-use biscara::joints::read_joint_csv;
 use biscara::kinematics::RobotModel;
 use biscara::view::{MjcfOptions, QposWriter, write_mjcf};
+use biscara_files::{load_scene, open_input, read_joint_rows};
 use clap::Args;
-
-use biscara_files::{display_path, load_scene, located, open_input};
 
 use super::files::write_output;
 
@@ -74,19 +71,10 @@ pub(crate) fn mjcf(robot: &RobotModel, args: &MjcfArgs) -> anyhow::Result<()> {
 
 /// Reads the joint CSV `traj` and writes the companion file `companion`.
 fn write_companion(robot: &RobotModel, traj: &Path, companion: &Path) -> anyhow::Result<()> {
-    let name = display_path(traj);
     let input = open_input(traj)?;
     write_output(Some(companion), |out| {
         let mut writer = QposWriter::new(out, robot)?;
-        let mut rows = 0usize;
-        for row in read_joint_csv(input) {
-            let row = row.map_err(|err| located(traj, err))?;
-            writer.write(&row).map_err(|err| anyhow!("{name}:{}: {err}", row.line))?;
-            rows += 1;
-        }
-        if rows == 0 {
-            return Err(anyhow!("{name}: the trajectory has no rows"));
-        }
+        read_joint_rows(traj, input, |row| writer.write(row))?;
         writer.finish()?;
         Ok(())
     })

@@ -11,11 +11,11 @@ use biscara::view::{
     JointCurves, TopView, TorqueCurves, TracedProgram, draw_joints, draw_top_view, draw_torques,
     trace_program, zoom_region,
 };
+use biscara_files::{Level, NoteReporter, image_format, load_scene, report};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::files::write_output;
-use biscara_files::{Level, NoteReporter, image_format, load_scene, report};
 
 /// Draws a program on the virtual robot, in top view or as joint curves.
 ///

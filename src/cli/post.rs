@@ -3,9 +3,8 @@
 use std::path::PathBuf;
 
 use biscara::post::{PostOptions, PostSummary, post as post_file};
-use clap::Args;
-
 use biscara_files::{Level, display_path, located_at, open_input, report};
+use clap::Args;
 
 use super::files::write_output;
 

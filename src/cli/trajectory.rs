@@ -4,11 +4,11 @@ use std::path::PathBuf;
 
 use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::pipeline::{Pipeline, RobotModel};
+use biscara_files::NoteReporter;
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::files::write_output;
-use biscara_files::NoteReporter;
 
 /// Samples a program at a fixed time step: the Cartesian path.
 ///

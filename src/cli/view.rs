@@ -2,21 +2,19 @@
 
 use std::path::PathBuf;
 
-use anyhow::anyhow;
 use biscara::interpolate::Profile;
-use biscara::joints::read_joint_csv;
 use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig, parse_grip_time};
 use biscara::robot::Report;
 use biscara::text::parse_sizes;
 use biscara::view::{Viewer, ViewerOptions};
+use biscara_files::{
+    FileSource, Level, file_name, load_meshes, load_scene, located, open_input, read_joint_rows,
+    report,
+};
 use clap::Args;
 
 use super::args::{BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
 use super::files::write_output;
-use biscara_files::{
-    FileSource, Level, display_path, file_name, load_meshes, load_scene, located, open_input,
-    report,
-};
 
 /// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
@@ -95,18 +93,12 @@ pub(crate) struct ViewArgs {
 
 pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
-    let traj_name = display_path(&args.traj);
     let title =
         format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
     let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
     load_meshes(model.robot(), &mut viewer)?;
-    for row in read_joint_csv(open_input(&args.traj)?) {
-        let row = row.map_err(|err| located(&args.traj, err))?;
-        viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;
-    }
-    let Some(duration) = viewer.duration() else {
-        return Err(anyhow!("{traj_name}: the trajectory has no rows"));
-    };
+    read_joint_rows(&args.traj, open_input(&args.traj)?, |row| viewer.push_row(row))?;
+    let duration = viewer.duration().unwrap_or_default();
     if let Some(size) = args.object {
         viewer.set_object_size(size);
     }

@@ -5,9 +5,8 @@ use std::path::PathBuf;
 use biscara::kinematics::{Joints, RobotModel};
 use biscara::robot::{VirtualRobot, Workspace};
 use biscara::view::draw_workspace;
-use clap::Args;
-
 use biscara_files::image_format;
+use clap::Args;
 
 use super::files::write_output;
 

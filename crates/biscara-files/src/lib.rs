@@ -34,6 +34,7 @@ mod input;
 mod output;
 mod robot;
 mod source;
+mod trajectory;
 
 use std::path::{Path, PathBuf};
 
@@ -46,6 +47,7 @@ pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_
 pub use output::{catch_interrupts, on_interrupt, write_output};
 pub use robot::{load_meshes, load_robot, load_scene, resolve_meshes};
 pub use source::FileSource;
+pub use trajectory::read_joint_rows;
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]
@@ -81,6 +83,12 @@ pub enum FileError {
         path: String,
         /// What is wrong, from the reader of the content.
         message: String,
+    },
+    /// A joint trajectory file holds no rows ([`read_joint_rows`]).
+    #[error("{path}: the trajectory has no rows")]
+    NoRows {
+        /// The path as shown to users.
+        path: String,
     },
     /// Writing the content failed (a full disk, a closed pipe).
     #[error(transparent)]
