@@ -5,8 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use biscara::design::{
-    Objective, ParamRange, Shard, SweepOptions, SweepOutcome, SweepRequest, Task, header, merge,
-    write_row,
+    Objective, ParamRange, Shard, SweepOptions, SweepOutcome, SweepRequest, Task, merge,
 };
 use biscara::kinematics::RobotModel;
 use biscara_files::{Level, display_path, image_format, located, open_input, report};
@@ -166,25 +165,21 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     let (step, task, fit, shard) = (args.step, args.task, args.fit, args.shard);
     let request = SweepRequest { l1, l2, base, step, task, objective, programs, fit, shard };
     let sweep = request.sweep(model.robot().clone())?;
-    let columns = sweep.evaluator().columns();
     let options = SweepOptions { threads: args.threads, objective, cells: args.atlas.is_some() };
     let progress = biscara_files::progress(sweep.count(), "designs");
     let mut outcome = None;
     write_output(args.output.as_deref(), |out| {
-        writeln!(out, "{}", header(columns))?;
-        let found = sweep.run(&options, |evaluation| -> anyhow::Result<()> {
-            write_row(out, columns, evaluation)?;
-            progress.inc(1);
-            Ok(())
-        })?;
-        outcome = Some(found);
+        outcome = Some(sweep.write_csv::<anyhow::Error>(&options, out, || progress.inc(1))?);
         Ok(())
     })?;
     let outcome = outcome.expect("the sweep ran");
     progress.finish_and_clear();
     report(Level::Note, &outcome);
     if let Some(path) = &args.pareto {
-        write_output(Some(path), |out| Ok(outcome.write_pareto(out, columns)?))?;
+        write_output(
+            Some(path),
+            |out| Ok(outcome.write_pareto(out, sweep.evaluator().columns())?),
+        )?;
     }
     if let Some(path) = &args.atlas {
         write_atlas(path, &outcome)?;

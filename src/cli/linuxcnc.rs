@@ -9,7 +9,6 @@ use biscara::kinematics::RobotModel;
 use biscara::linuxcnc::job::{ConfigRequest, RegionChoice};
 use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
-use biscara::pipeline::SamplingConfig;
 use biscara::text::parse_xyzc;
 use biscara_files::{FileSource, Level, NoteReporter, report};
 use clap::{Args, Subcommand};
@@ -234,21 +233,8 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         (None, None) => anyhow::bail!("give a PROGRAM or --stream-csv TRAJ.csv"),
     };
     let source = FileSource::new(program);
-    let stream = if let Some(path) = &args.stream_csv {
-        Some(job::Stream::Csv { path })
-    } else if args.stream {
-        Some(job::Stream::Program {
-            source: &source,
-            kind: source.kind(None)?,
-            sampling: SamplingConfig {
-                profile: args.profile,
-                origin: args.origin,
-                ..SamplingConfig::default()
-            },
-        })
-    } else {
-        None
-    };
+    let (csv, profile) = (args.stream_csv.as_deref(), args.profile);
+    let stream = job::Stream::of(csv, args.stream, &source, profile, args.origin)?;
     let job = job::Job {
         config: args.config.as_deref(),
         robot_file,

@@ -8,6 +8,7 @@ use std::io::{BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use biscara_files::{FileError, FileSource, Level, display_path, write_output};
+use biscara_interpolate::Profile;
 use biscara_joints::{JointCsvFormat, JointCsvWriter};
 use biscara_kinematics::{Joints, RobotModel, ToolKind};
 use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
@@ -38,6 +39,29 @@ pub enum Stream<'a> {
         /// The file.
         path: &'a Path,
     },
+}
+
+impl<'a> Stream<'a> {
+    /// The stream a command line asks for: the joint CSV `csv`, else with `stream` the
+    /// trajectory of `program` sampled with `profile` from `origin`; `None` runs the program on
+    /// LinuxCNC's planner.
+    pub fn of(
+        csv: Option<&'a Path>,
+        stream: bool,
+        program: &'a FileSource,
+        profile: Profile,
+        origin: Option<[f64; 4]>,
+    ) -> Result<Option<Stream<'a>>, FileError> {
+        Ok(match csv {
+            Some(path) => Some(Stream::Csv { path }),
+            None if stream => Some(Stream::Program {
+                source: program,
+                kind: program.kind(None)?,
+                sampling: SamplingConfig { profile, origin, ..SamplingConfig::default() },
+            }),
+            None => None,
+        })
+    }
 }
 
 /// One run of `biscara linuxcnc run`.
@@ -637,6 +661,22 @@ mod tests {
         let chosen = RegionChoice::of(None, 10.0, rectangle, None, false);
         assert!(matches!(chosen, RegionChoice::Rectangle(r) if Some(r) == rectangle));
         assert!(matches!(RegionChoice::of(None, 10.0, None, None, true), RegionChoice::Workspace));
+        let dir = std::env::temp_dir().join(format!("biscara-stream-of-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("job.ngc"), "G0 X0 Y300\n").unwrap();
+        let source = FileSource::new(&dir.join("job.ngc"));
+        let csv = Stream::of(Some(Path::new("t.csv")), true, &source, Profile::Optimal, None);
+        assert!(matches!(csv, Ok(Some(Stream::Csv { path })) if path == Path::new("t.csv")));
+        let origin = Some([0.0, 300.0, 0.0, 0.0]);
+        match Stream::of(None, true, &source, Profile::Trapezoid, origin) {
+            Ok(Some(Stream::Program { kind, sampling, .. })) => {
+                assert_eq!(kind, ProgramKind::Gcode);
+                assert_eq!((sampling.profile, sampling.origin), (Profile::Trapezoid, origin));
+            }
+            _ => panic!("the program's trajectory"),
+        }
+        assert!(matches!(Stream::of(None, false, &source, Profile::Optimal, None), Ok(None)));
+        fs::remove_dir_all(&dir).unwrap();
         let event = runner::Event::at(Some(1.5), Some(2.0));
         assert_eq!(event, Some((runner::Event::Estop, 1.5)));
         let event = runner::Event::at(None, Some(2.0));
