@@ -1,7 +1,6 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
@@ -203,20 +202,12 @@ pub(crate) fn placed_reading(
         dialect: dialect.dialect,
         tool: dialect.tool,
         subroutine_path: files.subroutine_path.clone(),
-        tool_table: read_with(files.tool_table.as_deref(), ToolTable::read)?,
-        ini: read_with(files.ini.as_deref(), IniFile::read)?,
+        tool_table: FileSystem::read_shared(files.tool_table.as_deref(), ToolTable::read)?,
+        ini: FileSystem::read_shared(files.ini.as_deref(), IniFile::read)?,
         max_idle_jumps: files.max_idle_jumps,
         max_motions: files.max_motions,
         ..SamplingConfig::default()
     })
-}
-
-/// The file `path` (when given) read by `read` from the file system, shared.
-fn read_with<T, E: std::error::Error + Send + Sync + 'static>(
-    path: Option<&std::path::Path>,
-    read: fn(&dyn biscara::gcode::Environment, &std::path::Path) -> Result<T, E>,
-) -> anyhow::Result<Option<Arc<T>>> {
-    Ok(path.map(|path| read(&FileSystem, path)).transpose()?.map(Arc::new))
 }
 
 /// The default corner tolerance of a G-code program.

@@ -24,7 +24,9 @@ mod motion;
 mod segment;
 mod tool;
 
-pub use jsonl::{InterFileError, InterFileErrorKind, JsonlReader, read_jsonl, write_jsonl};
+pub use jsonl::{
+    InterFileError, InterFileErrorKind, JsonlReader, read_jsonl, write_jsonl, write_motions,
+};
 pub use motion::{CodeName, Feed, Motion, MotionKind, Plane};
 pub use segment::{Circle, Segment};
 pub use tool::{Tool, UnknownTool};
