@@ -112,7 +112,7 @@ pub fn located_at<E: Error + Send + Sync + 'static>(
 /// Most slowed motions listed one by one; past it only their count is printed, at the end.
 const SLOWED_SHOWN: usize = 20;
 
-/// Reports the pipeline's notes: slowed motions one by one up to [`SLOWED_SHOWN`], then counted
+/// Reports the pipeline's notes: slowed motions one by one up to 20, then counted
 /// ([`NoteReporter::finish`] prints the total).
 #[derive(Debug, Default)]
 pub struct NoteReporter {
