@@ -157,10 +157,7 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     let (Some(l1), Some(l2), Some(base)) = (args.l1, args.l2, args.base) else {
         anyhow::bail!("--l1, --l2 and --base are required");
     };
-    let mut programs = Vec::with_capacity(args.programs.len());
-    for path in &args.programs {
-        programs.push((display_path(path), biscara_files::read_text(path)?));
-    }
+    let programs = biscara_files::read_texts(&args.programs)?;
     let objective = args.objective;
     let (step, task, fit, shard) = (args.step, args.task, args.fit, args.shard);
     let request = SweepRequest { l1, l2, base, step, task, objective, programs, fit, shard };
@@ -202,10 +199,7 @@ fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
 }
 
 fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
-    let mut inputs = Vec::with_capacity(args.inputs.len());
-    for path in &args.inputs {
-        inputs.push((display_path(path), open_input(path)?));
-    }
+    let inputs = biscara_files::open_inputs(&args.inputs)?;
     write_output(args.output.as_deref(), |out| {
         let rows = merge(inputs, out)?;
         report(Level::Note, format!("{rows} designs merged"));

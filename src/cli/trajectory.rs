@@ -121,19 +121,9 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
         precision: usize::from(args.sampling.precision),
     };
     let dynamics = args.torques.then(|| biscara::dynamics::Dynamics::new(model)).transpose()?;
-    write_output(args.output.as_deref(), |out| match &dynamics {
-        Some(dynamics) => Ok(pipeline.write_joint_torque_csv(
-            &source,
-            kind,
-            out,
-            format,
-            args.events,
-            dynamics,
-            notes.sink(),
-        )?),
-        None => {
-            Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
-        }
+    write_output(args.output.as_deref(), |out| {
+        let (events, dynamics) = (args.events, dynamics.as_ref());
+        Ok(pipeline.write_joints(&source, kind, out, format, events, dynamics, notes.sink())?)
     })?;
     notes.finish();
     Ok(())

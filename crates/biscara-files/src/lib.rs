@@ -43,7 +43,10 @@ use biscara_view::ImageFormat;
 pub use diag::{Level, NoteReporter, error_message, is_broken_pipe, located, located_at, report};
 pub use environment::FileSystem;
 pub use indicatif::ProgressBar;
-pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
+pub use input::{
+    NamedInput, ProgressFile, open_file, open_input, open_inputs, progress, read_bytes, read_text,
+    read_texts,
+};
 pub use output::{catch_interrupts, on_interrupt, write_output};
 pub use robot::{load_meshes, load_robot, load_scene, resolve_meshes};
 pub use source::FileSource;

@@ -50,6 +50,7 @@ mod settings;
 mod source;
 mod tool;
 mod torques;
+mod write;
 
 pub use biscara_kinematics::RobotModel;
 
