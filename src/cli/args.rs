@@ -1,77 +1,15 @@
 //! Arguments and value parsers shared by the commands that run a program.
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use biscara::gcode::{Dialect, IniFile, Tool, ToolTable};
 use biscara::interpolate::Profile;
-use biscara::joints::AngleUnit;
-use biscara::pipeline::{ProgramKind, SamplingConfig};
-use biscara_files::FileSystem;
-use clap::{Args, ValueEnum};
-
-use super::files::FileSource;
-
-/// What kind of file a program is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum InputKind {
-    /// RS274/NGC G-code (LinuxCNC's dialect).
-    Gcode,
-    /// An inter-file (JSON Lines) written by `biscara interpret`.
-    Jsonl,
-    /// A path CSV written by `biscara interpolate` (joints only).
-    Path,
-}
-
-impl From<InputKind> for ProgramKind {
-    fn from(kind: InputKind) -> ProgramKind {
-        match kind {
-            InputKind::Gcode => ProgramKind::Gcode,
-            InputKind::Jsonl => ProgramKind::Jsonl,
-            InputKind::Path => ProgramKind::Path,
-        }
-    }
-}
-
-/// The velocity profile, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum ProfileArg {
-    /// Constant speed from a motion's first sample to its last (the paper).
-    Constant,
-    /// Accelerate, cruise, decelerate: an exact stop at every corner.
-    Trapezoid,
-    /// Time-optimal under every joint's velocity and acceleration limits (TOPP-RA), with an
-    /// exact stop at every corner.
-    Optimal,
-}
-
-impl From<ProfileArg> for Profile {
-    fn from(profile: ProfileArg) -> Profile {
-        match profile {
-            ProfileArg::Constant => Profile::Constant,
-            ProfileArg::Trapezoid => Profile::Trapezoid,
-            ProfileArg::Optimal => Profile::Optimal,
-        }
-    }
-}
-
-/// The angle unit of a joint CSV, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum AngleUnitArg {
-    /// Radians.
-    Rad,
-    /// Degrees.
-    Deg,
-}
-
-impl From<AngleUnitArg> for AngleUnit {
-    fn from(unit: AngleUnitArg) -> AngleUnit {
-        match unit {
-            AngleUnitArg::Rad => AngleUnit::Radians,
-            AngleUnitArg::Deg => AngleUnit::Degrees,
-        }
-    }
-}
+use biscara::pipeline::{
+    ProgramKind, SamplingConfig, parse_blend, parse_grip_time, parse_time_limit, parse_time_step,
+};
+use biscara::text::parse_xyzc;
+use biscara_files::{FileSource, FileSystem};
+use clap::Args;
 
 /// The program a command runs, and its kind.
 #[derive(Debug, Args)]
@@ -81,14 +19,14 @@ pub(crate) struct ProgramArgs {
     program: PathBuf,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
+    from: Option<ProgramKind>,
 }
 
 impl ProgramArgs {
     /// The program as the pipeline's source, and its kind.
     pub(crate) fn open(&self) -> anyhow::Result<(FileSource, ProgramKind)> {
         let source = FileSource::new(&self.program);
-        let kind = source.kind(self.from.map(ProgramKind::from))?;
+        let kind = source.kind(self.from)?;
         Ok((source, kind))
     }
 }
@@ -102,7 +40,7 @@ pub(crate) struct PlacementArgs {
         long,
         value_name = "X,Y,Z,C",
         allow_hyphen_values = true,
-        value_parser = parse_pose,
+        value_parser = parse_xyzc,
         help = "G54 offset before the first line of a G-code program"
     )]
     pub(crate) origin: Option<[f64; 4]>,
@@ -129,7 +67,6 @@ pub(crate) struct DialectArgs {
         long,
         value_name = "DIALECT",
         default_value = "auto",
-        value_parser = parse_dialect,
         help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
@@ -139,15 +76,9 @@ pub(crate) struct DialectArgs {
     #[arg(
         long,
         value_name = "KIND",
-        value_parser = parse_tool,
         help = "gripper, laser, spindle, extruder or pen (default: the robot file's, else inferred)"
     )]
     pub(crate) tool: Option<Tool>,
-}
-
-pub(crate) fn parse_tool(text: &str) -> Result<Tool, String> {
-    Tool::from_name(text)
-        .ok_or_else(|| format!("`{text}` is not a tool: gripper, laser, spindle, extruder or pen"))
 }
 
 /// The files a G-code program may read besides itself.
@@ -202,10 +133,6 @@ pub(crate) struct GcodeFilesArgs {
     pub(crate) max_motions: u64,
 }
 
-fn parse_dialect(text: &str) -> Result<Dialect, String> {
-    text.parse::<Dialect>().map_err(|err| err.to_string())
-}
-
 /// The bound on robot time of the commands that sample a program (interpolate, joints, check,
 /// plot).
 #[derive(Debug, Args)]
@@ -223,21 +150,17 @@ pub(crate) struct TimeLimitArgs {
     pub(crate) time_limit: f64,
 }
 
-fn parse_time_limit(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=1e9, "the time limit", "[0, 1e9] s")
-}
-
 /// Options shared by the commands that sample a program in time.
 #[derive(Debug, Args)]
 pub(crate) struct SamplingArgs {
     /// Time step, seconds.
-    #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_step)]
+    #[arg(long, value_name = "SECONDS", default_value = "0.001", value_parser = parse_time_step)]
     dt: f64,
     /// Velocity profile of every motion.
     #[arg(long, value_enum, default_value = "optimal")]
-    profile: ProfileArg,
+    profile: Profile,
     /// Seconds each pick (M3) and place (M4) holds the pose; by default they take no time.
-    #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_duration)]
+    #[arg(long, value_name = "SECONDS", default_value = "0", value_parser = parse_grip_time)]
     grip_time: f64,
     #[command(flatten)]
     pub(crate) blend: BlendArgs,
@@ -258,7 +181,7 @@ impl SamplingArgs {
         Ok(SamplingConfig {
             time_limit: limit.time_limit,
             dt: self.dt,
-            profile: self.profile.into(),
+            profile: self.profile,
             grip_time: self.grip_time,
             blend: self.blend.blend,
             ..placed_reading(&self.placement, &self.dialect, &self.files)?
@@ -279,20 +202,12 @@ pub(crate) fn placed_reading(
         dialect: dialect.dialect,
         tool: dialect.tool,
         subroutine_path: files.subroutine_path.clone(),
-        tool_table: read_with(files.tool_table.as_deref(), ToolTable::read)?,
-        ini: read_with(files.ini.as_deref(), IniFile::read)?,
+        tool_table: FileSystem::read_shared(files.tool_table.as_deref(), ToolTable::read)?,
+        ini: FileSystem::read_shared(files.ini.as_deref(), IniFile::read)?,
         max_idle_jumps: files.max_idle_jumps,
         max_motions: files.max_motions,
         ..SamplingConfig::default()
     })
-}
-
-/// The file `path` (when given) read by `read` from the file system, shared.
-fn read_with<T, E: std::error::Error + Send + Sync + 'static>(
-    path: Option<&std::path::Path>,
-    read: fn(&dyn biscara::gcode::Environment, &std::path::Path) -> Result<T, E>,
-) -> anyhow::Result<Option<Arc<T>>> {
-    Ok(path.map(|path| read(&FileSystem, path)).transpose()?.map(Arc::new))
 }
 
 /// The default corner tolerance of a G-code program.
@@ -309,60 +224,4 @@ pub(crate) struct BlendArgs {
         help = "Default G64 P (mm) for programs that never say G61/G64 (default: exact stop)"
     )]
     pub(crate) blend: Option<f64>,
-}
-
-/// A tolerance in mm in [0, 100] (0: G64 with no P, see `biscara-blend`).
-fn parse_blend(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=100.0, "the blend tolerance", "[0, 100] mm")
-}
-
-fn parse_step(text: &str) -> Result<f64, String> {
-    number_in(text, 1e-6..=10.0, "the time step", "[0.000001, 10] s")
-}
-
-/// Seconds in [0, 3600].
-pub(crate) fn parse_duration(text: &str) -> Result<f64, String> {
-    number_in(text, 0.0..=3600.0, "the time", "[0, 3600] s")
-}
-
-/// `text` as a number in `range`, else an error that says `what` must lie in `shown`.
-fn number_in(
-    text: &str,
-    range: std::ops::RangeInclusive<f64>,
-    what: &str,
-    shown: &str,
-) -> Result<f64, String> {
-    let value: f64 = text.parse().map_err(|_| format!("`{text}` is not a number"))?;
-    if range.contains(&value) {
-        Ok(value)
-    } else {
-        Err(format!("{what} must lie in {shown}, got {text}"))
-    }
-}
-
-/// `X,Y,Z,C`: four finite numbers.
-pub(crate) fn parse_pose(text: &str) -> Result<[f64; 4], String> {
-    parse_numbers(text, "four numbers X,Y,Z,C")
-}
-
-/// `X,Y`: two finite numbers.
-pub(crate) fn parse_point(text: &str) -> Result<[f64; 2], String> {
-    parse_numbers(text, "two numbers X,Y")
-}
-
-/// `N` comma-separated finite numbers; `expected` names them in the error.
-fn parse_numbers<const N: usize>(text: &str, expected: &str) -> Result<[f64; N], String> {
-    let values: Vec<&str> = text.split(',').map(str::trim).collect();
-    if values.len() != N {
-        return Err(format!("expected {expected}, found {}", values.len()));
-    }
-    let mut numbers = [0.0; N];
-    for (slot, value) in numbers.iter_mut().zip(values) {
-        *slot = value
-            .parse::<f64>()
-            .ok()
-            .filter(|number| number.is_finite())
-            .ok_or_else(|| format!("`{value}` is not a finite number"))?;
-    }
-    Ok(numbers)
 }

@@ -4,11 +4,11 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
+use biscara_files::{NoteReporter, load_scene};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::NoteReporter;
-use super::files::{load_scene, write_output};
+use super::files::write_output;
 
 /// Runs a program on the virtual robot and reports every problem.
 ///

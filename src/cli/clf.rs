@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use biscara::kinematics::RobotModel;
 use biscara::pnp::write_cl;
+use biscara_files::{located_at, open_input};
 use clap::Args;
 
-use super::diag::located;
-use super::files::{open_input, write_output};
+use super::files::write_output;
 
 /// Turns a pick-and-place points file into an APT-style CL file.
 ///
@@ -36,9 +36,6 @@ pub(crate) fn clf(robot: &RobotModel, args: &ClfArgs) -> anyhow::Result<()> {
     let model = robot.kinematics();
     let input = open_input(&args.points)?;
     write_output(args.output.as_deref(), |out| {
-        write_cl(input, &model, out).map_err(|err| match err.line() {
-            Some(_) => located(&args.points, err),
-            None => anyhow::Error::from(err),
-        })
+        write_cl(input, &model, out).map_err(|err| located_at(&args.points, err.line(), err).into())
     })
 }

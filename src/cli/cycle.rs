@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use biscara::kinematics::RobotModel;
 use biscara::robot::{CycleConfig, adept_cycle};
+use biscara::text::parse_xy;
 use clap::Args;
 
-use super::args::parse_point;
 use super::files::write_output;
 
 /// The Adept cycle, the industry's pick-and-place benchmark: from a point, 25 mm up, 305 mm
@@ -31,7 +31,7 @@ use super::files::write_output;
 )]
 pub(crate) struct CycleArgs {
     /// The cycle's centre X,Y, millimetres (default: the largest workspace rectangle's centre).
-    #[arg(long, value_name = "X,Y", value_parser = parse_point, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y", value_parser = parse_xy, allow_hyphen_values = true)]
     at: Option<[f64; 2]>,
     /// Height of the cycle's low points, millimetres.
     #[arg(long, value_name = "MM", default_value = "40", allow_hyphen_values = true)]

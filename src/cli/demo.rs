@@ -4,11 +4,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use biscara::joints::TrajectorySummary;
-use biscara::pipeline::RobotModel;
+use biscara::pipeline::{DemoReport, EXAMPLE_JOB, RobotModel};
+use biscara_files::{located, open_input};
 use clap::Args;
 
-use super::diag::located;
-use super::files::{open_input, write_output};
+use super::files::write_output;
 use super::run_command;
 
 /// Runs the whole pipeline on the bundled pick-and-place job and writes every file into DIR.
@@ -29,9 +29,6 @@ pub(crate) struct DemoArgs {
     #[arg(value_name = "DIR", default_value = "out")]
     dir: PathBuf,
 }
-
-/// The bundled job: the example points file (also `data/jobs/pick_place.txt`).
-const EXAMPLE_JOB: &str = include_str!("../../data/jobs/pick_place.txt");
 
 pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
@@ -61,43 +58,6 @@ pub(crate) fn demo(model: &RobotModel, args: &DemoArgs) -> anyhow::Result<()> {
     run_command(model, ["plot", &jsonl, "--at", &at, "-o", &file("plot.svg")])?;
     run_command(model, ["view", &traj, "--program", &gcode, "-o", &file("view.html")])?;
     run_command(model, ["mjcf", "-o", &file("robot.xml"), "--traj", &traj])?;
-    let written = [
-        ("robot.json", "the robot in force"),
-        ("job.txt", "the pick-and-place points"),
-        ("job.cl", "CL file (biscara clf)"),
-        ("job.ngc", "G-code for LinuxCNC (biscara post)"),
-        ("job.jsonl", "motions, the inter-file (biscara interpret)"),
-        ("path.csv", "Cartesian samples at 1 ms (biscara interpolate)"),
-        (
-            "traj.csv",
-            if model.robot().motors.is_some() {
-                "joint trajectory with velocities, accelerations and torques (biscara joints)"
-            } else {
-                "joint trajectory with velocities and accelerations (biscara joints)"
-            },
-        ),
-        ("check.json", "the virtual robot's report (biscara check --json)"),
-        ("workspace.txt", "the workspace's area and largest rectangle (biscara workspace)"),
-        ("workspace.svg", "the workspace and its largest rectangle (biscara workspace --svg)"),
-        ("plot.svg", "workspace, path and robot in top view (biscara plot)"),
-        ("view.html", "the robot in motion, open in a browser (biscara view)"),
-        ("robot.xml", "MuJoCo model (biscara mjcf)"),
-        ("robot.traj.csv", "the trajectory in the model's joints (mjcf --traj)"),
-    ];
-    print_summary(dir, &summary, &written);
-    Ok(())
-}
-
-#[allow(clippy::print_stdout)]
-fn print_summary(dir: &Path, summary: &TrajectorySummary, written: &[(&str, &str)]) {
-    println!("biscara demo: the bundled pick-and-place job through the whole pipeline");
-    for (name, what) in written {
-        println!("  wrote {:<24} {what}", dir.join(name).display());
-    }
-    let [t1, t2, t3, d4] = summary.peak_velocity;
-    println!(
-        "duration {:.3} s, {} samples; peak joint speeds: theta1 {t1:.1} °/s, theta2 {t2:.1} °/s, \
-         theta3 {t3:.1} °/s, d4 {d4:.1} mm/s",
-        summary.duration, summary.samples,
-    );
+    let report = DemoReport { dir: dir.clone(), motors: model.robot().motors.is_some(), summary };
+    write_output(None, |out| Ok(write!(out, "{report}")?))
 }

@@ -5,14 +5,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use biscara::design::{
-    Objective, ParamRange, Shard, SweepOptions, SweepOutcome, SweepRequest, Task, header, merge,
-    write_row,
+    Objective, ParamRange, Shard, SweepOptions, SweepOutcome, SweepRequest, Task, merge,
 };
 use biscara::kinematics::RobotModel;
-use clap::{Args, Subcommand, ValueEnum};
+use biscara_files::{Level, display_path, image_format, located, open_input, report};
+use clap::{Args, Subcommand};
 
-use super::diag::{Level, located, report};
-use super::files::{display_path, format_of, open_input, write_output};
+use super::files::write_output;
 
 /// Sweeps the robot's design: every combination of proximal link l1, distal link l2 and base
 /// distance (the two base joints at ±base/2; everything else from the robot file) is measured as
@@ -65,13 +64,13 @@ enum DesignCommand {
 #[derive(Debug, Args)]
 struct SweepArgs {
     /// Proximal link lengths, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l1)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("l1"))]
     l1: Option<ParamRange>,
     /// Distal link lengths, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_l2)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("l2"))]
     l2: Option<ParamRange>,
     /// Distances between the two base joints, mm: MIN:MAX:N.
-    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = range_base)]
+    #[arg(long, value_name = "MIN:MAX:N", required = true, value_parser = ParamRange::parser("base"))]
     base: Option<ParamRange>,
     /// Workspace grid step, mm (as `biscara workspace --step`).
     #[arg(long, value_name = "MM", default_value = "2")]
@@ -85,10 +84,10 @@ struct SweepArgs {
     /// What --best and the atlas's ring choose: the largest rectangle, GCI, reachable area or
     /// worst LCI, or the shortest total time of --programs, or the shortest Adept cycle.
     #[arg(long, value_enum, default_value = "rect")]
-    objective: ObjectiveArg,
+    objective: Objective,
     /// A task rectangle X0,Y0,X1,Y1 (mm) every chosen design must cover: all its grid points
     /// reachable. Adds the task_ok column.
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = task, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
     task: Option<Task>,
     /// Time these programs (G-code, inter-file or path CSV) on every design, as `joints` runs
     /// them (1 ms, the optimal profile, every joint limit), summed: the time_s column (empty
@@ -108,7 +107,7 @@ struct SweepArgs {
     #[arg(long, value_name = "N", default_value = "0")]
     threads: usize,
     /// Evaluate part K of N of the sweep: the designs whose index is K − 1 modulo N.
-    #[arg(long, value_name = "K/N", default_value = "1/1", value_parser = shard)]
+    #[arg(long, value_name = "K/N", default_value = "1/1")]
     shard: Shard,
 }
 
@@ -140,60 +139,10 @@ struct AtlasArgs {
     input: PathBuf,
     /// The index drawn, and the design ringed (its best).
     #[arg(long, value_enum, default_value = "gci")]
-    index: ObjectiveArg,
+    index: Objective,
     /// The picture: SVG, or PNG by its extension.
     #[arg(short, long, value_name = "FILE", required = true)]
     output: PathBuf,
-}
-
-/// An objective as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum ObjectiveArg {
-    /// The largest rectangle's area, mm².
-    Rect,
-    /// The GCI over the largest rectangle.
-    Gci,
-    /// The reachable area, mm².
-    Area,
-    /// The worst LCI over the largest rectangle.
-    LciMin,
-    /// The total time of --programs, s (shortest best).
-    Time,
-    /// The Adept cycle's time (`biscara cycle`), s (shortest best).
-    Cycle,
-}
-
-impl From<ObjectiveArg> for Objective {
-    fn from(arg: ObjectiveArg) -> Objective {
-        match arg {
-            ObjectiveArg::Rect => Objective::Rectangle,
-            ObjectiveArg::Gci => Objective::Gci,
-            ObjectiveArg::Area => Objective::Area,
-            ObjectiveArg::LciMin => Objective::LciMin,
-            ObjectiveArg::Time => Objective::Time,
-            ObjectiveArg::Cycle => Objective::Cycle,
-        }
-    }
-}
-
-fn range_l1(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("l1", text).map_err(|err| err.to_string())
-}
-
-fn range_l2(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("l2", text).map_err(|err| err.to_string())
-}
-
-fn range_base(text: &str) -> Result<ParamRange, String> {
-    ParamRange::parse("base", text).map_err(|err| err.to_string())
-}
-
-fn task(text: &str) -> Result<Task, String> {
-    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
-}
-
-fn shard(text: &str) -> Result<Shard, String> {
-    text.parse().map_err(|err: biscara::design::DesignError| err.to_string())
 }
 
 pub(crate) fn design(model: &RobotModel, args: &DesignArgs) -> anyhow::Result<()> {
@@ -208,33 +157,26 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
     let (Some(l1), Some(l2), Some(base)) = (args.l1, args.l2, args.base) else {
         anyhow::bail!("--l1, --l2 and --base are required");
     };
-    let mut programs = Vec::with_capacity(args.programs.len());
-    for path in &args.programs {
-        programs.push((display_path(path), biscara_files::read_text(path)?));
-    }
-    let objective = Objective::from(args.objective);
+    let programs = biscara_files::read_texts(&args.programs)?;
+    let objective = args.objective;
     let (step, task, fit, shard) = (args.step, args.task, args.fit, args.shard);
     let request = SweepRequest { l1, l2, base, step, task, objective, programs, fit, shard };
     let sweep = request.sweep(model.robot().clone())?;
-    let columns = sweep.evaluator().columns();
     let options = SweepOptions { threads: args.threads, objective, cells: args.atlas.is_some() };
     let progress = biscara_files::progress(sweep.count(), "designs");
     let mut outcome = None;
     write_output(args.output.as_deref(), |out| {
-        writeln!(out, "{}", header(columns))?;
-        let found = sweep.run(&options, |evaluation| -> anyhow::Result<()> {
-            write_row(out, columns, evaluation)?;
-            progress.inc(1);
-            Ok(())
-        })?;
-        outcome = Some(found);
+        outcome = Some(sweep.write_csv::<anyhow::Error>(&options, out, || progress.inc(1))?);
         Ok(())
     })?;
     let outcome = outcome.expect("the sweep ran");
     progress.finish_and_clear();
     report(Level::Note, &outcome);
     if let Some(path) = &args.pareto {
-        write_output(Some(path), |out| Ok(outcome.write_pareto(out, columns)?))?;
+        write_output(
+            Some(path),
+            |out| Ok(outcome.write_pareto(out, sweep.evaluator().columns())?),
+        )?;
     }
     if let Some(path) = &args.atlas {
         write_atlas(path, &outcome)?;
@@ -251,16 +193,13 @@ fn sweep(model: &RobotModel, args: &SweepArgs) -> anyhow::Result<()> {
 /// Draws the atlas of `outcome`'s cells, the best design ringed, to `path` (SVG or PNG).
 fn write_atlas(path: &Path, outcome: &SweepOutcome) -> anyhow::Result<()> {
     let bytes = outcome
-        .draw_atlas(format_of(Some(path)))
+        .draw_atlas(image_format(Some(path)))
         .with_context(|| format!("drawing {}", display_path(path)))?;
     write_output(Some(path), |out| Ok(out.write_all(&bytes)?))
 }
 
 fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
-    let mut inputs = Vec::with_capacity(args.inputs.len());
-    for path in &args.inputs {
-        inputs.push((display_path(path), open_input(path)?));
-    }
+    let inputs = biscara_files::open_inputs(&args.inputs)?;
     write_output(args.output.as_deref(), |out| {
         let rows = merge(inputs, out)?;
         report(Level::Note, format!("{rows} designs merged"));
@@ -269,7 +208,7 @@ fn merge_shards(args: &MergeArgs) -> anyhow::Result<()> {
 }
 
 fn draw(args: &AtlasArgs) -> anyhow::Result<()> {
-    let outcome = SweepOutcome::read(open_input(&args.input)?, Objective::from(args.index))
+    let outcome = SweepOutcome::read(open_input(&args.input)?, args.index)
         .map_err(|err| located(&args.input, err))?;
     if outcome.cells.is_empty() {
         anyhow::bail!("{}: no designs to draw", display_path(&args.input));

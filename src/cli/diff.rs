@@ -3,10 +3,12 @@
 use std::path::PathBuf;
 
 use anyhow::anyhow;
-use biscara::diff::{DiffError, DiffOptions, Side, diff as compare};
+use biscara::diff::{DiffOptions, diff as compare};
+use biscara::text::non_negative;
+use biscara_files::{display_path, open_input};
 use clap::Args;
 
-use super::files::{display_path, open_input};
+use super::files::write_output;
 
 /// Compares two outputs of the same kind (joint or path CSV, inter-file) number by number.
 ///
@@ -27,50 +29,15 @@ pub(crate) struct DiffArgs {
     #[arg(value_name = "B")]
     b: PathBuf,
     /// Largest absolute difference of two numbers that still counts as equal.
-    #[arg(long, value_name = "X", default_value = "1e-6", value_parser = parse_tolerance)]
+    #[arg(long, value_name = "X", default_value = "1e-6", value_parser = non_negative("the tolerance"))]
     tol: f64,
 }
 
-fn parse_tolerance(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
-        _ => Err(format!("the tolerance must be a number ≥ 0, got {text}")),
-    }
-}
-
 pub(crate) fn diff(args: &DiffArgs) -> anyhow::Result<()> {
-    let (name_a, name_b) = (display_path(&args.a), display_path(&args.b));
-    let name = |side| if side == Side::A { name_a.clone() } else { name_b.clone() };
-    let report =
-        compare(open_input(&args.a)?, open_input(&args.b)?, DiffOptions { tolerance: args.tol })
-            .map_err(|err| match err {
-                DiffError::Io { side, line, source } => anyhow!("{}:{line}: {source}", name(side)),
-                DiffError::Json { side, line, message } => {
-                    anyhow!("{}:{line}: not JSON: {message}", name(side))
-                }
-                other => anyhow!("{name_a} and {name_b}: {other}"),
-            })?;
-    match report.first {
-        None => {
-            #[allow(clippy::print_stdout)]
-            {
-                println!(
-                    "equal within {}: {} rows, largest difference {:e}",
-                    args.tol, report.rows, report.largest_difference
-                );
-            }
-            Ok(())
-        }
-        Some(first) => Err(anyhow!(
-            "{name_b}:{}: `{}` differs: {name_a} has {}, {name_b} has {}; {} of {} rows differ \
-             (tolerance {})",
-            first.line,
-            first.column,
-            first.a,
-            first.b,
-            report.differing_rows,
-            report.rows,
-            args.tol
-        )),
-    }
+    let (a, b) = (display_path(&args.a), display_path(&args.b));
+    let options = DiffOptions { tolerance: args.tol };
+    let report = compare(open_input(&args.a)?, open_input(&args.b)?, options)
+        .map_err(|err| anyhow!(err.named(&a, &b)))?;
+    let agreement = report.verdict(&a, &b, args.tol)?;
+    write_output(None, |out| Ok(writeln!(out, "{agreement}")?))
 }

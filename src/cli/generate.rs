@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use biscara::kinematics::RobotModel;
 use biscara::pipeline::{GenerateError, generate as generate_gcode};
 use biscara::post::PostOptions;
+use biscara_files::{located, located_at, open_input};
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 
 use super::Cli;
-use super::diag::{located, post_error};
-use super::files::{open_input, write_output};
+use super::files::write_output;
 
 /// Turns a pick-and-place points file straight into G-code: `biscara clf` and `biscara post` in
 /// one pass, with the same checks and the same output.
@@ -53,9 +53,9 @@ pub(crate) fn generate(robot: &RobotModel, args: &GenArgs) -> anyhow::Result<()>
     let cl_name = args.clf.as_deref().unwrap_or(Path::new("<generated CL>"));
     let run = |out: &mut dyn Write, cl_out: Option<&mut dyn Write>| {
         generate_gcode(input, &model, out, cl_out, options).map_err(|err| match err {
-            GenerateError::Points(err) => located(&args.points, err),
-            GenerateError::Post(err) => post_error(cl_name, err),
-            other => other.into(),
+            GenerateError::Points(err) => located(&args.points, err).into(),
+            GenerateError::Post(err) => located_at(cl_name, err.line(), err).into(),
+            other => anyhow::Error::from(other),
         })
     };
     match args.clf.as_deref() {

@@ -1,15 +1,14 @@
 //! `biscara interpret`: G-code → inter-file (JSON Lines).
 
-use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
-use biscara::motion::write_jsonl;
+use biscara::motion::write_motions;
 use biscara::pipeline::{Pipeline, ProgramKind, RobotModel};
+use biscara_files::{FileSource, NoteReporter};
 use clap::Args;
 
 use super::args::{DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
-use super::diag::NoteReporter;
-use super::files::{FileSource, write_output};
+use super::files::write_output;
 
 /// Interprets a G-code program as LinuxCNC does and writes its motions as the inter-file
 ///: one JSON object per motion or event, absolute positions in the robot's base
@@ -70,16 +69,8 @@ pub(crate) fn interpret(model: &RobotModel, args: &InterpretArgs) -> anyhow::Res
     let notes = NoteReporter::default();
     let motions =
         Pipeline::new(model, config).motions(&source, ProgramKind::Gcode, notes.sink())?;
-    write_output(args.output.as_deref(), |out| {
-        // serde_json writes a motion in many small pieces: gather them in a buffer of a
-        // concrete type rather than through `dyn Write`.
-        let mut out = BufWriter::with_capacity(64 * 1024, out);
-        for motion in motions {
-            write_jsonl(&mut out, &motion?)?;
-        }
-        out.flush()?;
-        Ok(())
-    })?;
+    let motions = motions.map(|motion| motion.map_err(anyhow::Error::from));
+    write_output(args.output.as_deref(), |out| write_motions(out, motions))?;
     notes.finish();
     Ok(())
 }

@@ -2,11 +2,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
-use biscara::kinematics::{Joints, Pose, RobotModel};
+use biscara::kinematics::RobotModel;
+use biscara_files::{Level, report};
 use clap::Args;
 
-use super::diag::{Level, report};
 use super::files::write_output;
 
 /// Inverse kinematics of one pose: prints θ1 θ2 θ3 d4 (degrees, degrees, degrees, mm).
@@ -82,13 +81,7 @@ pub(crate) struct RobotArgs {
 
 pub(crate) fn ik(robot: &RobotModel, args: &IkArgs) -> anyhow::Result<()> {
     let model = robot.kinematics();
-    let pose = Pose::from_degrees(args.x, args.y, args.z, args.c);
-    let solution = model.inverse_checked(&pose).with_context(|| {
-        format!(
-            "pose (x, y, z, c) = ({}, {}, {}, {}) is unreachable",
-            args.x, args.y, args.z, args.c
-        )
-    })?;
+    let solution = model.ik_typed([args.x, args.y, args.z, args.c])?;
     write_output(None, |out| {
         let text = if args.json { solution.to_json(&model) } else { solution.to_text() };
         Ok(writeln!(out, "{text}")?)
@@ -97,13 +90,7 @@ pub(crate) fn ik(robot: &RobotModel, args: &IkArgs) -> anyhow::Result<()> {
 
 pub(crate) fn fk(robot: &RobotModel, args: &FkArgs) -> anyhow::Result<()> {
     let model = robot.kinematics();
-    let joints = Joints::from_degrees(args.theta1, args.theta2, args.theta3, args.d4);
-    let solution = model.forward(&joints).with_context(|| {
-        format!(
-            "joints (θ1, θ2, θ3, d4) = ({}, {}, {}, {}) have no pose",
-            args.theta1, args.theta2, args.theta3, args.d4
-        )
-    })?;
+    let solution = model.fk_typed([args.theta1, args.theta2, args.theta3, args.d4])?;
     // FK is a calculator: it answers outside the limits too, but says so.
     for warning in model.fk_warnings(&solution) {
         report(Level::Warning, warning);

@@ -3,17 +3,15 @@
 use std::path::{Path, PathBuf};
 
 use biscara::gcode::Tool;
-use biscara::joints::JointCsvFormat;
+use biscara::interpolate::Profile;
+use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::kinematics::RobotModel;
 use biscara::linuxcnc::job::{ConfigRequest, RegionChoice};
 use biscara::linuxcnc::runner::Event;
 use biscara::linuxcnc::{AxisLimitSource, ConfigOptions, configuration, job};
-use biscara::pipeline::SamplingConfig;
-use clap::{Args, Subcommand, ValueEnum};
-
-use super::args::{AngleUnitArg, ProfileArg, parse_pose, parse_tool};
-use super::diag::{Level, NoteReporter, report};
-use super::files::{FileSource, write_output};
+use biscara::text::parse_xyzc;
+use biscara_files::{FileSource, Level, NoteReporter, report};
+use clap::{Args, Subcommand};
 
 /// The robot on LinuxCNC: a configuration with this robot's kinematics, and runs of programs on
 /// LinuxCNC itself, headless.
@@ -35,27 +33,16 @@ enum LinuxcncCommand {
     Run(RunArgs),
 }
 
-/// Where the axis limits come from, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum LimitsArg {
-    /// Derived from the joint limits: LinuxCNC's planner cannot exceed a joint's limit in the
-    /// workspace rectangle.
-    Derived,
-    /// The robot file's Cartesian motion limits as they are (LinuxCNC's planner then exceeds the
-    /// joints' limits; for comparison).
-    Cartesian,
-}
-
 /// How a configuration is made: shared by `config` and by `run` without --config.
 #[derive(Debug, Args)]
 struct ConfigChoice {
     /// The tool whose codes the HAL wires: gripper, laser, spindle or pen (default: the robot
     /// file's tool.kind, else gripper); LinuxCNC has no extruder axis here.
-    #[arg(long, value_name = "KIND", value_parser = parse_tool)]
+    #[arg(long, value_name = "KIND")]
     tool: Option<Tool>,
     /// Where the axis limits come from.
     #[arg(long, value_enum, default_value = "derived")]
-    limits: LimitsArg,
+    limits: AxisLimitSource,
     /// Derive the axis limits over this program's own XY extent (placed by --origin, or by
     /// --fit with `config`; from the robot's home pose) plus --margin, and set LinuxCNC's soft
     /// limits to that region: faster than over the whole workspace, and LinuxCNC refuses a
@@ -78,21 +65,10 @@ impl ConfigChoice {
         origin: Option<[f64; 4]>,
         fit: bool,
     ) -> anyhow::Result<ConfigOptions> {
-        let region = match (&self.for_program, self.region) {
-            (Some(program), _) => RegionChoice::Program {
-                program,
-                sampling: SamplingConfig { origin, fit, ..SamplingConfig::default() },
-                margin: self.margin,
-            },
-            (None, Some(rectangle)) => RegionChoice::Rectangle(rectangle),
-            (None, None) => RegionChoice::Workspace,
-        };
-        let limits = match self.limits {
-            LimitsArg::Derived => AxisLimitSource::Derived,
-            LimitsArg::Cartesian => AxisLimitSource::Cartesian,
-        };
+        let program = self.for_program.as_deref();
+        let region = RegionChoice::of(program, self.margin, self.region, origin, fit);
         let notes = NoteReporter::default();
-        let request = ConfigRequest { tool: self.tool, limits, region };
+        let request = ConfigRequest { tool: self.tool, limits: self.limits, region };
         let options = request.options::<anyhow::Error>(model, notes.sink())?;
         notes.finish();
         Ok(options)
@@ -128,7 +104,7 @@ struct ConfigArgs {
         long,
         value_name = "X,Y,Z,C",
         allow_hyphen_values = true,
-        value_parser = parse_pose,
+        value_parser = parse_xyzc,
         requires = "for_program"
     )]
     origin: Option<[f64; 4]>,
@@ -189,12 +165,12 @@ struct RunArgs {
     stream_csv: Option<PathBuf>,
     /// The velocity profile of the streamed trajectory.
     #[arg(long, value_enum, default_value = "optimal", requires = "stream")]
-    profile: ProfileArg,
+    profile: Profile,
     /// A G-code program to run on LinuxCNC's planner after the stream, from where it ended.
     #[arg(long, value_name = "PROGRAM", requires = "streaming")]
     then: Option<PathBuf>,
     /// A G54 offset X,Y,Z,C (mm, degrees) in force before the program's first line.
-    #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_pose)]
+    #[arg(long, value_name = "X,Y,Z,C", allow_hyphen_values = true, value_parser = parse_xyzc)]
     origin: Option<[f64; 4]>,
     /// Write the joint CSV to FILE instead of standard output.
     #[arg(short, long, value_name = "FILE")]
@@ -208,7 +184,7 @@ struct RunArgs {
     derivatives: bool,
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
-    angle_unit: AngleUnitArg,
+    angle_unit: AngleUnit,
     /// Decimals of every number in the CSV.
     #[arg(long, value_name = "N", default_value = "6", value_parser = clap::value_parser!(u8).range(0..=12))]
     precision: u8,
@@ -257,21 +233,8 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         (None, None) => anyhow::bail!("give a PROGRAM or --stream-csv TRAJ.csv"),
     };
     let source = FileSource::new(program);
-    let stream = if let Some(path) = &args.stream_csv {
-        Some(job::Stream::Csv { path })
-    } else if args.stream {
-        Some(job::Stream::Program {
-            source: &source,
-            kind: source.kind(None)?,
-            sampling: SamplingConfig {
-                profile: args.profile.into(),
-                origin: args.origin,
-                ..SamplingConfig::default()
-            },
-        })
-    } else {
-        None
-    };
+    let (csv, profile) = (args.stream_csv.as_deref(), args.profile);
+    let stream = job::Stream::of(csv, args.stream, &source, profile, args.origin)?;
     let job = job::Job {
         config: args.config.as_deref(),
         robot_file,
@@ -281,43 +244,19 @@ fn run(model: &RobotModel, robot_file: Option<&Path>, args: &RunArgs) -> anyhow:
         then: args.then.as_deref(),
         origin: args.origin,
         timeout: args.timeout,
-        event: match (args.estop_at, args.machine_off_at) {
-            (Some(at), _) => Some((Event::Estop, at)),
-            (None, Some(at)) => Some((Event::MachineOff, at)),
-            (None, None) => None,
-        },
+        event: Event::at(args.estop_at, args.machine_off_at),
     };
     let notes = NoteReporter::default();
     let finished = job::run_job::<anyhow::Error>(model, &job, notes.sink(), &mut |note| {
         report(Level::Note, note);
     })?;
     notes.finish();
-    for note in finished.notes() {
-        report(Level::Note, format_args!("LinuxCNC: {note}"));
-    }
     let format = JointCsvFormat {
-        angle_unit: args.angle_unit.into(),
+        angle_unit: args.angle_unit,
         derivatives: args.derivatives,
         precision: usize::from(args.precision),
     };
-    let mut summary = None;
-    write_output(args.output.as_deref(), |out| {
-        summary = Some(finished.write_joints::<anyhow::Error>(out, format)?);
-        Ok(())
-    })?;
-    if let Some(path) = &args.path {
-        write_output(Some(path), |out| {
-            finished.write_path::<anyhow::Error>(out, usize::from(args.precision))
-        })?;
-    }
-    if let Some(summary) = &summary {
-        report(Level::Note, finished.note(summary));
-        for peak in summary.peaks {
-            report(if peak.exceeds() { Level::Warning } else { Level::Note }, peak);
-        }
-    }
-    match finished.stopped(summary.as_ref()) {
-        Some(stop) => Err(stop.into()),
-        None => Ok(()),
-    }
+    let outputs =
+        job::Outputs { joints: args.output.as_deref(), path: args.path.as_deref(), format };
+    finished.write_outputs::<anyhow::Error>(&outputs, &mut |level, message| report(level, message))
 }

@@ -2,14 +2,12 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::anyhow;
-use biscara::joints::read_joint_csv;
 use biscara::kinematics::RobotModel;
 use biscara::view::{MjcfOptions, QposWriter, write_mjcf};
+use biscara_files::{load_scene, open_input, read_joint_rows};
 use clap::Args;
 
-use super::diag::located;
-use super::files::{display_path, load_scene, open_input, write_output};
+use super::files::write_output;
 
 /// Writes a MuJoCo model (MJCF) of the robot.
 ///
@@ -73,19 +71,10 @@ pub(crate) fn mjcf(robot: &RobotModel, args: &MjcfArgs) -> anyhow::Result<()> {
 
 /// Reads the joint CSV `traj` and writes the companion file `companion`.
 fn write_companion(robot: &RobotModel, traj: &Path, companion: &Path) -> anyhow::Result<()> {
-    let name = display_path(traj);
     let input = open_input(traj)?;
     write_output(Some(companion), |out| {
         let mut writer = QposWriter::new(out, robot)?;
-        let mut rows = 0usize;
-        for row in read_joint_csv(input) {
-            let row = row.map_err(|err| located(traj, err))?;
-            writer.write(&row).map_err(|err| anyhow!("{name}:{}: {err}", row.line))?;
-            rows += 1;
-        }
-        if rows == 0 {
-            return Err(anyhow!("{name}: the trajectory has no rows"));
-        }
+        read_joint_rows(traj, input, |row| writer.write(row))?;
         writer.finish()?;
         Ok(())
     })

@@ -6,7 +6,6 @@ mod clf;
 mod cycle;
 mod demo;
 mod design;
-mod diag;
 mod diff;
 mod files;
 mod generate;
@@ -25,6 +24,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use biscara::kinematics::RobotModel;
+use biscara::linuxcnc::LinuxcncError;
+use biscara_files::{error_message, is_broken_pipe};
 use clap::{Parser, Subcommand};
 
 /// Offline programming and simulation of the BiSCARA: a five-bar planar parallel robot with a
@@ -78,14 +79,14 @@ pub(crate) fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
-        Err(err) if is_interrupted(&err) => {
-            let _ = writeln!(io::stderr(), "biscara: {}", diag::error_message(&err));
+        Err(err) if is_broken_pipe(&*err) => ExitCode::SUCCESS,
+        Err(err) if LinuxcncError::is_interrupted(&*err) => {
+            let _ = writeln!(io::stderr(), "biscara: {}", error_message(&*err));
             ExitCode::from(130)
         }
         Err(err) => {
             // (Written even to a closed stderr without a panic: the exit code says it.)
-            let _ = writeln!(io::stderr(), "biscara: error: {}", diag::error_message(&err));
+            let _ = writeln!(io::stderr(), "biscara: error: {}", error_message(&*err));
             ExitCode::from(1)
         }
     }
@@ -136,23 +137,6 @@ where
         .chain(args.into_iter().map(Into::into));
     let cli = Cli::try_parse_from(args)?;
     dispatch(robot, cli.command)
-}
-
-/// Whether a LinuxCNC run was interrupted (it ends with 130, as an interrupt while writing a
-/// file does).
-fn is_interrupted(err: &anyhow::Error) -> bool {
-    err.chain().any(|cause| {
-        matches!(
-            cause.downcast_ref::<biscara::linuxcnc::LinuxcncError>(),
-            Some(biscara::linuxcnc::LinuxcncError::Interrupted)
-        )
-    })
-}
-
-fn is_broken_pipe(err: &anyhow::Error) -> bool {
-    err.chain().any(|cause| {
-        cause.downcast_ref::<io::Error>().is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
-    })
 }
 
 #[cfg(test)]

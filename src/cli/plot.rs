@@ -6,15 +6,16 @@ use anyhow::anyhow;
 use biscara::dynamics::Dynamics;
 use biscara::pipeline::{Pipeline, ProgramSource, RobotModel};
 use biscara::robot::Workspace;
+use biscara::text::parse_seconds;
 use biscara::view::{
     JointCurves, TopView, TorqueCurves, TracedProgram, draw_joints, draw_top_view, draw_torques,
     trace_program, zoom_region,
 };
+use biscara_files::{Level, NoteReporter, image_format, load_scene, report};
 use clap::Args;
 
 use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::{Level, NoteReporter, report};
-use super::files::{format_of, load_scene, write_output};
+use super::files::write_output;
 
 /// Draws a program on the virtual robot, in top view or as joint curves.
 ///
@@ -43,7 +44,7 @@ pub(crate) struct PlotArgs {
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
     /// Times (s) at which to draw the robot, comma-separated (default: the start).
-    #[arg(long, value_name = "T,…", value_delimiter = ',', value_parser = parse_time)]
+    #[arg(long, value_name = "T,…", value_delimiter = ',', value_parser = parse_seconds)]
     at: Vec<f64>,
     /// Draw the joint curves against time instead of the top view.
     #[arg(long)]
@@ -65,13 +66,6 @@ pub(crate) struct PlotArgs {
     sampling: SamplingArgs,
     #[command(flatten)]
     time_limit: TimeLimitArgs,
-}
-
-fn parse_time(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
-        _ => Err(format!("`{text}` is not a time in seconds (a number ≥ 0)")),
-    }
 }
 
 pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
@@ -97,7 +91,7 @@ pub(crate) fn plot(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
             format_args!("t = {t} s is after the program's end ({end:.3} s): not drawn"),
         );
     }
-    let format = format_of(args.output.as_deref());
+    let format = image_format(args.output.as_deref());
     let name = source.name();
     let bytes = if args.joints {
         let limits = model.robot().joint_limits.to_array();
@@ -140,6 +134,6 @@ fn plot_torques(model: &RobotModel, args: &PlotArgs) -> anyhow::Result<()> {
     let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
     let title = format!("Motor torques of {name}");
     let curves = TorqueCurves { title: &title, t: &t, torques: &torques, ratings };
-    let bytes = draw_torques(&curves, format_of(args.output.as_deref()))?;
+    let bytes = draw_torques(&curves, image_format(args.output.as_deref()))?;
     write_output(args.output.as_deref(), |out| Ok(out.write_all(&bytes)?))
 }

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use biscara::post::{PostOptions, PostSummary, post as post_file};
+use biscara_files::{Level, display_path, located_at, open_input, report};
 use clap::Args;
 
-use super::diag::{Level, post_error, report};
-use super::files::{display_path, open_input, write_output};
+use super::files::write_output;
 
 /// Turns a CL file into G-code that runs unchanged on LinuxCNC.
 ///
@@ -39,7 +39,8 @@ pub(crate) fn post(args: &PostArgs) -> anyhow::Result<()> {
     let options = PostOptions { line_numbers: args.line_numbers };
     let mut summary = PostSummary::default();
     write_output(args.output.as_deref(), |out| {
-        summary = post_file(input, out, options).map_err(|err| post_error(&args.cl, err))?;
+        summary =
+            post_file(input, out, options).map_err(|err| located_at(&args.cl, err.line(), err))?;
         Ok(())
     })?;
     if let Some(note) = summary.ignored_note() {

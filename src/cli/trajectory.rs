@@ -2,12 +2,12 @@
 
 use std::path::PathBuf;
 
-use biscara::joints::JointCsvFormat;
+use biscara::joints::{AngleUnit, JointCsvFormat};
 use biscara::pipeline::{Pipeline, RobotModel};
+use biscara_files::NoteReporter;
 use clap::Args;
 
-use super::args::{AngleUnitArg, ProgramArgs, SamplingArgs, TimeLimitArgs};
-use super::diag::NoteReporter;
+use super::args::{ProgramArgs, SamplingArgs, TimeLimitArgs};
 use super::files::write_output;
 
 /// Samples a program at a fixed time step: the Cartesian path.
@@ -89,7 +89,7 @@ pub(crate) struct JointsArgs {
     torques: bool,
     /// Unit of the angle columns.
     #[arg(long, value_enum, default_value = "rad")]
-    angle_unit: AngleUnitArg,
+    angle_unit: AngleUnit,
     /// Add the tool's column after the joints, as `interpolate --events` does:
     /// `gripper`, `laser_power`, `spindle_rpm`, `extruded_mm` or `pen_down`.
     #[arg(
@@ -116,24 +116,14 @@ pub(crate) fn joints(model: &RobotModel, args: &JointsArgs) -> anyhow::Result<()
     let notes = NoteReporter::default();
     let pipeline = Pipeline::new(model, args.sampling.config(&args.time_limit)?);
     let format = JointCsvFormat {
-        angle_unit: args.angle_unit.into(),
+        angle_unit: args.angle_unit,
         derivatives: args.derivatives,
         precision: usize::from(args.sampling.precision),
     };
     let dynamics = args.torques.then(|| biscara::dynamics::Dynamics::new(model)).transpose()?;
-    write_output(args.output.as_deref(), |out| match &dynamics {
-        Some(dynamics) => Ok(pipeline.write_joint_torque_csv(
-            &source,
-            kind,
-            out,
-            format,
-            args.events,
-            dynamics,
-            notes.sink(),
-        )?),
-        None => {
-            Ok(pipeline.write_joint_csv(&source, kind, out, format, args.events, notes.sink())?)
-        }
+    write_output(args.output.as_deref(), |out| {
+        let (events, dynamics) = (args.events, dynamics.as_ref());
+        Ok(pipeline.write_joints(&source, kind, out, format, events, dynamics, notes.sink())?)
     })?;
     notes.finish();
     Ok(())

@@ -2,22 +2,19 @@
 
 use std::path::PathBuf;
 
-use anyhow::anyhow;
-use biscara::joints::read_joint_csv;
-use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig};
+use biscara::interpolate::Profile;
+use biscara::pipeline::{ProgramKind, ProgramSource, RobotModel, SamplingConfig, parse_grip_time};
 use biscara::robot::Report;
+use biscara::text::parse_sizes;
 use biscara::view::{Viewer, ViewerOptions};
+use biscara_files::{
+    FileSource, Level, file_name, load_meshes, load_scene, located, open_input, read_joint_rows,
+    report,
+};
 use clap::Args;
 
-use super::args::{
-    BlendArgs, DialectArgs, GcodeFilesArgs, InputKind, PlacementArgs, ProfileArg, parse_duration,
-    placed_reading,
-};
-use super::diag::located;
-use super::diag::{Level, report};
-use super::files::{
-    FileSource, display_path, file_name, load_meshes, load_scene, open_input, write_output,
-};
+use super::args::{BlendArgs, DialectArgs, GcodeFilesArgs, PlacementArgs, placed_reading};
+use super::files::write_output;
 
 /// Writes one self-contained HTML file that animates a joint trajectory in 3D.
 ///
@@ -71,7 +68,7 @@ pub(crate) struct ViewArgs {
     files: GcodeFilesArgs,
     /// The velocity profile TRAJ was made with, as `biscara joints --profile`.
     #[arg(long, value_enum, default_value = "optimal", help = "Profile TRAJ was made with")]
-    profile: ProfileArg,
+    profile: Profile,
     #[command(flatten)]
     blend: BlendArgs,
     /// The grip time TRAJ was made with, as `biscara joints --grip-time`.
@@ -79,35 +76,29 @@ pub(crate) struct ViewArgs {
         long,
         value_name = "SECONDS",
         default_value = "0",
-        value_parser = parse_duration,
+        value_parser = parse_grip_time,
         help = "Grip time TRAJ was made with"
     )]
     grip_time: f64,
     /// The size of the objects picked, `WxLxH` in mm (default: from the gripper's size).
-    #[arg(long, value_name = "WxLxH", value_parser = parse_object_size, help = "Size of the objects picked (mm)")]
+    #[arg(long, value_name = "WxLxH", value_parser = parse_sizes, help = "Size of the objects picked (mm)")]
     object: Option<[f64; 3]>,
     /// A `biscara check --json` report: its problems are marked in the scene and on the timeline.
     #[arg(long, value_name = "FILE", help = "check --json report whose problems to mark")]
     check: Option<PathBuf>,
     /// The program's kind (default: from the extension, else from its first bytes).
     #[arg(long, value_enum, value_name = "KIND")]
-    from: Option<InputKind>,
+    from: Option<ProgramKind>,
 }
 
 pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
-    let traj_name = display_path(&args.traj);
     let title =
         format!("biscara view · {}", file_name(args.program.as_ref().unwrap_or(&args.traj)));
     let mut viewer = Viewer::new(model, scene, ViewerOptions { title, ..ViewerOptions::default() });
     load_meshes(model.robot(), &mut viewer)?;
-    for row in read_joint_csv(open_input(&args.traj)?) {
-        let row = row.map_err(|err| located(&args.traj, err))?;
-        viewer.push_row(&row).map_err(|err| anyhow!("{traj_name}:{}: {err}", row.line))?;
-    }
-    let Some(duration) = viewer.duration() else {
-        return Err(anyhow!("{traj_name}: the trajectory has no rows"));
-    };
+    read_joint_rows(&args.traj, open_input(&args.traj)?, |row| viewer.push_row(row))?;
+    let duration = viewer.duration().unwrap_or_default();
     if let Some(size) = args.object {
         viewer.set_object_size(size);
     }
@@ -122,9 +113,9 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
     };
     // The program sampled as `joints` sampled it, at the trajectory's time step.
     let source = FileSource::new(program);
-    let kind = source.kind(args.from.map(ProgramKind::from))?;
+    let kind = source.kind(args.from)?;
     let config = SamplingConfig {
-        profile: args.profile.into(),
+        profile: args.profile,
         grip_time: args.grip_time,
         blend: args.blend.blend,
         ..placed_reading(&args.placement, &args.dialect, &args.files)?
@@ -141,17 +132,4 @@ pub(crate) fn view(model: &RobotModel, args: &ViewArgs) -> anyhow::Result<()> {
         );
     }
     write_output(args.output.as_deref(), |out| Ok(viewer.write_html(out)?))
-}
-
-/// `WxLxH`: three positive sizes in mm, e.g. `30x20x15`.
-fn parse_object_size(text: &str) -> Result<[f64; 3], String> {
-    let sizes: Vec<f64> = text
-        .split(['x', 'X'])
-        .map(|part| part.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("`{text}` is not WxLxH (three sizes in mm, e.g. 30x20x15)"))?;
-    match sizes[..] {
-        [w, l, h] if [w, l, h].iter().all(|v| v.is_finite() && *v > 0.0) => Ok([w, l, h]),
-        _ => Err(format!("`{text}` is not WxLxH (three positive sizes in mm, e.g. 30x20x15)")),
-    }
 }

@@ -5,9 +5,10 @@ use std::path::PathBuf;
 use biscara::kinematics::{Joints, RobotModel};
 use biscara::robot::{VirtualRobot, Workspace};
 use biscara::view::draw_workspace;
+use biscara_files::image_format;
 use clap::Args;
 
-use super::files::{format_of, write_output};
+use super::files::write_output;
 
 /// The reachable region of the XY plane and the largest axis-aligned rectangle inside it
 /// (the paper's "reduced workspace", Fig. 5).
@@ -56,7 +57,7 @@ pub(crate) fn workspace(model: &RobotModel, args: &WorkspaceArgs) -> anyhow::Res
         let home = VirtualRobot::new(model).body(&Joints::default())?;
         let title = format!("Workspace of {} (grid {} mm)", robot.name, workspace.step());
         let bytes =
-            draw_workspace(&workspace, &rectangle, Some(&home), &title, format_of(Some(path)))?;
+            draw_workspace(&workspace, &rectangle, Some(&home), &title, image_format(Some(path)))?;
         write_output(Some(path), |out| Ok(out.write_all(&bytes)?))?;
     }
     write_output(args.output.as_deref(), |out| {

@@ -6,7 +6,7 @@ use std::path::Path;
 
 /// The modules of `src/cli/` every command may use; the others are commands (and `mod`, the
 /// parent that dispatches to them).
-const SHARED: [&str; 3] = ["args", "files", "diag"];
+const SHARED: [&str; 2] = ["args", "files"];
 
 /// The modules named by one file's `use` declarations among `siblings`: `use super::NAME…`,
 /// `use super::{NAME…, …}`, `use crate::cli::NAME…` (for `src/cli/`), `use crate::NAME…`.

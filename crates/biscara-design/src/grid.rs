@@ -57,6 +57,14 @@ impl ParamRange {
         Ok(ParamRange { min, max, count })
     }
 
+    /// A parser of `MIN:MAX:N` for the parameter `what`, as [`ParamRange::parse`]: what a
+    /// command line's flag takes.
+    pub fn parser(
+        what: &'static str,
+    ) -> impl Fn(&str) -> Result<ParamRange, DesignError> + Clone + Send + Sync + 'static {
+        move |text| ParamRange::parse(what, text)
+    }
+
     /// A single value (`V:V:1`).
     pub fn single(value: f64) -> ParamRange {
         ParamRange { min: value, max: value, count: 1 }
@@ -240,6 +248,10 @@ mod tests {
             let err = ParamRange::parse("l1", bad).unwrap_err().to_string();
             assert!(err.starts_with('\'') && err.contains(says), "{bad}: {err}");
         }
+        let base = ParamRange::parser("base");
+        assert_eq!(base("100:300:3").unwrap().values().collect::<Vec<_>>(), [100.0, 200.0, 300.0]);
+        let err = base("300:100:3").unwrap_err();
+        assert!(matches!(err, DesignError::Range { what: "base", .. }), "{err}");
     }
 
     #[test]

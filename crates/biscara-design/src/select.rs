@@ -6,20 +6,27 @@ use std::str::FromStr;
 use crate::{Design, DesignStatus, Evaluation};
 
 /// What `--best` maximises.
+///
+/// The first paragraph of each variant's documentation is the help of `--objective`'s and
+/// `--index`'s values (the `clap` feature).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Objective {
-    /// The largest rectangle's area.
+    /// The largest rectangle's area, mm².
     #[default]
+    #[cfg_attr(feature = "clap", value(name = "rect"))]
     Rectangle,
     /// The GCI over the largest rectangle.
     Gci,
-    /// The reachable area.
+    /// The reachable area, mm².
     Area,
     /// The worst LCI over the largest rectangle.
     LciMin,
-    /// The total time of the timed programs, minimised.
+    /// The total time of --programs, s (shortest best).
+    ///
+    /// The timed programs' total time, minimised.
     Time,
-    /// The Adept cycle's time, minimised.
+    /// The Adept cycle's time (`biscara cycle`), s (shortest best).
     Cycle,
 }
 

@@ -1,10 +1,13 @@
 //! The sweep: every design of a grid (or of one shard of it) evaluated on worker threads and
 //! handed back in index order, a block at a time.
 
+use std::io::Write;
+
 use rayon::prelude::*;
 
 use crate::{
     Collector, DesignError, DesignGrid, Evaluation, Evaluator, Objective, Shard, SweepOutcome,
+    header, write_row,
 };
 
 /// How many designs each worker thread gets per block: the memory a sweep holds is one block
@@ -80,5 +83,56 @@ impl Sweep {
             }
         }
         Ok(collector.finish())
+    }
+
+    /// Runs the sweep as [`Sweep::run`] and writes its CSV to `out`: the header of the
+    /// evaluator's columns, then each design's row as it is ready, calling `each` after every
+    /// row (a progress bar).
+    pub fn write_csv<E: From<DesignError> + From<std::io::Error> + Send>(
+        &self,
+        options: &SweepOptions,
+        out: &mut dyn Write,
+        mut each: impl FnMut(),
+    ) -> Result<SweepOutcome, E> {
+        let columns = self.evaluator.columns();
+        writeln!(out, "{}", header(columns))?;
+        self.run(options, |evaluation| -> Result<(), E> {
+            write_row(out, columns, evaluation)?;
+            each();
+            Ok(())
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use biscara_kinematics::Robot;
+
+    use super::*;
+    use crate::{ParamRange, SweepRequest};
+
+    #[test]
+    fn the_csv_has_the_header_and_a_row_per_design() {
+        let request = SweepRequest {
+            l1: ParamRange::parse("l1", "200:220:2").unwrap(),
+            l2: ParamRange::parse("l2", "300:300:1").unwrap(),
+            base: ParamRange::parse("base", "150:150:1").unwrap(),
+            step: 20.0,
+            task: None,
+            objective: Objective::Rectangle,
+            programs: Vec::new(),
+            fit: false,
+            shard: "1/1".parse().unwrap(),
+        };
+        let sweep = request.sweep(Robot::default()).unwrap();
+        let (mut out, mut rows) = (Vec::new(), 0);
+        let options = SweepOptions { threads: 1, ..SweepOptions::default() };
+        let outcome = sweep.write_csv::<DesignError>(&options, &mut out, || rows += 1).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!((lines.len(), rows), (3, 2));
+        assert_eq!(lines[0], header(sweep.evaluator().columns()));
+        assert!(lines[1].starts_with("0,200") && lines[2].starts_with("1,220"), "{text}");
+        assert!(outcome.best.is_some());
     }
 }

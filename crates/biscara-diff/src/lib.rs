@@ -87,6 +87,67 @@ impl DiffReport {
     }
 }
 
+impl DiffReport {
+    /// The verdict with the inputs named `a` and `b`: their agreement when no value differs by
+    /// more than `tolerance`, else the first difference.
+    pub fn verdict(&self, a: &str, b: &str, tolerance: f64) -> Result<Agreement, Box<Mismatch>> {
+        match &self.first {
+            None => Ok(Agreement { tolerance, rows: self.rows, largest: self.largest_difference }),
+            Some(first) => Err(Box::new(Mismatch {
+                a: a.to_owned(),
+                b: b.to_owned(),
+                first: first.clone(),
+                differing_rows: self.differing_rows,
+                rows: self.rows,
+                tolerance,
+            })),
+        }
+    }
+}
+
+/// Two inputs that agree: `equal within TOL: N rows, largest difference X`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Agreement {
+    /// The tolerance compared within.
+    pub tolerance: f64,
+    /// Data lines compared.
+    pub rows: usize,
+    /// The largest numeric difference seen.
+    pub largest: f64,
+}
+
+impl fmt::Display for Agreement {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "equal within {}: {} rows, largest difference {:e}",
+            self.tolerance, self.rows, self.largest
+        )
+    }
+}
+
+/// Two named inputs that differ beyond the tolerance: where first, and in how many rows.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{b}:{}: `{}` differs: {a} has {}, {b} has {}; {differing_rows} of {rows} rows differ \
+     (tolerance {tolerance})",
+    first.line, first.column, first.a, first.b
+)]
+pub struct Mismatch {
+    /// The name of the expected input.
+    pub a: String,
+    /// The name of the input checked.
+    pub b: String,
+    /// The first difference.
+    pub first: Difference,
+    /// Data lines with at least one difference.
+    pub differing_rows: usize,
+    /// Data lines compared.
+    pub rows: usize,
+    /// The tolerance compared within.
+    pub tolerance: f64,
+}
+
 /// Inputs that cannot be compared.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -120,6 +181,21 @@ pub enum DiffError {
         /// The parser's message.
         message: String,
     },
+}
+
+impl DiffError {
+    /// The error's message with the inputs named `a` and `b`: `NAME:LINE: …` for a fault of
+    /// one input, `A and B: …` for the two together.
+    pub fn named(&self, a: &str, b: &str) -> String {
+        let name = |side: &Side| if *side == Side::A { a } else { b };
+        match self {
+            DiffError::Io { side, line, source } => format!("{}:{line}: {source}", name(side)),
+            DiffError::Json { side, line, message } => {
+                format!("{}:{line}: not JSON: {message}", name(side))
+            }
+            other => format!("{a} and {b}: {other}"),
+        }
+    }
 }
 
 /// Compares two inputs line by line.
@@ -312,6 +388,25 @@ mod tests {
 
     fn run(a: &str, b: &str, tolerance: f64) -> DiffReport {
         diff(a.as_bytes(), b.as_bytes(), DiffOptions { tolerance }).expect("comparable")
+    }
+
+    #[test]
+    fn the_verdict_names_the_inputs() {
+        let header = "t_s,x_mm\n";
+        let equal = run(&format!("{header}0,1\n"), &format!("{header}0,1.5\n"), 1.0);
+        let agreement = equal.verdict("a.csv", "b.csv", 1.0).unwrap();
+        assert_eq!(agreement.to_string(), "equal within 1: 1 rows, largest difference 5e-1");
+        let differ = run(&format!("{header}0,1\n1,2\n"), &format!("{header}0,1\n1,2.5\n"), 1e-6);
+        let mismatch = differ.verdict("a.csv", "b.csv", 1e-6).unwrap_err();
+        assert_eq!(
+            mismatch.to_string(),
+            "b.csv:3: `x_mm` differs: a.csv has 2, b.csv has 2.5; 1 of 2 rows differ (tolerance \
+             0.000001)"
+        );
+        let err = diff("{\n".as_bytes(), "{\n".as_bytes(), DiffOptions::default()).unwrap_err();
+        assert!(err.named("a.jsonl", "b.jsonl").starts_with("a.jsonl:1: not JSON: "), "{err}");
+        let err = diff("a\n".as_bytes(), "b\n".as_bytes(), DiffOptions::default()).unwrap_err();
+        assert!(err.named("a", "b").starts_with("a and b: the files are of different kinds"));
     }
 
     #[test]

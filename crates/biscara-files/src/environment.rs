@@ -5,6 +5,7 @@ use std::fs::File;
 use std::io::{self, BufRead, BufReader, Write};
 use std::path::Path;
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+use std::sync::Arc;
 
 use biscara_gcode::{Environment, PythonProcess, Seekable};
 
@@ -13,6 +14,17 @@ use biscara_gcode::{Environment, PythonProcess, Seekable};
 /// `PATH`, its standard error the terminal's.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct FileSystem;
+
+impl FileSystem {
+    /// The file `path`, when one is given, read by `read` (a tool table's or an INI file's
+    /// reader) from the file system, shared: what the interpreter's settings keep.
+    pub fn read_shared<T, E>(
+        path: Option<&Path>,
+        read: fn(&dyn Environment, &Path) -> Result<T, E>,
+    ) -> Result<Option<Arc<T>>, E> {
+        Ok(path.map(|path| read(&FileSystem, path)).transpose()?.map(Arc::new))
+    }
+}
 
 impl Environment for FileSystem {
     fn open(&self, path: &Path) -> io::Result<Box<dyn Seekable>> {
@@ -72,6 +84,21 @@ impl Drop for Python3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn name_length(_: &dyn Environment, path: &Path) -> Result<usize, io::Error> {
+        match path.to_str() {
+            Some("missing") => Err(io::Error::other("missing")),
+            _ => Ok(path.as_os_str().len()),
+        }
+    }
+
+    #[test]
+    fn a_file_is_read_only_when_given() {
+        assert_eq!(FileSystem::read_shared(None, name_length).unwrap(), None);
+        let read = FileSystem::read_shared(Some(Path::new("tools.tbl")), name_length).unwrap();
+        assert_eq!(read.as_deref(), Some(&9));
+        assert!(FileSystem::read_shared(Some(Path::new("missing")), name_length).is_err());
+    }
 
     #[test]
     fn files_are_opened_from_the_file_system() {

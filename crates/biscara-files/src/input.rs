@@ -2,7 +2,7 @@
 
 use std::fs::File;
 use std::io::{self, BufRead, BufReader, IsTerminal, Read, Seek};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressBarIter, ProgressDrawTarget, ProgressFinish, ProgressStyle};
 
@@ -93,6 +93,20 @@ fn read_error(path: &Path, source: io::Error) -> FileError {
     FileError::Read { path: display_path(path), source }
 }
 
+/// Every file of `paths` as [`read_text`] reads it, named as messages name it
+/// ([`display_path`]): programs a library reads by name.
+pub fn read_texts(paths: &[PathBuf]) -> Result<Vec<(String, String)>, FileError> {
+    paths.iter().map(|path| Ok((display_path(path), read_text(path)?))).collect()
+}
+
+/// An input and its name as messages name it ([`display_path`]).
+pub type NamedInput = (String, Box<dyn BufRead>);
+
+/// Every file of `paths` opened as [`open_input`] opens it, named as messages name it.
+pub fn open_inputs(paths: &[PathBuf]) -> Result<Vec<NamedInput>, FileError> {
+    paths.iter().map(|path| Ok((display_path(path), open_input(path)?))).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,6 +140,14 @@ mod tests {
         let lines: Vec<String> = open_input(&path).unwrap().lines().map(Result::unwrap).collect();
         assert_eq!(lines, ["a", "b"]);
         assert_eq!(read_text(&path).unwrap(), "a\nb\n");
+        let texts = read_texts(std::slice::from_ref(&path)).unwrap();
+        assert_eq!(texts, [(path.display().to_string(), "a\nb\n".to_owned())]);
+        let mut inputs = open_inputs(&[path.clone(), path.clone()]).unwrap();
+        assert_eq!(inputs.len(), 2);
+        assert_eq!(io::read_to_string(inputs.pop().unwrap().1).unwrap(), "a\nb\n");
+        let missing = PathBuf::from("/nonexistent/biscara.ngc");
+        assert!(read_texts(&[path.clone(), missing.clone()]).is_err());
+        assert!(open_inputs(&[missing]).is_err());
         let mut file = open_file(&path).unwrap();
         file.seek(io::SeekFrom::Start(2)).unwrap();
         assert_eq!(io::read_to_string(file).unwrap(), "b\n");

@@ -3,7 +3,8 @@
 //! for UTF-8, and outputs written atomically (a temporary file beside the target, renamed over it
 //! only on success, removed when the run is interrupted), and the G-code interpreter's
 //! [`FileSystem`] (its file subroutines, tool tables and INI files, and `python3` for LinuxCNC's
-//! Python plug-ins).
+//! Python plug-ins); and the command line's diagnostics on stderr ([`report`], [`NoteReporter`],
+//! [`error_message`] with the pipeline's hints worded as flags).
 //!
 //! The stage crates never open a path: they read `impl BufRead` and write `impl Write`. This crate
 //! gives the binary those readers and writers with the guarantees users rely on: a failed or
@@ -27,20 +28,29 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod diag;
 mod environment;
 mod input;
 mod output;
 mod robot;
 mod source;
+mod trajectory;
 
 use std::path::{Path, PathBuf};
 
+use biscara_view::ImageFormat;
+
+pub use diag::{Level, NoteReporter, error_message, is_broken_pipe, located, located_at, report};
 pub use environment::FileSystem;
 pub use indicatif::ProgressBar;
-pub use input::{ProgressFile, open_file, open_input, progress, read_bytes, read_text};
+pub use input::{
+    NamedInput, ProgressFile, open_file, open_input, open_inputs, progress, read_bytes, read_text,
+    read_texts,
+};
 pub use output::{catch_interrupts, on_interrupt, write_output};
 pub use robot::{load_meshes, load_robot, load_scene, resolve_meshes};
 pub use source::FileSource;
+pub use trajectory::read_joint_rows;
 
 /// What went wrong with a file, and which file.
 #[derive(Debug, thiserror::Error)]
@@ -77,9 +87,18 @@ pub enum FileError {
         /// What is wrong, from the reader of the content.
         message: String,
     },
+    /// A joint trajectory file holds no rows ([`read_joint_rows`]).
+    #[error("{path}: the trajectory has no rows")]
+    NoRows {
+        /// The path as shown to users.
+        path: String,
+    },
     /// Writing the content failed (a full disk, a closed pipe).
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// Another error, as it is: a reader's error with no line to locate ([`located_at`]).
+    #[error(transparent)]
+    Other(Box<dyn std::error::Error + Send + Sync>),
 }
 
 /// How a path is named in messages: `<stdin>` for `-`.
@@ -90,6 +109,14 @@ pub fn display_path(path: &Path) -> String {
 /// The last component of a path, for titles (the whole path when it has none).
 pub fn file_name(path: &Path) -> String {
     path.file_name().map_or_else(|| display_path(path), |name| name.to_string_lossy().into_owned())
+}
+
+/// The picture format a path asks for: PNG for `.png`, else SVG (also on standard output).
+pub fn image_format(path: Option<&Path>) -> ImageFormat {
+    match path.and_then(|p| p.extension()).and_then(|e| e.to_str()) {
+        Some(ext) if ext.eq_ignore_ascii_case("png") => ImageFormat::Png,
+        _ => ImageFormat::Svg,
+    }
 }
 
 /// Whether `path` is `-`: standard input or output.
@@ -112,6 +139,9 @@ mod tests {
         assert_eq!(display_path(Path::new("-")), "<stdin>");
         assert_eq!(display_path(Path::new("a/b.ngc")), "a/b.ngc");
         assert_eq!(file_name(Path::new("a/b.ngc")), "b.ngc");
+        assert_eq!(image_format(Some(Path::new("a.PNG"))), ImageFormat::Png);
+        assert_eq!(image_format(Some(Path::new("a.png.svg"))), ImageFormat::Svg);
+        assert_eq!(image_format(None), ImageFormat::Svg);
     }
 
     #[test]

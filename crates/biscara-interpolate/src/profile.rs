@@ -1,12 +1,23 @@
 //! Velocity profiles in path-parameter space: how s ∈ [0, 1] advances with time.
 
 /// How a motion's speed varies along it (docs/motion.md).
+///
+/// The first paragraph of each variant's documentation is the help of `--profile`'s values (the
+/// `clap` feature).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Profile {
-    /// The paper's: constant speed from the first sample to the last, velocity jumps at corners.
+    /// Constant speed from a motion's first sample to its last (the paper).
+    ///
+    /// The paper's: velocity jumps at corners.
     Constant,
-    /// Accelerate from rest, cruise, decelerate to rest: an exact stop at every corner.
+    /// Accelerate, cruise, decelerate: an exact stop at every corner.
+    ///
+    /// From rest to rest.
     Trapezoid,
+    /// Time-optimal under every joint's velocity and acceleration limits (TOPP-RA), with an
+    /// exact stop at every corner.
+    ///
     /// The fastest time scaling of each motion under the path speed and acceleration, C's
     /// limits and every joint's velocity and acceleration limits (from the [`SpeedLimit`]),
     /// from rest to rest (TOPP-RA, `biscara-timing`). Not a closed form: the interpolator plans

@@ -8,12 +8,19 @@ use biscara_text::{CsvError, NumericCsvReader, RowBuffer};
 use crate::{JointSample, Peaks};
 
 /// The unit of the angle columns.
+///
+/// With the `clap` feature, `--angle-unit rad` or `deg`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AngleUnit {
-    /// Radians (the default, as Simulink wants them).
+    /// Radians.
+    ///
+    /// The default, as Simulink wants them.
     #[default]
+    #[cfg_attr(feature = "clap", value(name = "rad"))]
     Radians,
     /// Degrees.
+    #[cfg_attr(feature = "clap", value(name = "deg"))]
     Degrees,
 }
 

@@ -53,6 +53,7 @@ pub use meshes::{MeshSpec, Meshes, Part};
 pub use mode::{AssemblyMode, ParseModeError, Sign, WorkingMode};
 pub use model::RobotModel;
 pub use pose::{Chain, Joint, Joints, Pose};
+pub use report::{JointsError, PoseError};
 pub use robot::{
     Base, Geometry, JointLimits, JointValues, Links, MotionLimits, Robot, RobotError, ToolKind,
     ToolSpec,

@@ -3,7 +3,65 @@
 use biscara_text::fixed;
 use serde::Serialize;
 
-use crate::{FkSolution, IkSolution, Kinematics};
+use crate::{FkSolution, IkSolution, Joints, Kinematics, KinematicsError, Pose};
+
+/// A pose `biscara ik` cannot solve: the pose as typed (mm, degrees), and why.
+#[derive(Debug, thiserror::Error)]
+#[error("pose (x, y, z, c) = ({x}, {y}, {z}, {c}) is unreachable")]
+pub struct PoseError {
+    /// X, mm.
+    pub x: f64,
+    /// Y, mm.
+    pub y: f64,
+    /// Z, mm.
+    pub z: f64,
+    /// C, degrees.
+    pub c: f64,
+    /// Why.
+    #[source]
+    pub source: KinematicsError,
+}
+
+/// Joint values `biscara fk` cannot assemble: the values as typed (degrees, mm), and why.
+#[derive(Debug, thiserror::Error)]
+#[error("joints (θ1, θ2, θ3, d4) = ({theta1}, {theta2}, {theta3}, {d4}) have no pose")]
+pub struct JointsError {
+    /// θ1, degrees.
+    pub theta1: f64,
+    /// θ2, degrees.
+    pub theta2: f64,
+    /// θ3, degrees.
+    pub theta3: f64,
+    /// d4, mm.
+    pub d4: f64,
+    /// Why.
+    #[source]
+    pub source: KinematicsError,
+}
+
+impl Kinematics {
+    /// `biscara ik`: the checked inverse kinematics ([`Kinematics::inverse_checked`]) of the
+    /// pose `[x, y, z, c]` typed in mm and degrees.
+    pub fn ik_typed(&self, [x, y, z, c]: [f64; 4]) -> Result<IkSolution, PoseError> {
+        self.inverse_checked(&Pose::from_degrees(x, y, z, c)).map_err(|source| PoseError {
+            x,
+            y,
+            z,
+            c,
+            source,
+        })
+    }
+
+    /// `biscara fk`: the forward kinematics of the joints `[θ1, θ2, θ3, d4]` typed in degrees
+    /// and mm (outside the limits too: [`Kinematics::fk_warnings`] says so).
+    pub fn fk_typed(
+        &self,
+        [theta1, theta2, theta3, d4]: [f64; 4],
+    ) -> Result<FkSolution, JointsError> {
+        self.forward(&Joints::from_degrees(theta1, theta2, theta3, d4))
+            .map_err(|source| JointsError { theta1, theta2, theta3, d4, source })
+    }
+}
 
 #[derive(Serialize)]
 struct IkJson {
@@ -112,5 +170,23 @@ impl Kinematics {
             warnings.push(err.to_string());
         }
         warnings
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn typed_values_name_themselves_in_the_error() {
+        let model = Kinematics::default();
+        let solution = model.ik_typed([150.0, 320.0, 10.0, 30.0]).unwrap();
+        let back = model.fk_typed(solution.joints.to_degrees()).unwrap();
+        assert!((back.pose.x - 150.0).abs() < 1e-9 && (back.pose.y - 320.0).abs() < 1e-9);
+        let err = model.ik_typed([900.0, 0.0, 0.0, 0.0]).unwrap_err();
+        assert_eq!(err.to_string(), "pose (x, y, z, c) = (900, 0, 0, 0) is unreachable");
+        assert!(matches!(err.source, KinematicsError::Unreachable { .. }), "{:?}", err.source);
+        let err = model.fk_typed([-90.0, 90.0, 0.0, 0.0]).unwrap_err();
+        assert_eq!(err.to_string(), "joints (θ1, θ2, θ3, d4) = (-90, 90, 0, 0) have no pose");
     }
 }

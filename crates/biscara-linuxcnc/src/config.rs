@@ -27,15 +27,24 @@ const RUNNER: &str = include_str!("../templates/biscara_run.py");
 const README: &str = include_str!("../templates/README.md");
 
 /// Where LinuxCNC's axis limits come from.
+///
+/// The first paragraph of each variant's documentation is the help of `--limits`'s values (the
+/// `clap` feature).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AxisLimitSource {
-    /// Derived from the joint limits over the workspace rectangle, so that LinuxCNC's planner
-    /// cannot exceed any joint's velocity or acceleration limit there.
+    /// Derived from the joint limits: LinuxCNC's planner cannot exceed a joint's limit in the
+    /// workspace rectangle.
+    ///
+    /// Derived over the workspace rectangle (or the configuration's region), so that LinuxCNC's
+    /// planner cannot exceed any joint's velocity or acceleration limit there.
     #[default]
     Derived,
-    /// The robot's Cartesian `motion` limits as they are (`rapid_velocity`, `acceleration`,
-    /// `rapid_rotation`, `rotation_acceleration`): what an integrator would write without
-    /// thinking of the joints, and what LinuxCNC's planner then exceeds.
+    /// The robot file's Cartesian motion limits as they are (LinuxCNC's planner then exceeds the
+    /// joints' limits; for comparison).
+    ///
+    /// The robot's `motion` limits (`rapid_velocity`, `acceleration`, `rapid_rotation`,
+    /// `rotation_acceleration`): what an integrator would write without thinking of the joints.
     Cartesian,
 }
 

@@ -164,4 +164,28 @@ impl LinuxcncError {
     pub(crate) fn io(path: &Path, source: std::io::Error) -> LinuxcncError {
         LinuxcncError::Io { path: path.to_owned(), source }
     }
+
+    /// Whether `err` or one of its sources is a run's [`LinuxcncError::Interrupted`] (the
+    /// command line then ends with 130, as an interrupt while writing a file does).
+    pub fn is_interrupted(err: &(dyn std::error::Error + 'static)) -> bool {
+        std::iter::successors(Some(err), |&cause| cause.source())
+            .any(|cause| matches!(cause.downcast_ref(), Some(LinuxcncError::Interrupted)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, thiserror::Error)]
+    #[error("running job.ngc")]
+    struct Context(#[source] LinuxcncError);
+
+    #[test]
+    fn an_interrupt_is_found_among_the_causes() {
+        assert!(LinuxcncError::is_interrupted(&LinuxcncError::Interrupted));
+        assert!(LinuxcncError::is_interrupted(&Context(LinuxcncError::Interrupted)));
+        let other = LinuxcncError::Usage { message: "no".to_owned() };
+        assert!(!LinuxcncError::is_interrupted(&Context(other)));
+    }
 }

@@ -2,11 +2,13 @@
 //! its robot, the stream, the run, LinuxCNC's refusals as errors with the program's line, and
 //! the recording written as a joint CSV or a path CSV.
 
+use std::fmt;
 use std::fs;
 use std::io::{BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use biscara_files::{FileError, FileSource, display_path, write_output};
+use biscara_files::{FileError, FileSource, Level, display_path, write_output};
+use biscara_interpolate::Profile;
 use biscara_joints::{JointCsvFormat, JointCsvWriter};
 use biscara_kinematics::{Joints, RobotModel, ToolKind};
 use biscara_pipeline::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, SamplingConfig};
@@ -39,6 +41,29 @@ pub enum Stream<'a> {
     },
 }
 
+impl<'a> Stream<'a> {
+    /// The stream a command line asks for: the joint CSV `csv`, else with `stream` the
+    /// trajectory of `program` sampled with `profile` from `origin`; `None` runs the program on
+    /// LinuxCNC's planner.
+    pub fn of(
+        csv: Option<&'a Path>,
+        stream: bool,
+        program: &'a FileSource,
+        profile: Profile,
+        origin: Option<[f64; 4]>,
+    ) -> Result<Option<Stream<'a>>, FileError> {
+        Ok(match csv {
+            Some(path) => Some(Stream::Csv { path }),
+            None if stream => Some(Stream::Program {
+                source: program,
+                kind: program.kind(None)?,
+                sampling: SamplingConfig { profile, origin, ..SamplingConfig::default() },
+            }),
+            None => None,
+        })
+    }
+}
+
 /// One run of `biscara linuxcnc run`.
 pub struct Job<'a> {
     /// The configuration folder (`None`: one written for the robot in force with `options`).
@@ -60,6 +85,17 @@ pub struct Job<'a> {
     pub timeout: f64,
     /// A commissioning event: E-stop or machine off this long after the start, s.
     pub event: Option<(runner::Event, f64)>,
+}
+
+/// Where `linuxcnc run` writes what the joints did.
+#[derive(Debug, Clone, Copy)]
+pub struct Outputs<'a> {
+    /// The joint CSV's file; `None` or `-`: standard output.
+    pub joints: Option<&'a Path>,
+    /// The path CSV's file (LinuxCNC's commanded poses), when asked for.
+    pub path: Option<&'a Path>,
+    /// How the joint CSV is written; the path CSV takes its decimals.
+    pub format: JointCsvFormat,
 }
 
 /// A finished job: LinuxCNC's recording, and the robot it ran.
@@ -117,6 +153,41 @@ impl Finished {
             time: stop.time,
             held,
         })
+    }
+
+    /// Writes the recording as `outputs` asks, each file atomically, and tells `report` what
+    /// the run amounts to: LinuxCNC's own notes first, then (after the files) the duration and
+    /// each joint's peaks against its limits (a [`Level::Warning`] for a peak over its limit).
+    /// What stopped the run early is the error, once the files are written.
+    pub fn write_outputs<E>(
+        &self,
+        outputs: &Outputs<'_>,
+        report: &mut dyn FnMut(Level, &dyn fmt::Display),
+    ) -> Result<(), E>
+    where
+        E: From<LinuxcncError> + From<std::io::Error> + From<FileError>,
+    {
+        for note in self.notes() {
+            report(Level::Note, &format_args!("LinuxCNC: {note}"));
+        }
+        let mut summary = None;
+        write_output(outputs.joints, |out| {
+            summary = Some(self.write_joints::<E>(out, outputs.format)?);
+            Ok::<(), E>(())
+        })?;
+        if let Some(path) = outputs.path {
+            write_output(Some(path), |out| self.write_path::<E>(out, outputs.format.precision))?;
+        }
+        if let Some(summary) = &summary {
+            report(Level::Note, &self.note(summary));
+            for peak in summary.peaks {
+                report(if peak.exceeds() { Level::Warning } else { Level::Note }, &peak);
+            }
+        }
+        match self.stopped(summary.as_ref()) {
+            Some(stop) => Err(stop.into()),
+            None => Ok(()),
+        }
     }
 
     /// LinuxCNC's messages that were not errors.
@@ -180,6 +251,28 @@ pub enum RegionChoice<'a> {
     },
     /// A rectangle `[x0, x1, y0, y1]` (mm), the robot parked at its centre.
     Rectangle([f64; 4]),
+}
+
+impl<'a> RegionChoice<'a> {
+    /// The region a command line's flags choose: the extent of `program` (placed by `origin`
+    /// or fitted with `fit`) plus `margin`, else `rectangle`, else the workspace.
+    pub fn of(
+        program: Option<&'a Path>,
+        margin: f64,
+        rectangle: Option<[f64; 4]>,
+        origin: Option<[f64; 4]>,
+        fit: bool,
+    ) -> RegionChoice<'a> {
+        match (program, rectangle) {
+            (Some(program), _) => RegionChoice::Program {
+                program,
+                sampling: SamplingConfig { origin, fit, ..SamplingConfig::default() },
+                margin,
+            },
+            (None, Some(rectangle)) => RegionChoice::Rectangle(rectangle),
+            (None, None) => RegionChoice::Workspace,
+        }
+    }
 }
 
 /// How a configuration is made, as `linuxcnc config` and `linuxcnc run` choose it.
@@ -550,6 +643,46 @@ pub fn line_of(messages: &[&str]) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_program_wins_over_the_rectangle_and_carries_its_placement() {
+        let program = Path::new("job.ngc");
+        let rectangle = Some([0.0, 10.0, 300.0, 310.0]);
+        let origin = Some([1.0, 2.0, 3.0, 4.0]);
+        match RegionChoice::of(Some(program), 5.0, rectangle, origin, false) {
+            RegionChoice::Program { program: p, sampling, margin } => {
+                assert_eq!(
+                    (p, sampling.origin, sampling.fit, margin),
+                    (program, origin, false, 5.0)
+                );
+            }
+            _ => panic!("the program's region"),
+        }
+        let chosen = RegionChoice::of(None, 10.0, rectangle, None, false);
+        assert!(matches!(chosen, RegionChoice::Rectangle(r) if Some(r) == rectangle));
+        assert!(matches!(RegionChoice::of(None, 10.0, None, None, true), RegionChoice::Workspace));
+        let dir = std::env::temp_dir().join(format!("biscara-stream-of-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("job.ngc"), "G0 X0 Y300\n").unwrap();
+        let source = FileSource::new(&dir.join("job.ngc"));
+        let csv = Stream::of(Some(Path::new("t.csv")), true, &source, Profile::Optimal, None);
+        assert!(matches!(csv, Ok(Some(Stream::Csv { path })) if path == Path::new("t.csv")));
+        let origin = Some([0.0, 300.0, 0.0, 0.0]);
+        match Stream::of(None, true, &source, Profile::Trapezoid, origin) {
+            Ok(Some(Stream::Program { kind, sampling, .. })) => {
+                assert_eq!(kind, ProgramKind::Gcode);
+                assert_eq!((sampling.profile, sampling.origin), (Profile::Trapezoid, origin));
+            }
+            _ => panic!("the program's trajectory"),
+        }
+        assert!(matches!(Stream::of(None, false, &source, Profile::Optimal, None), Ok(None)));
+        fs::remove_dir_all(&dir).unwrap();
+        let event = runner::Event::at(Some(1.5), Some(2.0));
+        assert_eq!(event, Some((runner::Event::Estop, 1.5)));
+        let event = runner::Event::at(None, Some(2.0));
+        assert_eq!(event, Some((runner::Event::MachineOff, 2.0)));
+        assert_eq!(runner::Event::at(None, None), None);
+    }
 
     #[test]
     fn a_region_reads_two_ranges_each_from_its_smaller_end() {

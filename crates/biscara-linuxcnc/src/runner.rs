@@ -65,6 +65,18 @@ pub enum Event {
     MachineOff,
 }
 
+impl Event {
+    /// The event a command line asks for at its time (seconds after the start): E-stop when
+    /// `estop_at` is given, else the machine off when `machine_off_at` is.
+    pub fn at(estop_at: Option<f64>, machine_off_at: Option<f64>) -> Option<(Event, f64)> {
+        match (estop_at, machine_off_at) {
+            (Some(at), _) => Some((Event::Estop, at)),
+            (None, Some(at)) => Some((Event::MachineOff, at)),
+            (None, None) => None,
+        }
+    }
+}
+
 /// What stopped a run early: an event the run was asked for, or one of the enable chain's.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 pub struct Stop {

@@ -28,6 +28,21 @@ pub enum InterFileErrorKind {
     Invalid(String),
 }
 
+/// Writes every motion of `motions` as the inter-file's lines ([`write_jsonl`]) to `out`,
+/// through a buffer of 64 KiB (a motion is written in many small pieces, which `dyn Write`
+/// would pass on one by one); stops at the first error of `motions` or of `out`.
+pub fn write_motions<E: From<io::Error>>(
+    out: &mut dyn Write,
+    motions: impl IntoIterator<Item = Result<Motion, E>>,
+) -> Result<(), E> {
+    let mut out = io::BufWriter::with_capacity(64 * 1024, out);
+    for motion in motions {
+        write_jsonl(&mut out, &motion?)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
 /// Writes one motion as one line of JSON.
 ///
 /// The bytes are those of `serde_json::to_writer(out, motion)` and a newline (the keys of the
@@ -288,6 +303,20 @@ fn parse_line(text: &str, line: usize) -> Result<Motion, InterFileError> {
 mod tests {
     use super::*;
     use crate::{CodeName, Feed, Plane};
+
+    #[test]
+    fn motions_are_written_in_order_until_the_first_error() {
+        let motion = |line| Motion::new(line, MotionKind::Rapid { end: [0.0, 300.0, 10.0, 0.0] });
+        let mut out = Vec::new();
+        write_motions::<io::Error>(&mut out, [Ok(motion(1)), Ok(motion(2))]).unwrap();
+        let mut expected = Vec::new();
+        write_jsonl(&mut expected, &motion(1)).unwrap();
+        write_jsonl(&mut expected, &motion(2)).unwrap();
+        assert_eq!(out, expected);
+        let failing = [Ok(motion(1)), Err(io::Error::other("line 2")), Ok(motion(3))];
+        let mut out = Vec::new();
+        assert_eq!(write_motions(&mut out, failing).unwrap_err().to_string(), "line 2");
+    }
 
     fn round_trip(motion: Motion) -> String {
         let mut text = Vec::new();

@@ -24,10 +24,12 @@ mod motion;
 mod segment;
 mod tool;
 
-pub use jsonl::{InterFileError, InterFileErrorKind, JsonlReader, read_jsonl, write_jsonl};
+pub use jsonl::{
+    InterFileError, InterFileErrorKind, JsonlReader, read_jsonl, write_jsonl, write_motions,
+};
 pub use motion::{CodeName, Feed, Motion, MotionKind, Plane};
 pub use segment::{Circle, Segment};
-pub use tool::Tool;
+pub use tool::{Tool, UnknownTool};
 
 /// A position at a stage boundary: `[x, y, z, c]` in the robot's base frame, millimetres for
 /// x, y, z and **degrees** for c (the G-code C word), as in every file the stages exchange.

@@ -61,6 +61,20 @@ impl Tool {
     }
 }
 
+/// A tool name that is not one of [`Tool::ALL`]'s.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("`{0}` is not a tool: gripper, laser, spindle, extruder or pen")]
+pub struct UnknownTool(pub String);
+
+impl std::str::FromStr for Tool {
+    type Err = UnknownTool;
+
+    /// The kind named `name` exactly (see [`Tool::name`]).
+    fn from_str(name: &str) -> Result<Tool, UnknownTool> {
+        Tool::from_name(name).ok_or_else(|| UnknownTool(name.to_owned()))
+    }
+}
+
 impl std::fmt::Display for Tool {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -72,9 +86,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_unknown_name_is_refused_with_the_names_known() {
+        let err = "Laser".parse::<Tool>().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "`Laser` is not a tool: gripper, laser, spindle, extruder or pen"
+        );
+    }
+
+    #[test]
     fn names_are_those_of_the_robot_file() {
         for tool in Tool::ALL {
             assert_eq!(Tool::from_name(tool.name()), Some(tool));
+            assert_eq!(tool.name().parse::<Tool>(), Ok(tool));
             let json = serde_json::to_string(&tool).unwrap();
             assert_eq!(json, format!("\"{}\"", tool.name()));
             assert_eq!(serde_json::from_str::<Tool>(&json).unwrap(), tool);

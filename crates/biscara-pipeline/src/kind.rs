@@ -1,13 +1,21 @@
 //! What kind of file a program is.
 
 /// The three kinds of program a command can run.
+///
+/// The first paragraph of each variant's documentation is the help of `--from`'s values (the
+/// `clap` feature).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum ProgramKind {
-    /// RS274/NGC G-code.
+    /// RS274/NGC G-code (LinuxCNC's dialect).
     Gcode,
-    /// An inter-file (JSON Lines of motions, docs/motion.md).
+    /// An inter-file (JSON Lines) written by `biscara interpret`.
+    ///
+    /// JSON Lines of motions, docs/motion.md.
     Jsonl,
-    /// A path CSV of Cartesian samples (docs/motion.md).
+    /// A path CSV written by `biscara interpolate` (joints only).
+    ///
+    /// Cartesian samples (docs/motion.md): only what computes joints reads it.
     Path,
 }
 

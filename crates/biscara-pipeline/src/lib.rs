@@ -8,12 +8,14 @@
 //! - [`Pipeline`]: one robot ([`RobotModel`]) and one [`SamplingConfig`] (time step, profile,
 //!   grip time, origin, fitting to the workspace); [`Pipeline::motions`], [`Pipeline::samples`] and
 //!   [`Pipeline::joints`] are the stages, wired once, here; [`Pipeline::write_path_csv`] and
-//!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files.
+//!   [`Pipeline::write_joint_csv`] write the last two as the commands' CSV files;
+//!   [`parse_time_step`] and its siblings read its settings as a user types them.
 //! - [`Note`]: what the pipeline has to say besides its output (the chosen placement, slowed
 //!   motions); the caller decides how to show them. Errors are [`PipelineError`]s, located as
 //!   `FILE:LINE[:COL]: message`, with [`Hint`]s the caller words for its own settings.
 //!
 //! - [`generate()`]: the other pipeline, points → CL → G-code (`biscara gen`).
+//! - [`DemoReport`]: what `biscara demo` wrote of the bundled job ([`EXAMPLE_JOB`]).
 //!
 //! It deliberately holds no whole program: motions and samples are iterators, and fitting
 //! reads the program twice (once for its extent) rather than keeping it.
@@ -37,15 +39,18 @@
 
 mod check;
 mod csv;
+mod demo;
 mod error;
 mod generate;
 mod kind;
 mod motions;
 mod pipeline;
 mod placement;
+mod settings;
 mod source;
 mod tool;
 mod torques;
+mod write;
 
 pub use biscara_kinematics::RobotModel;
 
@@ -58,5 +63,9 @@ pub use pipeline::{
     SlowDownNotes,
 };
 pub use placement::{Placement, place};
+pub use settings::{parse_blend, parse_grip_time, parse_time_limit, parse_time_step};
 pub use source::{ProgramSource, TextSource};
 pub use tool::{ToolJointSamples, ToolSamples, ToolState};
+
+// `biscara demo`'s bundled job and its report.
+pub use demo::{DemoReport, EXAMPLE_JOB};

@@ -8,7 +8,9 @@
 //! - rows of numbers: [`NumericCsvReader`], the reader under the path and joint CSVs;
 //! - the readers' error shape: [`Located`] (line, column, span, and a kind per reader);
 //! - the readers' iterator: [`RecordReader`] (records until the end or the first error);
-//! - message helpers: [`shorten`], [`compact`], [`strip_position`].
+//! - message helpers: [`shorten`], [`compact`], [`strip_position`];
+//! - values a user types (a command line's flags): [`number_in`], [`parse_xyzc`], [`parse_sizes`]
+//!   and the others of [`ValueError`]'s variants.
 //!
 //! It knows no file format of its own (no header, no column meaning) and nothing of robots,
 //! G-code or CL: those live in the stage crates on top of it. It never prints and never opens a
@@ -31,6 +33,7 @@ mod lines;
 mod located;
 mod message;
 mod records;
+mod values;
 
 pub use csv::{CsvError, CsvErrorKind, MAX_CSV_COLUMNS, NumericCsvReader};
 pub use fixed::{FLUSH_AT, MAX_DECIMALS, RowBuffer, fixed, push_fixed, round_to};
@@ -38,3 +41,6 @@ pub use lines::{LineError, LineReader, MAX_LINE_BYTES, read_bounded_line, read_c
 pub use located::Located;
 pub use message::{compact, shorten, strip_position};
 pub use records::RecordReader;
+pub use values::{
+    ValueError, non_negative, number_in, numbers, parse_seconds, parse_sizes, parse_xy, parse_xyzc,
+};
