@@ -308,14 +308,18 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn location(&self, start: usize, end: usize) -> Location {
-        let raw = &self.lines.line;
+        self.location_of(self.lines.number, &self.lines.line, start, end)
+    }
+
+    /// Where `start..end` of `raw`, line `line` of the file being read, is.
+    fn location_of(&self, line: usize, raw: &[u8], start: usize, end: usize) -> Location {
         let shown = &raw[..raw.len().min(MAX_LINE + 1)];
         let text: String = String::from_utf8_lossy(shown)
             .chars()
             .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
             .collect();
         let file = self.control.file.as_ref().map(|path| path.display().to_string().into());
-        Location { line: self.lines.number, column: start + 1, span: (start, end), text, file }
+        Location { line, column: start + 1, span: (start, end), text, file }
     }
 
     fn error(&self, mut fault: Fault) -> GcodeError {
