@@ -137,7 +137,7 @@ impl Pipeline<'_> {
     ) -> Result<(), PipelineError> {
         let format = JointCsvFormat { derivatives: true, ..format };
         let file = source.name();
-        let mut payload = PayloadWatch::new(kind, dynamics, file, notes);
+        let mut payload = PayloadWatch::new(kind, dynamics.bodies().payload, file, notes);
         let notes = payload.forward();
         if events {
             let mut samples = self.tool_joints(source, kind, notes)?;
@@ -181,9 +181,8 @@ pub(crate) struct PayloadWatch<N> {
 }
 
 impl<N: FnMut(Note) + 'static> PayloadWatch<N> {
-    /// Watches the samples of a program of `kind` for `dynamics`' payload.
-    pub(crate) fn new(kind: ProgramKind, dynamics: &Dynamics, file: &str, notes: N) -> Self {
-        let payload = dynamics.bodies().payload;
+    /// Watches the samples of a program of `kind` for the robot's `payload` (kg).
+    pub(crate) fn new(kind: ProgramKind, payload: f64, file: &str, notes: N) -> Self {
         let watch =
             (kind == ProgramKind::Path && payload > 0.0).then(|| (file.to_owned(), payload));
         PayloadWatch { notes: std::rc::Rc::new(std::cell::RefCell::new(notes)), watch, held: false }
@@ -198,7 +197,13 @@ impl<N: FnMut(Note) + 'static> PayloadWatch<N> {
     /// One sample written.
     #[inline]
     pub(crate) fn saw(&mut self, sample: &JointSample) {
-        self.held |= sample.gripper;
+        self.held(sample.gripper);
+    }
+
+    /// One sample, with the gripper closed or not.
+    #[inline]
+    pub(crate) fn held(&mut self, gripper: bool) {
+        self.held |= gripper;
     }
 
     /// The end of the program: the note, when no sample held the payload.

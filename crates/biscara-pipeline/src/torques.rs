@@ -21,7 +21,7 @@ impl Pipeline<'_> {
         mut each: impl FnMut(&JointSample, [f64; 4]) -> Result<(), PipelineError>,
     ) -> Result<(), PipelineError> {
         let file = source.name().to_owned();
-        let mut payload = PayloadWatch::new(kind, dynamics, &file, notes);
+        let mut payload = PayloadWatch::new(kind, dynamics.bodies().payload, &file, notes);
         let mut samples = self.joints(source, kind, payload.forward())?;
         while let Some(row) = samples.next_sample() {
             let row = row?;
