@@ -249,17 +249,23 @@ impl Collector {
     }
 }
 
+/// `n` designs: "1 design", "3 designs".
+fn designs(n: impl Into<u64>) -> String {
+    let n = n.into();
+    format!("{n} design{}", if n == 1 { "" } else { "s" })
+}
+
 impl std::fmt::Display for SweepOutcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let count = self.count;
+        let count = designs(self.count);
         let Some(best) = self.best else {
-            return write!(f, "{count} designs evaluated; none has a rectangle");
+            return write!(f, "{count} evaluated; none has a rectangle");
         };
         let d = best.design;
         let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
         write!(
             f,
-            "{count} designs evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
+            "{count} evaluated; best by {}: l1 = {} mm, l2 = {} mm, base = {} mm \
              (rectangle {w:.0} × {h:.0} mm, GCI {:.3}, worst LCI {:.3}",
             self.objective.name(),
             d.l1,
@@ -274,7 +280,11 @@ impl std::fmt::Display for SweepOutcome {
         if let Some(cycle) = best.cycle_s {
             write!(f, ", Adept cycle {cycle:.3} s")?;
         }
-        write!(f, "); Pareto front of rectangle area and GCI: {} designs", self.pareto.len())
+        write!(
+            f,
+            "); Pareto front of rectangle area and GCI: {}",
+            designs(self.pareto.len() as u64)
+        )
     }
 }
 
@@ -363,6 +373,12 @@ mod tests {
         let outcome = without.finish();
         assert!(outcome.cells.is_empty());
         assert_eq!(outcome.to_string(), "0 designs evaluated; none has a rectangle");
+        // One is one design, not "1 designs".
+        let mut single = Collector::new(Objective::Rectangle, false);
+        single.consider(&design(0, 10.0, 0.5));
+        let text = single.finish().to_string();
+        assert!(text.starts_with("1 design evaluated; best by rect"), "{text}");
+        assert!(text.ends_with("Pareto front of rectangle area and GCI: 1 design"), "{text}");
     }
 
     #[test]

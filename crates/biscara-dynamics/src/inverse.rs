@@ -524,7 +524,8 @@ mod tests {
         let err = Dynamics::new(&RobotModel::new(robot).unwrap()).unwrap_err();
         assert_eq!(err.key(), Some("motors.d4.peak"));
         let text = err.to_string();
-        assert!(text.contains("5 N") && text.contains(&format!("{} N", 0.75 * G)), "{text}");
+        // (0.55 + 0.2) kg × G = 7.3549875 N, rounded to the µN.
+        assert!(text.contains("force 5 N") && text.contains("= 7.354988 N"), "{text}");
     }
 
     #[test]

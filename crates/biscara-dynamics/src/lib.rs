@@ -32,9 +32,9 @@ pub use inverse::{Dynamics, Linkage, PathCoefficients};
 pub enum DynamicsError {
     /// Occurs when d4's motor is too weak to hold the slide and the payload against gravity.
     #[error(
-        "motors.d4.peak: the d4 motor's peak force {peak_n} N cannot hold the slide and the \
-         payload against gravity: that takes (slide {slide_kg} kg + payload {payload_kg} kg) × \
-         {gravity} m/s² = {needed_n} N"
+        "motors.d4.peak: the d4 motor's peak force {} N cannot hold the slide and the payload \
+         against gravity: that takes (slide {} kg + payload {} kg) × {} m/s² = {} N",
+        Micro(*peak_n), Micro(*slide_kg), Micro(*payload_kg), Micro(*gravity), Micro(*needed_n)
     )]
     WeakSlideMotor {
         /// The d4 motor's peak force, N.
@@ -80,6 +80,22 @@ pub enum DynamicsError {
     },
 }
 
+/// A number in a message: rounded to 6 decimals (µN, mg), trailing zeros dropped, so that a
+/// computed mass or force reads `0.246714`, not `0.24671397333050854`.
+struct Micro(f64);
+
+impl std::fmt::Display for Micro {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let text = format!("{:.6}", self.0);
+        let text = if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            &text
+        };
+        f.write_str(if text == "-0" { "0" } else { text })
+    }
+}
+
 impl DynamicsError {
     /// The `robot.json` key this error is about, when it is about the robot file.
     pub fn key(&self) -> Option<&'static str> {
@@ -87,5 +103,30 @@ impl DynamicsError {
             DynamicsError::WeakSlideMotor { .. } => Some("motors.d4.peak"),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_weak_slide_message_rounds_its_computed_figures() {
+        let err = DynamicsError::WeakSlideMotor {
+            peak_n: 20.0,
+            needed_n: 51.452_687_586_561_63,
+            slide_kg: 0.246_713_973_330_508_54,
+            payload_kg: 5.0,
+            gravity: 9.80665,
+        };
+        assert_eq!(
+            err.to_string(),
+            "motors.d4.peak: the d4 motor's peak force 20 N cannot hold the slide and the payload \
+             against gravity: that takes (slide 0.246714 kg + payload 5 kg) × 9.80665 m/s² = \
+             51.452688 N"
+        );
+        assert_eq!(Micro(29.41995).to_string(), "29.41995");
+        assert_eq!(Micro(1e9 + 0.25).to_string(), "1000000000.25");
+        assert_eq!(Micro(-1e-9).to_string(), "0");
     }
 }

@@ -553,6 +553,47 @@ fn has_machine_m(squeezed: &[u8]) -> bool {
     })
 }
 
+/// A whole program (`text`, all of it, text only) with an X, Y or Z word and no program end: no M2, M30 or M99
+/// and no `%` line. LinuxCNC refuses it at its end and Grbl runs it, so `auto`, which found no
+/// other evidence, can take it for Grbl's before its first line rather than at its end (where
+/// the lines before were read as LinuxCNC reads them: a G0 with the laser on burns, where
+/// Grbl's laser mode turns it off). `Some(number of lines)` when so.
+pub(crate) fn open_ended(text: &[u8]) -> Option<usize> {
+    let text = text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text);
+    let mut parts = LineParts::default();
+    let (mut lines, mut moves) = (0, false);
+    for raw in text.split(|&byte| byte == b'\n') {
+        lines += 1;
+        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+        // Binary garbage is no program of any dialect's.
+        if !is_text(raw, false) {
+            return None;
+        }
+        parts.split(raw);
+        let squeezed = &parts.squeezed[..];
+        if squeezed.first() == Some(&b'%') {
+            return None;
+        }
+        for (at, &byte) in squeezed.iter().enumerate() {
+            if at > 0 && squeezed[at - 1].is_ascii_alphabetic() {
+                continue;
+            }
+            match byte {
+                b'm' if matches!(number_after(squeezed, at), Some(2 | 30 | 99)) => return None,
+                b'x' | b'y' | b'z' => {
+                    let value = squeezed.get(at + 1);
+                    moves |= value
+                        .is_some_and(|b| b.is_ascii_digit() || matches!(*b, b'-' | b'+' | b'.'));
+                }
+                _ => {}
+            }
+        }
+    }
+    // The empty piece after a final line ending is no line.
+    let lines = if text.ends_with(b"\n") { lines - 1 } else { lines };
+    moves.then_some(lines)
+}
+
 /// The evidence a printer firmware M-code gives (for Marlin).
 const PRINTER_M_CODE: &str = "a printer firmware M-code";
 

@@ -308,14 +308,18 @@ impl<R: BufRead> Interpreter<R> {
     }
 
     fn location(&self, start: usize, end: usize) -> Location {
-        let raw = &self.lines.line;
+        self.location_of(self.lines.number, &self.lines.line, start, end)
+    }
+
+    /// Where `start..end` of `raw`, line `line` of the file being read, is.
+    fn location_of(&self, line: usize, raw: &[u8], start: usize, end: usize) -> Location {
         let shown = &raw[..raw.len().min(MAX_LINE + 1)];
         let text: String = String::from_utf8_lossy(shown)
             .chars()
             .map(|c| if c.is_control() && c != '\t' { '\u{fffd}' } else { c })
             .collect();
         let file = self.control.file.as_ref().map(|path| path.display().to_string().into());
-        Location { line: self.lines.number, column: start + 1, span: (start, end), text, file }
+        Location { line, column: start + 1, span: (start, end), text, file }
     }
 
     fn error(&self, mut fault: Fault) -> GcodeError {
@@ -678,14 +682,31 @@ impl<R: BufRead> Interpreter<R> {
             return Err(self.lathe_program(lathe));
         }
         let found = detect_dialect(self.lines.source().head(), complete);
-        match crate::dialect::weigh_extension(found, self.control.program()) {
-            Some(detection) => {
+        let open_ended =
+            complete.then(|| crate::dialect::open_ended(self.lines.source().head())).flatten();
+        match (crate::dialect::weigh_extension(found, self.control.program()), open_ended) {
+            (Some(detection), _) => {
                 self.machine.hooks.set_dialect(detection.dialect);
                 self.machine.hooks.makerbot = detection.makerbot;
                 self.machine.hooks.detection = Some(detection);
                 self.apply_dialect();
             }
-            None => {
+            (None, Some(lines)) => {
+                // The whole program is in the look-ahead and it has no end: Grbl's from its
+                // first line, as the end would decide (`end_of_input`).
+                self.machine.hooks.set_dialect(Dialect::Grbl);
+                self.machine.hooks.detection = Some(Detection {
+                    dialect: Dialect::Grbl,
+                    reason: format!(
+                        "nothing tells the dialects apart, and the program ends at line {lines} \
+                         without M2 or M30, which LinuxCNC requires and Grbl does not"
+                    ),
+                    line: None,
+                    makerbot: false,
+                });
+                self.apply_dialect();
+            }
+            (None, None) => {
                 self.machine.hooks.provisional = true;
                 // A long comment line further on is evidence too ([`Self::long_line_decides`]).
                 self.lines.max = MAX_LONG_LINE;
@@ -779,8 +800,9 @@ impl<R: BufRead> Interpreter<R> {
                 dialect: Dialect::Grbl,
                 reason: format!(
                     "nothing tells the dialects apart, and the program ends at line {} without \
-                     M2 or M30, which LinuxCNC requires and Grbl does not (every line before \
-                     reads the same in both)",
+                     M2 or M30, which LinuxCNC requires and Grbl does not (the lines before, \
+                     past the look-ahead, were read as LinuxCNC reads them: as Grbl does, but for \
+                     Grbl's laser mode, which turns a laser off during each G0)",
                     self.lines.number
                 ),
                 line: None,

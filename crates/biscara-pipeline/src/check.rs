@@ -2,6 +2,7 @@
 
 use biscara_robot::{Checker, Report, Scene};
 
+use crate::csv::PayloadWatch;
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource};
 
 impl Pipeline<'_> {
@@ -16,15 +17,19 @@ impl Pipeline<'_> {
         notes: impl FnMut(Note) + 'static,
     ) -> Result<Report, PipelineError> {
         let mut checker = Checker::new(self.model(), scene);
-        let mut samples = self.tool_samples(source, kind, notes)?;
+        let payload = biscara_dynamics::Bodies::of(self.model().robot()).payload;
+        let mut payload = PayloadWatch::new(kind, payload, source.name(), notes);
+        let mut samples = self.tool_samples(source, kind, payload.forward())?;
         let tool = samples.tool();
         for sample in samples {
             let (sample, state) = sample?;
+            payload.held(sample.gripper);
             checker.push(&sample);
             if let Some((subject, detail, severity)) = state.problem(tool) {
                 checker.push_tool_problem(&sample, subject, detail, severity);
             }
         }
+        payload.finish();
         Ok(checker.finish())
     }
 }
@@ -48,5 +53,27 @@ mod tests {
         let report = pipeline.check(&far, ProgramKind::Gcode, Scene::new(), |_| {}).expect("run");
         assert!(!report.ok());
         assert!(report.problems.iter().any(|problem| problem.line == 3), "{:?}", report.problems);
+    }
+
+    /// A path CSV without its gripper column, for a robot with a payload: the report's torques
+    /// carry none, and a note says so.
+    #[test]
+    fn a_path_csv_that_never_holds_the_payload_says_so() {
+        use std::cell::RefCell;
+        use std::rc::Rc;
+
+        use biscara_kinematics::{DynamicsSpec, PointSpec, Robot};
+        let spec = DynamicsSpec { payload: PointSpec { mass: Some(0.5) }, ..Default::default() };
+        let model = RobotModel::new(Robot { dynamics: Some(spec), ..Robot::default() }).unwrap();
+        let pipeline = Pipeline::new(&model, SamplingConfig::default());
+        let path = "t_s,x_mm,y_mm,z_mm,c_deg\n0.000,0,400,50,0\n0.001,0,400.001,50,0\n";
+        let notes = Rc::new(RefCell::new(Vec::new()));
+        let sink = Rc::clone(&notes);
+        let source = TextSource::new("path.csv", path);
+        let push = move |note: Note| sink.borrow_mut().push(note.to_string());
+        pipeline.check(&source, ProgramKind::Path, Scene::new(), push).expect("run");
+        let notes = notes.take();
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(notes[0].contains("carry none of the robot's 0.5 kg payload"), "{notes:?}");
     }
 }

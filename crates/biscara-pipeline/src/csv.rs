@@ -137,6 +137,8 @@ impl Pipeline<'_> {
     ) -> Result<(), PipelineError> {
         let format = JointCsvFormat { derivatives: true, ..format };
         let file = source.name();
+        let mut payload = PayloadWatch::new(kind, dynamics.bodies().payload, file, notes);
+        let notes = payload.forward();
         if events {
             let mut samples = self.tool_joints(source, kind, notes)?;
             let tool = samples.tool();
@@ -147,9 +149,11 @@ impl Pipeline<'_> {
                 let (row, state) = row?;
                 self.within_time_limit(file, row.t, row.line)?;
                 let [t1, t2, t3, f4, held] = torque_columns(dynamics, row, Some(tool), file)?;
+                payload.saw(row);
                 writer.write_with_array(row, [t1, t2, t3, f4, held, state.value(tool)])?;
             }
             writer.finish()?;
+            payload.finish();
             return Ok(());
         }
         let mut samples = self.joints(source, kind, notes)?;
@@ -157,10 +161,56 @@ impl Pipeline<'_> {
         while let Some(row) = samples.next_sample() {
             let row = row?;
             self.within_time_limit(file, row.t, row.line)?;
+            payload.saw(row);
             writer.write_with_array(row, torque_columns(dynamics, row, None, file)?)?;
         }
         writer.finish()?;
+        payload.finish();
         Ok(())
+    }
+}
+
+/// Whether a path CSV's samples ever hold the payload: a path CSV without its `gripper`
+/// column never does, and its torques would silently leave the robot's payload out; at the
+/// end, a [`Note::NoPayloadCarried`] says so. The caller's notes pass through it.
+pub(crate) struct PayloadWatch<N> {
+    notes: std::rc::Rc<std::cell::RefCell<N>>,
+    /// The program's name and the robot's payload (kg), for a path CSV of a robot with one.
+    watch: Option<(String, f64)>,
+    held: bool,
+}
+
+impl<N: FnMut(Note) + 'static> PayloadWatch<N> {
+    /// Watches the samples of a program of `kind` for the robot's `payload` (kg).
+    pub(crate) fn new(kind: ProgramKind, payload: f64, file: &str, notes: N) -> Self {
+        let watch =
+            (kind == ProgramKind::Path && payload > 0.0).then(|| (file.to_owned(), payload));
+        PayloadWatch { notes: std::rc::Rc::new(std::cell::RefCell::new(notes)), watch, held: false }
+    }
+
+    /// The caller's notes, for the stages that run the program.
+    pub(crate) fn forward(&self) -> impl FnMut(Note) + 'static {
+        let notes = std::rc::Rc::clone(&self.notes);
+        move |note| (notes.borrow_mut())(note)
+    }
+
+    /// One sample written.
+    #[inline]
+    pub(crate) fn saw(&mut self, sample: &JointSample) {
+        self.held(sample.gripper);
+    }
+
+    /// One sample, with the gripper closed or not.
+    #[inline]
+    pub(crate) fn held(&mut self, gripper: bool) {
+        self.held |= gripper;
+    }
+
+    /// The end of the program: the note, when no sample held the payload.
+    pub(crate) fn finish(self) {
+        if let Some((file, payload_kg)) = self.watch.filter(|_| !self.held) {
+            (self.notes.borrow_mut())(Note::NoPayloadCarried { file, payload_kg });
+        }
     }
 }
 
@@ -257,5 +307,65 @@ mod tests {
         // At rest, d4 holds the payload's weight more.
         let gravity = dynamics.bodies().gravity;
         assert!(((held_d4 - free_d4).abs() - 0.7 * gravity).abs() < 1e-9, "{free_d4} {held_d4}");
+    }
+
+    /// A path CSV without its `gripper` column never holds the payload: its torques say so in a
+    /// note, not silently; with the column (a pick in it), or with no payload, there is none.
+    #[test]
+    fn a_path_csv_that_never_holds_the_payload_says_so() {
+        use std::cell::RefCell;
+        use std::rc::Rc;
+
+        use crate::{SamplingConfig, TextSource};
+        let rows = |gripper: &[u8]| -> String {
+            let header = if gripper.is_empty() { "" } else { ",gripper" };
+            let mut text = format!("t_s,x_mm,y_mm,z_mm,c_deg{header}\n");
+            for (i, y) in [400.0, 400.001, 400.003].into_iter().enumerate() {
+                let column = gripper.get(i).map_or(String::new(), |g| format!(",{g}"));
+                text.push_str(&format!("{}.00{i},0,{y},50,0{column}\n", 0));
+            }
+            text
+        };
+        let notes_of = |payload: f64, text: String| -> Vec<String> {
+            let model = RobotModel::new(Robot {
+                dynamics: Some(DynamicsSpec {
+                    payload: PointSpec { mass: Some(payload) },
+                    ..Default::default()
+                }),
+                ..Robot::default()
+            })
+            .unwrap();
+            let dynamics = Dynamics::new(&model).unwrap();
+            let pipeline = Pipeline::new(&model, SamplingConfig::default());
+            let notes = Rc::new(RefCell::new(Vec::new()));
+            let sink = Rc::clone(&notes);
+            let source = TextSource::new("path.csv", text);
+            let format = JointCsvFormat {
+                angle_unit: biscara_joints::AngleUnit::Radians,
+                derivatives: true,
+                precision: 6,
+            };
+            pipeline
+                .write_joint_torque_csv(
+                    &source,
+                    ProgramKind::Path,
+                    &mut Vec::new(),
+                    format,
+                    false,
+                    &dynamics,
+                    move |note| sink.borrow_mut().push(note.to_string()),
+                )
+                .unwrap();
+            notes.take()
+        };
+        let without = notes_of(0.5, rows(&[]));
+        assert_eq!(without.len(), 1, "{without:?}");
+        assert!(
+            without[0].starts_with("path.csv: no sample has the gripper closed"),
+            "{without:?}"
+        );
+        assert!(without[0].contains("0.5 kg payload"), "{without:?}");
+        assert_eq!(notes_of(0.5, rows(&[0, 1, 1])), Vec::<String>::new());
+        assert_eq!(notes_of(0.0, rows(&[])), Vec::<String>::new());
     }
 }

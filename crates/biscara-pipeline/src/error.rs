@@ -304,6 +304,15 @@ pub enum Note {
         /// The program's name.
         file: String,
     },
+    /// The motors' torques of a path CSV in which no sample has the gripper closed, for a robot
+    /// with a payload: the payload was never carried (a path CSV tells the gripper's state only
+    /// in its `gripper` column).
+    NoPayloadCarried {
+        /// The program's name.
+        file: String,
+        /// The robot's payload, kg.
+        payload_kg: f64,
+    },
     /// A motion runs slower than programmed (a joint or C speed limit).
     SlowedDown {
         /// The program's name.
@@ -437,6 +446,12 @@ impl fmt::Display for Note {
                 f,
                 "{file}: the program uses tool offsets (G43, G10 L1, …) but no tool table was \
                  given: every tool has zero length and diameter"
+            ),
+            Note::NoPayloadCarried { file, payload_kg } => write!(
+                f,
+                "{file}: no sample has the gripper closed, so the torques carry none of the \
+                 robot's {payload_kg} kg payload: a path CSV tells the gripper's state only in \
+                 its `gripper` column (written with the tool's events)"
             ),
             Note::SlowedDown { file, slow }
                 if slow.cause == biscara_interpolate::PLANNER_FALLBACK =>

@@ -3,7 +3,7 @@
 use biscara_dynamics::Dynamics;
 use biscara_joints::JointSample;
 
-use crate::csv::torque_columns;
+use crate::csv::{PayloadWatch, torque_columns};
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource};
 
 impl Pipeline<'_> {
@@ -21,13 +21,16 @@ impl Pipeline<'_> {
         mut each: impl FnMut(&JointSample, [f64; 4]) -> Result<(), PipelineError>,
     ) -> Result<(), PipelineError> {
         let file = source.name().to_owned();
-        let mut samples = self.joints(source, kind, notes)?;
+        let mut payload = PayloadWatch::new(kind, dynamics.bodies().payload, &file, notes);
+        let mut samples = self.joints(source, kind, payload.forward())?;
         while let Some(row) = samples.next_sample() {
             let row = row?;
             self.within_time_limit(&file, row.t, row.line)?;
             let [t1, t2, t3, f4, _] = torque_columns(dynamics, row, None, &file)?;
+            payload.saw(row);
             each(row, [t1, t2, t3, f4])?;
         }
+        payload.finish();
         Ok(())
     }
 }

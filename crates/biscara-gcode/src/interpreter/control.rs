@@ -187,6 +187,9 @@ pub(super) struct Control {
     skipping_o: Option<Rc<str>>,
     skipping_to_sub: Option<Rc<str>>,
     skipping_start: usize,
+    /// The text of the line that began reading on to a subroutine in its own file (where one
+    /// not found is reported).
+    skipping_call: Option<Box<[u8]>>,
     defining_sub: bool,
     sub_name: Option<Rc<str>>,
     executed_if: bool,
@@ -228,6 +231,7 @@ impl Default for Control {
             skipping_o: None,
             skipping_to_sub: None,
             skipping_start: 0,
+            skipping_call: None,
             defining_sub: false,
             sub_name: None,
             executed_if: false,
@@ -357,7 +361,9 @@ impl<R: BufRead> Interpreter<R> {
         self
     }
 
-    /// The end of the input while a subroutine was being looked for.
+    /// The end of the input while a subroutine was being looked for: rs274's message, at the
+    /// line that called it when the search began in the caller's own file (a file subroutine
+    /// might have defined it: the setting that adds its folder would help).
     pub(super) fn control_end(&self) -> Option<GcodeError> {
         let name = self.control.skipping_to_sub.as_ref()?;
         let message = format!(
@@ -365,7 +371,14 @@ impl<R: BufRead> Interpreter<R> {
             self.control.file_name(),
             self.control.skipping_start
         );
-        Some(self.error(self.line_fault(message)))
+        match &self.control.skipping_call {
+            Some(call) => {
+                let end = call.trim_ascii_end().len().max(1);
+                let at = self.location_of(self.control.skipping_start, call, 0, end);
+                Some(GcodeError::NeedsSetting { at, message, setting: Setting::SubroutinePath })
+            }
+            None => Some(self.error(self.line_fault(message))),
+        }
     }
 
     /// The closing `%` while lines are being skipped (to a subroutine being called, to the
@@ -630,8 +643,10 @@ impl<R: BufRead> Interpreter<R> {
             self.lines.open_file(file);
             self.control.file = Some(path);
             self.lines.number = 0;
-        } else if self.control.file.is_none() {
-            self.control.forward = true;
+            self.control.skipping_call = None;
+        } else {
+            self.control.forward |= self.control.file.is_none();
+            self.control.skipping_call = Some(self.lines.line.as_slice().into());
         }
         self.control.skipping_o = Some(name.clone());
         self.control.skipping_to_sub = Some(name.clone());
@@ -847,6 +862,7 @@ impl<R: BufRead> Interpreter<R> {
             self.control.skipping_o = None;
         }
         self.control.skipping_to_sub = None;
+        self.control.skipping_call = None;
         if block.kind == OType::Sub && level == 0 {
             if self.control.defining_sub {
                 return Err(self.line_fault("Nested subroutine definition"));

@@ -340,6 +340,41 @@ fn grbl_laser_mode_turns_the_laser_off_for_rapids_only() {
     assert_eq!(offs, 1);
 }
 
+/// A laser program with nothing that tells the dialects apart but its missing M2: `auto` takes
+/// it for Grbl's, and reads every line as Grbl does — its laser mode too, off during the G0
+/// moves — not only the lines after its end (LaserGRBL's output, `lasergrbl-vector-snowflake`).
+#[test]
+fn auto_reads_a_program_without_an_end_as_grbl_from_its_first_line() {
+    let program = "G21 G90\nM3 S500\nG0 X10 Y5\nG1 X20 F600\nG0 X30\nG1 X40\nM5\n";
+    let kinds = |dialect: Dialect| -> Vec<(usize, MotionKind)> {
+        let config = Config { home: HOME, dialect, tool: Tool::Laser, ..Config::default() };
+        interpret(program.as_bytes(), &config)
+            .map(|result| result.unwrap_or_else(|err| panic!("{err}")))
+            .map(|motion| (motion.line, motion.kind))
+            .collect()
+    };
+    let auto = kinds(Dialect::Auto);
+    assert_eq!(auto, kinds(Dialect::Grbl));
+    assert!(auto.contains(&(3, MotionKind::LaserOff)), "{auto:?}");
+    // Decided before the first motion, and said so.
+    let config =
+        Config { home: HOME, dialect: Dialect::Auto, tool: Tool::Laser, ..config(Dialect::Auto) };
+    let mut interpreter = interpret(program.as_bytes(), &config);
+    interpreter.next();
+    let detection = interpreter.detection().expect("decided");
+    assert_eq!(detection.dialect, Dialect::Grbl);
+    assert!(detection.reason.contains("ends at line 7 without M2 or M30"), "{}", detection.reason);
+    // With M2, M30 or a `%` line, LinuxCNC's: the laser stays on through the rapids.
+    for (start, end) in [("", "M2\n"), ("", "m30\n"), ("%\n", "%\n")] {
+        let ended = format!("{start}{program}{end}");
+        let motions = interpret(ended.as_bytes(), &config).collect::<Result<Vec<_>, _>>();
+        let motions = motions.unwrap_or_else(|err| panic!("{end:?}: {err}"));
+        let offs: Vec<usize> =
+            motions.iter().filter(|m| m.kind == MotionKind::LaserOff).map(|m| m.line).collect();
+        assert_eq!(offs, [7 + start.lines().count()], "{end:?}: only M5 turns the laser off");
+    }
+}
+
 #[test]
 fn auto_does_not_take_a_cnc_post_with_a_printer_m_code_for_marlin() {
     // Fusion 360's Makera Carvera post: M400 (wait for moves) amid motions that go on with no

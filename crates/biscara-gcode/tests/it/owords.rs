@@ -137,6 +137,11 @@ fn file_subroutines_are_found_beside_the_program_then_on_the_path() {
     // Without the path, `far` is looked for in the program itself, to its end.
     let err = run(main, Vec::new()).expect_err("far.ngc is not beside the program");
     assert!(err.to_string().contains("seeking o-word: o<far> from line: 2"), "{err}");
+    // It stands at the call, with its text (not at the program's last line, an empty one), and
+    // says the subroutine path would help.
+    let at = err.location().expect("located");
+    assert_eq!((at.line, at.column, at.text.as_str()), (2, 1, "o<far> call [#<_value>]"), "{err}");
+    assert_eq!(err.setting(), Some(Setting::SubroutinePath));
     // A subroutine file may call another one, and `%` lines in it do not end the program.
     let library = PathBuf::from("library");
     let motions = run(main, vec![library.clone()]).unwrap_or_else(|err| panic!("{err}"));
