@@ -37,10 +37,11 @@ pub(crate) struct CycleArgs {
     #[arg(long, value_name = "MM", default_value = "40", allow_hyphen_values = true)]
     z: f64,
     /// Payload carried all the way, kilograms (default: the robot file's `dynamics.payload`).
-    #[arg(long, value_name = "KG")]
+    #[arg(long, value_name = "KG", allow_hyphen_values = true)]
     payload: Option<f64>,
-    /// Blend the corners within MM millimetres (G64 P) instead of stopping at each.
-    #[arg(long, value_name = "MM")]
+    /// Blend the corners within MM millimetres (G64 P) instead of stopping at each; 0 is
+    /// G64 with no P, as LinuxCNC reads G64 P0 (the corners rounded by at most 1 mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     blend: Option<f64>,
     /// Print `{"cycle_s","at":[x,y],"z","payload_kg","peak":{…},"rms":{…},"dwell_s","sustained_cycles_per_min"}`.
     #[arg(long)]

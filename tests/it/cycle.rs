@@ -116,4 +116,9 @@ fn an_unreachable_cycle_names_its_corner() {
         .expect_code(2)
         .stderr_has("expected two numbers X,Y");
     biscara(&dir, &["cycle", "--payload=-1"]).expect_code(1).stderr_has("the payload must be");
+    // A negative number after the flag is its value, not another flag.
+    biscara(&dir, &["cycle", "--payload", "-1"]).expect_code(1).stderr_has("the payload must be");
+    biscara(&dir, &["cycle", "--blend", "-1"])
+        .expect_code(1)
+        .stderr_has("the blend tolerance must be");
 }
