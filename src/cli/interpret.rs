@@ -34,7 +34,7 @@ use super::files::write_output;
 /// NURBS (G5.2) and the other codes LinuxCNC knows but this
 /// command does not yet are refused with "… is not supported yet"; A, B, U, V, W words are
 /// errors. On any error: `FILE:LINE:COLUMN: message`, the line with a caret, exit code 1, and
-/// nothing written.
+/// no -o file written (standard output is a stream: it ends at the error).
 ///
 /// Programs written for other firmware are read as that firmware reads them (docs/gcode.md,
 /// "Dialects"): `--dialect auto` (the default) decides from the program's first 64 KiB

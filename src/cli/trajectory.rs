@@ -54,8 +54,9 @@ pub(crate) struct InterpolateArgs {
 /// With --torques, after them, the torques the motors must give (docs/dynamics.md):
 /// `tau_theta1_Nm,tau_theta2_Nm,tau_theta3_Nm,f_d4_N,payload_kg`, each row's inverse dynamics of
 /// its own joints, velocities and accelerations, with the robot's payload while the gripper holds
-/// it. The command fails (exit 1, nothing written) at the first sample that is unreachable, outside
-/// the joint limits or near a singularity, naming the program's line and the time.
+/// it. The command fails (exit 1, no -o file written; standard output, a stream, ends there) at
+/// the first sample that is unreachable, outside the joint limits or near a singularity, naming
+/// the program's line and the time.
 ///
 /// The program's kind comes from --from, else from its extension: `.jsonl` is an inter-file,
 /// `.csv` a path CSV, `.ngc`/`.nc`/`.gcode`/… G-code; else from its first bytes: `{` starts an
