@@ -21,21 +21,27 @@ pub struct DynamicsSpec {
     /// Each proximal link: turns about its base joint with θi; `com` mm from the base joint
     /// toward the elbow.
     #[serde(skip_serializing_if = "BodySpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub proximal: BodySpec,
     /// Each distal link: `com` mm from the elbow toward the tool point.
     #[serde(skip_serializing_if = "BodySpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub distal: BodySpec,
     /// A point mass at the tool point moving in x and y only (the Z axis's frame and motors).
     #[serde(skip_serializing_if = "PointSpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub carriage: PointSpec,
     /// A point mass at the tool point that also moves with d4.
     #[serde(skip_serializing_if = "PointSpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub slide: PointSpec,
     /// The inertia about the tool axis, turning with the tool angle c.
     #[serde(skip_serializing_if = "ToolBodySpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub tool: ToolBodySpec,
     /// A point mass at the tool point carried from each pick to its place.
     #[serde(skip_serializing_if = "PointSpec::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub payload: PointSpec,
 }
 
@@ -99,12 +105,16 @@ impl ToolBodySpec {
 #[serde(deny_unknown_fields)]
 pub struct Motors {
     /// θ1's motor (N·m, kg·m²).
+    #[serde(deserialize_with = "crate::object::object")]
     pub theta1: Motor,
     /// θ2's motor (N·m, kg·m²).
+    #[serde(deserialize_with = "crate::object::object")]
     pub theta2: Motor,
     /// θ3's motor (N·m, kg·m²).
+    #[serde(deserialize_with = "crate::object::object")]
     pub theta3: Motor,
     /// d4's motor (N, kg).
+    #[serde(deserialize_with = "crate::object::object")]
     pub d4: Motor,
 }
 

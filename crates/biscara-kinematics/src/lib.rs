@@ -32,6 +32,7 @@ mod kinematics;
 mod meshes;
 mod mode;
 mod model;
+mod object;
 mod pose;
 mod report;
 mod robot;

@@ -16,8 +16,10 @@ pub struct Robot {
     /// A free-form name, shown in reports.
     pub name: String,
     /// Link lengths of the five-bar.
+    #[serde(deserialize_with = "crate::object::object")]
     pub links: Links,
     /// Positions of the two actuated base joints on the X axis.
+    #[serde(deserialize_with = "crate::object::object")]
     pub base: Base,
     /// Length of the prismatic axis, millimetres: `d4 = lp − z`.
     pub lp: f64,
@@ -26,29 +28,38 @@ pub struct Robot {
     /// The assembly mode the robot is built in (`"+"` by default).
     pub assembly_mode: AssemblyMode,
     /// Position limits of the four joints, `[min, max]`.
+    #[serde(deserialize_with = "crate::object::object")]
     pub joint_limits: JointLimits,
     /// Velocity limits of the four joints, degrees per second (θ) and mm/s (d4).
+    #[serde(deserialize_with = "crate::object::object")]
     pub joint_max_velocity: JointValues,
     /// Acceleration limits of the four joints, degrees/s² (θ) and mm/s² (d4).
+    #[serde(deserialize_with = "crate::object::object")]
     pub joint_max_acceleration: JointValues,
     /// Cartesian motion limits used by the interpolator.
+    #[serde(deserialize_with = "crate::object::object")]
     pub motion: MotionLimits,
     /// Angle, degrees, below which a pose counts as near a singularity.
     pub singularity_margin: f64,
     /// Body dimensions used by the virtual robot (collisions, pictures).
+    #[serde(deserialize_with = "crate::object::object")]
     pub geometry: Geometry,
     /// The end effector (docs/motion.md): what the program's M3, M4, M5, S and E words drive.
+    #[serde(deserialize_with = "crate::object::object")]
     pub tool: ToolSpec,
     /// STL files drawn by the viewer in place of the parts' boxes and cylinders (none by default).
     #[serde(skip_serializing_if = "Meshes::is_empty")]
+    #[serde(deserialize_with = "crate::object::object")]
     pub meshes: Meshes,
     /// The bodies' masses and inertias (docs/dynamics.md); absent: solid aluminium bodies of the
     /// `geometry`'s size.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(deserialize_with = "crate::object::optional_object")]
     pub dynamics: Option<DynamicsSpec>,
     /// The motors at the four joints (docs/dynamics.md); absent: torques are computed but bound
     /// nothing.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(deserialize_with = "crate::object::optional_object")]
     pub motors: Option<Motors>,
 }
 
@@ -566,6 +577,24 @@ mod tests {
         check_rejected(r#"{"links": {"l1": 1, "l1": 2}}"#, "links", "duplicate field `l1`");
         check_rejected("", ".", "EOF");
         check_rejected(r#"{"lp": 100} x"#, ".", "trailing characters");
+    }
+
+    #[test]
+    fn a_list_where_an_object_belongs_is_refused_at_its_key() {
+        let object = "invalid type: sequence, expected a JSON object";
+        check_rejected(r#"{"links": [300, 400]}"#, "links", object);
+        check_rejected(r#"{"joint_max_velocity": [1, 2, 3, 4]}"#, "joint_max_velocity", object);
+        check_rejected(r#"{"dynamics": [9.8]}"#, "dynamics", object);
+        check_rejected(r#"{"dynamics": {"proximal": [1, 2]}}"#, "dynamics.proximal", object);
+        check_rejected(r#"{"motors": {"theta1": [1, 1]}}"#, "motors.theta1", object);
+        check_rejected(r#"{"tool": 3}"#, "tool", "invalid type: integer `3`, expected a JSON");
+        // No Rust type name in any message.
+        let err = Robot::from_json(r#"{"dynamics": {"distal": [1, 2]}}"#).unwrap_err();
+        assert!(!err.to_string().contains("struct"), "{err}");
+        assert_eq!((err.to_string().split(':').next()), Some("1"), "{err}");
+        // A section may still be null (absent), and an object still reads.
+        let robot = Robot::from_json(r#"{"dynamics": null, "links": {"l1": 210}}"#).unwrap();
+        assert_eq!((robot.dynamics, robot.links.l1), (None, 210.0));
     }
 
     #[test]
