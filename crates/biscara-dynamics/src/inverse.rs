@@ -327,7 +327,15 @@ impl Dynamics {
     ) -> Result<[f64; 4], DynamicsError> {
         let rigid = self.rigid_torques(q, qd, qdd, payload_kg)?;
         let friction = self.friction(qd);
-        Ok(std::array::from_fn(|joint| rigid[joint] + friction[joint]))
+        let torques: [f64; 4] = std::array::from_fn(|joint| rigid[joint] + friction[joint]);
+        // Finite inputs within the robot file's bounds can still overflow at absurd rates: an
+        // error, never an infinite torque.
+        const TORQUES: [&str; 4] =
+            ["theta1's torque", "theta2's torque", "theta3's torque", "d4's force"];
+        match torques.iter().position(|torque| !torque.is_finite()) {
+            Some(joint) => Err(DynamicsError::NotFinite { what: TORQUES[joint] }),
+            None => Ok(torques),
+        }
     }
 }
 
@@ -533,6 +541,11 @@ mod tests {
         let dynamics = Dynamics::new(&RobotModel::default()).unwrap();
         let err = dynamics.torques([0.0; 4], [0.0, f64::NAN, 0.0, 0.0], [0.0; 4], 0.0);
         assert_eq!(err, Err(DynamicsError::NotFinite { what: "theta2's velocity" }));
+        // Rates that overflow the torques: an error, not an infinity.
+        let err = dynamics.torques([0.2, 0.1, 0.0, 0.0], [1e200, 0.0, 0.0, 0.0], [0.0; 4], 0.0);
+        assert_eq!(err, Err(DynamicsError::NotFinite { what: "theta1's torque" }));
+        let err = dynamics.torques([0.2, 0.1, 0.0, 0.0], [0.0; 4], [0.0, 0.0, 0.0, 1e308], 1e3);
+        assert_eq!(err, Err(DynamicsError::NotFinite { what: "d4's force" }));
         // Proximal links pointing apart: the elbows are over 600 mm apart, the distal links 540 mm.
         let err = dynamics.torques([-1.6, 1.6, 0.0, 0.0], [0.0; 4], [0.0; 4], 0.0);
         assert!(matches!(err, Err(DynamicsError::Assembly { .. })), "{err:?}");

@@ -72,7 +72,8 @@ pub enum DynamicsError {
         /// θ2, degrees.
         theta2_deg: f64,
     },
-    /// Occurs when a joint value, rate or the payload is not a finite number.
+    /// Occurs when a joint value, rate or the payload is not a finite number, or when a torque
+    /// (or its square summed over a cycle) overflows: rates far beyond any robot's.
     #[error("{what} is not a finite number")]
     NotFinite {
         /// What is not finite.

@@ -147,6 +147,26 @@ pub struct Motor {
 /// The names of the joints in the order of [`Motors::to_array`].
 const JOINTS: [&str; 4] = ["theta1", "theta2", "theta3", "d4"];
 
+/// The largest mass a body (or the payload) may have, kg: a five-bar SCARA-class arm's links,
+/// carriage and payload weigh grams to tens of kilograms; a tonne is beyond any of them, and
+/// bounding every input keeps the model's torques, and their squares summed over a cycle, finite.
+pub const MAX_MASS_KG: f64 = 1e3;
+
+/// The largest moment of inertia a body may have, kg·m²: a tonne at a metre's radius.
+pub const MAX_INERTIA_KG_M2: f64 = 1e3;
+
+/// The largest gravity, m/s²: about 10 g (the surface gravity of every planet of the solar system
+/// is below 25 m/s²).
+pub const MAX_GRAVITY: f64 = 100.0;
+
+/// The largest `peak`, `rated`, `viscous` or `coulomb` of a motor, N·m or N (N·m·s/rad, N·s/m):
+/// a meganewton(-metre), far beyond any motor and gear of this class of robot.
+pub const MAX_MOTOR_EFFORT: f64 = 1e6;
+
+/// The largest reflected rotor inertia, kg·m² (kg for d4): a rotor of 10⁻³ kg·m² through a 100:1
+/// gear is 10 kg·m², through a 1 mm-lead screw ≈ 4·10⁴ kg; 10⁶ leaves room for both.
+pub const MAX_ROTOR_INERTIA: f64 = 1e6;
+
 fn non_negative(key: &str, value: Option<f64>) -> Result<(), RobotError> {
     let Some(value) = value else { return Ok(()) };
     finite(key, value)?;
@@ -154,6 +174,25 @@ fn non_negative(key: &str, value: Option<f64>) -> Result<(), RobotError> {
         return Err(invalid(key, format!("must not be negative (got {value})")));
     }
     Ok(())
+}
+
+/// [`non_negative`] and at most `max` (`unit`, named in the message with the bound's reason).
+fn bounded(key: &str, value: Option<f64>, max: f64, unit: &str) -> Result<(), RobotError> {
+    non_negative(key, value)?;
+    match value {
+        Some(value) if value > max => {
+            // 1e308 as written, not as 309 digits.
+            let value = if value >= 1e9 { format!("{value:e}") } else { value.to_string() };
+            Err(invalid(
+                key,
+                format!(
+                    "{value} {unit} is beyond any robot of this class: at most {max} {unit} \
+                     (docs/dynamics.md)"
+                ),
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 fn within_link(key: &str, com: Option<f64>, link: &str, length: f64) -> Result<(), RobotError> {
@@ -183,19 +222,21 @@ impl DynamicsSpec {
                 ));
             }
         }
+        bounded("dynamics.gravity", self.gravity, MAX_GRAVITY, "m/s²")?;
         for (name, body, link, length) in
             [("proximal", &self.proximal, "l1", l1), ("distal", &self.distal, "l2", l2)]
         {
-            non_negative(&format!("dynamics.{name}.mass"), body.mass)?;
+            bounded(&format!("dynamics.{name}.mass"), body.mass, MAX_MASS_KG, "kg")?;
             within_link(&format!("dynamics.{name}.com"), body.com, link, length)?;
-            non_negative(&format!("dynamics.{name}.inertia"), body.inertia)?;
+            let inertia = body.inertia;
+            bounded(&format!("dynamics.{name}.inertia"), inertia, MAX_INERTIA_KG_M2, "kg·m²")?;
         }
         for (name, point) in
             [("carriage", &self.carriage), ("slide", &self.slide), ("payload", &self.payload)]
         {
-            non_negative(&format!("dynamics.{name}.mass"), point.mass)?;
+            bounded(&format!("dynamics.{name}.mass"), point.mass, MAX_MASS_KG, "kg")?;
         }
-        non_negative("dynamics.tool.inertia", self.tool.inertia)
+        bounded("dynamics.tool.inertia", self.tool.inertia, MAX_INERTIA_KG_M2, "kg·m²")
     }
 }
 
@@ -205,11 +246,14 @@ impl Motors {
     pub fn validate(&self) -> Result<(), RobotError> {
         for (name, motor) in JOINTS.iter().zip(self.to_array()) {
             let key = |field: &str| format!("motors.{name}.{field}");
+            // Units as the motor's joint has them: a turning joint's, or d4's.
+            let (effort, inertia) = if *name == "d4" { ("N", "kg") } else { ("N·m", "kg·m²") };
             for (field, value) in [("peak", motor.peak), ("rated", motor.rated)] {
                 finite(&key(field), value)?;
                 if value <= 0.0 {
                     return Err(invalid(&key(field), format!("must be positive (got {value})")));
                 }
+                bounded(&key(field), Some(value), MAX_MOTOR_EFFORT, effort)?;
             }
             if motor.rated > motor.peak {
                 return Err(invalid(
@@ -220,9 +264,10 @@ impl Motors {
                     ),
                 ));
             }
-            non_negative(&key("rotor_inertia"), Some(motor.rotor_inertia))?;
-            non_negative(&key("viscous"), Some(motor.viscous))?;
-            non_negative(&key("coulomb"), Some(motor.coulomb))?;
+            bounded(&key("rotor_inertia"), Some(motor.rotor_inertia), MAX_ROTOR_INERTIA, inertia)?;
+            let viscous_unit = if *name == "d4" { "N·s/m" } else { "N·m·s/rad" };
+            bounded(&key("viscous"), Some(motor.viscous), MAX_MOTOR_EFFORT, viscous_unit)?;
+            bounded(&key("coulomb"), Some(motor.coulomb), MAX_MOTOR_EFFORT, effort)?;
         }
         Ok(())
     }

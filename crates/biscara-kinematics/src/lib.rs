@@ -43,7 +43,10 @@ pub use nalgebra as na;
 pub use batch::{
     BatchSolution, BatchStatus, Dispatch, LANES, PoseColumns, SolutionColumns, atan2 as batch_atan2,
 };
-pub use dynamics::{BodySpec, DynamicsSpec, Motor, Motors, PointSpec, ToolBodySpec};
+pub use dynamics::{
+    BodySpec, DynamicsSpec, MAX_GRAVITY, MAX_INERTIA_KG_M2, MAX_MASS_KG, MAX_MOTOR_EFFORT,
+    MAX_ROTOR_INERTIA, Motor, Motors, PointSpec, ToolBodySpec,
+};
 pub use error::{KinematicsError, Shortfall, SingularityKind};
 pub use jacobian::PlanarJacobian;
 pub use kinematics::{

@@ -687,6 +687,59 @@ mod tests {
     }
 
     #[test]
+    fn absurd_magnitudes_in_dynamics_and_motors_are_refused_with_the_bound() {
+        let beyond = "is beyond any robot of this class: at most";
+        check_rejected(
+            r#"{"dynamics": {"proximal": {"mass": 1e308}}}"#,
+            "dynamics.proximal.mass",
+            beyond,
+        );
+        check_rejected(
+            r#"{"dynamics": {"payload": {"mass": 1001}}}"#,
+            "dynamics.payload.mass",
+            "at most 1000 kg",
+        );
+        check_rejected(
+            r#"{"dynamics": {"distal": {"inertia": 1e200}}}"#,
+            "dynamics.distal.inertia",
+            beyond,
+        );
+        check_rejected(
+            r#"{"dynamics": {"tool": {"inertia": 2e3}}}"#,
+            "dynamics.tool.inertia",
+            "kg·m²",
+        );
+        check_rejected(r#"{"dynamics": {"gravity": 1e9}}"#, "dynamics.gravity", "at most 100 m/s²");
+        let motor = |theta1: &str| {
+            format!(
+                r#"{{"motors": {{"theta1": {theta1}, "theta2": {{"peak": 9, "rated": 3}},
+                "theta3": {{"peak": 1, "rated": 0.5}}, "d4": {{"peak": 120, "rated": 45}}}}}}"#
+            )
+        };
+        check_rejected(&motor(r#"{"peak": 1e300, "rated": 3}"#), "motors.theta1.peak", "N·m");
+        check_rejected(
+            &motor(r#"{"peak": 9, "rated": 3, "rotor_inertia": 1e7}"#),
+            "motors.theta1.rotor_inertia",
+            beyond,
+        );
+        check_rejected(
+            &motor(r#"{"peak": 9, "rated": 3, "viscous": 1e7}"#),
+            "motors.theta1.viscous",
+            beyond,
+        );
+        check_rejected(
+            &motor(r#"{"peak": 9, "rated": 3, "coulomb": 1e7}"#),
+            "motors.theta1.coulomb",
+            beyond,
+        );
+        // The bounds themselves are accepted.
+        let json = r#"{"dynamics": {"gravity": 100, "proximal": {"mass": 1000, "inertia": 1000},
+            "payload": {"mass": 1000}}}"#;
+        Robot::from_json(json).unwrap();
+        Robot::from_json(&motor(r#"{"peak": 1e6, "rated": 1e6, "rotor_inertia": 1e6}"#)).unwrap();
+    }
+
+    #[test]
     fn validation_errors_point_at_the_key() {
         let json = "{\n  \"links\": {\n    \"l1\": 210,\n    \"l2\": -1\n  }\n}";
         let err = Robot::from_json(json).unwrap_err();

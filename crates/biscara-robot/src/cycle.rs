@@ -342,6 +342,12 @@ pub fn adept_cycle(model: &RobotModel, config: &CycleConfig) -> Result<CycleRepo
         CycleError::Unreachable { point: CORNERS[0], x: left, y: at[1], z, reason: err.to_string() }
     })?;
     let holding = dynamics.rigid_torques(start.joints.to_array(), [0.0; 4], [0.0; 4], payload)?;
+    // Torques near f64's range square to infinity: an error, never an RMS of `inf`.
+    const SQUARES: [&str; 4] =
+        ["theta1's RMS torque", "theta2's RMS torque", "theta3's RMS torque", "d4's RMS force"];
+    if let Some(joint) = squares.iter().position(|square| !square.is_finite()) {
+        return Err(DynamicsError::NotFinite { what: SQUARES[joint] }.into());
+    }
     let ratings = dynamics.motors().map(|motors| motors.map(|motor| [motor.peak, motor.rated]));
     let motors: [CycleMotor; 4] = std::array::from_fn(|j| CycleMotor {
         peak: peak[j],
