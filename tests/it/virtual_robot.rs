@@ -517,3 +517,20 @@ fn the_torque_limits_hold_over_planning_windows_and_blended_chains() {
         duration(&plain)
     );
 }
+
+#[test]
+fn the_summary_names_the_home_pose_not_line_0() {
+    // The default home pose lies at the edge of the reach: the program's nearest singularity is
+    // there, at the first sample, before the program's first line.
+    let dir = setup("check-home-pose", &[("job.jsonl", BOX_PROGRAM)]);
+    let run = biscara(&dir, &["check", "job.jsonl"]);
+    let run = run.success();
+    let nearest =
+        run.stdout.lines().find(|line| line.contains("nearest singularity")).expect("nearest");
+    assert!(nearest.contains("(the home pose, t = 0.000 s)"), "{run}");
+    assert!(!run.stdout.contains("line 0"), "{run}");
+    // JSON keeps the number: line 0 is the home pose (docs/virtual-robot.md).
+    let run = biscara(&dir, &["check", "job.jsonl", "--json"]);
+    let report = json(run.success());
+    assert_eq!(report["summary"]["min_singularity"]["line"], 0, "{report:#}");
+}

@@ -10,6 +10,12 @@ use crate::check::torque_unit;
 use crate::scene::read_json;
 use crate::{Peak, Problem, ProblemKind, Rectangle, Report, VirtualRobotError, Workspace};
 
+/// Where a figure of the summary was found: `line N`, or `the home pose` for line 0, the first
+/// sample (t = 0), which is the robot's home pose before the program's first line.
+fn at_line(line: usize) -> String {
+    if line == 0 { "the home pose".to_owned() } else { format!("line {line}") }
+}
+
 /// A number rounded to 6 decimals, negative zero cleaned, for JSON.
 fn round6(value: f64) -> Value {
     json!(round_to(value, 6))
@@ -163,10 +169,12 @@ impl Report {
         }
         for problem in &report.problems {
             let [x, y, z, c] = problem.pose.map(|v| fixed(v, 3));
+            // A problem at the home pose (line 0) has no line to name: `FILE: home pose: …`.
+            let line =
+                if problem.line == 0 { " home pose".to_owned() } else { problem.line.to_string() };
             writeln!(
                 out,
-                "{name}:{}: {} ({}) at t = {} s, pose (x, y, z, c) = ({x}, {y}, {z}, {c}): {}",
-                problem.line,
+                "{name}:{line}: {} ({}) at t = {} s, pose (x, y, z, c) = ({x}, {y}, {z}, {c}): {}",
                 problem.kind,
                 problem.subject,
                 fixed(problem.t_start, 3),
@@ -192,11 +200,11 @@ impl Report {
                 let unit = if joint.is_revolute() { "°" } else { "mm" };
                 writeln!(
                     out,
-                    "    {:<7} {:>12} {unit}{per} (limit {}; line {}, t = {} s)",
+                    "    {:<7} {:>12} {unit}{per} (limit {}; {}, t = {} s)",
                     joint.name(),
                     fixed(peak.value, 3),
                     peak.limit,
-                    peak.line,
+                    at_line(peak.line),
                     fixed(peak.t, 3)
                 )?;
             }
@@ -207,12 +215,12 @@ impl Report {
                 let unit = torque_unit(joint);
                 writeln!(
                     out,
-                    "    {:<7} peak {:>10} {unit} (peak {}; line {}, t = {} s), RMS {:>10} {unit} \
+                    "    {:<7} peak {:>10} {unit} (peak {}; {}, t = {} s), RMS {:>10} {unit} \
                      (rated {})",
                     joint.name(),
                     fixed(figure.peak.value, 3),
                     figure.peak.limit,
-                    figure.peak.line,
+                    at_line(figure.peak.line),
                     fixed(figure.peak.t, 3),
                     fixed(figure.rms, 3),
                     figure.rated
@@ -222,10 +230,10 @@ impl Report {
         match &summary.min_singularity {
             Some(nearest) => writeln!(
                 out,
-                "  nearest singularity: {}° from the {} (line {}, t = {} s)",
+                "  nearest singularity: {}° from the {} ({}, t = {} s)",
                 fixed(nearest.angle_deg, 3),
                 nearest.kind,
-                nearest.line,
+                at_line(nearest.line),
                 fixed(nearest.t, 3)
             )?,
             None => writeln!(out, "  nearest singularity: no reachable sample")?,
