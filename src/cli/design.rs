@@ -26,7 +26,8 @@ use super::files::write_output;
 /// wider than two distal links), task_ok with --task, time_s with --programs, cycle_s with
 /// --objective cycle: the time of `biscara cycle` at the centre of the design's rectangle, its
 /// bodies scaled with the links unless the robot file's `dynamics` gives them, its motors
-/// fixed). --best writes the
+/// fixed; empty where the cycle cannot run, and the note on standard error counts those designs
+/// and says why for the first). --best writes the
 /// robot file of the best design (largest rectangle, or --objective), among those covering
 /// --task; --pareto the designs no other beats in both rectangle area and GCI; --atlas a picture
 /// of one index over l1 × l2 for each base.

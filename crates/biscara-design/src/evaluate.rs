@@ -173,9 +173,25 @@ impl Evaluator {
 impl Evaluator {
     /// The Adept cycle's time on `design` centred at `at`; `None` where it cannot run.
     fn cycle_time(&self, design: &Design, at: [f64; 2]) -> Option<f64> {
-        let model = RobotModel::new(self.robot_of(design)).ok()?;
+        self.run_cycle(design, at).ok()
+    }
+
+    /// The Adept cycle's time on `design` centred at `at`, or why it cannot run.
+    fn run_cycle(&self, design: &Design, at: [f64; 2]) -> Result<f64, String> {
+        let model = RobotModel::new(self.robot_of(design)).map_err(|err| err.to_string())?;
         let config = CycleConfig { at: Some(at), ..CycleConfig::default() };
-        adept_cycle(&model, &config).ok().map(|report| report.cycle_s)
+        adept_cycle(&model, &config).map(|report| report.cycle_s).map_err(|err| err.to_string())
+    }
+
+    /// Why the Adept cycle could not run on the `ok` design `evaluation` left without a
+    /// `cycle_s` (`None` when it has one, is not `ok`, or the cycle was not asked for): the
+    /// cycle run again, for the message only.
+    pub fn cycle_failure(&self, evaluation: &Evaluation) -> Option<String> {
+        if !self.cycle || evaluation.cycle_s.is_some() {
+            return None;
+        }
+        let rectangle = evaluation.rectangle?;
+        self.run_cycle(&evaluation.design, rectangle.center()).err()
     }
 }
 

@@ -196,6 +196,7 @@ pub struct Collector {
     /// The atlas values, kept when asked for (memory grows with the designs then).
     cells: Option<Vec<AtlasValue>>,
     count: u64,
+    cycle_failures: u64,
 }
 
 /// What a sweep found ([`Collector::finish`], [`crate::Sweep::run`]); its `Display` is the
@@ -212,6 +213,12 @@ pub struct SweepOutcome {
     pub pareto: Vec<Evaluation>,
     /// Every design's atlas value in order, when asked for (else empty).
     pub cells: Vec<AtlasValue>,
+    /// How many `ok` designs the Adept cycle could not run on (`--objective cycle`: their
+    /// `cycle_s` is empty).
+    pub cycle_failures: u64,
+    /// The first of them and why the cycle could not run on it (known to a sweep; `None` for a
+    /// CSV read back, whose rows do not say why).
+    pub first_cycle_failure: Option<(Design, String)>,
 }
 
 impl Collector {
@@ -222,12 +229,16 @@ impl Collector {
             pareto: ParetoFront::new(),
             cells: cells.then(Vec::new),
             count: 0,
+            cycle_failures: 0,
         }
     }
 
     /// Takes one design's evaluation.
     pub fn consider(&mut self, evaluation: &Evaluation) {
         self.count += 1;
+        if cycle_failed(self.best.objective, evaluation) {
+            self.cycle_failures += 1;
+        }
         self.best.consider(evaluation);
         self.pareto.consider(evaluation);
         if let Some(cells) = &mut self.cells {
@@ -245,8 +256,17 @@ impl Collector {
             best: self.best.get().copied(),
             pareto: self.pareto.designs(),
             cells: self.cells.unwrap_or_default(),
+            cycle_failures: self.cycle_failures,
+            first_cycle_failure: None,
         }
     }
+}
+
+/// Whether the Adept cycle, timed for the `cycle` objective, could not run on an `ok` design.
+pub(crate) fn cycle_failed(objective: Objective, evaluation: &Evaluation) -> bool {
+    objective == Objective::Cycle
+        && evaluation.status == DesignStatus::Ok
+        && evaluation.cycle_s.is_none()
 }
 
 /// `n` designs: "1 design", "3 designs".
@@ -259,7 +279,11 @@ impl std::fmt::Display for SweepOutcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let count = designs(self.count);
         let Some(best) = self.best else {
-            return write!(f, "{count} evaluated; none has a rectangle");
+            if self.cycle_failures == 0 {
+                return write!(f, "{count} evaluated; none has a rectangle");
+            }
+            write!(f, "{count} evaluated; none has a cycle time")?;
+            return self.write_cycle_failures(f);
         };
         let d = best.design;
         let (w, h) = best.rectangle.map_or((0.0, 0.0), |r| (r.width(), r.height()));
@@ -284,7 +308,26 @@ impl std::fmt::Display for SweepOutcome {
             f,
             "); Pareto front of rectangle area and GCI: {}",
             designs(self.pareto.len() as u64)
-        )
+        )?;
+        self.write_cycle_failures(f)
+    }
+}
+
+impl SweepOutcome {
+    /// `; the Adept cycle could not run on N designs (first: …)`, when it could not.
+    fn write_cycle_failures(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.cycle_failures == 0 {
+            return Ok(());
+        }
+        write!(f, "; the Adept cycle could not run on {}", designs(self.cycle_failures))?;
+        match &self.first_cycle_failure {
+            Some((d, reason)) => write!(
+                f,
+                " (first, design {}: l1 = {} mm, l2 = {} mm, base = {} mm: {reason})",
+                d.index, d.l1, d.l2, d.base
+            ),
+            None => write!(f, " (their cycle_s is empty)"),
+        }
     }
 }
 

@@ -5,6 +5,7 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
+use crate::select::cycle_failed;
 use crate::{
     Collector, DesignError, DesignGrid, Evaluation, Evaluator, Objective, Shard, SweepOutcome,
     header, write_row,
@@ -68,6 +69,8 @@ impl Sweep {
         let mut indices = self.shard.indices(self.grid.len()).peekable();
         let mut designs = Vec::with_capacity(block);
         let mut evaluations = Vec::with_capacity(block);
+        // Why the cycle could not run on the first design it failed on, for the summary.
+        let mut first_cycle_failure = None;
         while indices.peek().is_some() {
             designs.clear();
             designs.extend(indices.by_ref().take(block).map(|index| self.grid.design(index)));
@@ -80,9 +83,15 @@ impl Sweep {
             for evaluation in &evaluations {
                 each(evaluation)?;
                 collector.consider(evaluation);
+                if first_cycle_failure.is_none() && cycle_failed(options.objective, evaluation) {
+                    first_cycle_failure = self
+                        .evaluator
+                        .cycle_failure(evaluation)
+                        .map(|reason| (evaluation.design, reason));
+                }
             }
         }
-        Ok(collector.finish())
+        Ok(SweepOutcome { first_cycle_failure, ..collector.finish() })
     }
 
     /// Runs the sweep as [`Sweep::run`] and writes its CSV to `out`: the header of the
@@ -134,5 +143,35 @@ mod tests {
         assert_eq!(lines[0], header(sweep.evaluator().columns()));
         assert!(lines[1].starts_with("0,200") && lines[2].starts_with("1,220"), "{text}");
         assert!(outcome.best.is_some());
+    }
+
+    #[test]
+    fn a_design_the_cycle_cannot_run_on_is_counted_with_the_first_reason() {
+        // l1 = 150, l2 = 200, base = 200: the rectangle is low (y < 0), where θ3 turning with
+        // the distal link crosses ±180° during the cycle.
+        let request = SweepRequest {
+            l1: ParamRange::parse("l1", "150:150:1").unwrap(),
+            l2: ParamRange::parse("l2", "200:200:1").unwrap(),
+            base: ParamRange::parse("base", "200:200:1").unwrap(),
+            step: 5.0,
+            task: None,
+            objective: Objective::Cycle,
+            programs: Vec::new(),
+            fit: false,
+            shard: "1/1".parse().unwrap(),
+        };
+        let sweep = request.sweep(Robot::default()).unwrap();
+        let options = SweepOptions { threads: 1, objective: Objective::Cycle, cells: false };
+        let outcome = sweep.run::<DesignError>(&options, |_| Ok(())).unwrap();
+        assert_eq!((outcome.best, outcome.cycle_failures), (None, 1));
+        let (design, reason) = outcome.first_cycle_failure.clone().expect("a reason");
+        assert_eq!(design.index, 0);
+        assert!(reason.contains("the cycle"), "{reason}");
+        let summary = outcome.to_string();
+        assert!(
+            summary.starts_with("1 design evaluated; none has a cycle time; the Adept cycle could \
+                 not run on 1 design (first, design 0: l1 = 150 mm, l2 = 200 mm, base = 200 mm: the cycle"),
+            "{summary}"
+        );
     }
 }
