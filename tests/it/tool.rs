@@ -175,3 +175,21 @@ fn joints_events_carry_the_same_tool_column_as_interpolate_and_view_reads_them()
         biscara(&dir, &["mjcf", "--traj", "traj.csv", "-o", "robot.xml"]).success();
     }
 }
+
+#[test]
+fn a_reprap_program_that_feeds_no_filament_is_no_extruder_job() {
+    let Some(realworld) = crate::dialects::realworld() else { return };
+    // A PCB mill driven by RepRap firmware: M104 (its spindle) and no E word anywhere.
+    let program = realworld.join("other/gcode-exporter-pcb-reprap.gcode");
+    let dir = temp_dir("tool-reprap-mill");
+    let path = program.to_str().expect("a UTF-8 path");
+    let run = biscara(&dir, &["interpret", path]);
+    run.success().stderr_has("read as marlin G-code");
+    assert!(!run.stderr.contains("tool: extruder"), "{run}");
+    // The same text with an E word is a printer's again.
+    let text = std::fs::read_to_string(&program).expect("read").replace("G1 Z-0.2 F60", "G92 E0");
+    std::fs::write(dir.join("printer.gcode"), text).expect("write");
+    biscara(&dir, &["interpret", "printer.gcode"])
+        .success()
+        .stderr_has("tool: extruder (printer codes");
+}

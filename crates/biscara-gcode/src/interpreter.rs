@@ -654,15 +654,22 @@ impl<R: BufRead> Interpreter<R> {
         }
     }
 
-    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them.
+    /// Reads up to [`LOOKAHEAD_BYTES`] ahead and infers the tool from them (and from whether
+    /// they are the whole program).
     pub(super) fn infer_tool(&mut self) -> Result<(), GcodeError> {
         self.machine.hooks.infer_tool = false;
-        self.lines
+        let complete = self
+            .lines
             .source()
             .read_ahead(LOOKAHEAD_BYTES)
             .map_err(|source| GcodeError::Read { line: 1, source })?;
-        let inference = crate::tool::infer_tool(self.lines.source().head())
-            .or_else(|| self.machine.hooks.dialect.implied_tool());
+        let head = self.lines.source().head();
+        // A printer's dialect implies the extruder unless the whole program feeds no filament.
+        let inference = crate::tool::infer_tool(head, complete).or_else(|| {
+            (!complete || crate::tool::feeds(head))
+                .then(|| self.machine.hooks.dialect.implied_tool())
+                .flatten()
+        });
         if let Some(inference) = inference {
             self.machine.hooks.tool = inference.tool;
             self.machine.hooks.tool_inference = Some(inference);

@@ -16,14 +16,17 @@ pub struct ToolInference {
 }
 
 /// The tool `text` (a program's first bytes) was written for, from what it uses, in this order:
-/// printer codes (M82, M83, M104, M109) → extruder; a comment that names a laser → laser; a
+/// printer codes (M82, M83, M104, M109) → extruder, unless `complete` (`text` is the whole
+/// program) and nothing in it feeds filament (no E word on a move or G92, no RepRap M101, M102
+/// or M108): a RepRap firmware's codes on a machine that feeds none, such as a PCB mill's
+/// `M104` spindle speed; a comment that names a laser → laser; a
 /// comment that names a pen or a plotter → pen; a non-zero E word on a move → extruder; M4
 /// (Grbl's dynamic laser power) with S → laser; M3 or M4 with S and Z words → spindle; M3 or M4
 /// with S and no Z word → laser; M3 or M4 with no S word in a program whose comments name a cut
 /// (words such as `cut`, `pocket` or `penetrate`: gcodetools' `(Penetrate)`, PartKam's
 /// `(pocket 1)`) → spindle. Otherwise M3 and M4 with no S word are the gripper's pick and
 /// place. `None` when nothing tells (the caller keeps the gripper).
-pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
+pub fn infer_tool(text: &[u8], complete: bool) -> Option<ToolInference> {
     let text =
         String::from_utf8_lossy(text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text));
     let found = |tool: Tool, reason: &str, line: usize| {
@@ -31,7 +34,8 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
     };
     let (mut spindle_word, mut s_word, mut z_word) = (None, false, false);
     let (mut laser_comment, mut pen_comment, mut dynamic) = (None, None, None);
-    let (mut extrusion, mut cut_comment) = (None, None);
+    let (mut extrusion, mut cut_comment, mut printer) = (None, None, None);
+    let mut feeds = false;
     for (index, raw) in text.lines().enumerate() {
         let number = index + 1;
         let lower = raw.to_ascii_lowercase();
@@ -49,9 +53,10 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
         let has = |letter: u8| words.iter().any(|(l, _)| *l == letter);
         let is = |letter: u8, value: f64| words.iter().any(|(l, v)| *l == letter && *v == value);
         let moves = is(b'g', 0.0) || is(b'g', 1.0) || is(b'g', 2.0) || is(b'g', 3.0);
-        if [82.0, 83.0, 104.0, 109.0].iter().any(|&m| is(b'm', m)) {
-            return found(Tool::Extruder, "printer codes (M82, M83, M104, M109)", number);
+        if [82.0, 83.0, 104.0, 109.0].iter().any(|&m| is(b'm', m)) && printer.is_none() {
+            printer = Some(number);
         }
+        feeds |= feeds_filament(&words);
         if moves && words.iter().any(|(l, v)| *l == b'e' && *v != 0.0) && extrusion.is_none() {
             extrusion = Some(number);
         }
@@ -65,6 +70,9 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
         s_word |= has(b's');
         // Any Z in the code: `Z-1`, `Z#<_zcut>`, `Z[#1]`.
         z_word |= code.contains('z');
+    }
+    if let Some(line) = printer.filter(|_| feeds || !complete) {
+        return found(Tool::Extruder, "printer codes (M82, M83, M104, M109)", line);
     }
     if let Some(line) = laser_comment {
         return found(Tool::Laser, "a comment names a laser", line);
@@ -94,6 +102,23 @@ pub fn infer_tool(text: &[u8]) -> Option<ToolInference> {
         }),
         None => None,
     }
+}
+
+/// Whether the code of `text` feeds filament: an E word on a move or a G92 (`G1 X10 E0.5`, `G92
+/// E0`), or an old RepRap extruder code (M101 on, M102 reversed, M108 its speed: KISSlicer,
+/// Skeinforge). A whole program with none is no extruder job, whatever its firmware.
+pub(crate) fn feeds(text: &[u8]) -> bool {
+    let text =
+        String::from_utf8_lossy(text.strip_prefix(crate::syntax::lexer::UTF8_BOM).unwrap_or(text));
+    text.lines().any(|raw| feeds_filament(&words(&split_comment(&raw.to_ascii_lowercase()).0)))
+}
+
+/// Whether a block's words (lower case) feed filament (see [`feeds`]).
+fn feeds_filament(words: &[(u8, f64)]) -> bool {
+    let is = |letter: u8, value: f64| words.iter().any(|(l, v)| *l == letter && *v == value);
+    let moves_or_sets = [0.0, 1.0, 2.0, 3.0, 92.0].iter().any(|&g| is(b'g', g));
+    (moves_or_sets && words.iter().any(|(l, _)| *l == b'e'))
+        || [101.0, 102.0, 108.0].iter().any(|&m| is(b'm', m))
 }
 
 /// Comment words that say a program cuts (whole words, lower case): a bare M3 (no S, the speed
@@ -169,13 +194,21 @@ mod tests {
     use super::*;
 
     fn inferred(program: &str) -> Option<Tool> {
-        infer_tool(program.as_bytes()).map(|inference| inference.tool)
+        infer_tool(program.as_bytes(), true).map(|inference| inference.tool)
     }
 
     #[test]
     fn programs_tell_their_tool() {
         assert_eq!(inferred("G1 X10 Y10 E0.5 F1200\n"), Some(Tool::Extruder));
-        assert_eq!(inferred("M104 S200\nG1 X1\n"), Some(Tool::Extruder));
+        assert_eq!(inferred("M104 S200\nG92 E0\nG1 X1\n"), Some(Tool::Extruder));
+        assert_eq!(inferred("M104 S195\nM101\nM108 S31\nG1 X1\n"), Some(Tool::Extruder));
+        // Printer codes in a whole program that feeds no filament: a RepRap-driven PCB mill
+        // (M104 its spindle), not a printer; in a program's first bytes only, still a printer.
+        let mill = "G0 Z1\nM104 S255\nG1 Z-0.2 F60\nG1 X14 Y30\nM104 S0\nM2\n";
+        assert_eq!(inferred(mill), None);
+        assert_eq!(infer_tool(mill.as_bytes(), false).map(|i| i.tool), Some(Tool::Extruder));
+        assert!(feeds(b"G1 X1 E0.2\n") && feeds(b"G92 E0\n") && feeds(b"M101\n"));
+        assert!(!feeds(b"M104 S200 (E3D hot end)\nM203 E25\nG1 X1\n"));
         assert_eq!(inferred("(LaserGRBL)\nM3 S0\nG1 X1 S300\n"), Some(Tool::Laser));
         assert_eq!(inferred("M4 S500\nG1 X1 F100\nM5\n"), Some(Tool::Laser));
         assert_eq!(inferred("M3 S0\nG1 X1 F100\nS300\nG1 X2\nM5\n"), Some(Tool::Laser));
@@ -190,7 +223,7 @@ mod tests {
         assert_eq!(inferred("G1 X1 (E5)\n"), None);
         // A plotter that says "no extrusion" to a printer firmware.
         assert_eq!(inferred("G00 E0; no extrusion\nG0 Z8; pen park\n"), Some(Tool::Pen));
-        let inference = infer_tool(b"G0 X1\nM4 S100\n").unwrap();
+        let inference = infer_tool(b"G0 X1\nM4 S100\n", true).unwrap();
         assert_eq!(inference.line, Some(2));
     }
 
@@ -207,7 +240,7 @@ mod tests {
             Some(Tool::Spindle)
         );
         assert_eq!(inferred("M3 (spindle on)\nG1 Z-1 F100\nM5\nM2\n"), Some(Tool::Spindle));
-        let inference = infer_tool(gcodetools.as_bytes()).unwrap();
+        let inference = infer_tool(gcodetools.as_bytes(), true).unwrap();
         assert_eq!(inference.line, Some(2), "the M3 line tells");
         // The paper's pick and place stays the gripper's, whatever its comments say.
         assert_eq!(inferred("(pick the part)\nG1 Z0 F60\nM3\nG0 Z5 (place it)\nM4\nM2\n"), None);
