@@ -61,13 +61,14 @@ pub(crate) struct PlacementArgs {
 #[derive(Debug, Args)]
 pub(crate) struct DialectArgs {
     /// Whose G-code the program is: `linuxcnc` (RS274/NGC exactly), `grbl` (Grbl 1.1), `marlin`
-    /// (Marlin and RepRap printer firmware), `mach3`, `fanuc` (Fanuc and Haas controls), or
-    /// `auto` to decide from the program (the choice and its reason are noted on stderr).
+    /// (Marlin and RepRap printer firmware), `makerbot` (MakerBot's flavour of Marlin: the A
+    /// word is the extruder), `mach3`, `fanuc` (Fanuc and Haas controls), or `auto` to decide
+    /// from the program (the choice and its reason are noted on stderr).
     #[arg(
         long,
         value_name = "DIALECT",
         default_value = "auto",
-        help = "auto, linuxcnc, grbl, marlin, mach3 or fanuc (auto: decided from the program)"
+        help = "auto, linuxcnc, grbl, marlin, makerbot, mach3 or fanuc (auto: decided from the program)"
     )]
     pub(crate) dialect: Dialect,
     /// What the robot carries, over the robot file's `tool.kind`: what M3, M4, M5,

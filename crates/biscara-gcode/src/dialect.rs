@@ -23,6 +23,10 @@ pub enum Dialect {
     Grbl,
     /// Marlin and the RepRap family of printer firmware (slicer output).
     Marlin,
+    /// MakerBot's flavour of printer G-code (Miracle-Grue, ReplicatorG, Sailfish): Marlin's
+    /// reading, with the A word as the extruder (absolute, mm), as `auto` reads a program that
+    /// names MakerBot.
+    Makerbot,
     /// Mach3 (Fanuc-style posts: `O0001` program numbers, nested comments).
     Mach3,
     /// Fanuc and Haas controls (industrial posts): O-number programs, machine M-codes,
@@ -32,11 +36,12 @@ pub enum Dialect {
 
 impl Dialect {
     /// Every dialect, `auto` first, as the command line lists them.
-    pub const ALL: [Dialect; 6] = [
+    pub const ALL: [Dialect; 7] = [
         Dialect::Auto,
         Dialect::Linuxcnc,
         Dialect::Grbl,
         Dialect::Marlin,
+        Dialect::Makerbot,
         Dialect::Mach3,
         Dialect::Fanuc,
     ];
@@ -48,6 +53,7 @@ impl Dialect {
             Dialect::Linuxcnc => "linuxcnc",
             Dialect::Grbl => "grbl",
             Dialect::Marlin => "marlin",
+            Dialect::Makerbot => "makerbot",
             Dialect::Mach3 => "mach3",
             Dialect::Fanuc => "fanuc",
         }
@@ -62,7 +68,7 @@ impl fmt::Display for Dialect {
 
 /// A dialect name that is not one of [`Dialect::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, mach3, fanuc")]
+#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, makerbot, mach3, fanuc")]
 pub struct UnknownDialect(pub String);
 
 impl FromStr for Dialect {

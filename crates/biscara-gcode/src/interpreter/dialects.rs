@@ -151,7 +151,8 @@ pub(super) fn hooks_of(dialect: Dialect) -> &'static dyn DialectHooks {
     match dialect {
         Dialect::Auto | Dialect::Linuxcnc => &Linuxcnc,
         Dialect::Grbl => &grbl::Grbl,
-        Dialect::Marlin => &marlin::Marlin,
+        // MakerBot's flavour is Marlin's reading; its A word is renamed (`Hooks::makerbot`).
+        Dialect::Marlin | Dialect::Makerbot => &marlin::Marlin,
         Dialect::Mach3 => &mach3::Mach3,
         Dialect::Fanuc => &fanuc::Fanuc,
     }

@@ -63,7 +63,7 @@ impl Hooks {
             tool_inference: None,
             tool_on: false,
             laser_rapid_off: false,
-            makerbot: false,
+            makerbot: config.dialect == Dialect::Makerbot,
             e_position: 0.0,
             e_relative: false,
             pending_extrude: None,

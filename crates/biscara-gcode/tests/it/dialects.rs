@@ -71,6 +71,20 @@ fn marlin_extrudes_on_the_move_absolute_or_relative() {
 }
 
 #[test]
+fn makerbot_reads_the_a_word_as_the_extruder_when_named() {
+    // No comment names MakerBot: `--dialect makerbot` says so where `auto` cannot tell.
+    let program = "G21\nG1 X10 A2 F600\nG1 X20 A5\n";
+    let motions = read(program, Dialect::Makerbot);
+    let extrusions: Vec<Option<f64>> =
+        motions.iter().filter(|m| m.kind.end().is_some()).map(|m| m.extrude).collect();
+    assert_eq!(extrusions, [Some(2.0), Some(3.0)]);
+    // Marlin has no A axis: the same program is refused there.
+    let err = refused(program, Dialect::Marlin);
+    assert!(err.to_string().contains("A axis word"), "{err}");
+    assert_eq!("makerbot".parse::<Dialect>(), Ok(Dialect::Makerbot));
+}
+
+#[test]
 fn marlin_dwells_s_in_seconds_p_in_milliseconds() {
     let motions = read("G4 P500\nG4 S2\nG4 S1 P9000\nG4\n", Dialect::Marlin);
     let seconds: Vec<f64> = motions
