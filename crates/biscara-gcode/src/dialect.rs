@@ -68,7 +68,9 @@ impl fmt::Display for Dialect {
 
 /// A dialect name that is not one of [`Dialect::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, makerbot, mach3, fanuc")]
+#[error(
+    "unknown dialect `{0}`: expected one of auto, linuxcnc, grbl, marlin, makerbot, mach3, fanuc"
+)]
 pub struct UnknownDialect(pub String);
 
 impl FromStr for Dialect {

@@ -12,20 +12,28 @@ use biscara_joints::{JointCsvFormat, JointCsvWriter, JointSample, TORQUE_COLUMNS
 
 use crate::{Note, Pipeline, PipelineError, ProgramKind, ProgramSource, ToolState};
 
+/// [`Pipeline::within_time_limit`] against `limit` (s), for the stages that hold the limit
+/// without the pipeline ([`crate::ToolSamples`]).
+#[inline(always)]
+pub(crate) fn within_limit(
+    file: &str,
+    t: f64,
+    line: usize,
+    limit: f64,
+) -> Result<(), PipelineError> {
+    if t > limit {
+        return Err(PipelineError::TimeLimit { file: file.to_owned(), line, limit });
+    }
+    Ok(())
+}
+
 impl Pipeline<'_> {
     /// An error once a sample's time `t` (s) is past the configured
     /// [`time_limit`](crate::SamplingConfig::time_limit): a program that never ends stops
     /// there, its partial output left to the caller to throw away.
     #[inline(always)]
     pub fn within_time_limit(&self, file: &str, t: f64, line: usize) -> Result<(), PipelineError> {
-        if t > self.config().time_limit {
-            return Err(PipelineError::TimeLimit {
-                file: file.to_owned(),
-                line,
-                limit: self.config().time_limit,
-            });
-        }
-        Ok(())
+        within_limit(file, t, line, self.config().time_limit)
     }
 
     /// Writes the program's Cartesian samples ([`Pipeline::samples`]) to `out` as a path CSV

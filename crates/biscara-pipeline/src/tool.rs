@@ -257,10 +257,7 @@ impl Iterator for ToolSamples {
         };
         Some(sample.and_then(|sample| {
             let (file, limit) = &self.limit;
-            if sample.t > *limit {
-                let (file, line, limit) = (file.clone(), sample.line, *limit);
-                return Err(PipelineError::TimeLimit { file, line, limit });
-            }
+            crate::csv::within_limit(file, sample.t, sample.line, *limit)?;
             let state = self.state(&sample);
             Ok((sample, state))
         }))
@@ -327,6 +324,28 @@ impl ToolJointSamples {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_sample_past_the_time_limit_is_the_pipeline_s_time_limit_error() {
+        use biscara_kinematics::RobotModel;
+
+        use crate::{Pipeline, ProgramKind, SamplingConfig, TextSource};
+        let model = RobotModel::default();
+        let config = SamplingConfig { time_limit: 0.05, ..SamplingConfig::default() };
+        let pipeline = Pipeline::new(&model, config);
+        let program = TextSource::new("long.ngc", "G21 G90\nG0 X0 Y400\nG1 X100 F600\nM2\n");
+        let samples = pipeline.tool_samples(&program, ProgramKind::Gcode, |_| {}).expect("open");
+        let mut last = None;
+        let err = samples
+            .map(|sample| sample.map(|(sample, _)| last = Some(sample)))
+            .find_map(Result::err)
+            .expect("past the limit");
+        let last = last.expect("samples before the limit");
+        assert!(last.t <= 0.05, "{last:?}");
+        // The one error `within_time_limit` makes, at the sample after the last one given.
+        let expected = pipeline.within_time_limit("long.ngc", 0.051, 2).expect_err("past it");
+        assert_eq!(err.to_string(), expected.to_string());
+    }
 
     #[test]
     fn each_tool_works_only_while_it_acts_on_the_part() {
