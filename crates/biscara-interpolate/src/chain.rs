@@ -24,7 +24,7 @@ use biscara_blend::{Blended, Geometry, Piece, Speed};
 use biscara_motion::Motion;
 use biscara_timing::{Constraint, Grid, PathConstraints};
 
-use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO, UNBOUNDED};
+use crate::interpolator::{GRID_MM, GRID_TURN_DEGREES, MAX_REFINE, REFINE_RATIO, fill_torque_rows};
 use crate::{
     CartesianLimits, InterpolateError, MAX_JOINTS, RateLimit, Segment, SlowDown, SpeedLimit,
 };
@@ -386,13 +386,13 @@ where
                 slowest = Some(RateLimit { rate: joint, cause: bound.name });
             }
         }
-        let torques = &mut out[1 + joints..];
-        let filled = torques.is_empty()
-            || (known
-                && self.limit.torque_constraints(&first[..joints], &second[..joints], torques));
-        if !filled {
-            torques.fill(UNBOUNDED);
-        }
+        fill_torque_rows(
+            self.limit,
+            known,
+            &first[..joints],
+            &second[..joints],
+            &mut out[1 + joints..],
+        );
         if let Some(slowest) = slowest {
             let held = &mut self.chain.pieces[index - self.chain.front];
             if held.slowest.is_none_or(|known| slowest.rate < known.rate) {

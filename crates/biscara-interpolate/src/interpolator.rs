@@ -277,14 +277,30 @@ impl<L: SpeedLimit> PathConstraints for MoveBounds<'_, L> {
                 *self.slowest = Some(RateLimit { rate: joint_rate, cause: bound.name });
             }
         }
-        let torques = &mut out[1 + joints..];
-        let filled = torques.is_empty()
-            || (known
-                && self.limit.torque_constraints(&first[..joints], &second[..joints], torques));
-        if !filled {
-            torques.fill(UNBOUNDED);
-        }
+        fill_torque_rows(
+            self.limit,
+            known,
+            &first[..joints],
+            &second[..joints],
+            &mut out[1 + joints..],
+        );
         rate * rate
+    }
+}
+
+/// Fills a grid point's torque rows (`out`, after the path and joint rows) from the joints'
+/// derivatives along the path: the speed limit's rows where the derivatives are `known` and
+/// it gives them, else rows that bound nothing. For a single move and for a chain alike.
+pub(crate) fn fill_torque_rows<L: SpeedLimit>(
+    limit: &mut L,
+    known: bool,
+    first: &[f64],
+    second: &[f64],
+    out: &mut [Constraint],
+) {
+    let filled = out.is_empty() || (known && limit.torque_constraints(first, second, out));
+    if !filled {
+        out.fill(UNBOUNDED);
     }
 }
 
