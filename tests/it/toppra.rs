@@ -207,29 +207,8 @@ fn durations(
         }
     }
     let (moves, holds) = write_moves(&dir.join("p.jsonl"), &robot, &dir.join("moves.jsonl"));
-    let script = root.join("tests/toppra/compare.py");
-    let output = Command::new("python3")
-        .arg(&script)
-        .arg(dir.join("moves.jsonl"))
-        .output()
-        .expect("run python3");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "compare.py failed ({})\n{stdout}\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let toppra: f64 = stdout
-        .lines()
-        .find_map(|line| line.strip_prefix("total "))
-        .and_then(|total| total.parse().ok())
-        .expect("total");
-    // Moves toppra cannot time count as 0 s on its side (a stricter comparison), but must be
-    // rare (at most 1 in 20): the tiny arcs of a few micrometres some CAM programs hold.
-    let skipped = stdout.lines().filter(|line| line.starts_with("skipped ")).count();
-    assert!(skipped * 20 <= moves, "toppra could not time {skipped} of {moves} moves\n{stdout}");
-    (durations[0], durations[1], toppra + holds, moves)
+    let stdout = run_compare(&[dir.join("moves.jsonl").as_os_str()]);
+    (durations[0], durations[1], toppra_total(&stdout, moves) + holds, moves)
 }
 
 /// Compares the durations of `programs` (a label, the file, the placement) on both robots,
@@ -313,6 +292,20 @@ fn run_compare(args: &[&std::ffi::OsStr]) -> String {
     stdout
 }
 
+/// toppra's total duration of the `moves` compare.py timed, from its output. Moves toppra cannot
+/// time count as 0 s on its side (a stricter comparison), but must be rare (at most 1 in 20):
+/// the tiny arcs of a few micrometres some CAM programs hold.
+fn toppra_total(stdout: &str, moves: usize) -> f64 {
+    let total = stdout
+        .lines()
+        .find_map(|line| line.strip_prefix("total "))
+        .and_then(|total| total.parse().ok())
+        .expect("total");
+    let skipped = stdout.lines().filter(|line| line.starts_with("skipped ")).count();
+    assert!(skipped * 20 <= moves, "toppra could not time {skipped} of {moves} moves\n{stdout}");
+    total
+}
+
 /// A robot whose motors bind on most rapid moves (weaker than its joint acceleration limits),
 /// with a 1 kg payload: the default robot's geometry, its bodies the aluminium ones.
 const TORQUE_ROBOT_MOTORS: &str = r#"{
@@ -391,14 +384,7 @@ fn torque_durations(
     drop(table);
     let stdout =
         run_compare(&["--torques".as_ref(), moves_file.as_os_str(), table_file.as_os_str()]);
-    let toppra: f64 = stdout
-        .lines()
-        .find_map(|line| line.strip_prefix("total "))
-        .and_then(|total| total.parse().ok())
-        .expect("total");
-    let skipped = stdout.lines().filter(|line| line.starts_with("skipped ")).count();
-    assert!(skipped * 20 <= moves, "toppra could not time {skipped} of {moves} moves\n{stdout}");
-    (free, optimal, toppra + holds, moves)
+    (free, optimal, toppra_total(&stdout, moves) + holds, moves)
 }
 
 /// Issue 36: the torque-limited optimal profile (a robot with `motors`) against toppra's
